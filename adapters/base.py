@@ -1,0 +1,247 @@
+"""The adapter contract: the small base class every engine adapter derives from.
+
+A subclass provides exactly:
+    name: str                                  the engine's name on the command line
+    version() -> str                           the installed engine's version
+    supports(scenario) -> str | None           None, or why the engine cannot represent it faithfully
+    default_setting(scenario) -> Setting       the setting used by `mbxval solve` and the status matrix
+    sweep(scenario) -> list[Setting]           settings for the work-precision curves
+    build(scenario, setting) -> model          the engine's own model (not timed)
+    simulate(model, times) -> Trajectory       the timed part; must not depend on earlier calls.
+It may also provide export(scenario, setting, path) in the engine's own file format, and call
+`self.count_steps(n)` inside `simulate` to report the engine steps taken.
+
+simulate raises an EngineFailure subclass (Diverged, Singular, Unsupported) or lets any other
+exception escape: the base's `run` turns every outcome into a RunResult with a status and a message,
+times the parts, records Python warnings, and rejects non-finite trajectories. A failing engine never
+raises out of `run`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import traceback
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any, ClassVar, Literal
+
+import numpy as np
+
+from scenarios.scenario import Scenario
+from scenarios.trajectory import Trajectory
+
+Status = Literal["ok", "failed", "diverged", "singular", "timeout", "unsupported"]
+STATUSES: tuple[Status, ...] = ("ok", "failed", "diverged", "singular", "timeout", "unsupported")
+OptionValue = float | int | str | bool
+
+
+class EngineFailure(Exception):
+    """An engine run that ended without a trajectory. `time` is the simulated time it happened."""
+
+    status: ClassVar[Status] = "failed"
+
+    def __init__(self, message: str, time: float | None = None) -> None:
+        super().__init__(message)
+        self.time = time
+
+
+class Diverged(EngineFailure):
+    """The simulation became unstable (exploding or non-finite state)."""
+
+    status: ClassVar[Status] = "diverged"
+
+
+class Singular(EngineFailure):
+    """The constraint Jacobian became singular, or the solver met a singular configuration."""
+
+    status: ClassVar[Status] = "singular"
+
+
+class Unsupported(EngineFailure):
+    """The engine cannot represent this scenario faithfully."""
+
+    status: ClassVar[Status] = "unsupported"
+
+
+@dataclass(frozen=True)
+class Setting:
+    """One point of an engine's accuracy-for-time trade-off. Settings with the same `mode` form one
+    work-precision curve (say MuJoCo RK4 across step sizes)."""
+
+    mode: str
+    options: tuple[tuple[str, OptionValue], ...] = ()
+
+    @classmethod
+    def of(cls, mode: str, **options: OptionValue) -> Setting:
+        return cls(mode, tuple(sorted(options.items())))
+
+    def get(self, key: str, default: OptionValue | None = None) -> Any:
+        return dict(self.options).get(key, default)
+
+    def __getitem__(self, key: str) -> Any:
+        return dict(self.options)[key]
+
+    def replace(self, **options: OptionValue) -> Setting:
+        return Setting.of(self.mode, **{**dict(self.options), **options})
+
+    @property
+    def label(self) -> str:
+        """Short, stable text such as `RK4 dt=0.0001 solref=0.0002`."""
+        parts = [self.mode] + [f"{k}={_fmt(v)}" for k, v in self.options]
+        return " ".join(parts)
+
+    def as_dict(self) -> dict[str, OptionValue]:
+        return {"mode": self.mode, **dict(self.options)}
+
+
+def _fmt(value: OptionValue) -> str:
+    return f"{value:.6g}" if isinstance(value, float) else str(value)
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """The outcome of one engine run: always a status; a trajectory only when the status is ok."""
+
+    engine: str
+    version: str
+    setting: Setting
+    status: Status
+    message: str = ""
+    trajectory: Trajectory | None = None
+    build_time: float = math.nan
+    run_time: float = math.nan
+    steps: int = 0
+    failure_time: float | None = None
+    warnings: tuple[str, ...] = field(default=())
+
+
+class Adapter:
+    """Base class of engine adapters; see the module docstring for what a subclass provides."""
+
+    name: ClassVar[str] = ""
+
+    def __init__(self) -> None:
+        self._steps = 0
+
+    # --- what a subclass provides -------------------------------------------------------------
+    def version(self) -> str:
+        raise NotImplementedError
+
+    def supports(self, scenario: Scenario) -> str | None:
+        return None
+
+    def default_setting(self, scenario: Scenario) -> Setting:
+        raise NotImplementedError
+
+    def sweep(self, scenario: Scenario) -> list[Setting]:
+        return [self.default_setting(scenario)]
+
+    def build(self, scenario: Scenario, setting: Setting) -> Any:
+        raise NotImplementedError
+
+    def simulate(self, model: Any, times: np.ndarray) -> Trajectory:
+        raise NotImplementedError
+
+    def export(self, scenario: Scenario, setting: Setting, path: str) -> None:
+        raise NotImplementedError(f"engine '{self.name}' has no model file format to export")
+
+    # --- owned by the base ---------------------------------------------------------------------
+    def count_steps(self, n: int) -> None:
+        """Called by `simulate` to report engine steps taken."""
+        self._steps += n
+
+    def run(
+        self,
+        scenario: Scenario,
+        setting: Setting | None = None,
+        times: Sequence[float] | np.ndarray | None = None,
+        repeats: int = 1,
+        warmup: int = 0,
+    ) -> RunResult:
+        """Build and simulate, timing the build apart and the simulation as the minimum over
+        `repeats` after `warmup` untimed runs. Never raises for an engine's failure."""
+        setting = setting or self.default_setting(scenario)
+        grid = np.asarray(scenario.times() if times is None else times, dtype=float)
+        version = self._safe_version()
+        base: Mapping[str, Any] = {"engine": self.name, "version": version, "setting": setting}
+        reason = self.supports(scenario)
+        if reason is not None:
+            return RunResult(**base, status="unsupported", message=reason)
+        caught: list[warnings.WarningMessage] = []
+        try:
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                start = time.perf_counter()
+                model = self.build(scenario, setting)
+                build_time = time.perf_counter() - start
+                for _ in range(warmup):
+                    self.simulate(model, grid)
+                best = math.inf
+                trajectory = None
+                for _ in range(max(1, repeats)):
+                    self._steps = 0
+                    start = time.perf_counter()
+                    trajectory = self.simulate(model, grid)
+                    best = min(best, time.perf_counter() - start)
+        except EngineFailure as failure:
+            return RunResult(
+                **base,
+                status=failure.status,
+                message=_one_line(str(failure)),
+                failure_time=failure.time,
+                warnings=_texts(caught),
+            )
+        except Exception as error:  # an engine's own exception: recorded, never propagated
+            where = traceback.extract_tb(error.__traceback__)[-1]
+            return RunResult(
+                **base,
+                status="failed",
+                message=_one_line(f"{type(error).__name__}: {error} (at {where.name}:{where.lineno})"),
+                warnings=_texts(caught),
+            )
+        assert trajectory is not None
+        if not trajectory.is_finite():
+            return RunResult(
+                **base,
+                status="diverged",
+                message="the trajectory has non-finite values",
+                failure_time=_first_nonfinite_time(trajectory),
+                warnings=_texts(caught),
+            )
+        return RunResult(
+            **base,
+            status="ok",
+            trajectory=trajectory,
+            build_time=build_time,
+            run_time=best,
+            steps=self._steps,
+            warnings=_texts(caught),
+        )
+
+    def _safe_version(self) -> str:
+        try:
+            return self.version()
+        except Exception:
+            return "unknown"
+
+
+def _one_line(text: str) -> str:
+    return " ".join(text.split())[:500]
+
+
+def _texts(caught: list[warnings.WarningMessage]) -> tuple[str, ...]:
+    return tuple(dict.fromkeys(_one_line(f"{w.category.__name__}: {w.message}") for w in caught))
+
+
+def _first_nonfinite_time(trajectory: Trajectory) -> float | None:
+    bad = np.zeros(len(trajectory.times), dtype=bool)
+    for level in trajectory.levels:
+        values = trajectory.level(level)
+        assert values is not None
+        bad |= ~np.isfinite(values).all(axis=(1, 2))
+    for values in trajectory.extras.values():
+        bad |= ~np.isfinite(values)
+    hits = np.flatnonzero(bad)
+    return float(trajectory.times[hits[0]]) if hits.size else None

@@ -1,0 +1,30 @@
+"""Disc cam with a translating knife-edge follower (see disc_cam for the geometry)."""
+
+from __future__ import annotations
+
+import math
+
+from scenarios.bodies import Point
+from scenarios.cams import KnifeEdgeCam
+from scenarios.disc_cam import DEFAULTS, SPLINE_VARIANTS, build_disc_cam
+from scenarios.registry import Family
+from scenarios.scenario import ParameterValue, Scenario
+
+
+def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
+    return build_disc_cam(
+        "cam_knife_edge",
+        p,
+        variant,
+        lambda r, e, th: e * math.sin(th) + math.sqrt(r * r - (e * math.cos(th)) ** 2),
+        lambda profile, phi: KnifeEdgeCam("contact", "cam", profile, Point("follower"), phi),
+    )
+
+
+FAMILY = Family(
+    name="cam_knife_edge",
+    summary="driven disc cam, translating knife-edge follower",
+    defaults=DEFAULTS,
+    build=_build,
+    variants=SPLINE_VARIANTS,
+)

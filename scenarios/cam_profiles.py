@@ -1,0 +1,92 @@
+"""Cam profiles in polar form about the cam's centre of rotation: u(phi) = d(phi) [cos phi, sin phi].
+
+A profile supplies d and its first three derivatives in phi; the third is needed by the acceleration
+right-hand side of the roller and flat-faced contacts.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+
+@dataclass(frozen=True)
+class EccentricDisc:
+    """A circular disc of `radius` whose centre is `eccentricity` from the rotation centre, along the
+    cam frame's x axis. Polar form: d(phi) = e cos phi + sqrt(R^2 - e^2 sin^2 phi)."""
+
+    radius: float
+    eccentricity: float
+
+    def radii(self, phi: float) -> tuple[float, float, float, float]:
+        """d(phi) and its first three derivatives."""
+        e, r = self.eccentricity, self.radius
+        s2, c2 = math.sin(2.0 * phi), math.cos(2.0 * phi)
+        sn = math.sin(phi)
+        cs = math.cos(phi)
+        s = r * r - e * e * sn * sn
+        s1 = -e * e * s2
+        s2d = -2.0 * e * e * c2
+        s3d = 4.0 * e * e * s2
+        g = math.sqrt(s)
+        g1 = s1 / (2.0 * g)
+        g2 = s2d / (2.0 * g) - s1 * s1 / (4.0 * g**3)
+        g3 = (
+            s3d / (2.0 * g)
+            - s2d * g1 / (2.0 * g * g)
+            - s1 * s2d / (2.0 * g**3)
+            + 3.0 * s1 * s1 * g1 / (4.0 * g**4)
+        )
+        return e * cs + g, -e * sn + g1, -e * cs + g2, e * sn + g3
+
+
+@dataclass(frozen=True)
+class SplineProfile:
+    """A periodic cubic spline through radii tabulated at equally spaced angles over one turn."""
+
+    table: tuple[float, ...]
+
+    @classmethod
+    def sample(cls, profile: EccentricDisc, knots: int) -> SplineProfile:
+        """Tabulate another profile's radius at `knots` equally spaced angles."""
+        phis = np.linspace(0.0, 2.0 * math.pi, knots, endpoint=False)
+        return cls(tuple(float(profile.radii(float(p))[0]) for p in phis))
+
+    @cached_property
+    def _spline(self) -> CubicSpline:
+        n = len(self.table)
+        phis = np.linspace(0.0, 2.0 * math.pi, n + 1)
+        values = np.append(np.asarray(self.table), self.table[0])
+        return CubicSpline(phis, values, bc_type="periodic")
+
+    def radii(self, phi: float) -> tuple[float, float, float, float]:
+        """d(phi) and its first three derivatives (the third is piecewise constant)."""
+        sp = self._spline
+        p = math.fmod(phi, 2.0 * math.pi)
+        if p < 0.0:
+            p += 2.0 * math.pi
+        return float(sp(p)), float(sp(p, 1)), float(sp(p, 2)), float(sp(p, 3))
+
+
+Profile = EccentricDisc | SplineProfile
+
+
+def profile_point(profile: Profile, phi: float) -> np.ndarray:
+    """The local point u(phi) and its derivatives u', u'', u''' as rows of a (4, 2) array."""
+    d0, d1, d2, d3 = profile.radii(phi)
+    c, s = math.cos(phi), math.sin(phi)
+    radial = np.array([c, s])
+    normal = np.array([-s, c])
+    # Derivatives of d(phi) e_r(phi), with e_r' = e_n and e_n' = -e_r.
+    return np.array(
+        [
+            d0 * radial,
+            d1 * radial + d0 * normal,
+            (d2 - d0) * radial + 2.0 * d1 * normal,
+            (d3 - 3.0 * d1) * radial + (3.0 * d2 - d0) * normal,
+        ]
+    )

@@ -1,0 +1,32 @@
+"""Disc cam with a translating roller follower (see disc_cam for the geometry)."""
+
+from __future__ import annotations
+
+import math
+
+from scenarios.bodies import Point
+from scenarios.cams import RollerCam
+from scenarios.disc_cam import DEFAULTS, SPLINE_VARIANTS, build_disc_cam
+from scenarios.registry import Family
+from scenarios.scenario import ParameterValue, Scenario, require_positive
+
+
+def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
+    rr = float(p["roller_radius"])
+    require_positive("cam_roller", roller_radius=rr)
+    return build_disc_cam(
+        "cam_roller",
+        p,
+        variant,
+        lambda r, e, th: e * math.sin(th) + math.sqrt((r + rr) ** 2 - (e * math.cos(th)) ** 2),
+        lambda profile, phi: RollerCam("contact", "cam", profile, Point("follower"), rr, phi),
+    )
+
+
+FAMILY = Family(
+    name="cam_roller",
+    summary="driven disc cam, translating roller follower",
+    defaults={**DEFAULTS, "roller_radius": 0.02},
+    build=_build,
+    variants=SPLINE_VARIANTS,
+)

@@ -1,0 +1,96 @@
+"""Shared builder of the cam families: a disc cam pinned at the origin and driven at constant speed,
+and a follower translating along the y axis through the cam's centre.
+
+The profile is the eccentric disc (radius R, eccentricity e) or, with `profile=spline`, a periodic
+cubic spline through `knots` radii of that disc. Closed forms with cam angle th:
+knife edge y = e sin th + sqrt(R^2 - e^2 cos^2 th); roller y = e sin th + sqrt((R + r)^2 - e^2
+cos^2 th); flat face y = R + e sin th.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+from scenarios.bodies import GROUND, Body, Point
+from scenarios.cam_profiles import EccentricDisc, Profile, SplineProfile
+from scenarios.cams import CamContact
+from scenarios.drivers import AbsoluteDriver
+from scenarios.joints import Prismatic, Revolute
+from scenarios.motions import ConstantSpeed
+from scenarios.scenario import (
+    ParameterValue,
+    Scenario,
+    ScenarioError,
+    require_finite,
+    require_positive,
+)
+
+DEFAULTS: dict[str, ParameterValue] = {
+    "radius": 0.05,
+    "eccentricity": 0.01,
+    "omega": 10.0,
+    "theta0": 0.0,
+    "profile": "disc",
+    "knots": 72,
+    "revolutions": 1.0,
+    "steps": 200,
+}
+
+SPLINE_VARIANTS: dict[str, dict[str, ParameterValue]] = {"spline": {"profile": "spline"}}
+
+ContactFactory = Callable[[Profile, float], CamContact]
+
+
+def build_disc_cam(
+    family: str,
+    p: dict[str, ParameterValue],
+    variant: str,
+    follower_height: Callable[[float, float, float], float],
+    contact: ContactFactory,
+) -> Scenario:
+    """Build a disc-cam scenario; `follower_height(R, e, th)` gives a guess of the follower's y and
+    `contact(profile, phi_guess)` the cam contact."""
+    big_r, e = float(p["radius"]), float(p["eccentricity"])
+    omega, theta0 = float(p["omega"]), float(p["theta0"])
+    require_positive(family, radius=big_r, revolutions=float(p["revolutions"]))
+    require_finite(family, eccentricity=e, omega=omega, theta0=theta0)
+    if omega == 0.0:
+        raise ScenarioError(f"{family}: omega must be non-zero")
+    if not 0.0 <= e < big_r:
+        raise ScenarioError(f"{family}: eccentricity must be in [0, radius), got {e}")
+    disc = EccentricDisc(big_r, e)
+    kind = str(p["profile"])
+    profile: Profile
+    if kind == "disc":
+        profile = disc
+    elif kind == "spline":
+        knots = int(p["knots"])
+        if knots < 4:
+            raise ScenarioError(f"{family}: knots must be at least 4, got {knots}")
+        profile = SplineProfile.sample(disc, knots)
+    else:
+        raise ScenarioError(f"{family}: profile must be 'disc' or 'spline', got '{kind}'")
+    mass = math.pi * big_r**2
+    bodies = (
+        Body("cam", (0.0, 0.0, theta0), mass=mass, inertia=mass * big_r**2 / 2),
+        Body("follower", (0.0, follower_height(big_r, e, theta0), 0.0), mass=0.2, inertia=1e-4),
+    )
+    joints = (
+        Revolute("pivot", Point(GROUND, (0.0, 0.0)), Point("cam")),
+        Prismatic("guide", Point("follower"), Point(GROUND, (0.0, 0.0)), axis=(0.0, 1.0)),
+        contact(profile, math.pi / 2 - theta0),
+    )
+    driver = AbsoluteDriver("cam_drive", "cam", "theta", ConstantSpeed(theta0, omega))
+    return Scenario(
+        family=family,
+        variant=variant,
+        bodies=bodies,
+        joints=joints,
+        drivers=(driver,),
+        t_end=float(p["revolutions"]) * 2.0 * math.pi / abs(omega),
+        steps=int(p["steps"]),
+        characteristic_length=big_r,
+        parameters=tuple(p.items()),
+        description=f"{kind} cam with a translating {family.removeprefix('cam_').replace('_', '-')} follower",
+    )

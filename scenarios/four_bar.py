@@ -1,0 +1,94 @@
+"""Four-bar linkage: crank O2-A, coupler A-B, rocker O4-B, ground pivots O2 = (0, 0), O4 = (g, 0).
+
+A Grashof crank-rocker by default, driven by the crank at constant speed; `branch` +1 assembles B
+above the line A-O4 (the open configuration), -1 below (the crossed one).
+"""
+
+from __future__ import annotations
+
+import math
+
+from scenarios.bodies import GROUND, Body, Point
+from scenarios.drivers import AbsoluteDriver
+from scenarios.joints import Revolute
+from scenarios.motions import ConstantSpeed
+from scenarios.registry import Family
+from scenarios.scenario import (
+    ParameterValue,
+    Scenario,
+    ScenarioError,
+    require_finite,
+    require_positive,
+)
+
+
+def link(name: str, start: tuple[float, float], end: tuple[float, float], length: float) -> Body:
+    """A link body with its frame at the midpoint, x from `start` to `end` (a rough guess)."""
+    angle = math.atan2(end[1] - start[1], end[0] - start[0])
+    mid = ((start[0] + end[0]) / 2, (start[1] + end[1]) / 2, angle)
+    return Body(name, mid, mass=length, inertia=length**3 / 12, length=length)
+
+
+def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
+    g, a = float(p["ground_length"]), float(p["crank_length"])
+    b, c = float(p["coupler_length"]), float(p["rocker_length"])
+    omega, theta0, branch = float(p["omega"]), float(p["theta0"]), int(p["branch"])
+    require_positive(
+        "four_bar", ground_length=g, crank_length=a, coupler_length=b, rocker_length=c
+    )
+    require_positive("four_bar", revolutions=float(p["revolutions"]))
+    require_finite("four_bar", omega=omega, theta0=theta0)
+    if omega == 0.0:
+        raise ScenarioError("four_bar: omega must be non-zero")
+    if branch not in (1, -1):
+        raise ScenarioError(f"four_bar: branch must be 1 or -1, got {branch}")
+
+    ax, ay = a * math.cos(theta0), a * math.sin(theta0)
+    dx, dy = g - ax, -ay
+    d = math.hypot(dx, dy)
+    cos_gamma = max(-1.0, min(1.0, (b * b + d * d - c * c) / (2 * b * d)))
+    angle = math.atan2(dy, dx) + branch * math.acos(cos_gamma)
+    bx, by = ax + b * math.cos(angle), ay + b * math.sin(angle)
+    bodies = (
+        link("crank", (0.0, 0.0), (ax, ay), a),
+        link("coupler", (ax, ay), (bx, by), b),
+        link("rocker", (g, 0.0), (bx, by), c),
+    )
+    joints = (
+        Revolute("O2", Point(GROUND, (0.0, 0.0)), Point("crank", (-a / 2, 0.0))),
+        Revolute("A", Point("crank", (a / 2, 0.0)), Point("coupler", (-b / 2, 0.0))),
+        Revolute("B", Point("coupler", (b / 2, 0.0)), Point("rocker", (c / 2, 0.0))),
+        Revolute("O4", Point(GROUND, (g, 0.0)), Point("rocker", (-c / 2, 0.0))),
+    )
+    driver = AbsoluteDriver("crank_drive", "crank", "theta", ConstantSpeed(theta0, omega))
+    return Scenario(
+        family="four_bar",
+        variant=variant,
+        bodies=bodies,
+        joints=joints,
+        drivers=(driver,),
+        t_end=float(p["revolutions"]) * 2.0 * math.pi / abs(omega),
+        steps=int(p["steps"]),
+        characteristic_length=a,
+        parameters=tuple(p.items()),
+        description="four-bar linkage driven by the crank",
+    )
+
+
+FAMILY = Family(
+    name="four_bar",
+    summary="crank, coupler and rocker; a Grashof crank-rocker by default",
+    defaults={
+        "ground_length": 0.1,
+        "crank_length": 0.05,
+        "coupler_length": 0.1,
+        "rocker_length": 0.125,
+        "omega": 50.0,
+        "theta0": 0.3,
+        "branch": 1,
+        "revolutions": 1.0,
+        "steps": 200,
+    },
+    build=_build,
+    variants={"crossed": {"branch": -1}},
+)

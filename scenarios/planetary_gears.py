@@ -1,0 +1,73 @@
+"""Planetary train with a fixed sun: the arm turns about the sun's centre and carries the planet.
+
+The sun is the ground (radius_sun), the planet (radius_planet) meshes externally with it and is
+pinned to the arm's end. The planet turns at omega_arm (1 + r_sun / r_planet).
+"""
+
+from __future__ import annotations
+
+import math
+
+from scenarios.bodies import GROUND, Body, Point
+from scenarios.drivers import AbsoluteDriver
+from scenarios.four_bar import link
+from scenarios.gears import GearPair
+from scenarios.joints import Revolute
+from scenarios.motions import ConstantSpeed
+from scenarios.registry import Family
+from scenarios.scenario import (
+    ParameterValue,
+    Scenario,
+    ScenarioError,
+    require_finite,
+    require_positive,
+)
+from scenarios.spur_gears import gear_body
+
+
+def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
+    rs, rp = float(p["radius_sun"]), float(p["radius_planet"])
+    omega, theta0 = float(p["omega"]), float(p["theta0"])
+    require_positive(
+        "planetary_gears", radius_sun=rs, radius_planet=rp, revolutions=float(p["revolutions"])
+    )
+    require_finite("planetary_gears", omega=omega, theta0=theta0)
+    if omega == 0.0:
+        raise ScenarioError("planetary_gears: omega must be non-zero")
+    arm_length = rs + rp
+    end = (arm_length * math.cos(theta0), arm_length * math.sin(theta0))
+    bodies = (link("arm", (0.0, 0.0), end, arm_length), gear_body("planet", end, rp, 0.0))
+    joints = (
+        Revolute("arm_pivot", Point(GROUND, (0.0, 0.0)), Point("arm", (-arm_length / 2, 0.0))),
+        Revolute("planet_pivot", Point("arm", (arm_length / 2, 0.0)), Point("planet")),
+        GearPair("mesh", GROUND, rs, "planet", rp, carrier="arm", theta0_carrier=theta0),
+    )
+    driver = AbsoluteDriver("arm_drive", "arm", "theta", ConstantSpeed(theta0, omega))
+    return Scenario(
+        family="planetary_gears",
+        variant=variant,
+        bodies=bodies,
+        joints=joints,
+        drivers=(driver,),
+        t_end=float(p["revolutions"]) * 2.0 * math.pi / abs(omega),
+        steps=int(p["steps"]),
+        characteristic_length=arm_length,
+        parameters=tuple(p.items()),
+        description="planetary train: fixed sun, driven arm, one planet",
+    )
+
+
+FAMILY = Family(
+    name="planetary_gears",
+    summary="fixed sun, driven arm and a planet",
+    defaults={
+        "radius_sun": 0.06,
+        "radius_planet": 0.03,
+        "omega": 10.0,
+        "theta0": 0.0,
+        "revolutions": 1.0,
+        "steps": 200,
+    },
+    build=_build,
+    variants={},
+)

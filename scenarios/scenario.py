@@ -1,0 +1,94 @@
+"""A scenario: one fully described mechanism, with its time grid and what it asks to be compared."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Literal
+
+from scenarios.bodies import Body
+from scenarios.cams import CamContact
+from scenarios.drivers import Driver
+from scenarios.gears import GearPair, RackPinion
+from scenarios.joints import Joint
+
+Level = Literal["position", "velocity", "acceleration"]
+LEVELS: tuple[Level, ...] = ("position", "velocity", "acceleration")
+
+Constraint = Joint | GearPair | RackPinion | CamContact | Driver
+ParameterValue = float | int | str
+
+
+class ScenarioError(ValueError):
+    """A scenario cannot be built: unknown name or parameter, or a non-physical value."""
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """An engine-neutral planar mechanism.
+
+    `joints` hold every time-independent constraint (joints, gears, cam contacts); `drivers` the
+    prescribed motions. `outputs` names the bodies compared; `levels` the analysis levels that make
+    sense for the scene. Lengths in errors are divided by `characteristic_length`.
+    """
+
+    family: str
+    variant: str
+    bodies: tuple[Body, ...]
+    joints: tuple[Joint | GearPair | RackPinion | CamContact, ...]
+    drivers: tuple[Driver, ...]
+    t_end: float
+    steps: int
+    characteristic_length: float
+    outputs: tuple[str, ...] = ()
+    levels: tuple[Level, ...] = LEVELS
+    parameters: tuple[tuple[str, ParameterValue], ...] = field(default=())
+    description: str = ""
+
+    @property
+    def name(self) -> str:
+        """`family` or `family/variant` for a named variant."""
+        return self.family if self.variant == "default" else f"{self.family}/{self.variant}"
+
+    @property
+    def body_names(self) -> tuple[str, ...]:
+        return tuple(b.name for b in self.bodies)
+
+    @property
+    def output_bodies(self) -> tuple[str, ...]:
+        return self.outputs or self.body_names
+
+    @property
+    def cams(self) -> tuple[CamContact, ...]:
+        from scenarios.cams import FlatFaceCam, KnifeEdgeCam, RollerCam
+
+        return tuple(j for j in self.joints if isinstance(j, KnifeEdgeCam | RollerCam | FlatFaceCam))
+
+    def body(self, name: str) -> Body:
+        for b in self.bodies:
+            if b.name == name:
+                return b
+        raise KeyError(name)
+
+    def parameter(self, name: str) -> ParameterValue:
+        return dict(self.parameters)[name]
+
+    def times(self, t_end: float | None = None, steps: int | None = None) -> list[float]:
+        """The output grid: `steps` equal steps over [0, t_end], both ends included."""
+        t_end = self.t_end if t_end is None else t_end
+        steps = self.steps if steps is None else steps
+        return [t_end * k / steps for k in range(steps + 1)]
+
+
+def require_positive(family: str, **values: float) -> None:
+    """Raise ScenarioError naming the first value that is not a finite positive number."""
+    for key, value in values.items():
+        if not (math.isfinite(value) and value > 0.0):
+            raise ScenarioError(f"{family}: {key} must be a positive number, got {value!r}")
+
+
+def require_finite(family: str, **values: float) -> None:
+    """Raise ScenarioError naming the first value that is not finite."""
+    for key, value in values.items():
+        if not math.isfinite(value):
+            raise ScenarioError(f"{family}: {key} must be a finite number, got {value!r}")
