@@ -17,9 +17,7 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
         p,
         variant,
         lambda r, e, th: r + e * math.sin(th),
-        lambda profile, phi: FlatFaceCam(
-            "contact", "cam", profile, Point("follower"), (0.0, -1.0), phi
-        ),
+        lambda profile, phi: FlatFaceCam("contact", "cam", profile, Point("follower"), (0.0, -1.0), phi),
     )
 
 

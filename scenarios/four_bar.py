@@ -33,9 +33,7 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     g, a = float(p["ground_length"]), float(p["crank_length"])
     b, c = float(p["coupler_length"]), float(p["rocker_length"])
     omega, theta0, branch = float(p["omega"]), float(p["theta0"]), int(p["branch"])
-    require_positive(
-        "four_bar", ground_length=g, crank_length=a, coupler_length=b, rocker_length=c
-    )
+    require_positive("four_bar", ground_length=g, crank_length=a, coupler_length=b, rocker_length=c)
     require_positive("four_bar", revolutions=float(p["revolutions"]))
     require_finite("four_bar", omega=omega, theta0=theta0)
     if omega == 0.0:

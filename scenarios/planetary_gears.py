@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 
-from scenarios.bodies import GROUND, Body, Point
+from scenarios.bodies import GROUND, Point
 from scenarios.drivers import AbsoluteDriver
 from scenarios.four_bar import link
 from scenarios.gears import GearPair
@@ -28,9 +28,7 @@ from scenarios.spur_gears import gear_body
 def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     rs, rp = float(p["radius_sun"]), float(p["radius_planet"])
     omega, theta0 = float(p["omega"]), float(p["theta0"])
-    require_positive(
-        "planetary_gears", radius_sun=rs, radius_planet=rp, revolutions=float(p["revolutions"])
-    )
+    require_positive("planetary_gears", radius_sun=rs, radius_planet=rp, revolutions=float(p["revolutions"]))
     require_finite("planetary_gears", omega=omega, theta0=theta0)
     if omega == 0.0:
         raise ScenarioError("planetary_gears: omega must be non-zero")

@@ -41,11 +41,12 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
         raise ScenarioError(f"spur_gears: mesh must be 'external' or 'internal', got '{mesh}'")
     internal = mesh == "internal"
     if internal and r2 <= r1:
-        raise ScenarioError(
-            f"spur_gears: an internal mesh needs radius_out > radius_in, got {r2} <= {r1}"
-        )
+        raise ScenarioError(f"spur_gears: an internal mesh needs radius_out > radius_in, got {r2} <= {r1}")
     distance = r2 - r1 if internal else r1 + r2
-    bodies = (gear_body("gear_in", (0.0, 0.0), r1, theta0), gear_body("gear_out", (distance, 0.0), r2, 0.0))
+    bodies = (
+        gear_body("gear_in", (0.0, 0.0), r1, theta0),
+        gear_body("gear_out", (distance, 0.0), r2, 0.0),
+    )
     joints = (
         Revolute("pivot_in", Point(GROUND, (0.0, 0.0)), Point("gear_in")),
         Revolute("pivot_out", Point(GROUND, (distance, 0.0)), Point("gear_out")),
