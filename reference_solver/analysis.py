@@ -1,0 +1,197 @@
+"""Position, velocity and acceleration analysis over a time grid: the textbook's kinematic loop.
+
+At each time point: Newton-Raphson from the predictor q + h q_dot + h^2/2 q_ddot, then
+C_q q_dot = -C_t and C_q q_ddot = Q_d with the same factors. The loop refuses to cross a singular
+configuration: it stops with an error when C_q's conditioning collapses, when its determinant changes
+sign between two time points (a dead centre or a jump to the other branch lies between), or when
+Newton fails next to a singular configuration.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from reference_solver.diagnostics import rank_report
+from reference_solver.errors import AssemblyError, ConvergenceError, SingularConfigurationError
+from reference_solver.factorization import Factorization
+from reference_solver.layout import Layout
+from reference_solver.mobility import check_mobility
+from reference_solver.newton import NewtonSettings, newton
+from reference_solver.system import ConstraintSystem
+from scenarios.scenario import Scenario
+from scenarios.trajectory import Trajectory
+
+SINGULAR_RCOND = 1e-9
+"""A scaled Jacobian with a reciprocal condition number below this is treated as singular."""
+NEAR_SINGULAR = 1e-4
+"""On a Newton failure, a smallest singular value ratio below this names the failure singular."""
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """The solution on the grid, with the diagnostics of every time point."""
+
+    layout: Layout
+    times: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    iterations: np.ndarray
+    residual: np.ndarray
+    rcond: np.ndarray
+
+    def trajectory(self, bodies: Sequence[str] | None = None) -> Trajectory:
+        """The canonical trajectory of `bodies` (default: all), with each contact's phi as an extra."""
+        bodies = tuple(bodies or self.layout.bodies)
+        index = [
+            c
+            for b in bodies
+            for c in range(3 * self.layout.bodies.index(b), 3 * self.layout.bodies.index(b) + 3)
+        ]
+        shape = (len(self.times), len(bodies), 3)
+        extras = {f"{c}.phi": self.q[:, self.layout.phi_column(c)].copy() for c in self.layout.contacts}
+        return Trajectory(
+            self.times.copy(),
+            bodies,
+            position=self.q[:, index].reshape(shape),
+            velocity=self.qd[:, index].reshape(shape),
+            acceleration=self.qdd[:, index].reshape(shape),
+            extras=extras,
+        )
+
+
+def assemble(system: ConstraintSystem, q_guess: np.ndarray, t: float, tolerance: float) -> np.ndarray:
+    """A configuration satisfying every constraint at t, by damped Newton from the rough guess."""
+    settings = NewtonSettings(tolerance, tolerance, max_iterations=100, damped=True)
+    result = newton(system, q_guess, t, settings)
+    if result.converged:
+        return result.q
+    c = system.residual(result.q, t) / system.row_scales
+    worst = np.argsort(-np.abs(c))[:4]
+    rows = tuple(system.labels[k] for k in worst if abs(c[k]) > 10 * tolerance)
+    report = rank_report(system.scaled_jacobian(system.jacobian(result.q, t)), system.labels)
+    raise AssemblyError(
+        f"{system.scenario.name}: the mechanism cannot assemble at t={t:.6g}: after {result.iterations} "
+        f"iterations the constraints {', '.join(rows)} still miss by up to {np.max(np.abs(c)):.3g} "
+        f"(relative to the characteristic length {system.layout.length_scale:.6g})",
+        time=t,
+        q=result.q,
+        rank_deficiency=report.deficiency,
+        dependent_rows=report.dependent_rows,
+    )
+
+
+def _singular(system: ConstraintSystem, q: np.ndarray, t: float, why: str) -> SingularConfigurationError:
+    report = rank_report(system.scaled_jacobian(system.jacobian(q, t)), system.labels, NEAR_SINGULAR)
+    deficiency = max(1, report.deficiency)
+    rows = report.dependent_rows
+    return SingularConfigurationError(
+        f"{system.scenario.name}: singular configuration at t={t:.6g}: {why}; C_q rank deficiency "
+        f"{deficiency}, dependent rows: {', '.join(rows) or 'unknown'}",
+        time=t,
+        q=q.copy(),
+        rank_deficiency=deficiency,
+        dependent_rows=rows,
+    )
+
+
+def _rates(
+    system: ConstraintSystem, factors: Factorization, q: np.ndarray, t: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """q_dot from C_q q_dot = -C_t and q_ddot from C_q q_ddot = Q_d, with the scaled factors."""
+    rows, cols = system.row_scales, system.column_scales
+    qd = factors.solve(-system.c_t(t) / rows) * cols
+    qdd = factors.solve(system.q_d(q, qd, t) / rows) * cols
+    return qd, qdd
+
+
+def analyse(
+    scenario: Scenario,
+    times: Sequence[float] | np.ndarray | None = None,
+    tolerance: float = 1e-12,
+    max_iterations: int = 25,
+) -> Analysis:
+    """The full kinematic analysis of `scenario` on `times` (default: the scenario's grid)."""
+    grid = np.asarray(scenario.times() if times is None else times, dtype=float)
+    system = ConstraintSystem(scenario)
+    layout = system.layout
+    guess = layout.initial_guess(scenario)
+    check_mobility(system, guess)
+    settings = NewtonSettings(tolerance, tolerance, max_iterations)
+    n, count = layout.size, len(grid)
+    q_all, qd_all, qdd_all = np.empty((count, n)), np.empty((count, n)), np.empty((count, n))
+    iterations, residual, rcond = np.zeros(count, int), np.zeros(count), np.zeros(count)
+
+    q = assemble(system, guess, float(grid[0]), tolerance)
+    qd = qdd = np.zeros(n)
+    previous_det = 0.0
+    for k, t in enumerate(grid):
+        t = float(t)
+        if k > 0:
+            h = t - float(grid[k - 1])
+            predictor = q + h * qd + 0.5 * h * h * qdd
+            result = newton(system, predictor, t, settings)
+            if not result.converged:
+                raise _newton_failure(system, q, result.q, t, result.iterations)
+            q, factors, iterations[k], residual[k] = (
+                result.q,
+                result.factors,
+                result.iterations,
+                result.residual,
+            )
+        else:
+            result = newton(system, q, t, settings)
+            q, factors, residual[k] = result.q, result.factors, result.residual
+        assert factors is not None
+        if factors.rcond < SINGULAR_RCOND:
+            raise _singular(system, q, t, f"C_q reciprocal condition number {factors.rcond:.2g}")
+        if k > 0 and np.sign(factors.determinant) != np.sign(previous_det):
+            t0 = float(grid[k - 1])
+            crossing = t0 + (t - t0) * previous_det / (previous_det - factors.determinant)
+            raise _singular(
+                system,
+                q,
+                crossing,
+                f"det C_q changed sign between t={t0:.6g} and t={t:.6g} (a singular configuration "
+                "or a jump to another assembly branch lies between)",
+            )
+        previous_det = factors.determinant
+        qd, qdd = _rates(system, factors, q, t)
+        q_all[k], qd_all[k], qdd_all[k], rcond[k] = q, qd, qdd, factors.rcond
+    return Analysis(layout, grid, q_all, qd_all, qdd_all, iterations, residual, rcond)
+
+
+def _newton_failure(
+    system: ConstraintSystem, last_good: np.ndarray, last_iterate: np.ndarray, t: float, iterations: int
+) -> Exception:
+    """A singular configuration error when C_q is nearly singular at the last converged point or at
+    the last iterate, a convergence error otherwise."""
+    reports = [
+        rank_report(system.scaled_jacobian(system.jacobian(q, t)), system.labels)
+        for q in (last_good, last_iterate)
+        if np.all(np.isfinite(q))
+    ]
+    smallest = min((r.smallest for r in reports), default=0.0)
+    if smallest < NEAR_SINGULAR:
+        return _singular(
+            system,
+            last_good,
+            t,
+            f"Newton-Raphson found no configuration after {iterations} iterations next to a singular "
+            f"one (smallest singular value ratio {smallest:.2g})",
+        )
+    return ConvergenceError(
+        f"{system.scenario.name}: Newton-Raphson did not converge at t={t:.6g} in {iterations} iterations",
+        time=t,
+        q=last_iterate.copy(),
+    )
+
+
+def solve(
+    scenario: Scenario, times: Sequence[float] | np.ndarray | None = None, tolerance: float = 1e-12
+) -> Trajectory:
+    """The reference trajectory of every body of `scenario` (all three levels, plus contact phi)."""
+    return analyse(scenario, times, tolerance).trajectory()

@@ -1,0 +1,45 @@
+"""The constraint residual of any trajectory, the measure of how well an engine closes the loops."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from reference_solver.system import ConstraintSystem, equation_for
+from scenarios.scenario import Scenario
+from scenarios.trajectory import Trajectory
+
+
+def constraint_residual(scenario: Scenario, trajectory: Trajectory) -> np.ndarray:
+    """Per time point, the largest |C| over the scenario's constraints (drivers included) at the
+    trajectory's positions, lengths in units of the characteristic length.
+
+    Cam contacts count only when the trajectory carries their parameter as the extra `<name>.phi`.
+    The trajectory must have positions of every body of the scenario.
+    """
+    if trajectory.position is None:
+        raise ValueError("the trajectory has no positions")
+    system = ConstraintSystem(scenario)
+    layout = system.layout
+    missing = [b for b in layout.bodies if b not in trajectory.bodies]
+    if missing:
+        raise ValueError(f"the trajectory lacks bodies {', '.join(missing)}")
+    known_phi = {c for c in layout.contacts if f"{c}.phi" in trajectory.extras}
+    constraints = [
+        c for c in scenario.joints + scenario.drivers if c not in scenario.cams or c.name in known_phi
+    ]
+    equations = [equation_for(c, layout) for c in constraints]
+    scales = [np.array([layout.length_scale**p for p in eq.powers]) for eq in equations]
+    order = [trajectory.bodies.index(b) for b in layout.bodies]
+    q = np.zeros(layout.size)
+    zero = np.zeros(layout.size)
+    out = np.zeros(len(trajectory.times))
+    for k, t in enumerate(trajectory.times):
+        q[: 3 * len(order)] = trajectory.position[k, order, :].ravel()
+        for c in known_phi:
+            q[layout.phi_column(c)] = trajectory.extras[f"{c}.phi"][k]
+        worst = 0.0
+        for eq, scale in zip(equations, scales, strict=True):
+            values = np.array([row.value for row in eq.rows(q, zero, float(t))]) / scale
+            worst = max(worst, float(np.max(np.abs(values))))
+        out[k] = worst
+    return out
