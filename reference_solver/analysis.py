@@ -19,7 +19,7 @@ from reference_solver.errors import AssemblyError, ConvergenceError, SingularCon
 from reference_solver.factorization import Factorization
 from reference_solver.layout import Layout
 from reference_solver.mobility import check_mobility
-from reference_solver.newton import NewtonSettings, newton
+from reference_solver.newton import NewtonResult, NewtonSettings, newton
 from reference_solver.system import ConstraintSystem
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -85,6 +85,7 @@ def assemble(system: ConstraintSystem, q_guess: np.ndarray, t: float, tolerance:
 
 
 def _singular(system: ConstraintSystem, q: np.ndarray, t: float, why: str) -> SingularConfigurationError:
+    """The error for a singular configuration at (or next to) q."""
     report = rank_report(system.scaled_jacobian(system.jacobian(q, t)), system.labels, NEAR_SINGULAR)
     deficiency = max(1, report.deficiency)
     rows = report.dependent_rows
@@ -127,15 +128,14 @@ def analyse(
 
     q = assemble(system, guess, float(grid[0]), tolerance)
     qd = qdd = np.zeros(n)
-    previous_det = 0.0
+    previous_det = previous_rcond = 0.0
     for k, t in enumerate(grid):
         t = float(t)
         if k > 0:
-            h = t - float(grid[k - 1])
-            predictor = q + h * qd + 0.5 * h * h * qdd
-            result = newton(system, predictor, t, settings)
+            t0 = float(grid[k - 1])
+            result = newton(system, _predict(q, qd, qdd, t - t0), t, settings)
             if not result.converged:
-                raise _newton_failure(system, q, result.q, t, result.iterations)
+                result = _approach(system, q, qd, qdd, t0, t, settings)
             q, factors, iterations[k], residual[k] = (
                 result.q,
                 result.factors,
@@ -151,42 +151,68 @@ def analyse(
         if k > 0 and np.sign(factors.determinant) != np.sign(previous_det):
             t0 = float(grid[k - 1])
             crossing = t0 + (t - t0) * previous_det / (previous_det - factors.determinant)
+            nearer = q if factors.rcond < previous_rcond else q_all[k - 1]
             raise _singular(
                 system,
-                q,
+                nearer,
                 crossing,
                 f"det C_q changed sign between t={t0:.6g} and t={t:.6g} (a singular configuration "
                 "or a jump to another assembly branch lies between)",
             )
-        previous_det = factors.determinant
+        previous_det, previous_rcond = factors.determinant, factors.rcond
         qd, qdd = _rates(system, factors, q, t)
         q_all[k], qd_all[k], qdd_all[k], rcond[k] = q, qd, qdd, factors.rcond
     return Analysis(layout, grid, q_all, qd_all, qdd_all, iterations, residual, rcond)
 
 
-def _newton_failure(
-    system: ConstraintSystem, last_good: np.ndarray, last_iterate: np.ndarray, t: float, iterations: int
-) -> Exception:
-    """A singular configuration error when C_q is nearly singular at the last converged point or at
-    the last iterate, a convergence error otherwise."""
-    reports = [
-        rank_report(system.scaled_jacobian(system.jacobian(q, t)), system.labels)
-        for q in (last_good, last_iterate)
-        if np.all(np.isfinite(q))
-    ]
-    smallest = min((r.smallest for r in reports), default=0.0)
-    if smallest < NEAR_SINGULAR:
-        return _singular(
+def _predict(q: np.ndarray, qd: np.ndarray, qdd: np.ndarray, h: float) -> np.ndarray:
+    return q + h * qd + 0.5 * h * h * qdd  # type: ignore[no-any-return]
+
+
+def _approach(
+    system: ConstraintSystem,
+    q: np.ndarray,
+    qd: np.ndarray,
+    qdd: np.ndarray,
+    t0: float,
+    t1: float,
+    settings: NewtonSettings,
+) -> NewtonResult:
+    """Reach t1 from the solution at t0 in halved steps after Newton failed in one.
+
+    Either a poor predictor was the trouble and t1 is reached, or the steps shrink against a limit
+    no configuration lies beyond (a dead centre): then the error names the singular configuration
+    met there, at the last time reached. A regular configuration where Newton still fails gives a
+    ConvergenceError.
+    """
+    t, h = t0, (t1 - t0) / 2
+    last = None
+    while h > 1e-12 * max(abs(t1), abs(t1 - t0)):
+        target = min(t + h, t1) if t1 > t0 else max(t + h, t1)
+        result = newton(system, _predict(q, qd, qdd, target - t), target, settings)
+        if result.converged and result.factors is not None and result.factors.rcond >= SINGULAR_RCOND:
+            q, t, last = result.q, target, result
+            qd, qdd = _rates(system, result.factors, q, t)
+            if t == t1:
+                return result
+            h *= 2
+        else:
+            h /= 2
+    report = rank_report(system.scaled_jacobian(system.jacobian(q, t)), system.labels)
+    if report.smallest < NEAR_SINGULAR:
+        raise _singular(
             system,
-            last_good,
+            q,
             t,
-            f"Newton-Raphson found no configuration after {iterations} iterations next to a singular "
-            f"one (smallest singular value ratio {smallest:.2g})",
+            f"no configuration beyond this time (Newton-Raphson fails at any step forward; smallest "
+            f"singular value ratio {report.smallest:.2g})",
         )
-    return ConvergenceError(
-        f"{system.scenario.name}: Newton-Raphson did not converge at t={t:.6g} in {iterations} iterations",
+    iterations = last.iterations if last else settings.max_iterations
+    raise ConvergenceError(
+        f"{system.scenario.name}: Newton-Raphson did not converge at t={t1:.6g} (stuck at t={t:.6g} "
+        f"after {iterations} iterations) at a regular configuration",
         time=t,
-        q=last_iterate.copy(),
+        q=q.copy(),
     )
 
 

@@ -25,7 +25,8 @@ def rank_report(
     """The numerical rank of a (scaled) Jacobian and the rows that combine into its null space.
 
     A row is named dependent when it carries a significant weight in a left singular vector of a
-    lost singular value: those rows are linearly dependent on each other.
+    lost singular value (or of the smallest one, if none is lost): those rows are linearly dependent
+    on each other, or nearly so.
     """
     rows, cols = scaled_jacobian.shape
     if rows == 0:
@@ -34,7 +35,8 @@ def rank_report(
     top = s[0] if s.size and s[0] > 0 else 1.0
     rank = int(np.sum(s > tolerance * top))
     deficiency = rows - rank
-    lost = u[:, rank:]
+    # With no lost value (a configuration near, not at, a singularity), name the rows of the weakest.
+    lost = u[:, rank:] if rank < rows else u[:, min(rows, cols) - 1 :]
     weights = np.max(np.abs(lost), axis=1) if lost.size else np.zeros(rows)
     dependent = tuple(labels[k] for k in np.flatnonzero(weights > 0.1))
     smallest = float(s[min(rows, cols) - 1] / top) if min(rows, cols) else 1.0

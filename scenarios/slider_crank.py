@@ -1,7 +1,7 @@
 """Slider-crank: crank O-A pinned to the ground at O, rod A-B, slider pinned at B on a line y = offset.
 
-Driven by the crank at constant speed, or by the slider along a prescribed harmonic x(t) between
-its dead centres. Closed form: l2 sin th2 + l3 sin th3 = h, x_B = l2 cos th2 + l3 cos th3.
+Driven by the crank at constant speed, or by the slider along a prescribed harmonic x(t) that starts
+mid-stroke and sweeps `stroke_fraction` of the way between its dead centres. Closed form: l2 sin th2 + l3 sin th3 = h, x_B = l2 cos th2 + l3 cos th3.
 """
 
 from __future__ import annotations
@@ -68,7 +68,10 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
         fraction = float(p["stroke_fraction"])
         require_positive("slider_crank", stroke_fraction=fraction)
         mean, half = (outer + inner) / 2, fraction * (outer - inner) / 2
-        driver = AbsoluteDriver("slider_drive", "slider", "x", Harmonic(mean, half, abs(omega)))
+        # x = mean + half sin(omega t): from mid-stroke outwards, so a stroke_fraction >= 1 reaches the
+        # outer dead centre at t = asin(1 / stroke_fraction) / omega.
+        motion = Harmonic(mean, half, abs(omega), phase=-math.pi / 2)
+        driver = AbsoluteDriver("slider_drive", "slider", "x", motion)
     return Scenario(
         family="slider_crank",
         variant=variant,
@@ -100,7 +103,7 @@ FAMILY = Family(
     build=_build,
     variants={
         "offset": {"offset": 0.05},
-        "slider_drive": {"drive": "slider", "theta0": 0.6},
-        "slider_drive_offset": {"drive": "slider", "offset": 0.05, "theta0": 0.6},
+        "slider_drive": {"drive": "slider", "theta0": 1.2},
+        "slider_drive_offset": {"drive": "slider", "offset": 0.05, "theta0": 1.2},
     },
 )

@@ -73,7 +73,7 @@ def slider_crank(s: Scenario, t: np.ndarray) -> Trajectory:
         outer, inner = stroke_limits(l2, l3, h)
         mean, half = (outer + inner) / 2, float(s.parameter("stroke_fraction")) * (outer - inner) / 2
         om = abs(float(s.parameter("omega")))
-        xb, vb, ab = mean + half * np.cos(om * t), -half * om * np.sin(om * t), -half * om**2 * np.cos(om * t)
+        xb, vb, ab = mean + half * np.sin(om * t), half * om * np.cos(om * t), -half * om**2 * np.sin(om * t)
         rho = np.hypot(xb, h)
         th2 = np.arctan2(h, xb) + np.arccos((rho**2 + l2**2 - l3**2) / (2 * l2 * rho))
         th3 = np.arctan2(h - l2 * np.sin(th2), xb - l2 * np.cos(th2))
