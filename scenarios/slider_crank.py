@@ -1,7 +1,8 @@
-"""Slider-crank: crank O-A pinned to the ground at O, rod A-B, slider pinned at B on a line y = offset.
+"""Slider-crank: crank O-A pinned to the ground at O, rod A-B, slider pinned at B on the line y = offset.
 
 Driven by the crank at constant speed, or by the slider along a prescribed harmonic x(t) that starts
-mid-stroke and sweeps `stroke_fraction` of the way between its dead centres. Closed form: l2 sin th2 + l3 sin th3 = h, x_B = l2 cos th2 + l3 cos th3.
+mid-stroke and sweeps `stroke_fraction` of the way between its dead centres.
+Closed form: l2 sin th2 + l3 sin th3 = h, x_B = l2 cos th2 + l3 cos th3.
 """
 
 from __future__ import annotations
