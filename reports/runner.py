@@ -1,0 +1,257 @@
+"""The runner: scenario x engine x setting, each run isolated, every outcome stored as a row.
+
+For each scenario the reference truth is solved once at a tight tolerance on the scenario's grid;
+each engine run (build timed apart, simulation timed as the minimum of repeats after a warm-up, by
+the adapter's base class) happens in a forked child with a time limit, and its errors against the
+truth are computed there too. A crash, a hang or a divergence costs that row only. Rows already
+stored are skipped unless `rerun`; the store is saved after each scenario-engine group.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import tqdm
+
+import adapters
+from adapters.base import Adapter, RunResult, Setting
+from reports import provenance
+from reports.isolation import run_isolated
+from reports.metrics import HEADLINE_DEFINITION, Residual, compared_levels, error_metrics, residual_metric
+from reports.results_store import ResultsStore
+from reports.rows import NOT_RUN, failure_row, result_row
+from scenarios import Scenario, ScenarioError
+from scenarios import build as build_scenario
+from scenarios.trajectory import Trajectory
+
+TRUTH_TOLERANCE = 1e-12
+Truth = Callable[[Scenario, np.ndarray], Trajectory]
+Loader = Callable[[str], Adapter]
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """How each engine run is made: `sweep` False runs only each engine's default setting."""
+
+    sweep: bool = True
+    repeats: int = 3
+    warmup: int = 1
+    timeout: float = 60.0
+    rerun: bool = False
+
+
+@dataclass
+class Group:
+    """The planned runs of one engine on one scenario, or the row that says why there are none."""
+
+    scenario: Scenario
+    engine: str
+    adapter: Adapter | None
+    version: str
+    jobs: list[tuple[Setting, bool]] = field(default_factory=list)
+    verdict: dict[str, Any] | None = None
+
+
+def reference_truth(scenario: Scenario, times: np.ndarray) -> Trajectory:
+    import reference_solver
+
+    trajectory: Trajectory = reference_solver.solve(scenario, times, tolerance=TRUTH_TOLERANCE)
+    return trajectory
+
+
+def reference_residual() -> Residual | None:
+    """The lead's `reference_solver.constraint_residual`, when it exists."""
+    import reference_solver
+
+    return getattr(reference_solver, "constraint_residual", None)
+
+
+class Runner:
+    """Runs scenarios on engines into a ResultsStore."""
+
+    def __init__(
+        self,
+        store: ResultsStore,
+        engines: Sequence[str],
+        options: RunOptions,
+        loader: Loader = adapters.load,
+        truth: Truth = reference_truth,
+        residual: Residual | None = None,  # None: reference_solver.constraint_residual
+        progress: bool = True,
+        suite: str = "",
+    ) -> None:
+        self.store, self.engines, self.options = store, list(engines), options
+        self.truth, self.progress, self.suite = truth, progress, suite
+        self.residual = residual if residual is not None else reference_residual()
+        self.adapters: dict[str, Adapter | str] = {}
+        for name in self.engines:
+            try:
+                self.adapters[name] = loader(name)
+            except Exception as error:  # not installed, or its module is broken
+                self.adapters[name] = f"engine unavailable: {type(error).__name__}: {error}"
+
+    def run(self, scenario_names: Sequence[str]) -> None:
+        """Plan every group, then run what is not stored yet, saving after each group."""
+        groups = [g for name in scenario_names for g in self._plan(name)]
+        rerun = self.options.rerun
+        pending = {id(g): [j for j in g.jobs if rerun or not self._stored(g, j[0])] for g in groups}
+        truths_needed = {g.scenario.name for g in groups if pending[id(g)]}
+        total = sum(len(p) for p in pending.values()) + len(truths_needed)
+        tqdm.tqdm.monitor_interval = 0  # no monitor thread: the runs are forked
+        truths: dict[str, Trajectory | str] = {}
+        with tqdm.tqdm(total=total, file=sys.stderr, disable=not self.progress, unit="run") as bar:
+            try:
+                for group in groups:
+                    name = group.scenario.name
+                    self._keep_only(group)
+                    if group.verdict is not None:
+                        self.store.add(group.verdict)
+                        continue
+                    if pending[id(group)] and name not in truths:
+                        bar.set_description(f"{name} truth")
+                        truths[name] = self._solve_truth(group.scenario)
+                        bar.update()
+                    self._run_group(group, pending[id(group)], truths.get(name, ""), bar)
+                    self._save()
+            finally:
+                self._save()
+
+    # --- planning ---------------------------------------------------------------------------
+    def _plan(self, name: str) -> list[Group]:
+        try:
+            scenario = build_scenario(name)
+        except ScenarioError as error:
+            raise ScenarioError(f"suite scenario {name} cannot be built: {error}") from error
+        return [self._plan_engine(scenario, engine) for engine in self.engines]
+
+    def _plan_engine(self, scenario: Scenario, engine: str) -> Group:
+        adapter = self.adapters[engine]
+        if isinstance(adapter, str):
+            verdict = failure_row(scenario, engine, "unavailable", None, True, "failed", adapter)
+            return Group(scenario, engine, None, "unavailable", verdict=verdict)
+        version = adapter._safe_version()
+        group = Group(scenario, engine, adapter, version)
+        try:
+            reason = adapter.supports(scenario)
+            if reason is not None:
+                group.verdict = failure_row(scenario, engine, version, None, True, "unsupported", reason)
+                return group
+            default = adapter.default_setting(scenario)
+            settings = adapter.sweep(scenario) if self.options.sweep else []
+        except Exception as error:  # a broken adapter costs its own rows only
+            message = f"cannot plan the runs: {type(error).__name__}: {error}"
+            group.verdict = failure_row(scenario, engine, version, None, True, "failed", message)
+            return group
+        group.jobs = [(s, s == default) for s in dict.fromkeys([*settings, default])]
+        return group
+
+    def _stored(self, group: Group, setting: Setting) -> bool:
+        return self.store.has((group.scenario.name, group.engine, setting.label))
+
+    def _keep_only(self, group: Group) -> None:
+        """Drop stored rows of this scenario-engine pair that the current plan no longer has."""
+        keep = {s.label for s, _ in group.jobs} if group.verdict is None else {NOT_RUN}
+        for key in [k for k in self.store.rows if k[:2] == (group.scenario.name, group.engine)]:
+            if key[2] not in keep:
+                del self.store.rows[key]
+                self.store.trajectories.pop(key, None)
+
+    # --- running ----------------------------------------------------------------------------
+    def _solve_truth(self, scenario: Scenario) -> Trajectory | str:
+        times = np.asarray(scenario.times())
+        outcome = run_isolated(lambda: self.truth(scenario, times), self.options.timeout)
+        if outcome.kind != "ok" or outcome.value is None:
+            return f"no reference truth ({outcome.kind}: {outcome.message})"
+        self.store.put_truth(scenario.name, f"tolerance={TRUTH_TOLERANCE:g}", outcome.value)
+        return outcome.value
+
+    def _run_group(
+        self, group: Group, jobs: list[tuple[Setting, bool]], truth: Trajectory | str, bar: tqdm.tqdm
+    ) -> None:
+        timed_out: set[str] = set()
+        for setting, is_default in jobs:
+            bar.set_description(f"{group.scenario.name} {group.engine} {setting.label}")
+            if setting.mode in timed_out:
+                message = "not run: a cheaper setting of this mode hit the time limit"
+                self._fail(group, setting, is_default, "timeout", message)
+            else:
+                self._run_one(group, setting, is_default, truth, timed_out)
+            bar.update()
+
+    def _run_one(
+        self, group: Group, setting: Setting, is_default: bool, truth: Trajectory | str, timed_out: set[str]
+    ) -> None:
+        scenario, adapter, opts = group.scenario, group.adapter, self.options
+        assert adapter is not None
+        times = np.asarray(scenario.times())
+        residual = self.residual
+
+        def execute() -> tuple[RunResult, dict[str, float], tuple[str, ...], str]:
+            result = adapter.run(scenario, setting, times, repeats=opts.repeats, warmup=opts.warmup)
+            return (result, *compare(scenario, result, truth, residual))
+
+        outcome = run_isolated(execute, opts.timeout)
+        if outcome.kind == "timeout":
+            timed_out.add(setting.mode)
+            self._fail(group, setting, is_default, "timeout", outcome.message)
+        elif outcome.kind != "ok" or outcome.value is None:
+            self._fail(group, setting, is_default, "failed", outcome.message)
+        else:
+            result, metrics, levels, note = outcome.value
+            row = result_row(scenario, result, is_default, opts.repeats, opts.warmup, metrics, levels, note)
+            keep = result.trajectory if is_default and result.status == "ok" else None
+            self.store.add(row, keep)
+
+    def _fail(self, group: Group, setting: Setting, is_default: bool, status: Any, message: str) -> None:
+        row = failure_row(group.scenario, group.engine, group.version, setting, is_default, status, message)
+        self.store.add(row)
+
+    def _save(self) -> None:
+        versions = {
+            name: (a if isinstance(a, str) else a._safe_version()) for name, a in self.adapters.items()
+        }
+        meta = {
+            **provenance.describe(),
+            "suite": self.suite,
+            "engines": versions,
+            "repeats": self.options.repeats,
+            "warmup": self.options.warmup,
+            "timeout": self.options.timeout,
+            "truth": f"reference_solver.solve at tolerance {TRUTH_TOLERANCE:g} on each scenario's grid",
+            "headline": HEADLINE_DEFINITION,
+        }
+        self.store.save(meta)
+
+
+class ComparisonError(Exception):
+    """An engine's trajectory that cannot be set against the truth (wrong grid or bodies)."""
+
+
+def compare(
+    scenario: Scenario, result: RunResult, truth: Trajectory | str, residual: Residual | None
+) -> tuple[dict[str, float], tuple[str, ...], str]:
+    """Error metrics, compared levels and a note (why something is missing) for one run."""
+    if result.status != "ok" or result.trajectory is None:
+        return {}, (), ""
+    if isinstance(truth, str):
+        return {}, (), truth
+    notes = []
+    try:
+        metrics = error_metrics(scenario, result.trajectory, truth)
+        levels = compared_levels(scenario, result.trajectory, truth)
+    except (ValueError, KeyError) as error:  # the engine's trajectory is not what it should be
+        raise ComparisonError(f"cannot compare with the truth: {error}") from error
+    if residual is None:
+        notes.append("constraint residual not measured (reference_solver.constraint_residual missing)")
+    else:
+        try:
+            metrics["constraint_residual"] = residual_metric(scenario, result.trajectory, residual)
+        except Exception as error:
+            notes.append(f"constraint residual failed: {type(error).__name__}: {error}")
+            metrics["constraint_residual"] = math.nan
+    return metrics, levels, "; ".join(notes)
