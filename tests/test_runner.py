@@ -11,7 +11,7 @@ import pytest
 from test_runner_fakes import BAD, GOOD, fake_loader, fake_truth
 
 from reports.results_store import TRUTH, ResultsStore, read_results, read_trajectories
-from reports.runner import RunOptions, Runner
+from reports.runner import Runner, RunOptions
 
 SCENARIO = "slider_crank"
 OPTIONS = RunOptions(repeats=2, warmup=1, timeout=1.5)
