@@ -46,7 +46,7 @@ def equation_for(constraint: Constraint, layout: Layout) -> Equation:
         kind = EQUATIONS[type(constraint)]
     except KeyError:
         raise TypeError(f"no equations for constraint type {type(constraint).__name__}") from None
-    return kind(constraint, layout)  # type: ignore[call-arg]
+    return kind(constraint, layout)  # type: ignore[call-arg, arg-type]
 
 
 class ConstraintSystem:
