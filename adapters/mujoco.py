@@ -2,10 +2,15 @@
 
 build: the scenario becomes MJCF (adapters.mujoco_mjcf) through a planned tree, linear laws and cam
 pairs; MuJoCo's own constraint rows assemble the start (adapters.mujoco_assembly); the model is
-written a second time at the assembled poses, so qpos = 0 is the closed mechanism. simulate: steps
-MuJoCo on the output grid and reads poses from the body-frame sites, velocities and accelerations
-from MuJoCo's state (mj_objectVelocity, and mj_objectAcceleration on the qacc of a forward pass at
-the grid time). Instability (a bad-acceleration warning, auto-reset disabled) is `diverged`.
+written a second time at the assembled poses, so qpos = 0 is the closed mechanism; the start state
+is then reached by a short run-in from t = -RUN_IN steps. simulate: steps MuJoCo on the output
+grid and reads poses from the body-frame sites, velocities and accelerations from MuJoCo's state
+(mj_objectVelocity, and mj_objectAcceleration on the qacc of a forward pass at the grid time).
+Instability (a bad-acceleration warning, auto-reset disabled) is `diverged`.
+
+Settings: mode RK4 (default), implicitfast or Euler; dt, the requested step (the engine step divides
+the output interval); tc_steps, the solref time constant in steps (2, the smallest MuJoCo allows);
+impedance, solimp of the equalities; for cams preload (N) and contact_impedance.
 """
 
 from __future__ import annotations

@@ -50,8 +50,9 @@ def unsupported_reason(contact: CamContact) -> str | None:
     """Why this cam contact cannot be built faithfully, if it cannot."""
     if not isinstance(contact.profile, EccentricDisc):
         return (
-            f"cam '{contact.name}' has a spline profile: MuJoCo could only mesh it, and a mesh "
-            "collides as its convex hull through a general convex solver, not as the smooth profile"
+            f"cam '{contact.name}' has a spline profile: MuJoCo could only mesh it, and a mesh collides "
+            "as the convex hull of its vertices, a polygon of flat facets: the follower's velocity "
+            "would be piecewise constant and its acceleration impulsive, not the smooth spline's"
         )
     return None
 
