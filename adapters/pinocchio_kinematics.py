@@ -19,7 +19,9 @@ from scenarios.bodies import Point
 SINGULAR_COND = 1e10
 """Condition number of the row Jacobian above which a configuration counts as singular."""
 ROUNDOFF = 4.0 * np.finfo(float).eps
-"""A Newton step this small relative to z cannot reduce the residual further."""
+"""A Newton step this small relative to z cannot reduce the residual further..."""
+FLOOR = 1e-9
+"""...if the residual is already this small: then Newton stops above a tolerance below rounding."""
 
 Factor = tuple[np.ndarray, np.ndarray]
 """An LU factorization (LAPACK getrf: factors and pivots)."""
@@ -32,6 +34,12 @@ def _solve(jac: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, int]:
 
 def _back(lu: np.ndarray, pivots: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     return np.asarray(lapack.dgetrs(lu, pivots, rhs)[0])
+
+
+def _det_sign(factor: Factor) -> float:
+    lu, pivots = factor
+    swaps = np.count_nonzero(pivots != np.arange(pivots.size))
+    return float(np.prod(np.sign(np.diag(lu)))) * (-1.0) ** swaps
 
 
 def factorize(jac: np.ndarray, t: float, bound: float = SINGULAR_COND) -> Factor:
@@ -76,20 +84,20 @@ class KinematicSolver:
             rows, gap = self._system(z, t)
             if not np.all(np.isfinite(gap)):
                 raise EngineFailure(f"non-finite constraint residual at t = {t:.6g}", t)
-            if np.max(np.abs(gap)) <= self.tol:
+            residual = np.max(np.abs(gap))
+            if residual <= self.tol:
                 return z, factorize(rows.jac, t)
             if iteration == limit:
                 break
             step, info = _solve(rows.jac, -gap)
             if info != 0:
                 raise Singular(f"singular constraint Jacobian at t = {t:.6g}", t)
-            if np.max(np.abs(step)) <= ROUNDOFF * (1.0 + np.max(np.abs(z))):
+            if residual <= FLOOR and np.max(np.abs(step)) <= ROUNDOFF * (1.0 + np.max(np.abs(z))):
                 return z, factorize(rows.jac, t)  # the residual has reached its rounding floor
             z += step
         factorize(rows.jac, t, 1e8)
         raise EngineFailure(
-            f"Newton did not converge at t = {t:.6g} (residual {np.max(np.abs(gap)):.3g} after "
-            f"{limit} iterations)",
+            f"Newton did not converge at t = {t:.6g} (residual {residual:.3g} after {limit} iterations)",
             t,
         )
 
@@ -104,17 +112,32 @@ class KinematicSolver:
 
     def assemble(self, z_guess: np.ndarray, t: float) -> np.ndarray:
         """The configuration at t from a rough guess (more iterations allowed)."""
-        z, _ = self.position(z_guess, t, max_iter=4 * self.max_iter)
+        try:
+            z, _ = self.position(z_guess, t, max_iter=4 * self.max_iter)
+        except EngineFailure as failure:
+            raise type(failure)(f"cannot assemble at t = {t:.6g}: {failure}", t) from None
         return z
 
     def run(self, z0: np.ndarray, times: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """z, z' and z'' at every time; each solve starts from the previous step's Taylor guess."""
+        """z, z' and z'' at every time; each solve starts from the previous step's Taylor guess.
+
+        The sign of det J is followed: a change between two time points means the path crossed a
+        singular configuration (or Newton jumped to another assembly branch), reported as Singular.
+        """
         n = z0.size
         out = np.zeros((3, len(times), n))
         z, z_rate, z_acc = z0, np.zeros(n), np.zeros(n)
+        sign = 0.0
         for k, t in enumerate(times):
             h = t - times[k - 1] if k else 0.0
             z, factor = self.position(z + h * z_rate + 0.5 * h * h * z_acc, float(t))
+            if sign and _det_sign(factor) != sign:
+                raise Singular(
+                    f"the constraint Jacobian's determinant changes sign between t = {times[k - 1]:.6g} "
+                    f"and t = {t:.6g}: a singular configuration lies between",
+                    float(t),
+                )
+            sign = _det_sign(factor)
             z_rate, z_acc = self.rates(z, factor, float(t))
             out[:, k] = z, z_rate, z_acc
         return out[0], out[1], out[2]
