@@ -48,27 +48,44 @@ class Quantity:
 
 def inner(a: Quantity, b: Quantity) -> Quantity:
     """The scalar product a . b of two planar vectors."""
+    av, bv = a.val, b.val
     return Quantity(
-        np.atleast_1d(a.val @ b.val),
-        (a.val @ b.jac + b.val @ a.jac)[None, :],
-        np.atleast_1d(a.rate @ b.val + a.val @ b.rate),
-        np.atleast_1d(a.drift @ b.val + 2.0 * a.rate @ b.rate + a.val @ b.drift),
+        np.array([av[0] * bv[0] + av[1] * bv[1]]),
+        (av @ b.jac + bv @ a.jac)[None, :],
+        np.array([a.rate @ bv + av @ b.rate]),
+        np.array([a.drift @ bv + 2.0 * (a.rate @ b.rate) + av @ b.drift]),
     )
 
 
+def _turn(angle: float, v: np.ndarray) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
+
+
+def turned(theta: Quantity, u: np.ndarray) -> Quantity:
+    """A(theta) u for a body angle theta and a constant vector u given in the body's frame."""
+    w = _turn(float(theta.val[0]), u)
+    tw = np.array([-w[1], w[0]])
+    omega = float(theta.rate[0])
+    return Quantity(w, tw[:, None] * theta.jac, tw * omega, tw * float(theta.drift[0]) - w * omega**2)
+
+
 def rotated(theta: Quantity, local: Quantity) -> Quantity:
-    """A(theta) u for a body angle theta and a vector u given in the body's frame."""
-    c, s = math.cos(float(theta.val[0])), math.sin(float(theta.val[0]))
+    """A(theta) u for a body angle theta and a vector u(z) given in the body's frame."""
+    angle, omega = float(theta.val[0]), float(theta.rate[0])
+    c, s = math.cos(angle), math.sin(angle)
     a = np.array([[c, -s], [s, c]])
     w = a @ local.val
-    tw = TURN @ w
+    tw = np.array([-w[1], w[0]])
     w_rate = a @ local.rate
-    omega = float(theta.rate[0])
     return Quantity(
         w,
-        np.outer(tw, theta.jac[0]) + a @ local.jac,
+        tw[:, None] * theta.jac + a @ local.jac,
         tw * omega + w_rate,
-        tw * float(theta.drift[0]) - w * omega**2 + 2.0 * omega * (TURN @ w_rate) + a @ local.drift,
+        tw * float(theta.drift[0])
+        - w * omega**2
+        + 2.0 * omega * np.array([-w_rate[1], w_rate[0]])
+        + a @ local.drift,
     )
 
 

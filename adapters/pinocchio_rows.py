@@ -11,7 +11,7 @@ import numpy as np
 import pinocchio as pin
 
 from adapters.pinocchio_model import PinModel, frame_jacobian
-from adapters.pinocchio_quantity import TURN, Quantity, along, inner, rotated, stack
+from adapters.pinocchio_quantity import TURN, Quantity, along, inner, rotated, stack, turned
 from scenarios.bodies import GROUND, Point
 from scenarios.cam_profiles import profile_point
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
@@ -71,7 +71,7 @@ class Snapshot:
 
     def direction(self, body: str, local: tuple[float, float] | np.ndarray) -> Quantity:
         """A body-fixed direction in global axes."""
-        return rotated(self.angle(body), Quantity.constant(np.asarray(local), self.n))
+        return turned(self.angle(body), np.asarray(local, dtype=float))
 
     def profile(self, cam: CamContact, k: int) -> tuple[Quantity, Quantity]:
         """The contact point r(phi) on the cam and the tangent there, for contact number k."""

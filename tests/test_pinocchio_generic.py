@@ -164,7 +164,7 @@ def test_impossible_assembly_fails_at_time_zero() -> None:
 
 def test_command_line_solves_in_the_dynamic_mode(capsys) -> None:  # type: ignore[no-untyped-def]
     argv = ["solve", "four_bar", "--engine", "pinocchio", "--mode", "dynamic", "--steps", "20"]
-    assert main([*argv, "--setting", "dt=2.5e-5"]) == 0
+    assert main([*argv, "--setting", "dt=1e-4"]) == 0
     frame = pd.read_csv(io.StringIO(capsys.readouterr().out))
     assert len(frame) == 21
     closed = exact(scenarios.build("four_bar"), frame["t"].to_numpy()).to_frame()
