@@ -15,13 +15,11 @@ a cam's contact parameter phi being one more ODE2 coordinate on its own node.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
 import exudyn as exu
 import numpy as np
-from exudyn.advancedUtilities import CreateSymbolicUserFunction
 from exudyn.itemInterface import (
     MarkerBodyPosition,
     MarkerBodyRigid,
@@ -42,18 +40,19 @@ from exudyn.itemInterface import (
 )
 
 from adapters.exudyn_constraints import UserConstraint, user_constraint
+from adapters.exudyn_disc import PhiFromPoses, disc_contact
+from adapters.exudyn_user_functions import constraint_functions, offset_functions
 from scenarios.bodies import GROUND, Point
 from scenarios.cam_profiles import EccentricDisc
 from scenarios.cams import KnifeEdgeCam, RollerCam
 from scenarios.drivers import AbsoluteDriver, RelativeRotationDriver
 from scenarios.gears import GearPair
 from scenarios.joints import Ground, Prismatic, Revolute, RevoluteRevolute
-from scenarios.motions import Constant, ConstantSpeed, Harmonic, Motion
+from scenarios.motions import Motion
 from scenarios.scenario import Scenario
 
 COORDINATE = {"x": 0, "y": 1, "theta": 2}
 Term = tuple[str, int, float]  # body, coordinate index, coefficient
-PhiFromPoses = Callable[[np.ndarray, np.ndarray], float]
 
 
 class ModelError(ValueError):
@@ -215,18 +214,9 @@ class _Builder:
         """offset(t) = base + scale f(t) and its rate, symbolic when the motion allows."""
         if motion is None:
             return {}
-        symbolic = _symbolic_offsets(self.mbs, motion, scale, base)
-        if symbolic is not None:
-            self.model.keep.extend(symbolic)
-            return {"offsetUserFunction": symbolic[0], "offsetUserFunction_t": symbolic[1]}
-
-        def offset(mbs: Any, t: float, itemNumber: int, lOffset: float) -> float:
-            return base + scale * motion.f(t)
-
-        def offset_t(mbs: Any, t: float, itemNumber: int, lOffset: float) -> float:
-            return scale * motion.df(t)
-
-        return {"offsetUserFunction": offset, "offsetUserFunction_t": offset_t}
+        functions, keep = offset_functions(self.mbs, motion, scale, base)
+        self.model.keep.extend(keep)
+        return functions
 
     def scaled(self, terms: list[Term], constant: float) -> None:
         nodes = list(dict.fromkeys(b for b, _, _ in terms))
@@ -254,20 +244,9 @@ class _Builder:
     def disc_contact(self, cam: KnifeEdgeCam | RollerCam) -> None:
         disc = self.disc(cam)
         assert disc is not None
-        centre = Point(cam.cam, (disc.eccentricity, 0.0))
-        follower = cam.tip if isinstance(cam, KnifeEdgeCam) else cam.centre
-        reach, side = disc.radius, 1.0
-        if isinstance(cam, RollerCam):  # outer or inner contact, whichever the guess is nearer
-            gap = float(np.linalg.norm(_global(self.model, follower) - _global(self.model, centre)))
-            outer, inner = disc.radius + cam.roller_radius, abs(disc.radius - cam.roller_radius)
-            if abs(gap - inner) < abs(gap - outer):
-                # a disc inside a ring roller touches it on the far side of its centre
-                reach, side = inner, (-1.0 if cam.roller_radius > disc.radius else 1.0)
-            else:
-                reach = outer
-        self.distance(centre, follower, reach)
-        phi = _contact_phi(disc, follower.local, side)
-        self.model.phi_from_poses[cam.name] = (cam.cam, follower.body, phi, cam.phi_guess)
+        contact = disc_contact(self.model.scenario, cam, disc)
+        self.distance(contact.centre, contact.follower, contact.reach)
+        self.model.phi_from_poses[cam.name] = (cam.cam, contact.follower.body, contact.phi, cam.phi_guess)
 
     # --- user-function connectors -------------------------------------------------------------------
     def coordinate_markers(self, nodes: list[Any]) -> tuple[list[Any], list[int]]:
@@ -290,7 +269,9 @@ class _Builder:
         return [first, last], [sum(sizes[:-1]), sizes[-1]]
 
     def user(self, constraint: UserConstraint) -> None:
-        nodes = [b for b in dict.fromkeys(constraint.bodies) if b != GROUND]
+        nodes = [b for b in constraint.bodies if b != GROUND]
+        if len(set(nodes)) != len(nodes):
+            raise ModelError(f"'{constraint.name}' names the same body twice")
         if constraint.extra:
             key = f"{constraint.name}.phi"
             guess = float(getattr(_item(self.model.scenario, constraint.name), "phi_guess", 0.0))
@@ -304,7 +285,7 @@ class _Builder:
             )
             nodes.append(key)
         markers, columns = self.coordinate_markers(nodes)
-        functions = _user_functions(constraint, sum(columns))
+        functions = constraint_functions(constraint, sum(columns))
         self.mbs.AddObject(
             ObjectConnectorCoordinateVector(
                 markerNumbers=markers,
@@ -315,122 +296,8 @@ class _Builder:
         )
 
 
-def _user_functions(constraint: UserConstraint, width: int) -> tuple[Any, Any]:
-    """Exudyn's constraint and Jacobian user functions of `constraint` over the marker coordinates:
-    the moving bodies' (x, y, theta) in the constraint's order, the extra unknowns, then (when one node is
-    covered twice) a repeat that the constraint ignores."""
-    moving = [k for k, b in enumerate(constraint.bodies) if b != GROUND]
-    if len({constraint.bodies[k] for k in moving}) != len(moving):
-        raise ModelError(f"'{constraint.name}' names the same body twice")
-    size = 3 * len(moving) + constraint.extra
-    padding = [0.0] * (width - size)
-    zero = [0.0, 0.0, 0.0]
-    last: list[Any] = [None, None]  # Exudyn asks for residual and Jacobian at the same state
-
-    def evaluate(q: list[float], t: float) -> tuple[list[float], list[list[float]], list[float]]:
-        key = (t, *q[:size])
-        if last[0] == key:
-            return last[1]  # type: ignore[no-any-return]
-        slot = iter(range(0, 3 * len(moving), 3))
-        poses = [zero if b == GROUND else q[(s := next(slot)) : s + 3] for b in constraint.bodies]
-        residual, blocks, extra_block, c_t = constraint.evaluate(poses, q[size - constraint.extra : size], t)
-        jac = [
-            [value for k in moving for value in blocks[k][row]] + extra_block[row] + padding
-            for row in range(constraint.rows)
-        ]
-        last[0], last[1] = key, (residual, jac, c_t)
-        return residual, jac, c_t
-
-    def constraint_function(
-        mbs: Any, t: float, itemNumber: int, q: Any, q_t: Any, velocityLevel: bool
-    ) -> Any:
-        residual, jac, c_t = evaluate(_floats(q), t)
-        if not velocityLevel:
-            return residual
-        v = _floats(q_t)
-        return [
-            sum(a * b for a, b in zip(row, v, strict=True)) + ct for row, ct in zip(jac, c_t, strict=True)
-        ]
-
-    def jacobian_function(mbs: Any, t: float, itemNumber: int, q: Any, q_t: Any, velocityLevel: bool) -> Any:
-        return evaluate(_floats(q), t)[1]
-
-    return constraint_function, jacobian_function
-
-
-def _symbolic_offsets(mbs: Any, motion: Motion, scale: float, base: float) -> tuple[Any, Any] | None:
-    """Symbolic offset(t) = base + scale f(t) and its rate, for the motions Exudyn can record."""
-    sym: Any = exu.symbolic  # type: ignore[attr-defined]
-    if isinstance(motion, ConstantSpeed):
-        a, b = base + scale * motion.start, scale * motion.rate
-
-        def offset(mbs: Any, t: Any, itemNumber: Any, lOffset: Any) -> Any:
-            return a + b * t
-
-        def offset_t(mbs: Any, t: Any, itemNumber: Any, lOffset: Any) -> Any:
-            return b + 0.0 * t
-
-    elif isinstance(motion, Harmonic):
-        h = motion
-
-        def offset(mbs: Any, t: Any, itemNumber: Any, lOffset: Any) -> Any:
-            return base + scale * (h.mean + h.amplitude * sym.cos(h.omega * t + h.phase))
-
-        def offset_t(mbs: Any, t: Any, itemNumber: Any, lOffset: Any) -> Any:
-            return -scale * h.amplitude * h.omega * sym.sin(h.omega * t + h.phase)
-
-    elif isinstance(motion, Constant):
-        value = base + scale * motion.value
-
-        def offset(mbs: Any, t: Any, itemNumber: Any, lOffset: Any) -> Any:
-            return value + 0.0 * t
-
-        def offset_t(mbs: Any, t: Any, itemNumber: Any, lOffset: Any) -> Any:
-            return 0.0 * t
-
-    else:
-        return None
-    kind = "ObjectConnectorCoordinate"
-    return (
-        CreateSymbolicUserFunction(mbs, offset, "offsetUserFunction", itemTypeName=kind),
-        CreateSymbolicUserFunction(mbs, offset_t, "offsetUserFunction_t", itemTypeName=kind),
-    )
-
-
-def _global(model: ExudynModel, point: Point) -> np.ndarray:
-    """A point's global position at the bodies' guessed poses."""
-    if point.body == GROUND:
-        return np.array(point.local, dtype=float)
-    x, y, theta = model.scenario.body(point.body).guess
-    c, s = math.cos(theta), math.sin(theta)
-    lx, ly = point.local
-    return np.array([x + c * lx - s * ly, y + s * lx + c * ly])
-
-
-def _contact_phi(disc: EccentricDisc, local: tuple[float, float], side: float) -> PhiFromPoses:
-    """phi of the contact point, as the polar angle in the cam frame, from the cam's and follower's
-    poses: the point of the disc's circle on the line from its centre to the follower's point."""
-    centre = np.array([disc.eccentricity, 0.0])
-
-    def phi(cam: np.ndarray, follower: np.ndarray) -> float:
-        c, s = math.cos(follower[2]), math.sin(follower[2])
-        point = follower[:2] + np.array([c * local[0] - s * local[1], s * local[0] + c * local[1]])
-        c, s = math.cos(cam[2]), math.sin(cam[2])
-        rel = point - cam[:2]
-        in_cam = np.array([c * rel[0] + s * rel[1], -s * rel[0] + c * rel[1]])
-        direction = (in_cam - centre) / float(np.linalg.norm(in_cam - centre))
-        contact = centre + side * disc.radius * direction
-        return math.atan2(contact[1], contact[0])
-
-    return phi
-
-
 def _item(scenario: Scenario, name: str) -> object:
     for item in (*scenario.joints, *scenario.drivers):
         if getattr(item, "name", None) == name:
             return item
     raise KeyError(name)
-
-
-def _floats(values: Any) -> list[float]:
-    return values.tolist() if hasattr(values, "tolist") else list(values)  # type: ignore[no-any-return]

@@ -186,11 +186,29 @@ def assemble(model: ExudynModel, t0: float, settings: Any) -> States:
         raise EngineFailure(
             f"Exudyn's static solver did not assemble the mechanism: constraint residual {gap:.3g}", t0
         )
+    q0 = _nearest_turns(model, probe, q0, t0, gap + 1e-12)
     v0, a0 = probe.rates(q0, t0, *_scales(model))
     probe.close(settings)
+    data.SetODE2Coordinates(q0.tolist(), INITIAL)
     data.SetODE2Coordinates_t(v0.tolist(), INITIAL)
     data.SetODE2Coordinates_tt(a0.tolist(), INITIAL)
     return States(q0[None, :], v0[None, :], a0[None, :])
+
+
+def _nearest_turns(
+    model: ExudynModel, probe: ConstraintProbe, q: np.ndarray, t: float, gap: float
+) -> np.ndarray:
+    """Each angle (and cam parameter) that Newton threw whole turns from its guess, brought back
+    where no constraint minds (drivers and gears do fix absolute angles): the same configuration,
+    on the continuous angle the guess asks for."""
+    for k in [i + 2 for i in model.index.values()] + list(model.phi_index.values()):
+        turns = round((q[k] - model.guess[k]) / (2.0 * math.pi))
+        if turns:
+            trial = q.copy()
+            trial[k] -= 2.0 * math.pi * turns
+            if float(np.max(np.abs(probe.residual(trial, t)))) <= gap:
+                q = trial
+    return q
 
 
 def march(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any) -> tuple[States, int]:

@@ -1,0 +1,75 @@
+"""Knife-edge and roller followers on a circular disc cam, as Exudyn's distance connector: the
+follower's point keeps a fixed distance from the disc's centre. No Exudyn import here: only the
+geometry, and the contact parameter phi recovered from the bodies' poses afterwards.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from scenarios.bodies import GROUND, Point
+from scenarios.cam_profiles import EccentricDisc
+from scenarios.cams import KnifeEdgeCam, RollerCam
+from scenarios.scenario import Scenario
+
+PhiFromPoses = Callable[[np.ndarray, np.ndarray], float]
+
+
+@dataclass(frozen=True)
+class DiscContact:
+    """`follower` stays `reach` from `centre`; `phi(cam_pose, follower_pose)` is the contact's
+    profile parameter, the polar angle of the contact point in the cam frame."""
+
+    centre: Point
+    follower: Point
+    reach: float
+    phi: PhiFromPoses
+
+
+def disc_contact(scenario: Scenario, cam: KnifeEdgeCam | RollerCam, disc: EccentricDisc) -> DiscContact:
+    """The distance form of `cam`; a roller takes the outer or inner contact, whichever the
+    bodies' guessed poses are nearer."""
+    centre = Point(cam.cam, (disc.eccentricity, 0.0))
+    follower = cam.tip if isinstance(cam, KnifeEdgeCam) else cam.centre
+    reach, side = disc.radius, 1.0
+    if isinstance(cam, RollerCam):
+        gap = float(np.linalg.norm(_guessed(scenario, follower) - _guessed(scenario, centre)))
+        outer, inner = disc.radius + cam.roller_radius, abs(disc.radius - cam.roller_radius)
+        if abs(gap - inner) < abs(gap - outer):
+            # a disc inside a ring roller touches it on the far side of its centre
+            reach, side = inner, (-1.0 if cam.roller_radius > disc.radius else 1.0)
+        else:
+            reach = outer
+    return DiscContact(centre, follower, reach, _contact_phi(disc, follower.local, side))
+
+
+def _guessed(scenario: Scenario, point: Point) -> np.ndarray:
+    """A point's global position at the bodies' guessed poses."""
+    if point.body == GROUND:
+        return np.array(point.local, dtype=float)
+    x, y, theta = scenario.body(point.body).guess
+    c, s = math.cos(theta), math.sin(theta)
+    lx, ly = point.local
+    return np.array([x + c * lx - s * ly, y + s * lx + c * ly])
+
+
+def _contact_phi(disc: EccentricDisc, local: tuple[float, float], side: float) -> PhiFromPoses:
+    """The polar angle, in the cam frame, of the disc's circle point on the line from its centre
+    to the follower's point (on the far side for a disc inside a ring roller)."""
+    centre = np.array([disc.eccentricity, 0.0])
+
+    def phi(cam: np.ndarray, follower: np.ndarray) -> float:
+        c, s = math.cos(follower[2]), math.sin(follower[2])
+        point = follower[:2] + np.array([c * local[0] - s * local[1], s * local[0] + c * local[1]])
+        c, s = math.cos(cam[2]), math.sin(cam[2])
+        rel = point - cam[:2]
+        in_cam = np.array([c * rel[0] + s * rel[1], -s * rel[0] + c * rel[1]])
+        direction = (in_cam - centre) / float(np.linalg.norm(in_cam - centre))
+        contact = centre + side * disc.radius * direction
+        return math.atan2(contact[1], contact[0])
+
+    return phi
