@@ -4,10 +4,16 @@ The child is forked (cheap: about 5 ms here with every engine imported, against 
 spawned interpreter that has to import them again), runs the function, and sends its result back
 through a pipe. The child's stdout and stderr go to a temporary file: engine chatter stays out of
 the progress bar, and the last lines explain a hard crash.
+
+JIT-compiled code (numba) compiled in a child is lost with it: code that compiles on first use and
+should be compiled once, like the reference solver, runs first in this process (`run_here`), and
+every forked child inherits the compiled code.
 """
 
 from __future__ import annotations
 
+import contextlib
+import ctypes
 import faulthandler
 import multiprocessing
 import os
@@ -21,6 +27,7 @@ from typing import Any, Generic, Literal, TypeVar
 
 T = TypeVar("T")
 
+PR_SET_PDEATHSIG = 1
 Kind = Literal["ok", "error", "crash", "timeout"]
 
 
@@ -57,7 +64,34 @@ def run_isolated(function: Callable[[], T], timeout: float) -> Outcome[T]:
     return Outcome("error", message=str(payload))
 
 
+def run_here(function: Callable[[], T], timeout: float) -> Outcome[T]:
+    """Call `function()` in this process, with its exceptions caught and a time limit that
+    interrupts Python code (SIGALRM; compiled code is interrupted when it returns to Python).
+    For our own code whose state the forked runs should inherit, such as JIT-compiled kernels."""
+
+    def expire(signum: int, frame: Any) -> None:
+        raise _Expired
+
+    previous = signal.signal(signal.SIGALRM, expire)
+    signal.setitimer(signal.ITIMER_REAL, timeout)
+    try:
+        return Outcome("ok", value=function())
+    except _Expired:
+        return Outcome("timeout", message=f"no result within the time limit of {timeout:g} s")
+    except Exception as error:
+        where = traceback.extract_tb(error.__traceback__)[-1]
+        return Outcome("error", message=f"{type(error).__name__}: {error} (at {where.name}:{where.lineno})")
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+class _Expired(BaseException):
+    """Raised by the alarm; a BaseException so that the function's own handlers let it through."""
+
+
 def _child(function: Callable[[], Any], sender: Connection, output_fd: int) -> None:
+    _die_with_parent()
     os.dup2(output_fd, 1)
     os.dup2(output_fd, 2)
     faulthandler.enable(file=2)  # a hard crash leaves its Python stack in the output file
@@ -68,6 +102,12 @@ def _child(function: Callable[[], Any], sender: Connection, output_fd: int) -> N
         result = ("error", f"{type(error).__name__}: {error} (at {where.name}:{where.lineno})")
     sender.send(result)
     sender.close()
+
+
+def _die_with_parent() -> None:
+    """Linux: the child gets SIGKILL when the runner dies, so no orphan runs on."""
+    with contextlib.suppress(OSError, AttributeError):
+        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
 
 
 def _kill(child: Any) -> None:

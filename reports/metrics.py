@@ -83,11 +83,10 @@ def headline(metrics: dict[str, float], characteristic_length: float) -> float:
     return max(length / characteristic_length, angle)
 
 
-def headline_series(scenario: Scenario, result: Trajectory, truth: Trajectory) -> np.ndarray:
-    """The headline error at each grid time (its maximum is the headline error)."""
-    bodies = scenario.output_bodies
-    lengths, angles = level_errors(result.select(bodies), truth.select(bodies), "position")
-    return np.maximum(lengths / scenario.characteristic_length, angles)
+def headline_series(result: Trajectory, truth: Trajectory, characteristic_length: float) -> np.ndarray:
+    """The headline error at each grid time over the truth's bodies (its maximum is the headline)."""
+    lengths, angles = level_errors(result.select(truth.bodies), truth, "position")
+    return np.maximum(lengths / characteristic_length, angles)
 
 
 def residual_metric(scenario: Scenario, result: Trajectory, residual: Residual) -> float:

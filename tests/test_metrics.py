@@ -90,7 +90,7 @@ def test_levels_missing_or_not_asked_are_left_out() -> None:
 def test_headline_series_peaks_at_the_headline() -> None:
     reference = truth()
     result, _ = perturbed(reference)
-    series = headline_series(SCENARIO, result, reference)
+    series = headline_series(result, reference, SCENARIO.characteristic_length)
     assert series.shape == reference.times.shape
     assert series.max() == pytest.approx(error_metrics(SCENARIO, result, reference)["error"])
     assert series[7] == pytest.approx(5e-3 / 0.2)

@@ -1,0 +1,54 @@
+"""The Markdown summary: provenance, the status matrix and each scenario's table of runs."""
+
+from __future__ import annotations
+
+import pandas as pd
+
+from reports.report_data import HEADINGS, ReportData, number, table
+
+SHOWN = ("engine", "setting", "status", "error", "constraint_residual", "run_time", "message")
+SUMMARY_COLUMNS = tuple(HEADINGS.get(c, c) for c in SHOWN)
+
+
+def markdown_table(frame: pd.DataFrame, index_name: str | None = None) -> str:
+    """A GitHub-flavoured Markdown table (pipes in cells escaped)."""
+    columns = ([index_name] if index_name else []) + [str(c) for c in frame.columns]
+    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    for index, row in frame.iterrows():
+        cells = ([str(index)] if index_name else []) + [str(v) for v in row]
+        lines.append("| " + " | ".join(c.replace("|", "\\|").replace("\n", " ") for c in cells) + " |")
+    return "\n".join(lines)
+
+
+def render(data: ReportData) -> str:
+    meta = data.meta
+    engines = ", ".join(f"{k} {v}" for k, v in meta.get("engines", {}).items())
+    machine = meta.get("machine", {})
+    revision = str(meta.get("git_revision", "?"))[:12]
+    lines = [
+        "# mbxval report",
+        "",
+        f"Suite `{meta.get('suite', '?')}`, {meta.get('date', '?')}, git `{revision}`.",
+        f"Engines: {engines}. Python {meta.get('python', '?')}; "
+        f"{machine.get('processor', '?')}, {machine.get('cpus', '?')} CPUs.",
+        f"Timing: minimum of {meta.get('repeats', '?')} repeats after {meta.get('warmup', '?')} warm-up.",
+        "",
+        f"{meta.get('headline', '')}",
+        "",
+        "## Status and error at each engine's default setting",
+        "",
+        markdown_table(data.matrix(), "scenario"),
+        "",
+        "Runs by status: " + ", ".join(f"{s} {n}" for s, n in data.status_counts().items()) + ".",
+    ]
+    for scenario in data.scenarios():
+        rows = table(data.rows(scenario))[list(SUMMARY_COLUMNS)]
+        lines += [
+            "",
+            f"## {scenario}",
+            "",
+            f"Characteristic length {number(data.characteristic_length(scenario))} m.",
+            "",
+            markdown_table(rows),
+        ]
+    return "\n".join(lines) + "\n"
