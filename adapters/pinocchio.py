@@ -151,6 +151,15 @@ class PinocchioAdapter(Adapter):
             dynamics = DynamicSolver(pm, rows, dt, gains)
         return Built(scenario, mode, pm, kinematics, dynamics)
 
+    def export(self, scenario: Scenario, setting: Setting, path: str) -> None:
+        """Pinocchio's own serialization of the kinematic tree, frames and mimic joints (Boost XML;
+        reload with `pinocchio.Model().loadFromXML(path, "model")`). Loop closures, coupling rows and
+        cam contacts are rows the adapter solves: they are not part of a Pinocchio model file."""
+        reason = self.supports(scenario)
+        if reason is not None:
+            raise Unsupported(reason)
+        self.build(scenario, setting).pm.model.saveToXML(str(path), "model")
+
     def simulate(self, model: Any, times: np.ndarray) -> Trajectory:
         built: Built = model
         scenario, pm, kin = built.scenario, built.pm, built.kinematics

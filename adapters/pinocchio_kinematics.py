@@ -8,48 +8,23 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pinocchio as pin
-from scipy.linalg import lapack
 
 from adapters.base import EngineFailure, Singular
+from adapters.pinocchio_linalg import SINGULAR_COND, Factor, factorize, solve
 from adapters.pinocchio_model import PinModel
 from adapters.pinocchio_quantity import Quantity
 from adapters.pinocchio_rows import LWA, Rows, Snapshot
 from scenarios.bodies import Point
 
-SINGULAR_COND = 1e10
-"""Condition number of the row Jacobian above which a configuration counts as singular."""
 ROUNDOFF = 4.0 * np.finfo(float).eps
 """A Newton step this small relative to z cannot reduce the residual further..."""
 FLOOR = 1e-9
 """...if the residual is already this small: then Newton stops above a tolerance below rounding."""
+HALVINGS = 20
+"""How often an output interval may be halved to follow the branch or locate a singularity."""
 
-Factor = tuple[np.ndarray, np.ndarray]
-"""An LU factorization (LAPACK getrf: factors and pivots)."""
-
-
-def _solve(jac: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, int]:
-    _, _, x, info = lapack.dgesv(jac, rhs)
-    return x, int(info)
-
-
-def _back(lu: np.ndarray, pivots: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    return np.asarray(lapack.dgetrs(lu, pivots, rhs)[0])
-
-
-def _det_sign(factor: Factor) -> float:
-    lu, pivots = factor
-    swaps = np.count_nonzero(pivots != np.arange(pivots.size))
-    return float(np.prod(np.sign(np.diag(lu)))) * (-1.0) ** swaps
-
-
-def factorize(jac: np.ndarray, t: float, bound: float = SINGULAR_COND) -> Factor:
-    """LU of the row Jacobian; Singular if its estimated condition number exceeds `bound`."""
-    lu, pivots, info = lapack.dgetrf(jac)
-    rcond = lapack.dgecon(lu, np.abs(jac).sum(axis=0).max())[0] if info == 0 else 0.0
-    if not rcond * bound > 1.0:
-        cond = f"{1.0 / rcond:.3g}" if rcond > 0.0 else "infinite"
-        raise Singular(f"constraint Jacobian is singular at t = {t:.6g} (condition {cond})", t)
-    return lu, pivots
+State = tuple[np.ndarray, np.ndarray, np.ndarray]
+"""z, z' and z''."""
 
 
 @dataclass
@@ -89,13 +64,13 @@ class KinematicSolver:
                 return z, factorize(rows.jac, t)
             if iteration == limit:
                 break
-            step, info = _solve(rows.jac, -gap)
-            if info != 0:
+            step = solve(rows.jac, -gap)
+            if step is None:
                 raise Singular(f"singular constraint Jacobian at t = {t:.6g}", t)
             if residual <= FLOOR and np.max(np.abs(step)) <= ROUNDOFF * (1.0 + np.max(np.abs(z))):
                 return z, factorize(rows.jac, t)  # the residual has reached its rounding floor
             z += step
-        factorize(rows.jac, t, 1e8)
+        factorize(rows.jac, t, SINGULAR_COND / 100.0)  # near-singular: that explains the failure
         raise EngineFailure(
             f"Newton did not converge at t = {t:.6g} (residual {residual:.3g} after {limit} iterations)",
             t,
@@ -103,11 +78,10 @@ class KinematicSolver:
 
     def rates(self, z: np.ndarray, factor: Factor, t: float) -> tuple[np.ndarray, np.ndarray]:
         """z' from J z' = f', then z'' from J z'' = f'' - drift with the drift at (z, z')."""
-        lu, pivots = factor
-        size = lu.shape[0]
-        z_rate = _back(lu, pivots, self.rows.targets(size, t, 1))
+        size = z.size
+        z_rate = factor.solve(self.rows.targets(size, t, 1))
         moving = self.rows.evaluate(self.snapshot(z, z_rate))
-        z_acc = _back(lu, pivots, self.rows.targets(size, t, 2) - moving.drift)
+        z_acc = factor.solve(self.rows.targets(size, t, 2) - moving.drift)
         return z_rate, z_acc
 
     def assemble(self, z_guess: np.ndarray, t: float) -> np.ndarray:
@@ -119,28 +93,45 @@ class KinematicSolver:
         return z
 
     def run(self, z0: np.ndarray, times: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """z, z' and z'' at every time; each solve starts from the previous step's Taylor guess.
-
-        The sign of det J is followed: a change between two time points means the path crossed a
-        singular configuration (or Newton jumped to another assembly branch), reported as Singular.
-        """
-        n = z0.size
-        out = np.zeros((3, len(times), n))
-        z, z_rate, z_acc = z0, np.zeros(n), np.zeros(n)
-        sign = 0.0
-        for k, t in enumerate(times):
-            h = t - times[k - 1] if k else 0.0
-            z, factor = self.position(z + h * z_rate + 0.5 * h * h * z_acc, float(t))
-            if sign and _det_sign(factor) != sign:
-                raise Singular(
-                    f"the constraint Jacobian's determinant changes sign between t = {times[k - 1]:.6g} "
-                    f"and t = {t:.6g}: a singular configuration lies between",
-                    float(t),
-                )
-            sign = _det_sign(factor)
-            z_rate, z_acc = self.rates(z, factor, float(t))
-            out[:, k] = z, z_rate, z_acc
+        """z, z' and z'' at every time, each solve starting from the previous one's Taylor guess."""
+        out = np.zeros((3, len(times), z0.size))
+        z, factor = self.position(z0, float(times[0]))
+        state = (z, *self.rates(z, factor, float(times[0])))
+        sign = factor.det_sign
+        out[:, 0] = state
+        for k in range(1, len(times)):
+            state, sign = self._advance(state, sign, float(times[k - 1]), float(times[k]), 0)
+            out[:, k] = state
         return out[0], out[1], out[2]
+
+    def _advance(self, state: State, sign: float, t0: float, t1: float, depth: int) -> tuple[State, float]:
+        """The solution at t1 from the one at t0 on the same assembly branch.
+
+        The sign of det J is followed: when it changes, or Newton fails, the interval is halved, so
+        that a poor guess over a long step cannot land on another branch unnoticed; a change that
+        persists over a tiny interval is a singular configuration crossed there.
+        """
+        z, z_rate, z_acc = state
+        h = t1 - t0
+        try:
+            z1, factor = self.position(z + h * z_rate + 0.5 * h * h * z_acc, t1)
+        except Singular:
+            raise
+        except EngineFailure:
+            if depth >= HALVINGS:
+                raise
+        else:
+            if factor.det_sign == sign:
+                return (z1, *self.rates(z1, factor, t1)), sign
+            if depth >= HALVINGS:
+                raise Singular(
+                    f"the constraint Jacobian's determinant changes sign between t = {t0:.9g} and "
+                    f"t = {t1:.9g}: a singular configuration lies between",
+                    t1,
+                )
+        middle = 0.5 * (t0 + t1)
+        half, sign = self._advance(state, sign, t0, middle, depth + 1)
+        return self._advance(half, sign, middle, t1, depth + 1)
 
 
 def body_motion(

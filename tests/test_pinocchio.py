@@ -6,7 +6,10 @@ revolution: position 2e-14, velocity 7e-14, acceleration 2e-11, contact paramete
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
+import pinocchio as pin
 import pytest
 from closed_forms import exact
 
@@ -106,3 +109,14 @@ def test_angles_are_continuous_over_revolutions() -> None:
     planet = result.trajectory.position[:, result.trajectory.bodies.index("planet"), 2]
     assert planet[-1] - planet[0] == pytest.approx(3 * 2 * np.pi, abs=1e-12)  # (1 + 0.06 / 0.03) turns
     assert np.all(np.diff(planet) > 0)
+
+
+def test_export_writes_a_model_pinocchio_reloads(tmp_path: Path) -> None:
+    adapter = PinocchioAdapter()
+    scenario = scenarios.build("planetary_gears")
+    target = tmp_path / "planetary.xml"
+    adapter.export(scenario, adapter.default_setting(scenario), str(target))
+    model = pin.Model()
+    model.loadFromXML(str(target), "model")
+    assert model.nq == 1  # the planet mimics the arm
+    assert {"arm", "planet"} <= {frame.name for frame in model.frames}

@@ -173,3 +173,27 @@ def test_command_line_solves_in_the_dynamic_mode(capsys) -> None:  # type: ignor
     np.testing.assert_allclose(frame[columns].to_numpy(), closed[columns].to_numpy(), atol=1e-4, rtol=0)
     positions = [c for c in columns if c.rsplit(".", 1)[1] in ("x", "y", "theta")]
     assert np.max(np.abs(frame[positions].to_numpy() - closed[positions].to_numpy())) < 1e-9
+
+
+def test_grid_point_on_a_bifurcation_is_singular() -> None:
+    """Crank and rod of equal length: at th2 = pi / 2 (a grid point here) the regular branch meets
+    the folded one (slider held at the crank pivot); the Jacobian there is exactly singular."""
+    scenario = scenarios.build("slider_crank", overrides={"rod_length": 0.2, "theta0": 0.0, "steps": 8})
+    result = PinocchioAdapter().run(scenario)
+    assert result.status == "singular"
+    assert result.failure_time == pytest.approx(math.pi / 100, abs=1e-12)
+
+
+def test_overshooting_stroke_stops_where_configurations_end() -> None:
+    """With 1.2 times the stroke no configuration exists beyond t* = asin(1 / 1.2) / omega; the
+    halving locates it (measured 1.5e-6 after t*)."""
+    scenario = scenarios.build("slider_crank/slider_drive", overrides={"stroke_fraction": 1.2})
+    result = PinocchioAdapter().run(scenario)
+    assert result.status in ("singular", "failed") and result.failure_time is not None
+    assert result.failure_time == pytest.approx(math.asin(1 / 1.2) / 50, abs=1e-5)
+
+
+def test_coarse_output_grid_stays_on_the_branch() -> None:
+    """Four output steps per revolution: intervals are halved until Newton follows the branch."""
+    scenario = scenarios.build("slider_crank/slider_drive", overrides={"steps": 4})
+    assert_close(scenario, exact)
