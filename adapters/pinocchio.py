@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from adapters.base import Adapter, Setting, Unsupported
+from adapters.base import Adapter, EngineFailure, Setting, Unsupported
 from adapters.pinocchio_dynamics import DynamicSolver, dynamic_support
 from adapters.pinocchio_kinematics import KinematicSolver, body_motion
 from adapters.pinocchio_model import PinModel, build_model
@@ -101,8 +101,7 @@ class PinocchioAdapter(Adapter):
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
         settings = [self.default_setting(scenario).replace(tol=tol) for tol in TOLERANCES]
-        tree = plan(scenario, mimic_gears=False)
-        if dynamic_support(scenario, tree) is None:
+        if self.supports(scenario) is None and dynamic_support(scenario, plan(scenario, False)) is None:
             for mode in (DYNAMIC, BAUMGARTE):
                 settings += [self.dynamic_setting(scenario, n, mode) for n in STEPS_PER_PERIOD]
         return settings
@@ -133,10 +132,10 @@ class PinocchioAdapter(Adapter):
     def build(self, scenario: Scenario, setting: Setting) -> Built:
         mode = MODES.get(setting.mode)
         if mode is None:
-            raise ValueError(f"unknown Pinocchio mode '{setting.mode}'; known: {', '.join(MODES)}")
+            raise EngineFailure(f"unknown Pinocchio mode '{setting.mode}'; known: {', '.join(MODES)}")
         gears = str(setting.get("gears", "mimic"))
         if gears not in ("mimic", "row"):
-            raise ValueError(f"gears must be 'mimic' or 'row', got '{gears}'")
+            raise EngineFailure(f"gears must be 'mimic' or 'row', got '{gears}'")
         tree, pm, rows = self._structure(scenario, mimic_gears=mode == KINEMATIC and gears == "mimic")
         tol = float(setting.get("tol", TOLERANCES[-1]))
         kinematics = KinematicSolver(pm, rows, tol=tol if mode == KINEMATIC else TOLERANCES[-1])

@@ -17,7 +17,7 @@ import numpy as np
 import pinocchio as pin
 from scipy.linalg import lapack
 
-from adapters.base import Diverged, Singular
+from adapters.base import Diverged, EngineFailure, Singular
 from adapters.pinocchio_model import PinModel, se3
 from adapters.pinocchio_rows import Rows, Snapshot
 from adapters.pinocchio_tree import Tree, point_pose
@@ -67,7 +67,7 @@ class DynamicSolver:
 
     def __init__(self, pm: PinModel, rows: Rows, dt: float, gains: tuple[float, float]) -> None:
         if not dt > 0.0:
-            raise ValueError(f"dt must be positive, got {dt}")
+            raise EngineFailure(f"dt must be positive, got {dt}")
         self.pm, self.rows, self.dt, self.gains = pm, rows, dt, gains
         model = pm.model
         self.data, self.kin_data = model.createData(), model.createData()
