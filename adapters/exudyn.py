@@ -59,6 +59,7 @@ ROWS: dict[type, int] = {
     PointPathDriver: 2,
     RelativeDisplacementDriver: 2,
 }
+OPTIONS = ("dt", "rho", "tol", "mass_scale", "cams")
 DEFAULT_SUBSTEPS = 10
 SWEEP_SUBSTEPS = {"GA3": (1, 3, 10), "GA3-rho0.5": (1, 3), "TR2": (1, 3)}
 
@@ -106,6 +107,9 @@ class ExudynAdapter(Adapter):
     def build(self, scenario: Scenario, setting: Setting) -> ExudynRun:
         if setting.mode not in MODES:
             raise ValueError(f"unknown Exudyn mode '{setting.mode}'; known: {', '.join(MODES)}")
+        unknown = [key for key, _ in setting.options if key not in OPTIONS]
+        if unknown:
+            raise ValueError(f"unknown Exudyn option(s) {', '.join(unknown)}; known: {', '.join(OPTIONS)}")
         solver, rho, tolerance = MODES[setting.mode]
         plan = Plan(
             solver=solver,

@@ -181,6 +181,9 @@ def assemble(model: ExudynModel, t0: float, settings: Any) -> States:
     _guarded(model, "staticSolver", t0, lambda: model.mbs.SolveStatic(settings, updateInitialValues=True))
     q0 = np.array(data.GetODE2Coordinates(INITIAL))
     probe = ConstraintProbe(model, settings)
+    # Exudyn's static solve ends at t0 + 1e-30 (a load step must last); one Newton step on its
+    # equations lands the start exactly at t0
+    q0 = q0 - _solve(probe.jacobian(q0, t0), probe.residual(q0, t0), t0)
     gap = float(np.max(np.abs(probe.residual(q0, t0)), initial=0.0))
     if not gap <= 1e-9 * max(1.0, model.scenario.characteristic_length):
         raise EngineFailure(
@@ -310,7 +313,7 @@ def _failure(model: ExudynModel, key: str, text: str) -> EngineFailure:
     if conv.linearSolverFailed:
         detail += f"; the linear solver failed (singular Jacobian, row {conv.linearSolverCausingRow})"
     kind = Singular if conv.linearSolverFailed else EngineFailure
-    return kind(f"Exudyn {name} failed at t = {t:.6g}: {reason} ({detail})", t)
+    return kind(f"Exudyn {name}: {reason} ({detail})", t)
 
 
 def trajectory(model: ExudynModel, times: np.ndarray, states: States) -> Trajectory:

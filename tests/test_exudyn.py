@@ -93,6 +93,13 @@ def test_default_is_generalized_alpha_and_in_the_sweep() -> None:
             assert abs(substeps - round(substeps)) < 1e-9
 
 
+def test_unknown_modes_and_options_fail_without_raising() -> None:
+    scenario = scenarios.build("slider_crank")
+    for setting in (Setting.of("RK4"), Setting.of("GA3", step=1e-4), Setting.of("GA3", cams="penalty")):
+        result = ADAPTER.run(scenario, setting)
+        assert result.status == "failed" and result.trajectory is None
+
+
 @pytest.mark.parametrize("name", ["cam_knife_edge", "cam_roller"])
 def test_disc_cams_through_user_functions_match_the_distance_connector(name: str) -> None:
     """The same disc contact as a vector connector with constraint and Jacobian user functions,
