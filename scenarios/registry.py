@@ -107,10 +107,19 @@ def build(
     return fam.build(params, variant)
 
 
-def catalogue() -> list[str]:
-    """Every scenario name: each family's default and its named variants as `family/variant`."""
+def is_stress_variant(variant: str) -> bool:
+    """Stress variants (named `stress...`) are made to break solvers: singular, extreme, long."""
+    return variant.startswith("stress")
+
+
+def catalogue(include_stress: bool = False) -> list[str]:
+    """Every scenario name: each family's default and its named variants as `family/variant`.
+
+    Stress variants are left out unless `include_stress`: they belong to the stress suite, not to
+    what runs or is checked for every scenario.
+    """
     names = []
     for fam in families().values():
         names.append(fam.name)
-        names.extend(f"{fam.name}/{v}" for v in fam.variants)
+        names.extend(f"{fam.name}/{v}" for v in fam.variants if include_stress or not is_stress_variant(v))
     return names
