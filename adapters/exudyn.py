@@ -3,18 +3,21 @@ independently, solved by Exudyn's own DAE solvers.
 
 Modes (one work-precision curve each):
     GA3          generalized-alpha on the index-3 constraints, spectral radius 0.9, full Newton,
-                 fixed step (positions exact to the Newton tolerance, velocities O(dt^2))
-    GA3-rho0.5   the same with spectral radius 0.5
-    TR2          the trapezoidal rule (Newmark 1/4, 1/2) on index-2 constraints; positions drift
+                 fixed step: positions exact to Newton's tolerance, velocities O(dt^2),
+                 accelerations O(dt) through a start-up transient (the default, at a tenth of the
+                 scenario's output interval)
+    GA3-rho0.5   the same with spectral radius 0.5 (a shorter transient)
+    TR2          the trapezoidal rule (Newmark 1/4, 1/2) on index-2 constraints; positions drift O(dt^2)
     STATIC       Exudyn's static solver at each grid time, then velocity and acceleration solves on
-                 Exudyn's own constraint Jacobian
+                 Exudyn's own constraint Jacobian and velocity-level constraints
 Options: `dt` (requested step; each output interval is divided evenly), `rho` (overrides the mode's
-spectral radius), `tol` (Newton residual tolerance), `mass_scale` (multiplies every mass and
-inertia; a kinematically driven result must not depend on it), `cams` ('native' puts knife-edge and
-roller followers on a circular disc on Exudyn's distance connector; 'user' sends every cam through
-user functions).
+spectral radius), `tol` (Newton's tolerance on its increment, per unit of coordinate size),
+`mass_scale` (multiplies every mass and inertia; a kinematically driven result must not depend on
+it), `cams` ('native' puts knife-edge and roller followers on a circular disc on Exudyn's distance
+connector; 'user' sends every cam through the user-function connector).
 Every run starts from a consistent state that Exudyn's static solver finds from the scenario's
-rough guess (adapters.exudyn_run.assemble).
+rough guess (adapters.exudyn_run.assemble). Exudyn has no model file format (its models are Python
+scripts), so there is no export.
 """
 
 from __future__ import annotations

@@ -178,7 +178,7 @@ def assemble(model: ExudynModel, t0: float, settings: Any) -> States:
     static.numberOfLoadSteps, static.loadStepStart, static.loadStepDuration = 1, t0, 1e-30
     tolerance = ASSEMBLY_TOLERANCE * max(1.0, float(np.max(np.abs(model.guess))))
     static.newton.relativeTolerance, static.newton.absoluteTolerance = tolerance, tolerance
-    _guarded(model, "staticSolver", t0, lambda: model.mbs.SolveStatic(settings, updateInitialValues=True))
+    _guarded(model, "staticSolver", lambda: model.mbs.SolveStatic(settings, updateInitialValues=True))
     q0 = np.array(data.GetODE2Coordinates(INITIAL))
     probe = ConstraintProbe(model, settings)
     # Exudyn's static solve ends at t0 + 1e-30 (a load step must last); one Newton step on its
@@ -257,9 +257,7 @@ def _integrate(
     states.q[0], states.v[0], states.a[0] = start.q[0], start.v[0], start.a[0]
     model.mbs.SetPostStepUserFunction(_recorder(model, times, states, 1e-6 * interval / substeps))
     solver = DYNAMIC[plan.solver]
-    _guarded(
-        model, "dynamicSolver", float(times[0]), lambda: model.mbs.SolveDynamic(settings, solverType=solver)
-    )
+    _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
     _check_complete(states, times)
     return states, steps
 
@@ -273,7 +271,7 @@ def _static_sweep(model: ExudynModel, times: np.ndarray, settings: Any, toleranc
     states.q[0] = np.array(model.mbs.systemData.GetODE2Coordinates(INITIAL))
     interval = float(times[1] - times[0])
     model.mbs.SetPostStepUserFunction(_recorder(model, times, states, 1e-6 * interval))
-    _guarded(model, "staticSolver", float(times[0]), lambda: model.mbs.SolveStatic(settings))
+    _guarded(model, "staticSolver", lambda: model.mbs.SolveStatic(settings))
     _check_complete(states, times)
     probe = ConstraintProbe(model, settings)
     scales = _scales(model)
@@ -289,7 +287,7 @@ def _check_complete(states: States, times: np.ndarray) -> None:
         raise EngineFailure(f"Exudyn reported no state at t = {times[missing[0]]}", float(times[missing[0]]))
 
 
-def _guarded(model: ExudynModel, key: str, t0: float, solve: Callable[[], Any]) -> None:
+def _guarded(model: ExudynModel, key: str, solve: Callable[[], Any]) -> None:
     """Run an Exudyn solve; its failure becomes an EngineFailure with Exudyn's message."""
     try:
         ok = solve()
