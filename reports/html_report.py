@@ -18,7 +18,8 @@ body { font-family: system-ui, sans-serif; margin: 1.5em auto; max-width: 1200px
 h1 { margin-bottom: 0.2em; } h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
 table { border-collapse: collapse; font-size: 0.85em; margin: 0.5em 0; }
 th, td { border: 1px solid #ccc; padding: 0.2em 0.5em; text-align: left; vertical-align: top; }
-th { background: #f3f3f3; } td { max-width: 22em; overflow-wrap: anywhere; }
+th { background: #f3f3f3; } td { white-space: nowrap; }
+td:nth-child(2), td:last-child { white-space: normal; max-width: 24em; overflow-wrap: anywhere; }
 td.ok { background: #e6f4e6; } td.unsupported { background: #eeeeee; color: #666; }
 td.failed, td.diverged, td.singular, td.timeout { background: #fbe3e3; }
 td.notrun { color: #999; }
