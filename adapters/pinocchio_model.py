@@ -28,7 +28,7 @@ def se3(pose: Pose) -> pin.SE3:
 def frame_jacobian(model: pin.Model, data: pin.Data, frame: int) -> np.ndarray:
     """The (6, nv) LOCAL_WORLD_ALIGNED Jacobian of a frame (a one-column result comes back 1-D)."""
     jac = pin.getFrameJacobian(model, data, frame, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
-    return np.reshape(jac, (6, model.nv))
+    return jac if jac.ndim == 2 else jac[:, None]
 
 
 def _joint_model(edge: Edge) -> pin.JointModel:
@@ -71,6 +71,10 @@ class PinModel:
     """Operational frame of each used point; Point(body) is the body's canonical frame."""
     angle_row: dict[str, np.ndarray] = field(default_factory=dict)
     angle_offset: dict[str, float] = field(default_factory=dict)
+    zero_v: np.ndarray = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.zero_v = np.zeros(self.model.nv)
 
     def q_index(self, edge: str) -> int | None:
         """Index of an edge's coordinate in q, or None for a mimic joint (no coordinate of its own)."""

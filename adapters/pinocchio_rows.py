@@ -28,6 +28,8 @@ from scenarios.motions import Motion
 from scenarios.scenario import Scenario
 
 LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+ZERO1, ZERO2 = np.zeros(1), np.zeros(2)
+"""Shared zero rates and drifts (Quantity arrays are never changed in place)."""
 
 
 class Snapshot:
@@ -39,8 +41,9 @@ class Snapshot:
         self.phi, self.phi_rate, self.nq = phi, phi_rate, pm.model.nq
         self.n = self.nq + cams
         self._points: dict[Point, Quantity] = {}
-        self.moving = bool(np.any(v)) or bool(np.any(phi_rate))
-        pin.forwardKinematics(pm.model, data, q, v, np.zeros(pm.model.nv))
+        self._angles: dict[str, Quantity] = {}
+        self.moving = bool(v.any() or phi_rate.any())
+        pin.forwardKinematics(pm.model, data, q, v, pm.zero_v)
         pin.computeJointJacobians(pm.model, data)
         pin.updateFramePlacements(pm.model, data)
 
@@ -56,18 +59,25 @@ class Snapshot:
             drift = pin.getFrameClassicalAcceleration(model, data, fid, LWA).linear[:2].copy()
             rate = jac[:, : self.nq] @ self.v
         else:
-            drift = rate = np.zeros(2)
+            drift = rate = ZERO2
         known = Quantity(data.oMf[fid].translation[:2].copy(), jac, rate, drift)
         self._points[point] = known
         return known
 
     def angle(self, body: str) -> Quantity:
+        """A body's angle (0 for the ground); its drift is zero: every joint turns about z."""
+        known = self._angles.get(body)
+        if known is not None:
+            return known
         if body == GROUND:
-            return Quantity.constant(0.0, self.n)
-        jac = np.zeros((1, self.n))
-        jac[0, : self.nq] = row = self.pm.angle_row[body]
-        value = self.pm.angle(body, self.q)
-        return Quantity(np.array([value]), jac, np.array([row @ self.v]), np.zeros(1))
+            known = Quantity.constant(0.0, self.n)
+        else:
+            jac = np.zeros((1, self.n))
+            jac[0, : self.nq] = row = self.pm.angle_row[body]
+            value = self.pm.angle(body, self.q)
+            known = Quantity(np.array([value]), jac, np.array([row @ self.v]), ZERO1)
+        self._angles[body] = known
+        return known
 
     def direction(self, body: str, local: tuple[float, float] | np.ndarray) -> Quantity:
         """A body-fixed direction in global axes."""

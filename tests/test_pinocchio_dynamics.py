@@ -9,6 +9,8 @@ the bounds are set with a margin of about three:
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 from closed_forms import exact
@@ -72,3 +74,23 @@ def test_dynamic_mode_is_unsupported_for_gears_and_cams(name: str) -> None:
     result = adapter.run(scenario, adapter.dynamic_setting(scenario))
     assert result.status == "unsupported"
     assert "constraintDynamics" in result.message
+
+
+def test_driven_motion_does_not_depend_on_the_masses() -> None:
+    """Fully driven, the constrained acceleration is kinematic: other masses and inertias change
+    only the constraint forces (measured differences 8e-15, 7e-13, 1.3e-10 against 2e-8 of RK4
+    truncation at 300 steps per revolution)."""
+    adapter = PinocchioAdapter()
+    light = scenarios.build("four_bar")
+    heavy = dataclasses.replace(
+        light,
+        bodies=tuple(
+            dataclasses.replace(b, mass=b.mass * (7 + 3 * k), inertia=b.inertia * (0.2 + 5 * k))
+            for k, b in enumerate(light.bodies)
+        ),
+    )
+    setting = adapter.dynamic_setting(light, 300)
+    runs = [adapter.run(s, setting).trajectory for s in (light, heavy)]
+    assert runs[0] is not None and runs[1] is not None
+    differences = [float(np.max(np.abs(runs[0].level(lv) - runs[1].level(lv)))) for lv in LEVELS]
+    assert all(d < b for d, b in zip(differences, (1e-13, 1e-11, 2e-9), strict=True)), differences
