@@ -20,7 +20,6 @@ import adapters
 from adapters.base import Adapter, OptionValue, Setting
 from reports import gate, suites
 from reports.atomic_write import atomic_output
-from reports.report import render_reports
 from reports.results_store import ResultsStore, read_results
 from reports.runner import Runner, RunOptions
 from reports.suites import Suite
@@ -173,6 +172,13 @@ def run_selection(args: argparse.Namespace, out: Path, progress: bool) -> Path:
     )
     Runner(ResultsStore(out), engines, options, progress=progress, suite=suite.name).run(names)
     return out
+
+
+def render_reports(results: Path | str, out: str | None = None) -> Path:
+    """reports.report.render_reports, imported when needed: matplotlib is slow to import."""
+    from reports.report import render_reports as render
+
+    return render(results, out)
 
 
 def cmd_run(args: argparse.Namespace) -> int:

@@ -113,7 +113,7 @@ class Runner:
             try:
                 for group in groups:
                     name = group.scenario.name
-                    self._keep_only(group)
+                    self._reconcile(group)
                     if group.verdict is not None:
                         self.store.add(group.verdict)
                         continue
@@ -158,12 +158,17 @@ class Runner:
     def _stored(self, group: Group, setting: Setting) -> bool:
         return self.store.has((group.scenario.name, group.engine, setting.label))
 
-    def _keep_only(self, group: Group) -> None:
-        """Drop stored rows of this scenario-engine pair that the current plan no longer has."""
-        keep = {s.label for s, _ in group.jobs} if group.verdict is None else {NOT_RUN}
+    def _reconcile(self, group: Group) -> None:
+        """Make the stored rows of this scenario-engine pair agree with the plan: a pair that no
+        longer runs keeps only its verdict row; one that runs loses its old verdict row; stored
+        settings outside the plan (another suite's sweep) stay, but are no longer the default."""
+        planned = {s.label for s, _ in group.jobs}
         for key in [k for k in self.store.rows if k[:2] == (group.scenario.name, group.engine)]:
-            if key[2] not in keep:
+            if (group.verdict is None) == (key[2] == NOT_RUN):
                 del self.store.rows[key]
+                self.store.trajectories.pop(key, None)
+            elif group.verdict is None and key[2] not in planned:
+                self.store.rows[key]["is_default"] = False
                 self.store.trajectories.pop(key, None)
 
     # --- running ----------------------------------------------------------------------------
@@ -210,6 +215,7 @@ class Runner:
         else:
             result, repeats, metrics, levels, note = outcome.value
             row = result_row(scenario, result, is_default, repeats, opts.warmup, metrics, levels, note)
+            row["engine"] = group.engine  # the name it was asked by, whatever the adapter calls itself
             keep = result.trajectory if is_default and result.status == "ok" else None
             keep = keep.select(scenario.output_bodies) if keep is not None else None
             self.store.add(row, keep)

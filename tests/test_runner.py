@@ -116,6 +116,30 @@ def test_a_resumed_run_redoes_only_the_missing_rows(first_run, tmp_path: Path) -
     assert set(after["status"]) == set(frame["status"])
 
 
+def test_a_later_plan_reconciles_the_stored_rows(first_run, tmp_path: Path) -> None:
+    """A quick (default-only) run keeps the stored sweep; an engine that became available loses
+    its 'unavailable' row and gains its runs."""
+    source, log, frame = first_run
+    directory = tmp_path / "later"
+    directory.mkdir()
+    for file in source.glob("results.*"):
+        (directory / file.name).write_bytes(file.read_bytes())
+    available = fake_loader(log)
+
+    def loader(name: str):  # type: ignore[no-untyped-def]
+        return available("fake" if name == "absent" else name)
+
+    store = ResultsStore(directory)
+    quick = RunOptions(sweep=False, repeats=1, warmup=0, timeout=5.0)
+    Runner(store, ["fake", "absent"], quick, loader=loader, truth=fake_truth, progress=False).run([SCENARIO])
+    after, _ = read_results(directory)
+    fake = after[after["engine"] == "fake"]
+    assert sorted(fake["setting"]) == sorted(frame[frame["engine"] == "fake"].index)
+    assert list(fake.loc[fake["is_default"], "setting"]) == ["good dt=0.001"]
+    absent = after[after["engine"] == "absent"]
+    assert list(absent["setting"]) == ["good dt=0.001"] and list(absent["status"]) == ["ok"]
+
+
 def test_rerun_redoes_stored_rows(first_run, tmp_path: Path) -> None:
     log = tmp_path / "calls.log"
     options = RunOptions(sweep=False, repeats=1, warmup=0, timeout=5.0)
