@@ -182,7 +182,14 @@ def render_reports(results: Path | str, out: str | None = None) -> Path:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    out = run_selection(args, Path(args.out), progress=not args.quiet)
+    try:
+        out = run_selection(args, Path(args.out), progress=not args.quiet)
+    except KeyboardInterrupt:
+        print(
+            f"mbxval: interrupted; the runs made so far are stored in {args.out}: run again to resume",
+            file=sys.stderr,
+        )
+        return 130
     page = render_reports(out)
     frame, _ = read_results(out)
     counts = ", ".join(f"{k} {v}" for k, v in frame["status"].value_counts().items())
