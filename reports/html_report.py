@@ -19,11 +19,13 @@ h1 { margin-bottom: 0.2em; } h2 { border-bottom: 1px solid #ccc; margin-top: 2em
 table { border-collapse: collapse; font-size: 0.85em; margin: 0.5em 0; }
 th, td { border: 1px solid #ccc; padding: 0.2em 0.5em; text-align: left; vertical-align: top; }
 th { background: #f3f3f3; } td { white-space: nowrap; }
-td:nth-child(2), td:last-child { white-space: normal; max-width: 24em; overflow-wrap: anywhere; }
+td:nth-child(2) { white-space: normal; min-width: 16em; }
+td:last-child { white-space: normal; max-width: 30em; overflow-wrap: anywhere; }
 td.ok { background: #e6f4e6; } td.unsupported { background: #eeeeee; color: #666; }
 td.failed, td.diverged, td.singular, td.timeout { background: #fbe3e3; }
 td.notrun { color: #999; }
 img { max-width: 100%; margin: 0.3em 0; } .muted { color: #666; font-size: 0.9em; }
+.wide { overflow-x: auto; }
 .plots { display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start; }
 """
 
@@ -135,6 +137,6 @@ def _scenario_section(data: ReportData, scenario: str) -> str:
             f"{int(rows['grid_points'].iloc[0])} grid points over {number(rows['t_end'].iloc[0])} s</p>",
             f'<div class="plots">{"".join(figures)}</div>',
             overlay,
-            shown.to_html(index=False, escape=True, border=0),
+            f'<div class="wide">{shown.to_html(index=False, escape=True, border=0)}</div>',
         ]
     )
