@@ -26,5 +26,10 @@ FAMILY = Family(
     summary="driven disc cam, translating knife-edge follower",
     defaults=DEFAULTS,
     build=_build,
-    variants=SPLINE_VARIANTS,
+    variants={
+        **SPLINE_VARIANTS,
+        # Stress variants: pressure angle up to asin(e / R) = 64 deg; a spline through 6 knots.
+        "stress_steep": {"eccentricity": 0.045},
+        "stress_few_knots": {"profile": "spline", "knots": 6},
+    },
 )

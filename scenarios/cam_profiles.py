@@ -72,7 +72,33 @@ class SplineProfile:
         return float(sp(p)), float(sp(p, 1)), float(sp(p, 2)), float(sp(p, 3))
 
 
-Profile = EccentricDisc | SplineProfile
+@dataclass(frozen=True)
+class LobedProfile:
+    """A cam of `lobes` equal lobes: d(phi) = radius + amplitude cos(lobes phi), peaks at phi = 0.
+
+    Its curvature varies along the profile and its valleys are concave once amplitude * lobes^2
+    exceeds radius - amplitude; the concave radius of curvature at a valley's bottom is
+    (radius - amplitude)^2 / (amplitude lobes^2 - radius + amplitude), the largest roller that
+    does not undercut it.
+    """
+
+    radius: float
+    amplitude: float
+    lobes: int
+
+    def radii(self, phi: float) -> tuple[float, float, float, float]:
+        """d(phi) and its first three derivatives."""
+        a, n = self.amplitude, self.lobes
+        c, s = math.cos(n * phi), math.sin(n * phi)
+        return self.radius + a * c, -a * n * s, -a * n * n * c, a * n**3 * s
+
+    def valley_curvature_radius(self) -> float:
+        """The radius of curvature at a valley's bottom: positive if convex, negative if concave."""
+        d = self.radius - self.amplitude
+        return d * d / (d - self.amplitude * self.lobes**2)
+
+
+Profile = EccentricDisc | SplineProfile | LobedProfile
 
 
 def profile_point(profile: Profile, phi: float) -> np.ndarray:

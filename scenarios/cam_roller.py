@@ -28,5 +28,13 @@ FAMILY = Family(
     summary="driven disc cam, translating roller follower",
     defaults={**DEFAULTS, "roller_radius": 0.02},
     build=_build,
-    variants=SPLINE_VARIANTS,
+    variants={
+        **SPLINE_VARIANTS,
+        # Stress variants: pressure angle up to asin(e / (R + r)) = 35 deg (e = 0.045 R does not
+        # assemble from the family's guess); a spline through 6 knots; a roller of 0.95 times the
+        # 0.032 m concave radius of curvature of a three-lobed cam's valleys (nearly undercut).
+        "stress_steep": {"eccentricity": 0.04},
+        "stress_few_knots": {"profile": "spline", "knots": 6},
+        "stress_undercut": {"profile": "lobed", "roller_radius": 0.0304},
+    },
 )

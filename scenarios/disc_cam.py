@@ -2,7 +2,9 @@
 and a follower translating along the y axis through the cam's centre.
 
 The profile is the eccentric disc (radius R, eccentricity e) or, with `profile=spline`, a periodic
-cubic spline through `knots` radii of that disc. Closed forms with cam angle th:
+cubic spline through `knots` radii of that disc, or with `profile=lobed` the lobed cam
+d(phi) = R + e cos(lobes phi) (e is then the lobes' amplitude; an eccentric disc is nearly the
+one-lobe case), whose valleys are concave when e lobes^2 > R - e. Closed forms (disc) with cam angle th:
 knife edge y = e sin th + sqrt(R^2 - e^2 cos^2 th); roller y = e sin th + sqrt((R + r)^2 - e^2
 cos^2 th); flat face y = R + e sin th.
 """
@@ -13,7 +15,7 @@ import math
 from collections.abc import Callable
 
 from scenarios.bodies import GROUND, Body, Point
-from scenarios.cam_profiles import EccentricDisc, Profile, SplineProfile
+from scenarios.cam_profiles import EccentricDisc, LobedProfile, Profile, SplineProfile
 from scenarios.cams import CamContact
 from scenarios.drivers import AbsoluteDriver
 from scenarios.joints import Prismatic, Revolute
@@ -33,6 +35,7 @@ DEFAULTS: dict[str, ParameterValue] = {
     "theta0": 0.0,
     "profile": "disc",
     "knots": 72,
+    "lobes": 3,
     "revolutions": 1.0,
     "steps": 200,
 }
@@ -69,12 +72,24 @@ def build_disc_cam(
         if knots < 4:
             raise ScenarioError(f"{family}: knots must be at least 4, got {knots}")
         profile = SplineProfile.sample(disc, knots)
+    elif kind == "lobed":
+        lobes = int(p["lobes"])
+        if lobes < 1:
+            raise ScenarioError(f"{family}: lobes must be at least 1, got {lobes}")
+        profile = LobedProfile(big_r, e, lobes)
     else:
-        raise ScenarioError(f"{family}: profile must be 'disc' or 'spline', got '{kind}'")
+        raise ScenarioError(f"{family}: profile must be 'disc' or 'spline' or 'lobed', got '{kind}'")
+    # The follower's guess: the disc's closed form, or for a lobed cam that of a centred disc of the
+    # profile's radius where the follower's axis meets it.
+    height = (
+        follower_height(profile.radii(math.pi / 2 - theta0)[0], 0.0, theta0)
+        if isinstance(profile, LobedProfile)
+        else follower_height(big_r, e, theta0)
+    )
     mass = math.pi * big_r**2
     bodies = (
         Body("cam", (0.0, 0.0, theta0), mass=mass, inertia=mass * big_r**2 / 2),
-        Body("follower", (0.0, follower_height(big_r, e, theta0), 0.0), mass=0.2, inertia=1e-4),
+        Body("follower", (0.0, height, 0.0), mass=0.2, inertia=1e-4),
     )
     joints = (
         Revolute("pivot", Point(GROUND, (0.0, 0.0)), Point("cam")),

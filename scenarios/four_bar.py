@@ -1,12 +1,14 @@
 """Four-bar linkage: crank O2-A, coupler A-B, rocker O4-B, ground pivots O2 = (0, 0), O4 = (g, 0).
 
 A Grashof crank-rocker by default, driven by the crank at constant speed; `branch` +1 assembles B
-above the line A-O4 (the open configuration), -1 below (the crossed one).
+above the line A-O4 (the open configuration), -1 below (the crossed one). `mass_ratio` multiplies the
+coupler's mass and inertia (a kinematically driven result must not depend on it).
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 from scenarios.bodies import GROUND, Body, Point
 from scenarios.drivers import AbsoluteDriver
@@ -33,8 +35,9 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     g, a = float(p["ground_length"]), float(p["crank_length"])
     b, c = float(p["coupler_length"]), float(p["rocker_length"])
     omega, theta0, branch = float(p["omega"]), float(p["theta0"]), int(p["branch"])
+    mass_ratio = float(p["mass_ratio"])
     require_positive("four_bar", ground_length=g, crank_length=a, coupler_length=b, rocker_length=c)
-    require_positive("four_bar", revolutions=float(p["revolutions"]))
+    require_positive("four_bar", revolutions=float(p["revolutions"]), mass_ratio=mass_ratio)
     require_finite("four_bar", omega=omega, theta0=theta0)
     if omega == 0.0:
         raise ScenarioError("four_bar: omega must be non-zero")
@@ -47,11 +50,9 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     cos_gamma = max(-1.0, min(1.0, (b * b + d * d - c * c) / (2 * b * d)))
     angle = math.atan2(dy, dx) + branch * math.acos(cos_gamma)
     bx, by = ax + b * math.cos(angle), ay + b * math.sin(angle)
-    bodies = (
-        link("crank", (0.0, 0.0), (ax, ay), a),
-        link("coupler", (ax, ay), (bx, by), b),
-        link("rocker", (g, 0.0), (bx, by), c),
-    )
+    coupler = link("coupler", (ax, ay), (bx, by), b)
+    coupler = replace(coupler, mass=coupler.mass * mass_ratio, inertia=coupler.inertia * mass_ratio)
+    bodies = (link("crank", (0.0, 0.0), (ax, ay), a), coupler, link("rocker", (g, 0.0), (bx, by), c))
     joints = (
         Revolute("O2", Point(GROUND, (0.0, 0.0)), Point("crank", (-a / 2, 0.0))),
         Revolute("A", Point("crank", (a / 2, 0.0)), Point("coupler", (-b / 2, 0.0))),
@@ -84,9 +85,21 @@ FAMILY = Family(
         "omega": 50.0,
         "theta0": 0.3,
         "branch": 1,
+        "mass_ratio": 1.0,
         "revolutions": 1.0,
         "steps": 200,
     },
     build=_build,
-    variants={"crossed": {"branch": -1}},
+    variants={
+        "crossed": {"branch": -1},
+        # Stress variants (the stress suite; reports/stress_cases.py says what each probes).
+        # Change point, s + l = p + q: all links aligned at th2 = pi. Near it: 1e-6 m short of it.
+        "stress_change_point": {"crank_length": 0.04, "coupler_length": 0.08, "rocker_length": 0.06},
+        "stress_near_change_point": {"crank_length": 0.04, "coupler_length": 0.08, "rocker_length": 0.060001},
+        # Coupler and rocker stretch into line (toggle) at cos th2 = (a^2 + g^2 - (b + c)^2) / (2 a g).
+        "stress_toggle": {"crank_length": 0.06, "coupler_length": 0.05, "rocker_length": 0.08},
+        "stress_link_ratio_1e-3": {"crank_length": 1e-4, "coupler_length": 0.1, "rocker_length": 0.1},
+        "stress_mass_1e3": {"mass_ratio": 1e3},
+        "stress_mass_1e6": {"mass_ratio": 1e6},
+    },
 )

@@ -106,5 +106,27 @@ FAMILY = Family(
         "offset": {"offset": 0.05},
         "slider_drive": {"drive": "slider", "theta0": 1.2},
         "slider_drive_offset": {"drive": "slider", "offset": 0.05, "theta0": 1.2},
+        # Stress variants (the stress suite; reports/stress_cases.py says what each probes).
+        # Singular: the outer dead centre at t = pi / (2 omega); equal crank and rod at th2 = pi/2.
+        "stress_dead_centre": {"drive": "slider", "theta0": 1.2, "stroke_fraction": 1.0},
+        "stress_equal_links": {"rod_length": 0.2},
+        # Speeds at 200 steps per revolution, and at the nominal grid step of 2 pi / 50 / 200 s.
+        "stress_speed_1e-3": {"omega": 1e-3},
+        "stress_speed_1e-1": {"omega": 1e-1},
+        "stress_speed_1e1": {"omega": 1e1},
+        "stress_speed_1e3": {"omega": 1e3},
+        "stress_speed_1e4": {"omega": 1e4},
+        "stress_fixed_step_1e-3": {"omega": 1e-3, "revolutions": 1e-4, "steps": 1000},
+        "stress_fixed_step_1e2": {"omega": 1e2, "revolutions": 1.0, "steps": 100},
+        "stress_fixed_step_1e3": {"omega": 1e3, "revolutions": 5.0, "steps": 50},
+        "stress_fixed_step_1e4": {"omega": 1e4, "revolutions": 10.0, "steps": 10},
+        # Scales: the nominal mechanism with its crank 1e-4 m to 1e3 m long.
+        "stress_scale_1e-4": {"crank_length": 1e-4, "rod_length": 2e-4},
+        "stress_scale_1e-2": {"crank_length": 1e-2, "rod_length": 2e-2},
+        "stress_scale_1e1": {"crank_length": 1e1, "rod_length": 2e1},
+        "stress_scale_1e3": {"crank_length": 1e3, "rod_length": 2e3},
+        "stress_link_ratio_1e-3": {"crank_length": 4e-4, "rod_length": 0.4},
+        "stress_long": {"revolutions": 1000.0, "steps": 20000},
+        "stress_stiffness": {"steps": 20},
     },
 )

@@ -80,5 +80,8 @@ FAMILY = Family(
         "steps": 200,
     },
     build=_build,
-    variants={"internal": {"mesh": "internal"}},
+    variants={
+        "internal": {"mesh": "internal"},
+        "stress_ratio_1000": {"radius_in": 1e-3, "radius_out": 1.0},  # the stress suite: 1:1000
+    },
 )
