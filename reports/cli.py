@@ -170,7 +170,16 @@ def run_selection(args: argparse.Namespace, out: Path, progress: bool) -> Path:
         timeout=suite.timeout if args.timeout is None else args.timeout,
         rerun=args.rerun,
     )
-    Runner(ResultsStore(out), engines, options, progress=progress, suite=suite.name).run(names)
+    runner = Runner(
+        ResultsStore(out),
+        engines,
+        options,
+        truth=suite.truth,
+        progress=progress,
+        suite=suite.name,
+        settings=suite.settings,
+    )
+    runner.run(names)
     return out
 
 

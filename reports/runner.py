@@ -36,6 +36,8 @@ TRUTH_TOLERANCE = 1e-12
 LONG_RUN = 0.25  # seconds: a simulation this long is timed once after the warm-up
 Truth = Callable[[Scenario, np.ndarray], Trajectory]
 Loader = Callable[[str], Adapter]
+SettingsHook = Callable[[Scenario, Adapter], list[Setting] | None]
+"""A suite's own settings for a scenario and engine (the first is the default), or None: the engine's."""
 
 
 @dataclass(frozen=True)
@@ -85,13 +87,15 @@ class Runner:
         engines: Sequence[str],
         options: RunOptions,
         loader: Loader = adapters.load,
-        truth: Truth = reference_truth,
+        truth: Truth | None = None,  # None: reference_truth
         residual: Residual | None = None,  # None: reference_solver.constraint_residual
         progress: bool = True,
         suite: str = "",
+        settings: SettingsHook | None = None,
     ) -> None:
         self.store, self.engines, self.options = store, list(engines), options
-        self.truth, self.progress, self.suite = truth, progress, suite
+        self.truth, self.progress, self.suite = truth or reference_truth, progress, suite
+        self.settings = settings
         self.residual = residual if residual is not None else reference_residual()
         self.adapters: dict[str, Adapter | str] = {}
         for name in self.engines:
@@ -148,6 +152,9 @@ class Runner:
                 return group
             default = adapter.default_setting(scenario)
             settings = adapter.sweep(scenario) if self.options.sweep else []
+            chosen = self.settings(scenario, adapter) if self.settings else None
+            if chosen:
+                default, settings = chosen[0], chosen
         except Exception as error:  # a broken adapter costs its own rows only
             message = f"cannot plan the runs: {type(error).__name__}: {error}"
             group.verdict = failure_row(scenario, engine, version, None, True, "failed", message)

@@ -1,20 +1,31 @@
 """Named suites: which scenarios to run, over which settings, how often, with which time limit.
 
 A suite is registered once with `register`; `mbxval run --suite NAME` and `mbxval check` find it
-here. Variants named `stress...` belong to a stress suite, never to the default one.
+here. Variants named `stress...` belong to the stress suite, never to the default one.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 from scenarios import catalogue
+
+if TYPE_CHECKING:
+    from adapters.base import Adapter, Setting
+    from scenarios.scenario import Scenario
+    from scenarios.trajectory import Trajectory
 
 
 @dataclass(frozen=True)
 class Suite:
-    """`scenarios()` names the scenarios; `sweep` False runs each engine's default setting only."""
+    """`scenarios()` names the scenarios; `sweep` False runs each engine's default setting only.
+
+    `truth(scenario, times)` replaces the runner's reference truth; `settings(scenario, adapter)`
+    gives a scenario's settings for an engine (the first one its default), or None for the engine's
+    own default and sweep.
+    """
 
     name: str
     description: str
@@ -23,6 +34,8 @@ class Suite:
     repeats: int = 3
     warmup: int = 1
     timeout: float = 60.0
+    truth: Callable[[Scenario, Any], Trajectory] | None = None
+    settings: Callable[[Scenario, Adapter], list[Setting] | None] | None = None
 
 
 SUITES: dict[str, Suite] = {}
@@ -64,5 +77,40 @@ register(
         sweep=False,
         repeats=1,
         warmup=0,
+    )
+)
+
+
+def stress_scenarios() -> list[str]:
+    """The stress cases (reports.stress_cases): every stress variant the catalogue has, declared,
+    and the nominal scenarios they are compared with."""
+    from reports.stress_cases import scenario_names
+
+    return scenario_names()
+
+
+def _stress_truth(scenario: Scenario, times: Any) -> Trajectory:
+    from reports.stress_truth import stress_truth
+
+    return stress_truth(scenario, times)
+
+
+def _stress_settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
+    from reports.stress_cases import stress_settings
+
+    return stress_settings(scenario, adapter)
+
+
+register(
+    Suite(
+        "stress",
+        "singular, extreme and long cases: where each engine breaks, and how (the stability map)",
+        stress_scenarios,
+        sweep=False,
+        repeats=1,
+        warmup=0,
+        timeout=60.0,
+        truth=_stress_truth,
+        settings=_stress_settings,
     )
 )
