@@ -11,10 +11,9 @@ they are written in scalar Python, not numpy: a call costs a few microseconds.
 
 from __future__ import annotations
 
-import bisect
 import math
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Protocol
 
 from scenarios.bodies import GROUND, Point
@@ -63,39 +62,15 @@ def _translation(sign: float, d_theta: Vec) -> Rows:
     return [[sign, 0.0, sign * d_theta[0]], [0.0, sign, sign * d_theta[1]]]
 
 
-def _radii_function(profile: Profile) -> Callable[[float], tuple[float, float, float, float]]:
-    """The profile's d(phi) and derivatives; a periodic spline is evaluated from its piecewise
-    cubic coefficients directly, which is some ten times cheaper than calling scipy per point."""
-    spline = getattr(profile, "_spline", None)
-    if spline is None or not hasattr(spline, "c"):
-        return profile.radii
-    knots, coefficients = [float(x) for x in spline.x], spline.c.T.tolist()
-    period = knots[-1] - knots[0]
-
-    def radii(phi: float) -> tuple[float, float, float, float]:
-        p = math.fmod(phi - knots[0], period)
-        p = p + period if p < 0.0 else p
-        k = min(max(bisect.bisect_right(knots, knots[0] + p) - 1, 0), len(coefficients) - 1)
-        c0, c1, c2, c3 = coefficients[k]
-        x = knots[0] + p - knots[k]
-        return ((c0 * x + c1) * x + c2) * x + c3, (3 * c0 * x + 2 * c1) * x + c2, 6 * c0 * x + 2 * c1, 6 * c0
-
-    return radii
-
-
 @dataclass(frozen=True)
 class _Surface:
     """A polar cam profile u(phi) = d(phi) (cos phi, sin phi) on the cam body."""
 
     profile: Profile
-    radii: Callable[[float], tuple[float, float, float, float]] = field(init=False, repr=False)
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "radii", _radii_function(self.profile))
 
     def at(self, pose: Sequence[float], phi: float) -> tuple[Vec, Vec, Vec, Vec, Vec]:
         """Global contact point r, dr/dtheta_cam, tangent t = dr/dphi, dt/dtheta_cam, dt/dphi."""
-        d0, d1, d2, _ = self.radii(phi)
+        d0, d1, d2, _ = self.profile.radii(phi)
         c, s = math.cos(phi), math.sin(phi)
         u0 = (d0 * c, d0 * s)
         u1 = (d1 * c - d0 * s, d1 * s + d0 * c)

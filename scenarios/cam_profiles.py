@@ -57,22 +57,40 @@ class SplineProfile:
         return cls(tuple(float(profile.radii(float(p))[0]) for p in phis))
 
     @cached_property
-    def _spline(self) -> CubicSpline:
+    def spline(self) -> CubicSpline:
+        """The periodic cubic spline through the table (scipy), closed at 2 pi."""
         n = len(self.table)
         phis = np.linspace(0.0, 2.0 * math.pi, n + 1)
         values = np.append(np.asarray(self.table), self.table[0])
         return CubicSpline(phis, values, bc_type="periodic")
 
+    @cached_property
+    def pieces(self) -> tuple[tuple[float, float, float, float], ...]:
+        """Per interval (equal widths from phi = 0), the local cubic's coefficients at its left
+        knot: d, d', d''/2 and d'''/6."""
+        c = self.spline.c
+        return tuple(
+            (float(c[3, k]), float(c[2, k]), float(c[1, k]), float(c[0, k])) for k in range(c.shape[1])
+        )
+
     def radii(self, phi: float) -> tuple[float, float, float, float]:
         """d(phi) and its first three derivatives (the third is piecewise constant)."""
-        sp = self._spline
+        pieces = self.pieces
+        width = 2.0 * math.pi / len(pieces)
         p = math.fmod(phi, 2.0 * math.pi)
         if p < 0.0:
             p += 2.0 * math.pi
-        return float(sp(p)), float(sp(p, 1)), float(sp(p, 2)), float(sp(p, 3))
+        k = min(int(p / width), len(pieces) - 1)
+        x = p - k * width
+        c0, c1, c2, c3 = pieces[k]
+        return (
+            c0 + x * (c1 + x * (c2 + x * c3)),
+            c1 + x * (2.0 * c2 + 3.0 * c3 * x),
+            2.0 * c2 + 6.0 * c3 * x,
+            6.0 * c3,
+        )
 
 
-@dataclass(frozen=True)
 class LobedProfile:
     """A cam of `lobes` equal lobes: d(phi) = radius + amplitude cos(lobes phi), peaks at phi = 0.
 

@@ -5,12 +5,10 @@ from converging, but it would make the velocity solve on Exudyn's Jacobian wrong
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 
-from adapters.exudyn_constraints import UserConstraint, _radii_function, user_constraint
+from adapters.exudyn_constraints import UserConstraint, user_constraint
 from scenarios import (
     GROUND,
     Constant,
@@ -75,10 +73,3 @@ def test_jacobian_blocks_and_time_derivative_match_differences(kind: str) -> Non
             np.testing.assert_allclose(np.array(extra_block)[:, k], numeric, atol=1e-8)
         numeric = (_flat(constraint, poses, extra, t + h) - _flat(constraint, poses, extra, t - h)) / (2 * h)
         np.testing.assert_allclose(c_t, numeric, atol=1e-8)
-
-
-def test_direct_spline_evaluation_is_the_profiles_own() -> None:
-    radii = _radii_function(SPLINE)
-    for phi in np.linspace(-7.0, 13.0, 301):
-        np.testing.assert_allclose(radii(float(phi)), SPLINE.radii(float(phi)), rtol=1e-12, atol=1e-12)
-    assert radii(2 * math.pi) == pytest.approx(SPLINE.radii(0.0))

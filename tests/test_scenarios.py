@@ -93,3 +93,23 @@ def test_trajectory_frame_round_trip() -> None:
     assert back.bodies == ("a",) and back.velocity is None
     np.testing.assert_array_equal(back.position, traj.position)  # type: ignore[arg-type]
     np.testing.assert_array_equal(back.extras["k.phi"], times * 2)
+
+
+def test_spline_profile_evaluates_scipys_periodic_spline() -> None:
+    """The profile's own piecewise evaluation is scipy's periodic cubic spline, on any turn."""
+    import math
+
+    import numpy as np
+    from scipy.interpolate import CubicSpline
+
+    table = (0.5, 0.55, 0.48, 0.6, 0.52, 0.45, 0.5, 0.58)
+    knots = np.linspace(0, 2 * math.pi, len(table) + 1)
+    reference = CubicSpline(knots, [*table, table[0]], bc_type="periodic")
+    profile = scenarios.SplineProfile(table)
+    for phi in np.linspace(-7.0, 13.0, 301):
+        wrapped = float(np.mod(phi, 2 * math.pi))
+        expected = [float(reference(wrapped, order)) for order in range(4)]
+        got = profile.radii(float(phi))
+        np.testing.assert_allclose(got[:3], expected[:3], rtol=1e-12, atol=1e-12)
+        if min(abs(wrapped - k) for k in knots) > 1e-9:  # the third derivative jumps at knots
+            np.testing.assert_allclose(got[3], expected[3], rtol=1e-12, atol=1e-12)
