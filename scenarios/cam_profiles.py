@@ -91,6 +91,7 @@ class SplineProfile:
         )
 
 
+@dataclass(frozen=True)
 class LobedProfile:
     """A cam of `lobes` equal lobes: d(phi) = radius + amplitude cos(lobes phi), peaks at phi = 0.
 
