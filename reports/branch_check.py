@@ -4,10 +4,10 @@ A kinematically driven mechanism has, at each time, a few isolated closures: con
 satisfy every constraint and driver (the open and the crossed four-bar, the slider on either side of
 the crank). An engine's configuration is projected onto the nearest closure by Newton-Raphson on the
 reference solver's constraint equations, started from the engine's own configuration:
-- it sits on the truth's closure: the error is a small error (`same`);
+- it is near the truth's closure: its error is an error of accuracy (`same`);
 - it sits on another closure, far from the truth: a wrong assembly branch (`other`; `mirrored` when
   the Jacobian's determinant has the other sign, the mirrored closure of a single loop);
-- it sits on no closure: it has left the mechanism (`off`).
+- it is farther than LOST from every closure: it has left the mechanism (`off`).
 Beyond the truth's end (past a singular configuration no closure is the truth), the closure the
 engine sits on is compared with the truth's last one by the sign of the determinant: the same
 branch (`kept`) or the mirrored one (`switched`).
@@ -36,7 +36,9 @@ Kind = Literal["same", "other", "off", "kept", "switched"]
 CANDIDATE = 1e-3
 """Times where the engine is closer than this to the truth are on its branch without a check."""
 ON_CLOSURE = 1e-2
-"""An engine within this of a closure sits on it; farther from every closure it is `off`."""
+"""An engine within this of another closure (and nearer it than the truth) sits on that closure."""
+LOST = 0.1
+"""An engine farther than this from every closure has left the mechanism (`off`)."""
 DISTINCT = 1e-6
 """Two closures farther apart than this are different branches."""
 PROJECTION = NewtonSettings(1e-10, 1e-10, max_iterations=50, damped=True)
@@ -179,18 +181,17 @@ def _classify(
     truth_sign: float,
 ) -> PointCheck:
     projected = newton(system, q, t, PROJECTION)
+    error = math.nan if truth_q is None else space.distance(q, truth_q)
     if not projected.converged or projected.factors is None:
-        return PointCheck(t, "off", math.nan, math.nan, False)
+        return PointCheck(t, "same" if error <= LOST else "off", math.nan, math.nan, False)
     distance = space.distance(q, projected.q)
     mirrored = bool(np.sign(projected.factors.determinant) * truth_sign < 0)
     if truth_q is None:
-        kind: Kind = "off" if distance > ON_CLOSURE else "switched" if mirrored else "kept"
+        kind: Kind = "off" if distance > LOST else "switched" if mirrored else "kept"
         return PointCheck(t, kind, distance, math.nan, mirrored)
     separation = space.distance(projected.q, truth_q)
-    if separation <= DISTINCT:
-        kind = "same" if distance <= ON_CLOSURE else "off"
-    elif distance <= min(ON_CLOSURE, 0.1 * separation):
+    if separation > DISTINCT and distance <= min(ON_CLOSURE, 0.5 * separation):
         kind = "other"
     else:
-        kind = "off"
+        kind = "same" if error <= LOST else "off"
     return PointCheck(t, kind, distance, separation, mirrored)

@@ -9,7 +9,8 @@ with) and declares:
 - `refine`: the truth is solved on a grid this many times finer (near-singular cases, where the
   solver's predictor could jump to another branch on the scenario's own grid);
 - `settings`: each engine's settings for the case (the first is the default), or None for the
-  engine's own default.
+  engine's own default;
+- `drift`: a long horizon, whose report compares the first and the last revolution.
 """
 
 from __future__ import annotations
@@ -44,6 +45,7 @@ class StressCase:
     similar: Similar | None = None
     refine: int = 1
     settings: Settings | None = None
+    drift: bool = False
 
     def singular_time(self) -> float | None:
         return None if self.singular is None else self.singular(build(self.name))
@@ -135,7 +137,7 @@ def _cases() -> tuple[StressCase, ...]:
     sc = "slider_crank"
     return (
         StressCase(sc, "nominal slider-crank (the scale and speed cases' reference point)"),
-        StressCase("four_bar", "nominal four-bar (the mass-ratio cases' reference point)"),
+        StressCase("four_bar", "nominal four-bar (the mass-ratio cases' reference point)", settings=heavy),
         StressCase(f"{sc}/stress_dead_centre", "slider-driven through the outer dead centre", dead_centre),
         StressCase(f"{sc}/stress_equal_links", "crank = rod, through th2 = pi/2", crank_at_right_angle),
         StressCase(
@@ -177,7 +179,7 @@ def _cases() -> tuple[StressCase, ...]:
         StressCase("spur_gears/stress_ratio_1000", "gear ratio 1:1000"),
         StressCase("four_bar/stress_mass_1e3", "coupler 1e3 times heavier", settings=heavy),
         StressCase("four_bar/stress_mass_1e6", "coupler 1e6 times heavier", settings=heavy),
-        StressCase(f"{sc}/stress_long", "1000 revolutions at 20 steps per revolution"),
+        StressCase(f"{sc}/stress_long", "1000 revolutions at 20 steps per revolution", drift=True),
         StressCase(f"{sc}/stress_stiffness", "constraint stiffness against the step", settings=stiffness),
         StressCase("cam_knife_edge/stress_steep", "eccentric disc, pressure angle up to 64 deg"),
         StressCase("cam_roller/stress_steep", "eccentric disc, pressure angle up to 35 deg"),
