@@ -10,7 +10,7 @@ from __future__ import annotations
 import html
 from typing import Any
 
-from reports import plots
+from reports import plots, stability_render
 from reports.report_data import ReportData, cell_text, number, table
 
 STYLE = """
@@ -53,6 +53,7 @@ def render(data: ReportData) -> str:
         f"<p>{html.escape(_definitions(meta))}</p>",
         _matrix(data),
         f'<p class="muted">Runs by status: {html.escape(_counts(data))}.</p>',
+        stability_render.html_fragment(data),  # "" unless the results hold stress cases
         "<h2>Engines and machine</h2>",
         _key_values(_versions(meta)),
     ]

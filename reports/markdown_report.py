@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pandas as pd
 
+from reports import stability_render
 from reports.report_data import HEADINGS, ReportData, number, table
 
 SHOWN = ("engine", "setting", "status", "error", "constraint_residual", "run_time", "message")
@@ -41,6 +42,9 @@ def render(data: ReportData) -> str:
         "",
         "Runs by status: " + ", ".join(f"{s} {n}" for s, n in data.status_counts().items()) + ".",
     ]
+    stability = stability_render.markdown_section(data)  # "" unless the results hold stress cases
+    if stability:
+        lines += ["", stability.rstrip("\n")]
     for scenario in data.scenarios():
         rows = table(data.rows(scenario))[list(SUMMARY_COLUMNS)]
         lines += [
