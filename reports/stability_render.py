@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import html
 import math
+import re
 from collections import Counter
 
 import numpy as np
@@ -32,6 +33,8 @@ GROWTH = 10.0
 """An engine whose error at a scale or speed is more than this times its nominal error (both
 floored at FLOOR) loses accuracy there."""
 FLOOR = 1e-13
+ROUGH = 1e-3
+"""An ok result with a larger error is shaded apart in the HTML map."""
 LEGEND = (
     "Verdicts: ok (on the truth's branch; the error says how close); picked a branch (went on past "
     "a singular configuration, where no truth exists, on the same or the mirrored closure); wrong "
@@ -53,7 +56,7 @@ CSS = {
     "unsupported": "unsupported",
 }
 STYLE = (
-    "<style>td.sm-ok{background:#e6f4e6}td.sm-branch{background:#e3eefb}td.sm-bad{background:#fde7c8}"
+    "<style>td.sm-ok{background:#e6f4e6}td.sm-rough{background:#f1f4d8}td.sm-branch{background:#e3eefb}td.sm-bad{background:#fde7c8}"
     "td.sm-failed{background:#fbe3e3}td.sm-singular{background:#fbf5cf}td.sm-unsupported{background:#eee;"
     "color:#666}</style>"
 )
@@ -260,6 +263,13 @@ def _html_table(frame: pd.DataFrame) -> str:
 
 
 def _html_cell(text: str) -> str:
+    """Coloured by verdict; an ok with an error above ROUGH, and a singular verdict where the truth
+    is regular (a false alarm or a jump), stand out."""
     verdict = next((v for v in sorted(CSS, key=len, reverse=True) if text.startswith(v)), None)
-    css = f' class="sm-{CSS[verdict]}"' if verdict else ""
-    return f"<td{css}>{html.escape(text)}</td>"
+    css = CSS[verdict] if verdict else ""
+    error = re.search(r"err ([0-9.e+-]+)", text)
+    if css == "ok" and error and float(error.group(1)) > ROUGH:
+        css = "rough"
+    if "truth regular there" in text:
+        css = "bad"
+    return f'<td class="sm-{css}">{html.escape(text)}</td>' if css else f"<td>{html.escape(text)}</td>"
