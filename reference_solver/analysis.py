@@ -114,9 +114,20 @@ def analyse(
     times: Sequence[float] | np.ndarray | None = None,
     tolerance: float = 1e-12,
     max_iterations: int = 25,
+    fast: bool = True,
 ) -> Analysis:
-    """The full kinematic analysis of `scenario` on `times` (default: the scenario's grid)."""
+    """The full kinematic analysis of `scenario` on `times` (default: the scenario's grid).
+
+    `fast` runs the compiled path (reference_solver.fast) when it can; whatever it cannot do, or
+    any abnormal event it meets, is handed to this loop, which then runs from the start.
+    """
     grid = np.asarray(scenario.times() if times is None else times, dtype=float)
+    if fast:
+        from reference_solver import fast as fast_path
+
+        done = fast_path.analyse(scenario, grid, tolerance, max_iterations)
+        if done is not None:
+            return done
     system = ConstraintSystem(scenario)
     layout = system.layout
     guess = layout.initial_guess(scenario)
@@ -217,7 +228,10 @@ def _approach(
 
 
 def solve(
-    scenario: Scenario, times: Sequence[float] | np.ndarray | None = None, tolerance: float = 1e-12
+    scenario: Scenario,
+    times: Sequence[float] | np.ndarray | None = None,
+    tolerance: float = 1e-12,
+    fast: bool = True,
 ) -> Trajectory:
     """The reference trajectory of every body of `scenario` (all three levels, plus contact phi)."""
-    return analyse(scenario, times, tolerance).trajectory()
+    return analyse(scenario, times, tolerance, fast=fast).trajectory()

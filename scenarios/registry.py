@@ -29,6 +29,7 @@ def _families() -> dict[str, Family]:
         cam_knife_edge,
         cam_roller,
         four_bar,
+        four_bar_chain,
         planetary_gears,
         rack_pinion,
         slider_crank,
@@ -44,6 +45,7 @@ def _families() -> dict[str, Family]:
         cam_knife_edge,
         cam_roller,
         cam_flat_face,
+        four_bar_chain,
     )
     return {m.FAMILY.name: m.FAMILY for m in modules}
 
