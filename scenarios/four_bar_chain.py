@@ -5,8 +5,10 @@ k - 1 and k. Rocker 0 is the crank, driven to swing theta(t) = theta0 + amplitud
 Every loop is a parallelogram (couplers as long as the pivot spacing), so every rocker turns with
 the crank and every coupler stays horizontal: rocker k's tip is O_k + L (cos theta, sin theta).
 A parallelogram is a change-point linkage: C_q is singular where rockers and couplers line up
-(theta = 0 or pi), where the chain may fold into an anti-parallelogram. The default swing keeps
-theta in (0, pi); a swing reaching 0 or pi is reported as a singular configuration.
+(theta = 0 or pi), where the chain could fold into an anti-parallelogram. The default swing keeps
+theta within (0, pi). A swing that turns back exactly there is reported as a singular
+configuration; one that swings through between grid points may go unnoticed (C_q's determinant does
+not change sign there), the predictor carrying the solution across on the parallelogram branch.
 """
 
 from __future__ import annotations

@@ -1,0 +1,124 @@
+"""The fast path's pieces on their own: band LU against dense algebra, the condition estimate against
+the exact condition number and LAPACK's, the spline kernel against the profile, the band layout of
+a chain, and the guard of numba's cache."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.linalg import lu_factor
+from scipy.linalg.lapack import dgecon
+
+import scenarios
+from reference_solver.fast import band, path
+from reference_solver.fast.cache_guard import refresh
+from reference_solver.fast.evaluate import profile_points
+from reference_solver.fast.program import profile_tables
+from reference_solver.fast.structure import band_of
+from scenarios import EccentricDisc, SplineProfile
+
+
+def _banded(rng: np.random.Generator, n: int, kl: int, ku: int) -> np.ndarray:
+    a = rng.standard_normal((n, n))
+    rows, cols = np.indices((n, n))
+    a[(cols - rows > ku) | (rows - cols > kl)] = 0.0
+    return a
+
+
+def _store(a: np.ndarray, kl: int, ku: int) -> np.ndarray:
+    n, w = a.shape[0], 2 * kl + ku + 1
+    store = np.zeros(n * w)
+    for i in range(n):
+        for j in range(max(0, i - kl), min(n, i + ku + 1)):
+            store[i * w + j - i + kl] = a[i, j]
+    return store
+
+
+@pytest.mark.parametrize(("n", "kl", "ku"), [(1, 0, 0), (9, 3, 4), (30, 4, 2), (40, 1, 7), (12, 11, 11)])
+def test_band_lu_solves_like_dense_algebra(n: int, kl: int, ku: int) -> None:
+    rng = np.random.default_rng(n + kl + ku)
+    for _ in range(5):
+        a = _banded(rng, n, kl, ku)
+        store, piv, w = _store(a, kl, ku), np.zeros(n, np.int64), 2 * kl + ku + 1
+        anorm = band.norm1(store, n, kl, ku, w, np.zeros(n))
+        assert anorm == pytest.approx(np.linalg.norm(a, 1)) and band.norm_inf(
+            store, n, kl, ku, w
+        ) == pytest.approx(np.linalg.norm(a, np.inf))
+        sign = band.factor(store, piv, n, kl, ku, w)
+        assert sign == np.sign(np.linalg.det(a))
+        b = rng.standard_normal(n)
+        x, y = b.copy(), b.copy()
+        band.solve(store, piv, n, kl, ku, w, x)
+        band.solve_transposed(store, piv, n, kl, ku, w, y)
+        np.testing.assert_allclose(a @ x, b, atol=1e-10 * np.linalg.cond(a))
+        np.testing.assert_allclose(a.T @ y, b, atol=1e-10 * np.linalg.cond(a))
+        exact = 1.0 / (anorm * np.linalg.norm(np.linalg.inv(a), 1))
+        estimate = band.rcond(store, piv, n, kl, ku, w, anorm, np.zeros(n), np.zeros(n), False)
+        lapack = dgecon(lu_factor(a)[0], anorm, norm="1")[0]
+        assert exact * (1 - 1e-9) <= estimate <= 10 * exact  # an estimate never undercuts the truth
+        assert estimate == pytest.approx(lapack, rel=2.0)
+        transposed = band.rcond(
+            store, piv, n, kl, ku, w, np.linalg.norm(a, np.inf), np.zeros(n), np.zeros(n), True
+        )
+        exact_inf = 1.0 / (np.linalg.norm(a, np.inf) * np.linalg.norm(np.linalg.inv(a), np.inf))
+        assert exact_inf * (1 - 1e-9) <= transposed <= 10 * exact_inf
+
+
+def test_a_zero_pivot_reports_a_singular_matrix() -> None:
+    a = np.array([[1.0, 2.0], [2.0, 4.0]])
+    assert band.factor(_store(a, 1, 1), np.zeros(2, np.int64), 2, 1, 1, 4) == 0.0
+
+
+def test_the_chain_keeps_a_constant_bandwidth() -> None:
+    """What makes the cost linear in the number of loops: the band does not widen."""
+    widths = set()
+    for loops in (1, 10, 200):
+        program = path.compiled(scenarios.build("four_bar_chain", overrides={"loops": loops})).program
+        assert program is not None
+        widths.add(tuple(program.sizes[2:4]))
+    assert widths == {(4, 2)}
+
+
+def test_band_layout_of_a_permuted_tridiagonal_pattern() -> None:
+    n, rng = 50, np.random.default_rng(1)
+    rows, cols = rng.permutation(n), rng.permutation(n)  # scrambled rows and columns
+    entries = [(int(rows[i]), int(cols[j])) for i in range(n) for j in range(max(0, i - 1), min(n, i + 2))]
+    layout = band_of(entries, n)
+    assert layout.kl + layout.ku <= 4
+
+
+PROFILES = [
+    EccentricDisc(0.05, 0.01),
+    SplineProfile.sample(EccentricDisc(0.05, 0.01), 12),
+    SplineProfile(tuple(0.5 + 0.1 * math.sin(3 * k * 2 * math.pi / 9) for k in range(9))),
+]
+
+
+@pytest.mark.parametrize("profile", PROFILES, ids=["disc", "spline12", "spline9"])
+def test_profile_kernel_reproduces_the_profile(profile) -> None:  # type: ignore[no-untyped-def]
+    from scenarios.cam_profiles import profile_point
+
+    table, splines = profile_tables([profile])
+    knots = np.linspace(0.0, 2 * math.pi, 13)
+    phis = np.concatenate([np.linspace(-7.0, 14.0, 211), knots, knots + 1e-15, [-1e-17, 2 * math.pi]])
+    us = np.zeros((1, 4, 2))
+    for phi in phis:
+        profile_points(table, splines, np.array([float(phi)]), 0, us)
+        np.testing.assert_allclose(us[0], profile_point(profile, float(phi)), rtol=1e-13, atol=1e-13)
+
+
+def test_cache_guard_drops_machine_code_of_changed_sources(tmp_path: Path) -> None:
+    (tmp_path / "kernel.py").write_text("x = 1\n")
+    cache = tmp_path / "__pycache__"
+    cache.mkdir()
+    refresh(tmp_path)
+    code = cache / "kernel.run-1.py311.nbi"
+    code.write_text("machine code")
+    refresh(tmp_path)
+    assert code.exists()  # sources unchanged: kept
+    (tmp_path / "kernel.py").write_text("x = 2\n")
+    refresh(tmp_path)
+    assert not code.exists()  # a source changed: dropped

@@ -1,0 +1,80 @@
+"""The chain of parallelogram four-bar loops: its build, and its solution against the closed form."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import scenarios
+from reference_solver import solve
+from scenarios import Scenario, ScenarioError, Trajectory
+
+
+def exact(scenario: Scenario, times: np.ndarray | None = None) -> Trajectory:
+    """Every rocker turns with the crank, theta = theta0 + A sin(omega t); every coupler translates:
+    rocker k's frame at (k g, 0) + L/2 e(theta), coupler k's at ((k - 1/2) g, 0) + L e(theta)."""
+    p = dict(scenario.parameters)
+    loops, length, g = int(p["loops"]), float(p["link_length"]), float(p["coupler_length"])
+    omega, amplitude, theta0 = float(p["omega"]), float(p["amplitude"]), float(p["theta0"])
+    t = np.asarray(scenario.times() if times is None else times, dtype=float)
+    theta = theta0 + amplitude * np.sin(omega * t)
+    rate = amplitude * omega * np.cos(omega * t)
+    accel = -amplitude * omega**2 * np.sin(omega * t)
+    e, n = np.stack([np.cos(theta), np.sin(theta)], -1), np.stack([-np.sin(theta), np.cos(theta)], -1)
+    zero = np.zeros_like(t)
+
+    def body(base_x: float, reach: float, turns: bool):  # type: ignore[no-untyped-def]
+        angle = (theta, rate, accel) if turns else (zero, zero, zero)
+        pos = np.column_stack([base_x + reach * e[:, 0], reach * e[:, 1], angle[0]])
+        vel = np.column_stack([reach * rate[:, None] * n, angle[1]])
+        acc = np.column_stack([reach * (accel[:, None] * n - rate[:, None] ** 2 * e), angle[2]])
+        return pos, vel, acc
+
+    parts = [body(0.0, length / 2, True)]
+    for k in range(1, loops + 1):
+        parts += [body((k - 0.5) * g, length, False), body(k * g, length / 2, True)]
+    levels = [np.stack([part[level] for part in parts], axis=1) for level in range(3)]
+    return Trajectory(t, scenario.body_names, *levels)
+
+
+@pytest.mark.parametrize("loops", [1, 4, 40])
+def test_chain_matches_the_closed_form(loops: int) -> None:
+    scenario = scenarios.build("four_bar_chain", overrides={"loops": loops})
+    solved, expected = solve(scenario), exact(scenario)
+    assert solved.bodies == expected.bodies
+    for level in ("position", "velocity", "acceleration"):
+        values = getattr(expected, level)
+        error = float(np.max(np.abs(getattr(solved, level) - values)))
+        assert error < 1e-12 * max(1.0, float(np.max(np.abs(values)))), level
+
+
+def test_other_lengths_and_swing() -> None:
+    overrides = {"loops": 3, "link_length": 0.3, "coupler_length": 0.12, "amplitude": 0.4, "theta0": 1.0}
+    scenario = scenarios.build("four_bar_chain", overrides=overrides)
+    solved, expected = solve(scenario), exact(scenario)
+    np.testing.assert_allclose(solved.position, expected.position, rtol=0, atol=1e-12)  # type: ignore[arg-type]
+    np.testing.assert_allclose(solved.acceleration, expected.acceleration, rtol=0, atol=1e-10)  # type: ignore[arg-type]
+
+
+def test_chain_bodies_and_joints() -> None:
+    scenario = scenarios.build("four_bar_chain", overrides={"loops": 3})
+    assert scenario.body_names == (
+        "crank",
+        "coupler_1",
+        "rocker_1",
+        "coupler_2",
+        "rocker_2",
+        "coupler_3",
+        "rocker_3",
+    )
+    assert [j.name for j in scenario.joints] == ["O0", "A1", "B1", "O1", "A2", "B2", "O2", "A3", "B3", "O3"]
+    assert scenario.characteristic_length == 0.1
+    assert scenario.t_end == pytest.approx(2 * math.pi / 10.0)
+
+
+@pytest.mark.parametrize(("key", "value"), [("loops", 0), ("link_length", -0.1), ("omega", 0.0)])
+def test_bad_parameters_are_refused(key: str, value: float) -> None:
+    with pytest.raises(ScenarioError, match=key):
+        scenarios.build("four_bar_chain", overrides={key: value})
