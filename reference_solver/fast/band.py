@@ -1,8 +1,9 @@
 """LU with partial pivoting of a band matrix, its solves, and LAPACK's 1-norm condition estimate.
 
-The store is flat, row i holding columns i - kl .. i + kl + ku at a[i * w + j - i + kl], w = 2 kl + ku + 1.
-As in LAPACK's dgbtrf, the multipliers of column j stay where they were computed and each row
-interchange moves only the columns from j on; the solves replay the interchanges in order.
+The store is flat, row i holding columns i - kl .. i + kl + ku at a[i * w + j - i + kl], w = 2 kl + ku + 1
+(so entry (i, j) is at i (w - 1) + kl + j). As in LAPACK's dgbtrf, the multipliers of column j stay
+where they were computed and each row interchange moves only the columns from j on; the solves
+replay the interchanges in order. The factored diagonal holds 1 / U_jj, so solves multiply.
 """
 
 from __future__ import annotations
@@ -42,12 +43,12 @@ def norm_inf(a: np.ndarray, n: int, kl: int, ku: int, w: int) -> float:
 @njit(cache=True, error_model="numpy")
 def factor(a: np.ndarray, piv: np.ndarray, n: int, kl: int, ku: int, w: int) -> float:
     """Factor in place; returns the sign of the determinant, 0.0 if a pivot is zero or not finite."""
-    sign = 1.0
+    sign, step = 1.0, w - 1
     for j in range(n):
-        last = min(n, j + kl + 1)
-        p, best = j, abs(a[j * w + kl])
+        last, row_j = min(n, j + kl + 1), j * step + kl
+        p, best = j, abs(a[row_j + j])
         for i in range(j + 1, last):
-            v = abs(a[i * w + j - i + kl])
+            v = abs(a[i * step + kl + j])
             if v > best:
                 p, best = i, v
         piv[j] = p
@@ -56,27 +57,28 @@ def factor(a: np.ndarray, piv: np.ndarray, n: int, kl: int, ku: int, w: int) -> 
         right = min(n, j + kl + ku + 1)
         if p != j:
             sign = -sign
+            row_p = p * step + kl
             for c in range(j, right):
-                x = j * w + c - j + kl
-                y = p * w + c - p + kl
-                a[x], a[y] = a[y], a[x]
-        pivot = a[j * w + kl]
+                a[row_j + c], a[row_p + c] = a[row_p + c], a[row_j + c]
+        pivot = a[row_j + j]
         if pivot < 0.0:
             sign = -sign
         inverse = 1.0 / pivot
+        a[row_j + j] = inverse
         for i in range(j + 1, last):
-            x = i * w + j - i + kl
-            factor_ = a[x] * inverse
-            a[x] = factor_
-            if factor_ != 0.0:
+            row_i = i * step + kl
+            multiplier = a[row_i + j] * inverse
+            a[row_i + j] = multiplier
+            if multiplier != 0.0:
                 for c in range(j + 1, right):
-                    a[i * w + c - i + kl] -= factor_ * a[j * w + c - j + kl]
+                    a[row_i + c] -= multiplier * a[row_j + c]
     return sign
 
 
 @njit(cache=True, error_model="numpy")
 def solve(a: np.ndarray, piv: np.ndarray, n: int, kl: int, ku: int, w: int, b: np.ndarray) -> None:
     """b <- A^-1 b with the factors."""
+    step = w - 1
     for j in range(n):
         p = piv[j]
         if p != j:
@@ -84,26 +86,28 @@ def solve(a: np.ndarray, piv: np.ndarray, n: int, kl: int, ku: int, w: int, b: n
         bj = b[j]
         if bj != 0.0:
             for i in range(j + 1, min(n, j + kl + 1)):
-                b[i] -= a[i * w + j - i + kl] * bj
+                b[i] -= a[i * step + kl + j] * bj
     for i in range(n - 1, -1, -1):
+        row_i = i * step + kl
         s = b[i]
         for c in range(i + 1, min(n, i + kl + ku + 1)):
-            s -= a[i * w + c - i + kl] * b[c]
-        b[i] = s / a[i * w + kl]
+            s -= a[row_i + c] * b[c]
+        b[i] = s * a[row_i + i]
 
 
 @njit(cache=True, error_model="numpy")
 def solve_transposed(a: np.ndarray, piv: np.ndarray, n: int, kl: int, ku: int, w: int, b: np.ndarray) -> None:
     """b <- A^-T b with the factors."""
+    step = w - 1
     for i in range(n):
         s = b[i]
         for r in range(max(0, i - kl - ku), i):
-            s -= a[r * w + i - r + kl] * b[r]
-        b[i] = s / a[i * w + kl]
+            s -= a[r * step + kl + i] * b[r]
+        b[i] = s * a[i * step + kl + i]
     for j in range(n - 1, -1, -1):
         s = b[j]
         for i in range(j + 1, min(n, j + kl + 1)):
-            s -= a[i * w + j - i + kl] * b[i]
+            s -= a[i * step + kl + j] * b[i]
         b[j] = s
         p = piv[j]
         if p != j:
