@@ -109,7 +109,7 @@ register(
         sweep=False,
         repeats=1,
         warmup=0,
-        timeout=60.0,
+        timeout=120.0,  # the long horizon's MuJoCo run takes 15-40 s on 2 loaded cores
         truth=_stress_truth,
         settings=_stress_settings,
     )
