@@ -58,9 +58,16 @@ class FastRun:
     analysis: Analysis | None
 
 
-@lru_cache(maxsize=32)
 def compiled(scenario: Scenario) -> Compiled:
-    """The scenario's program, or the reason it has none."""
+    """The scenario's program, or the reason it has none (kept for the last few scenarios)."""
+    try:
+        hash(scenario)
+    except TypeError:  # say, a list where the vocabulary has a tuple: compiled, not kept
+        return _compile(scenario)
+    return _kept(scenario)
+
+
+def _compile(scenario: Scenario) -> Compiled:
     system = ConstraintSystem(scenario)
     guess = system.layout.initial_guess(scenario)
     try:
@@ -68,6 +75,9 @@ def compiled(scenario: Scenario) -> Compiled:
     except NotCompiled as error:
         return Compiled(system.layout, guess, None, str(error))
     return Compiled(system.layout, guess, program, "")
+
+
+_kept = lru_cache(maxsize=32)(_compile)
 
 
 def run(scenario: Scenario, grid: np.ndarray, tolerance: float = 1e-12, max_iterations: int = 25) -> FastRun:
