@@ -16,6 +16,11 @@ from reports.branch_check import check_branch
 from scenarios.trajectory import Trajectory
 
 
+def positions(trajectory: Trajectory) -> np.ndarray:
+    assert trajectory.position is not None
+    return trajectory.position
+
+
 @pytest.fixture(scope="module")
 def four_bar() -> tuple[scenarios.Scenario, Trajectory, Trajectory]:
     """The open four-bar, its truth, and the crossed (mirrored) closure on the same grid."""
@@ -72,7 +77,7 @@ def test_the_slider_on_the_other_side_of_the_crank_is_a_wrong_branch() -> None:
     scenario = scenarios.build("slider_crank")
     truth = solve(scenario)
     l2, l3 = (float(scenario.parameter(k)) for k in ("crank_length", "rod_length"))
-    crank, rod, slider = (truth.position[:, k, :].copy() for k in range(3))
+    crank, rod, slider = (positions(truth)[:, k, :].copy() for k in range(3))
     th2, th3 = crank[:, 2], math.pi - rod[:, 2]
     ax, ay = l2 * np.cos(th2), l2 * np.sin(th2)
     rod = np.column_stack([ax + l3 / 2 * np.cos(th3), ay + l3 / 2 * np.sin(th3), th3])
@@ -84,7 +89,7 @@ def test_the_slider_on_the_other_side_of_the_crank_is_a_wrong_branch() -> None:
 
 def _partial(truth: Trajectory, end: int) -> Trajectory:
     """The truth with no configuration from index `end` on (as past a singular configuration)."""
-    position = truth.position.copy()
+    position = positions(truth).copy()
     position[end:] = np.nan
     return _with_positions(truth, position)
 

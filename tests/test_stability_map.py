@@ -46,6 +46,11 @@ def _joined(first: Trajectory, rest: Trajectory, times: np.ndarray) -> Trajector
     return Trajectory(times, first.bodies, position=np.concatenate([first.position, rest.position]))
 
 
+def positions(trajectory: Trajectory) -> np.ndarray:
+    assert trajectory.position is not None
+    return trajectory.position
+
+
 @pytest.fixture(scope="module")
 def stored(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """Results of made-up engines on the nominal four-bar and the change-point case."""
@@ -56,7 +61,7 @@ def stored(tmp_path_factory: pytest.TempPathFactory) -> Path:
     store.put_truth(nominal.name, "tolerance=1e-12", truth)
     _ok(store, nominal, "exact", truth, truth)
     _ok(store, nominal, "mirror", solve(scenarios.build("four_bar/crossed"), nominal.times()), truth)
-    lifted = truth.position.copy()
+    lifted = positions(truth).copy()
     lifted[100:, :, 1] += nominal.characteristic_length  # from t[100] on, a crank length up
     _ok(store, nominal, "lifted", Trajectory(truth.times, truth.bodies, position=lifted), truth)
 
@@ -64,7 +69,7 @@ def stored(tmp_path_factory: pytest.TempPathFactory) -> Path:
     times = np.asarray(case.times())
     partial = stress_truth(case, times)
     store.put_truth(case.name, "tolerance=1e-12", partial)
-    end = int(np.count_nonzero(np.all(np.isfinite(partial.position), axis=(1, 2))))
+    end = int(np.count_nonzero(np.all(np.isfinite(positions(partial)), axis=(1, 2))))
     later = times[end:]
     start = {"theta0": 0.3 + 50.0 * later[0], "branch": -1}
     crossed = solve(scenarios.build(case.name, overrides=start), later - later[0])
