@@ -53,11 +53,16 @@ def level_errors(result: Trajectory, truth: Trajectory, level: Level) -> tuple[n
 
 
 def summarise(series: np.ndarray) -> dict[str, float]:
-    """max, rms and final value of a per-time error series."""
+    """max, rms and final value of a per-time error series, over the times where it is defined: a
+    stress truth stops (NaN) where no configuration exists past a singular time. An engine's own
+    non-finite values never get here (its run is `diverged`)."""
+    defined = series[np.isfinite(series)]
+    if defined.size == 0:
+        return dict.fromkeys(("max", "rms", "final"), math.nan)
     return {
-        "max": float(np.max(series)),
-        "rms": float(np.sqrt(np.mean(series**2))),
-        "final": float(series[-1]),
+        "max": float(np.max(defined)),
+        "rms": float(np.sqrt(np.mean(defined**2))),
+        "final": float(defined[-1]),
     }
 
 

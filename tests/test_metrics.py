@@ -114,3 +114,14 @@ def test_constraint_residual_sees_a_known_gap() -> None:
     moved = dataclasses.replace(solved, position=position)
     gap = residual_metric(SCENARIO, moved, reference_solver.constraint_residual)
     assert gap == pytest.approx(1e-5 / 0.2, rel=1e-6)
+
+
+def test_a_truth_that_stops_is_compared_where_it_exists() -> None:
+    """A stress truth is NaN past a singular time: the statistics cover the times before it."""
+    from reports.metrics import summarise
+
+    series = np.array([1e-9, 3e-9, 2e-9, np.nan, np.nan])
+    stats = summarise(series)
+    assert stats["max"] == 3e-9 and stats["final"] == 2e-9
+    assert stats["rms"] == pytest.approx(np.sqrt((1 + 9 + 4) / 3) * 1e-9)
+    assert all(np.isnan(v) for v in summarise(np.full(3, np.nan)).values())
