@@ -1,7 +1,7 @@
 """The engine-neutral vocabulary of planar mechanisms and the catalogue of mechanism families."""
 
 from scenarios.bodies import GROUND, Body, Point
-from scenarios.cam_profiles import EccentricDisc, SplineProfile
+from scenarios.cam_profiles import EccentricDisc, LobedProfile, SplineProfile
 from scenarios.cams import FlatFaceCam, KnifeEdgeCam, RollerCam
 from scenarios.drivers import (
     AbsoluteDriver,
@@ -29,6 +29,7 @@ __all__ = [
     "Ground",
     "Harmonic",
     "KnifeEdgeCam",
+    "LobedProfile",
     "Point",
     "PointPathDriver",
     "Prismatic",
