@@ -109,10 +109,11 @@ def run(  # type: ignore[no-untyped-def]
                 res = _scaled_max(c, scales)
                 if not math.isfinite(res):
                     break
-                anorm = norm1(lu, n, kl, ku, w, tmp)
+                converged = res < tolerance and step < tolerance
+                if converged:  # the norm only where the condition number will be estimated
+                    anorm = norm1(lu, n, kl, ku, w, tmp)
                 sign = factor(lu, piv, n, kl, ku, w) * parity
-                if res < tolerance and step < tolerance:
-                    converged = True
+                if converged:
                     break
                 if its == limit or sign == 0.0:
                     break
