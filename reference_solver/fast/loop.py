@@ -63,6 +63,28 @@ def _scaled_max(c, scales):  # type: ignore[no-untyped-def]
     return worst
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _rates(  # type: ignore[no-untyped-def]
+    ints, reals, profiles, splines, scales, perm, sizes, lu, piv, q, t, qd, qdd, v, work, jac, us, none
+):  # fmt: skip
+    """q_dot from C_q q_dot = -C_t, q_ddot from C_q q_ddot = Q_d, with the factors in `lu`; v are
+    run's scratch vectors."""
+    c, q_d, tmp, rhs, ct = v[C], v[Q_D], v[TMP], v[RHS], v[C_T]
+    n = q.size
+    c_t(ints, reals, t, ct)
+    for r in range(n):
+        rhs[r] = -ct[r] / scales[0, r]
+    _solve(lu, piv, perm, sizes, rhs, qd, tmp)
+    for i in range(n):
+        qd[i] *= scales[1, i]
+    _evaluate(ints, reals, profiles, splines, q, qd, t, c, q_d, none, work, jac, us)
+    for r in range(n):
+        rhs[r] = q_d[r] / scales[0, r]
+    _solve(lu, piv, perm, sizes, rhs, qdd, tmp)
+    for i in range(n):
+        qdd[i] *= scales[1, i]
+
+
 @njit(cache=True, error_model="numpy")
 def run(  # type: ignore[no-untyped-def]
     ints, reals, scales, perm, sizes, parity, profiles, splines,
@@ -146,26 +168,10 @@ def run(  # type: ignore[no-untyped-def]
                 t = target
                 if t == t1:
                     break
-                _rates(
-                    ints,
-                    reals,
-                    profiles,
-                    splines,
-                    scales,
-                    perm,
-                    sizes,
-                    lu,
-                    piv,
-                    q,
-                    t,
-                    qd,
-                    qdd,
-                    v,
-                    work,
-                    jac,
-                    us,
-                    none,
-                )
+                # fmt: off
+                _rates(ints, reals, profiles, splines, scales, perm, sizes, lu, piv, q, t, qd, qdd,
+                       v, work, jac, us, none)
+                # fmt: on
                 h *= 2
             elif k < 0:
                 return ASSEMBLY_FAILED, 0
@@ -184,26 +190,10 @@ def run(  # type: ignore[no-untyped-def]
             if k > 0 and sign != previous:
                 return SIGN_CHANGE, k
             previous = sign
-            _rates(
-                ints,
-                reals,
-                profiles,
-                splines,
-                scales,
-                perm,
-                sizes,
-                lu,
-                piv,
-                q,
-                t1,
-                qd,
-                qdd,
-                v,
-                work,
-                jac,
-                us,
-                none,
-            )
+            # fmt: off
+            _rates(ints, reals, profiles, splines, scales, perm, sizes, lu, piv, q, t1, qd, qdd,
+                   v, work, jac, us, none)
+            # fmt: on
             for i in range(n):
                 q_all[k, i], qd_all[k, i], qdd_all[k, i] = q[i], qd[i], qdd[i]
             rconds[k] = rc
@@ -211,25 +201,3 @@ def run(  # type: ignore[no-untyped-def]
         if k < grid.size:
             t0, t1 = grid[max(k - 1, 0)], grid[k]
     return OK, grid.size
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _rates(  # type: ignore[no-untyped-def]
-    ints, reals, profiles, splines, scales, perm, sizes, lu, piv, q, t, qd, qdd, v, work, jac, us, none
-):  # fmt: skip
-    """q_dot from C_q q_dot = -C_t, q_ddot from C_q q_ddot = Q_d, with the factors in `lu`; v are
-    run's scratch vectors."""
-    c, q_d, tmp, rhs, ct = v[C], v[Q_D], v[TMP], v[RHS], v[C_T]
-    n = q.size
-    c_t(ints, reals, t, ct)
-    for r in range(n):
-        rhs[r] = -ct[r] / scales[0, r]
-    _solve(lu, piv, perm, sizes, rhs, qd, tmp)
-    for i in range(n):
-        qd[i] *= scales[1, i]
-    _evaluate(ints, reals, profiles, splines, q, qd, t, c, q_d, none, work, jac, us)
-    for r in range(n):
-        rhs[r] = q_d[r] / scales[0, r]
-    _solve(lu, piv, perm, sizes, rhs, qdd, tmp)
-    for i in range(n):
-        qdd[i] *= scales[1, i]
