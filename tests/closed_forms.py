@@ -212,6 +212,32 @@ def disc_cam(s: Scenario, t: np.ndarray) -> Trajectory:
     )
 
 
+def four_bar_chain(scenario: Scenario, t: np.ndarray) -> Trajectory:
+    """Every rocker turns with the crank, theta = theta0 + A sin(omega t); every coupler translates:
+    rocker k's frame at (k g, 0) + L/2 e(theta), coupler k's at ((k - 1/2) g, 0) + L e(theta)."""
+    p = dict(scenario.parameters)
+    loops, length, g = int(p["loops"]), float(p["link_length"]), float(p["coupler_length"])
+    omega, amplitude, theta0 = float(p["omega"]), float(p["amplitude"]), float(p["theta0"])
+    theta = theta0 + amplitude * np.sin(omega * t)
+    rate = amplitude * omega * np.cos(omega * t)
+    accel = -amplitude * omega**2 * np.sin(omega * t)
+    e, n = np.stack([np.cos(theta), np.sin(theta)], -1), np.stack([-np.sin(theta), np.cos(theta)], -1)
+    zero = np.zeros_like(t)
+
+    def body(base_x: float, reach: float, turns: bool):  # type: ignore[no-untyped-def]
+        angle = (theta, rate, accel) if turns else (zero, zero, zero)
+        pos = np.column_stack([base_x + reach * e[:, 0], reach * e[:, 1], angle[0]])
+        vel = np.column_stack([reach * rate[:, None] * n, angle[1]])
+        acc = np.column_stack([reach * (accel[:, None] * n - rate[:, None] ** 2 * e), angle[2]])
+        return pos, vel, acc
+
+    parts = [body(0.0, length / 2, True)]
+    for k in range(1, loops + 1):
+        parts += [body((k - 0.5) * g, length, False), body(k * g, length / 2, True)]
+    levels = [np.stack([part[level] for part in parts], axis=1) for level in range(3)]
+    return Trajectory(t, scenario.body_names, *levels)
+
+
 FAMILIES = {
     "slider_crank": slider_crank,
     "four_bar": four_bar,
@@ -221,6 +247,7 @@ FAMILIES = {
     "cam_knife_edge": disc_cam,
     "cam_roller": disc_cam,
     "cam_flat_face": disc_cam,
+    "four_bar_chain": four_bar_chain,
 }
 
 

@@ -46,6 +46,7 @@ BOUNDS = {
     "cam_knife_edge": (5e-7, 1e-6, 3e-6, 1e-2),
     "cam_roller": (5e-7, 1e-6, 3e-6, 1e-2),
     "cam_flat_face": (5e-7, 1e-6, 3e-6, 1e-2),
+    "four_bar_chain": (1e-7, 1e-6, 1e-4, 1e-2),
 }
 DISC_SCENARIOS = [n for n in scenarios.catalogue() if not n.endswith("/spline")]
 

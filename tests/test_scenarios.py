@@ -17,6 +17,7 @@ FAMILIES = [
     "cam_knife_edge",
     "cam_roller",
     "cam_flat_face",
+    "four_bar_chain",
 ]
 
 
