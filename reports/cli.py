@@ -7,6 +7,7 @@ and no partial output file.
 from __future__ import annotations
 
 import argparse
+import importlib
 import math
 import sys
 import tempfile
@@ -298,7 +299,27 @@ def parser() -> argparse.ArgumentParser:
     check.add_argument("--factor", type=float, default=gate.DEFAULT_FACTOR, help="allowed error growth")
     check.add_argument("--update", action="store_true", help="write the baseline from the results instead")
     check.add_argument("--quiet", action="store_true", help="no progress bar")
+
+    bench = sub.add_parser("bench", help="speed of the native solver against the engines (benchmarks/)")
+    bench.add_argument(
+        "which",
+        nargs="?",
+        choices=sorted(BENCHMARKS),
+        default="speed",
+        help="speed: cost per time point per family; scaling: cost against chain size",
+    )
+    bench.add_argument("options", nargs=argparse.REMAINDER, help="passed to the benchmark (see its --help)")
     return top
+
+
+BENCHMARKS = {"speed": "benchmarks.solver_speed", "scaling": "benchmarks.chain_scaling"}
+
+
+def cmd_bench(args: argparse.Namespace) -> int:
+    """Run one of the benchmark scripts, which print their own tables."""
+    module = importlib.import_module(BENCHMARKS[args.which])
+    module.main(list(args.options))
+    return 0
 
 
 COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
@@ -308,6 +329,7 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "run": cmd_run,
     "report": cmd_report,
     "check": cmd_check,
+    "bench": cmd_bench,
 }
 
 
