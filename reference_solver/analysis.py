@@ -28,6 +28,13 @@ SINGULAR_RCOND = 1e-9
 """A scaled Jacobian with a reciprocal condition number below this is treated as singular."""
 NEAR_SINGULAR = 1e-4
 """On a Newton failure, a smallest singular value ratio below this names the failure singular."""
+JUMP_FRACTION = 0.5
+JUMP_FLOOR = 1e-6
+"""A converged step whose correction to the predictor exceeds JUMP_FRACTION of the predictor's reach
+max_i (|h qd_i| + h^2 |qdd_i|) (and JUMP_FLOOR; scaled units) has left its branch: on a smooth path
+the correction is O(h^3) against a reach O(h) (at most 0.25 of it even at 8 steps per revolution
+over the catalogue), while a jump to another solution is a finite distance. Such a step is retaken
+in halved steps, which either follow the branch or stop where it ends."""
 
 
 @dataclass(frozen=True)
@@ -144,8 +151,9 @@ def analyse(
         t = float(t)
         if k > 0:
             t0 = float(grid[k - 1])
-            result = newton(system, _predict(q, qd, qdd, t - t0), t, settings)
-            if not result.converged:
+            predictor = _predict(q, qd, qdd, t - t0)
+            result = newton(system, predictor, t, settings)
+            if not result.converged or jumped(system, qd, qdd, t - t0, predictor, result.q):
                 result = _approach(system, q, qd, qdd, t0, t, settings)
             q, factors, iterations[k], residual[k] = (
                 result.q,
@@ -180,6 +188,22 @@ def _predict(q: np.ndarray, qd: np.ndarray, qdd: np.ndarray, h: float) -> np.nda
     return q + h * qd + 0.5 * h * h * qdd  # type: ignore[no-any-return]
 
 
+def jumped(
+    system: ConstraintSystem,
+    qd: np.ndarray,
+    qdd: np.ndarray,
+    h: float,
+    predictor: np.ndarray,
+    end: np.ndarray,
+) -> bool:
+    """Whether a step of length h, predicted from rates (qd, qdd), left its branch by converging to
+    `end` (see JUMP_FRACTION)."""
+    scales = system.column_scales
+    correction = float(np.max(np.abs(end - predictor) / scales))
+    reach = float(np.max((np.abs(h * qd) + h * h * np.abs(qdd)) / scales))
+    return correction > max(JUMP_FRACTION * reach, JUMP_FLOOR)
+
+
 def _approach(
     system: ConstraintSystem,
     q: np.ndarray,
@@ -192,7 +216,8 @@ def _approach(
     """Reach t1 from the solution at t0 in halved steps after Newton failed in one.
 
     Either a poor predictor was the trouble and t1 is reached, or the steps shrink against a limit
-    no configuration lies beyond (a dead centre): then the error names the singular configuration
+    no configuration of the branch lies beyond (a dead centre, the end of a cam contact branch), or
+    every step forward jumps to another solution: then the error names the singular configuration
     met there, at the last time reached. A regular configuration where Newton still fails gives a
     ConvergenceError.
     """
@@ -200,10 +225,14 @@ def _approach(
     last = None
     while h > 1e-12 * max(abs(t1), abs(t1 - t0)):
         target = min(t + h, t1) if t1 > t0 else max(t + h, t1)
-        result = newton(system, _predict(q, qd, qdd, target - t), target, settings)
-        if result.converged and result.factors is not None and result.factors.rcond >= SINGULAR_RCOND:
+        predictor = _predict(q, qd, qdd, target - t)
+        result = newton(system, predictor, target, settings)
+        factors = result.factors
+        regular = factors is not None and factors.rcond >= SINGULAR_RCOND
+        if result.converged and regular and not jumped(system, qd, qdd, target - t, predictor, result.q):
+            assert factors is not None
             q, t, last = result.q, target, result
-            qd, qdd = _rates(system, result.factors, q, t)
+            qd, qdd = _rates(system, factors, q, t)
             if t == t1:
                 return result
             h *= 2
@@ -215,8 +244,8 @@ def _approach(
             system,
             q,
             t,
-            f"no configuration beyond this time (Newton-Raphson fails at any step forward; smallest "
-            f"singular value ratio {report.smallest:.2g})",
+            f"no configuration beyond this time on this branch (Newton-Raphson fails or leaves the "
+            f"branch at any step forward; smallest singular value ratio {report.smallest:.2g})",
         )
     iterations = last.iterations if last else settings.max_iterations
     raise ConvergenceError(

@@ -158,3 +158,13 @@ def test_mobility_errors_are_the_plain_ones(case: str) -> None:
     assert "not a square system" in path.run(scenario, np.asarray(scenario.times())).event
     failure = _failure(scenario)
     assert failure[0] is MobilityError and failure == _plain_failure(scenario)
+
+
+def test_lobed_profile_kernel_gives_the_plain_answer() -> None:
+    scenario = scenarios.build("cam_roller", overrides={"profile": "lobed", "roller_radius": 0.01})
+    fast, plain = both(scenario)
+    assert fast.event == "ok" and fast.analysis is not None
+    for level in ("q", "qd", "qdd"):
+        expected = getattr(plain, level)
+        atol = 1e-12 * max(1.0, float(np.max(np.abs(expected))))
+        np.testing.assert_allclose(getattr(fast.analysis, level), expected, rtol=0, atol=atol)

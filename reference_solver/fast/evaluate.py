@@ -27,6 +27,7 @@ from reference_solver.fast.program import (
     K_TERM_SLOT,
     K_TERM_TYPE,
     K_WIDTH,
+    LOBED,
     MOTION_CONSTANT,
     MOTION_HARMONIC,
     MOTION_LINEAR,
@@ -78,6 +79,10 @@ def radii(profiles, splines, contact, phi):  # type: ignore[no-untyped-def]
             + 3.0 * s1 * s1 * g1 / (4.0 * g**4)
         )
         return e * cs + g, -e * sn + g1, -e * cs + g2, e * sn + g3
+    if profiles[contact, 0] == LOBED:
+        n, r, a = profiles[contact, 1], profiles[contact, 3], profiles[contact, 4]
+        c, s = math.cos(n * phi), math.sin(n * phi)
+        return r + a * c, -a * n * s, -a * n * n * c, a * n**3 * s
     period = 2.0 * math.pi
     p = np.fmod(phi, period)
     if p < 0.0:

@@ -16,11 +16,12 @@ import math
 import numpy as np
 from numba import njit
 
+from reference_solver.analysis import JUMP_FLOOR, JUMP_FRACTION
 from reference_solver.fast.band import factor, norm1, norm_inf, rcond, solve
 from reference_solver.fast.evaluate import c_t, evaluate, profile_points
 from reference_solver.fast.program import S_BODIES, S_KL, S_KU, S_N, S_WIDTH, WIDTH
 
-OK, ASSEMBLY_FAILED, NOT_CONVERGED, NEAR_SINGULAR, SIGN_CHANGE, UNVERIFIED = range(6)
+OK, ASSEMBLY_FAILED, NOT_CONVERGED, NEAR_SINGULAR, SIGN_CHANGE, UNVERIFIED, BRANCH_JUMP = range(7)
 EVENTS = (
     "ok",
     "assembly failed",
@@ -28,8 +29,9 @@ EVENTS = (
     "near-singular C_q",
     "det C_q changed sign",
     "mobility not verified (C_q not clearly regular at the guess)",
+    "a step left its branch (analysis.jumped)",
 )
-C, Q_D, ZERO, TMP, RHS, DX, EST, SIGNS, C_T, TRIAL, TRIAL2, ROWS = range(12)
+C, Q_D, ZERO, TMP, RHS, DX, EST, SIGNS, C_T, TRIAL, TRIAL2, PRED, ROWS = range(13)
 """Rows of run's scratch vectors `v`."""
 
 
@@ -98,7 +100,7 @@ def run(  # type: ignore[no-untyped-def]
     n, kl, ku, w = sizes[S_N], sizes[S_KL], sizes[S_KU], sizes[S_WIDTH]
     lu, piv, none, v = np.empty(n * w), np.empty(n, np.int64), np.empty(0), np.zeros((ROWS, n))
     c, q_d, zero, tmp, rhs, dx = v[C], v[Q_D], v[ZERO], v[TMP], v[RHS], v[DX]
-    est, signs, trial, trial2 = v[EST], v[SIGNS], v[TRIAL], v[TRIAL2]
+    est, signs, trial, trial2, pred = v[EST], v[SIGNS], v[TRIAL], v[TRIAL2], v[PRED]
     work, jac = np.empty((5, max(sizes[S_BODIES], WIDTH))), np.empty((2, 2, WIDTH))
     us = np.empty((profiles.shape[0], 4, 2))
     q, qd, qdd = guess.copy(), np.zeros(n), np.zeros(n)
@@ -123,6 +125,7 @@ def run(  # type: ignore[no-untyped-def]
             target = t1 if not halving else (min(t + h, t1) if t1 > t0 else max(t + h, t1))
             for i in range(n):
                 trial[i] = q[i] + (target - t) * qd[i] + 0.5 * (target - t) ** 2 * qdd[i]
+                pred[i] = trial[i]
             # ---- reference_solver.newton on trial at target ----
             limit, damping = (assembly_iterations, halvings) if k < 0 else (max_iterations, 0)
             step, res, its, sign, anorm, converged = math.inf, 0.0, 0, 0.0, 0.0, False
@@ -158,6 +161,13 @@ def run(  # type: ignore[no-untyped-def]
                     trial[i] += scale * dx[i] * scales[1, i]
                     step = max(step, abs(scale * dx[i]))
             # ---- the step's outcome ----
+            if converged and k > 0:  # analysis.jumped: the plain path retakes a step that left its branch
+                correction, reach, dt = 0.0, 0.0, target - t
+                for i in range(n):
+                    correction = max(correction, abs(trial[i] - pred[i]) / scales[1, i])
+                    reach = max(reach, (abs(dt * qd[i]) + dt * dt * abs(qdd[i])) / scales[1, i])
+                if correction > max(JUMP_FRACTION * reach, JUMP_FLOOR):
+                    return BRANCH_JUMP, k
             if converged and halving:
                 rc = rcond(lu, piv, n, kl, ku, w, anorm, est, signs, False) if sign != 0.0 else 0.0
                 if rc < threshold:

@@ -28,12 +28,12 @@ from reference_solver.fast.rows import (
 )
 from reference_solver.fast.structure import Band, StructurallySingular, band_of
 from reference_solver.system import ConstraintSystem
-from scenarios.cam_profiles import EccentricDisc, Profile, SplineProfile
+from scenarios.cam_profiles import EccentricDisc, LobedProfile, Profile, SplineProfile
 from scenarios.motions import Constant, ConstantSpeed, Harmonic, Motion
 
 WIDTH = 10
 TERMS = 4
-DISC, SPLINE = 0, 1
+DISC, SPLINE, LOBED = 0, 1, 2
 MOTION_NONE, MOTION_LINEAR, MOTION_HARMONIC, MOTION_CONSTANT = 0, 1, 2, 3
 # Integer columns of a row.
 K_KIND, K_REUSE, K_WIDTH, K_MOTION = 0, 1, 2, 3  # K_REUSE: vectors A and B as in the row before
@@ -87,16 +87,12 @@ def _motion(motion: Motion | None) -> tuple[int, tuple[float, ...]]:
 
 
 def spline_rows(profile: SplineProfile) -> np.ndarray:
-    """Per interval of the periodic spline: its left knot, then d, d', d''/2, d'''/6 there, read from
-    the profile's own evaluation (so the kernel reproduces it); a last row holds the closing knot."""
+    """Per interval of the periodic spline: its left knot, then d, d', d''/2, d'''/6 there, the profile's
+    own local cubic (SplineProfile.pieces, so the kernel reproduces it); a last row holds the closing knot."""
     count = len(profile.table)
-    knots = np.linspace(0.0, 2.0 * math.pi, count + 1)
     rows = np.zeros((count + 1, 5))
-    rows[:, 0] = knots
-    for i in range(count):
-        d0, d1, d2, _ = profile.radii(float(knots[i]))
-        d3 = profile.radii(float(0.5 * (knots[i] + knots[i + 1])))[3]
-        rows[i, 1:] = (d0, d1, d2 / 2.0, d3 / 6.0)
+    rows[:, 0] = np.linspace(0.0, 2.0 * math.pi, count + 1)
+    rows[:count, 1:] = profile.pieces
     return rows
 
 
@@ -113,6 +109,8 @@ def profile_tables(profiles: list[Profile]) -> tuple[np.ndarray, np.ndarray]:
                 first[profile] = sum(len(b) for b in blocks)
                 blocks.append(spline_rows(profile))
             table[contact] = (SPLINE, first[profile], len(profile.table), 0.0, 0.0)
+        elif isinstance(profile, LobedProfile):
+            table[contact] = (LOBED, profile.lobes, 0, profile.radius, profile.amplitude)
         else:
             raise NotCompiled(f"no fast kernel for profile {type(profile).__name__}")
     return table, np.concatenate(blocks)
