@@ -146,7 +146,7 @@ def analyse(
 
     q = assemble(system, guess, float(grid[0]), tolerance)
     qd = qdd = np.zeros(n)
-    previous_det = previous_rcond = 0.0
+    previous: Factorization | None = None
     for k, t in enumerate(grid):
         t = float(t)
         if k > 0:
@@ -167,10 +167,11 @@ def analyse(
         assert factors is not None
         if factors.rcond < SINGULAR_RCOND:
             raise _singular(system, q, t, f"C_q reciprocal condition number {factors.rcond:.2g}")
-        if k > 0 and np.sign(factors.determinant) != np.sign(previous_det):
+        if previous is not None and factors.sign != previous.sign:
             t0 = float(grid[k - 1])
-            crossing = t0 + (t - t0) * previous_det / (previous_det - factors.determinant)
-            nearer = q if factors.rcond < previous_rcond else q_all[k - 1]
+            before, after = previous.relative_determinant(factors)
+            crossing = t0 + (t - t0) * before / (before - after)
+            nearer = q if factors.rcond < previous.rcond else q_all[k - 1]
             raise _singular(
                 system,
                 nearer,
@@ -178,7 +179,7 @@ def analyse(
                 f"det C_q changed sign between t={t0:.6g} and t={t:.6g} (a singular configuration "
                 "or a jump to another assembly branch lies between)",
             )
-        previous_det, previous_rcond = factors.determinant, factors.rcond
+        previous = factors
         qd, qdd = _rates(system, factors, q, t)
         q_all[k], qd_all[k], qdd_all[k], rcond[k] = q, qd, qdd, factors.rcond
     return Analysis(layout, grid, q_all, qd_all, qdd_all, iterations, residual, rcond)

@@ -16,7 +16,18 @@ class Factorization:
     lu: np.ndarray
     pivots: np.ndarray
     rcond: float
-    determinant: float
+    sign: float
+    """The determinant's sign (+1, -1, or 0 when exactly singular)."""
+    log_abs_determinant: float
+    """log |det|: the determinant itself under- or overflows for large systems."""
+
+    def relative_determinant(self, other: Factorization) -> tuple[float, float]:
+        """This determinant and `other`'s, both divided by the larger magnitude (no overflow)."""
+        top = max(self.log_abs_determinant, other.log_abs_determinant)
+        return (
+            self.sign * float(np.exp(self.log_abs_determinant - top)),
+            other.sign * float(np.exp(other.log_abs_determinant - top)),
+        )
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         return lu_solve((self.lu, self.pivots), rhs, check_finite=False)  # type: ignore[no-any-return]
@@ -31,7 +42,9 @@ def factorize(matrix: np.ndarray) -> Factorization:
     rcond = float(dgecon(lu, anorm, norm="1")[0]) if anorm > 0 else 0.0
     diagonal = np.diag(lu)
     swaps = int(np.sum(pivots != np.arange(pivots.size)))
-    determinant = float(np.prod(diagonal)) * (-1.0) ** swaps
+    sign = float(np.prod(np.sign(diagonal))) * (-1.0) ** swaps
+    with np.errstate(divide="ignore"):
+        log_abs = float(np.sum(np.log(np.abs(diagonal))))
     if not np.all(np.isfinite(diagonal)) or np.any(diagonal == 0.0):
         rcond = 0.0
-    return Factorization(lu, pivots, rcond, determinant)
+    return Factorization(lu, pivots, rcond, sign, log_abs)
