@@ -23,10 +23,11 @@ import mujoco
 import numpy as np
 
 from adapters.base import Adapter, Diverged, Setting, Unsupported
-from adapters.mujoco_assembly import assemble, contact_slopes, settle
+from adapters.mujoco_assembly import assemble, clock_velocities, contact_slopes, settle
 from adapters.mujoco_cams import CamPair, cam_pairs
 from adapters.mujoco_laws import Law, laws
 from adapters.mujoco_mjcf import Physics, mjcf
+from adapters.mujoco_scale import Scale, clock_armature, scale_of
 from adapters.mujoco_tree import Affine, Tree, TreeError, angle, plan_tree
 from scenarios.bodies import Pose
 from scenarios.scenario import Scenario
@@ -37,6 +38,8 @@ SWEEP_DT = (1e-3, 1e-4, 1e-5)
 BAD = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL)
 STATE = mujoco.mjtState.mjSTATE_INTEGRATION
 RUN_IN = 50
+SOLIMP_WIDTH = 0.005
+"""solimp's transition width in characteristic lengths (0.001 m on the nominal 0.2 m crank)."""
 """Steps run before t = 0 from the assembled start, so soft constraints begin in steady state."""
 
 
@@ -103,16 +106,18 @@ class MujocoAdapter(Adapter):
             setting.mode,
             dt,
             (float(setting["tc_steps"]) * dt, 1.0),
-            _solimp(float(setting["impedance"])),
-            _solimp(float(setting.get("contact_impedance", 0.99))),
+            _solimp(float(setting["impedance"]), scenario.characteristic_length),
+            _solimp(float(setting.get("contact_impedance", 0.99)), scenario.characteristic_length),
         )
+        scale = scale_of(scenario)
         guessed = plan_tree(scenario)
-        first = _compile(scenario, guessed, physics, 0)
+        first = _compile(scenario, guessed, physics, 0, scale)
         poses = _poses(scenario, guessed, first)
         tree = plan_tree(scenario, poses)
-        springs = _springs(scenario, first, tree, float(setting.get("preload", 100.0)))
-        second = _compile(scenario, tree, Physics(**{**physics.__dict__, "springs": springs}), RUN_IN)
-        return second
+        springs = _springs(scenario, first, tree, float(setting.get("preload", 100.0)), scale)
+        armatures = _armatures(scenario, guessed, first, scale)
+        sized = Physics(**{**physics.__dict__, "springs": springs, "clock_armature": armatures})
+        return _compile(scenario, tree, sized, RUN_IN, scale)
 
     def simulate(self, model: Model, times: np.ndarray) -> Trajectory:
         m = model.model
@@ -150,8 +155,10 @@ def engine_step(requested: float, interval: float) -> float:
     return interval / math.ceil(interval / requested - 1e-9)
 
 
-def _solimp(impedance: float) -> tuple[float, float, float, float, float]:
-    return (impedance, impedance, 0.001, 0.5, 2.0)
+def _solimp(impedance: float, length: float) -> tuple[float, float, float, float, float]:
+    """A constant impedance (the width, a distance, matters only where the two differ: sized by the
+    mechanism all the same)."""
+    return (impedance, impedance, SOLIMP_WIDTH * length, 0.5, 2.0)
 
 
 def _interval(grid: np.ndarray) -> float:
@@ -163,7 +170,7 @@ def _interval(grid: np.ndarray) -> float:
     return float(steps.mean())
 
 
-def _compile(scenario: Scenario, tree: Tree, physics: Physics, run_in: int) -> Model:
+def _compile(scenario: Scenario, tree: Tree, physics: Physics, run_in: int, scale: Scale) -> Model:
     """Compile the model for `tree` and find its start at t = 0, kept as the key 'start': the
     mechanism is assembled at t = -run_in steps (stepping back from t = 0 so that Newton stays on the
     assembled branch; preloaded contacts settled) and run in to t = 0, so
@@ -173,10 +180,10 @@ def _compile(scenario: Scenario, tree: Tree, physics: Physics, run_in: int) -> M
     m = mujoco.MjModel.from_xml_string(mjcf(scenario, tree, found, cams, physics))
     d = mujoco.MjData(m)
     clocks = _clocks(m, found, 0.0)
-    assemble(m, d, clocks)
+    assemble(m, d, clocks, scale)
     for t in -physics.timestep * np.arange(1, run_in + 1):
         clocks = _clocks(m, found, float(t))
-        assemble(m, d, clocks)
+        assemble(m, d, clocks, scale)
     if m.npair:
         settle(m, d, clocks)
     if run_in:
@@ -222,7 +229,21 @@ def _evaluate(form: Affine, model: Model, qpos: np.ndarray) -> float:
     return form.const + sum(c * float(qpos[model.joint_ids[j]]) for j, c in form.coefs.items())
 
 
-def _springs(scenario: Scenario, model: Model, tree: Tree, preload: float) -> dict[str, tuple[float, float]]:
+def _armatures(scenario: Scenario, tree: Tree, model: Model, scale: Scale) -> dict[str, float]:
+    """Each clock's armature, sized by the inertia it drives at the assembled start."""
+    names = [law.clock.joint for law in laws(scenario, tree) if law.clock is not None]
+    m = model.model
+    d = mujoco.MjData(m)
+    d.qpos[:], d.qvel[:] = model.qpos0, model.qvel0
+    mujoco.mj_forward(m, d)
+    dofs = [model.joint_ids[name] for name in names]
+    speeds = clock_velocities(m, d, dofs, scale)
+    return {name: clock_armature(m, d, qvel, dofs) for name, qvel in zip(names, speeds, strict=True)}
+
+
+def _springs(
+    scenario: Scenario, model: Model, tree: Tree, preload: float, scale: Scale
+) -> dict[str, tuple[float, float]]:
     """A follower spring per cam pushing with `preload` into the contact at the start; it stiffens
     by 10 % over a characteristic length."""
     if not scenario.cams:
@@ -230,7 +251,7 @@ def _springs(scenario: Scenario, model: Model, tree: Tree, preload: float) -> di
     m = model.model
     d = mujoco.MjData(m)
     d.qpos[:], d.qvel[:] = model.qpos0, model.qvel0
-    slopes = contact_slopes(m, d)
+    slopes = contact_slopes(m, d, scale)
     pairs: list[CamPair] = cam_pairs(scenario.cams, tree)
     springs = {}
     stiffness = preload / (10.0 * scenario.characteristic_length)

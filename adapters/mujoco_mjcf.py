@@ -21,7 +21,10 @@ from scenarios.bodies import GROUND, Point
 from scenarios.gears import GearPair, RackPinion
 from scenarios.scenario import Scenario
 
+MASSLESS = 1e-9
+"""A body without mass or inertia gets this fraction of the heaviest body's (MuJoCo needs both)."""
 CLOCK_ARMATURE = 1.0e9
+"""A clock's armature where the inertia it drives is not known (adapters.mujoco_scale sizes it)."""
 
 
 @dataclass(frozen=True)
@@ -37,6 +40,8 @@ class Physics:
     iterations: int = 50
     springs: dict[str, tuple[float, float]] = field(default_factory=dict)
     """Preload springs: joint name -> (stiffness, springref)."""
+    clock_armature: dict[str, float] = field(default_factory=dict)
+    """Clock joint name -> armature (CLOCK_ARMATURE for a clock not listed or with nothing to drive)."""
 
 
 def num(*values: float) -> str:
@@ -68,7 +73,7 @@ def mjcf(
     default = ET.SubElement(root, "default")
     ET.SubElement(default, "geom", contype="0", conaffinity="0", rgba="0.6 0.7 0.8 1")
     ET.SubElement(default, "equality", solref=num(*physics.solref), solimp=num(*physics.solimp))
-    ET.SubElement(default, "site", size="0.002", rgba="0.9 0.2 0.2 1")
+    ET.SubElement(default, "site", size=num(0.01 * scenario.characteristic_length), rgba="0.9 0.2 0.2 1")
     world = ET.SubElement(root, "worldbody")
     ET.SubElement(world, "light", pos="0 0 2", dir="0 0 -1", directional="true")
     elements = {GROUND: world}
@@ -85,6 +90,7 @@ def mjcf(
             body.insert(0, ET.Element("joint", attrs))
     for law in laws:
         if law.clock is not None:
+            armature = physics.clock_armature.get(law.clock.joint, 0.0) or CLOCK_ARMATURE
             clock = ET.SubElement(world, "body", name=law.clock.joint)
             ET.SubElement(clock, "inertial", pos="0 0 0", mass="1", diaginertia="1 1 1")
             ET.SubElement(
@@ -93,8 +99,8 @@ def mjcf(
                 name=law.clock.joint,
                 type="hinge",
                 axis="0 0 1",
-                armature=num(CLOCK_ARMATURE),
-                stiffness=num(CLOCK_ARMATURE * law.clock.omega2),
+                armature=num(armature),
+                stiffness=num(armature * law.clock.omega2),
             )
     for pair in cams:
         for geom in (pair.cam, pair.follower):
@@ -134,13 +140,10 @@ def _body(parent: ET.Element, scenario: Scenario, tree: Tree, name: str, physics
         quat=num(math.cos(half), 0.0, 0.0, math.sin(half)),
     )
     spec = scenario.body(name)
-    inertia = max(spec.inertia, 1e-12)
+    inertia = spec.inertia or MASSLESS * max((b.inertia for b in scenario.bodies), default=0.0) or 1e-12
+    mass = spec.mass or MASSLESS * max((b.mass for b in scenario.bodies), default=0.0) or 1e-9
     ET.SubElement(
-        element,
-        "inertial",
-        pos="0 0 0",
-        mass=num(max(spec.mass, 1e-9)),
-        diaginertia=num(inertia, inertia, inertia),
+        element, "inertial", pos="0 0 0", mass=num(mass), diaginertia=num(inertia, inertia, inertia)
     )
     ET.SubElement(element, "site", name=name, pos="0 0 0")
     _visual(element, scenario, name)
@@ -151,13 +154,14 @@ def _visual(body: ET.Element, scenario: Scenario, name: str) -> None:
     """Geometry for the viewer only (it neither collides nor adds mass)."""
     spec = scenario.body(name)
     radius = _pitch_radius(scenario, name)
+    size = 0.05 * scenario.characteristic_length
     if spec.length > 0.0:
         half = spec.length / 2.0
         ET.SubElement(body, "geom", type="capsule", fromto=num(-half, 0, 0, half, 0, 0), size=num(half / 10))
     elif radius:
-        ET.SubElement(body, "geom", type="cylinder", size=num(radius, 0.005), rgba="0.8 0.7 0.3 0.6")
+        ET.SubElement(body, "geom", type="cylinder", size=num(radius, size / 2), rgba="0.8 0.7 0.3 0.6")
     else:
-        ET.SubElement(body, "geom", type="box", size="0.01 0.01 0.005", rgba="0.3 0.5 0.8 1")
+        ET.SubElement(body, "geom", type="box", size=num(size, size, size / 2), rgba="0.3 0.5 0.8 1")
 
 
 def _pitch_radius(scenario: Scenario, name: str) -> float:

@@ -60,14 +60,19 @@ def errors(name: str, setting: Setting | None = None) -> tuple[np.ndarray, np.nd
     assert trajectory is not None
     truth = exact(scenario, trajectory.times).select(trajectory.bodies)
     out = []
+    omega = abs(float(scenario.parameter("omega")))
     for level in ("position", "velocity", "acceleration"):
         got, want = trajectory.level(level), truth.level(level)
         assert got is not None and want is not None
         error = np.abs(got - want)
         if level == "position":
             out += [error[..., :2].max(), error[..., 2].max()]
-        else:
-            out.append(error.max() / max(np.abs(want).max(), 1e-300))
+            continue
+        # Relative to the level's size; accelerations at least omega |v| (zero at constant speed).
+        size = np.abs(want).max()
+        if level == "acceleration":
+            size = max(size, omega * np.abs(truth.velocity).max())
+        out.append(error.max() / size)
     return np.array(out[:2]), np.array(out[2:])
 
 
