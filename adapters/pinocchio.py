@@ -5,8 +5,9 @@ the plane); the remaining joints, gears and cam contacts close loops as rows bui
 frame placements and Jacobians; gear pairs on a common carrier are mimic joints where Pinocchio can
 hold them. Three modes (Setting.mode):
 - `kinematic`: Newton on the loop and driver rows at every output time, velocities and accelerations
-  from the same Jacobian and Pinocchio's classical accelerations. Option `tol` (residual bound) and
-  `gears` (`mimic` or `row`).
+  from the same Jacobian and Pinocchio's classical accelerations. Option `tol` (residual bound, in
+  each row's size: lengths relative to the characteristic length, angles in radians) and `gears`
+  (`mimic` or `row`).
 - `dynamic`: `constraintDynamics` with the loops as Pinocchio constraint models and the drive as a
   constraint, integrated with RK4. Options `dt` (step, default 1/1000 of the drive period), `kp`
   and `kd` (Baumgarte gains, default 0).
@@ -115,7 +116,7 @@ class PinocchioAdapter(Adapter):
             raise Unsupported(str(error)) from None
         pm = build_model(scenario, tree)
         rows = Rows.of(scenario, pm)
-        solver = KinematicSolver(pm, rows)
+        solver = KinematicSolver(pm, rows, length=scenario.characteristic_length)
         count = rows.evaluate(solver.snapshot(self._guess(scenario, pm))).val.size
         unknowns = pm.model.nq + len(scenario.cams)
         if count != unknowns:
@@ -138,7 +139,9 @@ class PinocchioAdapter(Adapter):
             raise EngineFailure(f"gears must be 'mimic' or 'row', got '{gears}'")
         tree, pm, rows = self._structure(scenario, mimic_gears=mode == KINEMATIC and gears == "mimic")
         tol = float(setting.get("tol", TOLERANCES[-1]))
-        kinematics = KinematicSolver(pm, rows, tol=tol if mode == KINEMATIC else TOLERANCES[-1])
+        kinematics = KinematicSolver(
+            pm, rows, tol=tol if mode == KINEMATIC else TOLERANCES[-1], length=scenario.characteristic_length
+        )
         dynamics = None
         if mode != KINEMATIC:
             reason = dynamic_support(scenario, tree)
