@@ -147,7 +147,7 @@ def check_branch(
             return 0.0
         if index not in signs:
             jacobian = system.scaled_jacobian(system.jacobian(reference.q[index], float(truth.times[index])))
-            signs[index] = float(np.sign(factorize(jacobian).determinant))
+            signs[index] = factorize(jacobian).sign
         return signs[index]
 
     def check(k: int) -> PointCheck:
@@ -185,7 +185,7 @@ def _classify(
     if not projected.converged or projected.factors is None:
         return PointCheck(t, "same" if error <= LOST else "off", math.nan, math.nan, False)
     distance = space.distance(q, projected.q)
-    mirrored = bool(np.sign(projected.factors.determinant) * truth_sign < 0)
+    mirrored = bool(projected.factors.sign * truth_sign < 0)
     if truth_q is None:
         kind: Kind = "off" if distance > LOST else "switched" if mirrored else "kept"
         return PointCheck(t, kind, distance, math.nan, mirrored)
