@@ -53,7 +53,9 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     bodies = (
         Body("crank", (ax / 2, ay / 2, theta0), mass=l2, inertia=l2**3 / 12, length=l2),
         Body("rod", ((ax + bx) / 2, (ay + h) / 2, th3), mass=l3, inertia=l3**3 / 12, length=l3),
-        Body("slider", (bx, h, 0.0), mass=0.5, inertia=1e-4),
+        # The slider scales with the crank (0.5 kg at the default 0.2 m), so that a scaled mechanism is
+        # also similar in its dynamics.
+        Body("slider", (bx, h, 0.0), mass=2.5 * l2, inertia=1e-4 * (l2 / 0.2) ** 3),
     )
     joints = (
         Revolute("O", Point(GROUND, (0.0, 0.0)), Point("crank", (-l2 / 2, 0.0))),
