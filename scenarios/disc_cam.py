@@ -26,6 +26,7 @@ from scenarios.scenario import (
     ScenarioError,
     require_finite,
     require_positive,
+    revolving,
 )
 
 DEFAULTS: dict[str, ParameterValue] = {
@@ -97,15 +98,15 @@ def build_disc_cam(
         contact(profile, math.pi / 2 - theta0),
     )
     driver = AbsoluteDriver("cam_drive", "cam", "theta", ConstantSpeed(theta0, omega))
-    return Scenario(
-        family=family,
-        variant=variant,
-        bodies=bodies,
-        joints=joints,
-        drivers=(driver,),
-        t_end=float(p["revolutions"]) * 2.0 * math.pi / abs(omega),
-        steps=int(p["steps"]),
-        characteristic_length=big_r,
-        parameters=tuple(p.items()),
-        description=f"{kind} cam with a translating {family.removeprefix('cam_').replace('_', '-')} follower",
+    follower = family.removeprefix("cam_").replace("_", "-")
+    description = f"{kind} cam with a translating {follower} follower"
+    return revolving(
+        family,
+        variant,
+        p,
+        bodies,
+        joints,
+        (driver,),
+        big_r,
+        description,
     )

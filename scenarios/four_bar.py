@@ -21,6 +21,7 @@ from scenarios.scenario import (
     ScenarioError,
     require_finite,
     require_positive,
+    revolving,
 )
 
 
@@ -60,17 +61,8 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
         Revolute("O4", Point(GROUND, (g, 0.0)), Point("rocker", (-c / 2, 0.0))),
     )
     driver = AbsoluteDriver("crank_drive", "crank", "theta", ConstantSpeed(theta0, omega))
-    return Scenario(
-        family="four_bar",
-        variant=variant,
-        bodies=bodies,
-        joints=joints,
-        drivers=(driver,),
-        t_end=float(p["revolutions"]) * 2.0 * math.pi / abs(omega),
-        steps=int(p["steps"]),
-        characteristic_length=a,
-        parameters=tuple(p.items()),
-        description="four-bar linkage driven by the crank",
+    return revolving(
+        "four_bar", variant, p, bodies, joints, (driver,), a, "four-bar linkage driven by the crank"
     )
 
 

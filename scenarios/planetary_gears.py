@@ -21,6 +21,7 @@ from scenarios.scenario import (
     ScenarioError,
     require_finite,
     require_positive,
+    revolving,
 )
 from scenarios.spur_gears import gear_body
 
@@ -41,17 +42,16 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
         GearPair("mesh", GROUND, rs, "planet", rp, carrier="arm", theta0_carrier=theta0),
     )
     driver = AbsoluteDriver("arm_drive", "arm", "theta", ConstantSpeed(theta0, omega))
-    return Scenario(
-        family="planetary_gears",
-        variant=variant,
-        bodies=bodies,
-        joints=joints,
-        drivers=(driver,),
-        t_end=float(p["revolutions"]) * 2.0 * math.pi / abs(omega),
-        steps=int(p["steps"]),
-        characteristic_length=arm_length,
-        parameters=tuple(p.items()),
-        description="planetary train: fixed sun, driven arm, one planet",
+    description = "planetary train: fixed sun, driven arm, one planet"
+    return revolving(
+        "planetary_gears",
+        variant,
+        p,
+        bodies,
+        joints,
+        (driver,),
+        arm_length,
+        description,
     )
 
 

@@ -4,8 +4,6 @@ the rack travels radius * (theta - theta0)."""
 
 from __future__ import annotations
 
-import math
-
 from scenarios.bodies import GROUND, Body, Point
 from scenarios.drivers import AbsoluteDriver
 from scenarios.gears import RackPinion
@@ -18,6 +16,7 @@ from scenarios.scenario import (
     ScenarioError,
     require_finite,
     require_positive,
+    revolving,
 )
 from scenarios.spur_gears import gear_body
 
@@ -35,17 +34,16 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
         RackPinion("mesh", Point("pinion"), r, Point("rack"), axis=(1.0, 0.0), offset=-r * theta0),
     )
     driver = AbsoluteDriver("drive", "pinion", "theta", ConstantSpeed(theta0, omega))
-    return Scenario(
-        family="rack_pinion",
-        variant=variant,
-        bodies=bodies,
-        joints=joints,
-        drivers=(driver,),
-        t_end=float(p["revolutions"]) * 2.0 * math.pi / abs(omega),
-        steps=int(p["steps"]),
-        characteristic_length=r,
-        parameters=tuple(p.items()),
-        description="pinion on fixed centre driving a sliding rack",
+    description = "pinion on fixed centre driving a sliding rack"
+    return revolving(
+        "rack_pinion",
+        variant,
+        p,
+        bodies,
+        joints,
+        (driver,),
+        r,
+        description,
     )
 
 

@@ -92,3 +92,29 @@ def require_finite(family: str, **values: float) -> None:
     for key, value in values.items():
         if not math.isfinite(value):
             raise ScenarioError(f"{family}: {key} must be a finite number, got {value!r}")
+
+
+def revolving(
+    family: str,
+    variant: str,
+    p: dict[str, ParameterValue],
+    bodies: tuple[Body, ...],
+    joints: tuple[Joint | GearPair | RackPinion | CamContact, ...],
+    drivers: tuple[Driver, ...],
+    characteristic_length: float,
+    description: str,
+) -> Scenario:
+    """The families' common shape: a scenario whose grid spans `revolutions` turns at speed `omega`,
+    in `steps` steps, recording every parameter."""
+    return Scenario(
+        family=family,
+        variant=variant,
+        bodies=bodies,
+        joints=joints,
+        drivers=drivers,
+        t_end=float(p["revolutions"]) * 2.0 * math.pi / abs(float(p["omega"])),
+        steps=int(p["steps"]),
+        characteristic_length=characteristic_length,
+        parameters=tuple(p.items()),
+        description=description,
+    )

@@ -20,6 +20,7 @@ from scenarios.scenario import (
     ScenarioError,
     require_finite,
     require_positive,
+    revolving,
 )
 
 
@@ -63,7 +64,6 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
         Revolute("B", Point("rod", (l3 / 2, 0.0)), Point("slider")),
         Prismatic("slide", Point("slider"), Point(GROUND, (0.0, h)), axis=(1.0, 0.0), angle=0.0),
     )
-    period = 2.0 * math.pi / abs(omega)
     if drive == "crank":
         driver = AbsoluteDriver("crank_drive", "crank", "theta", ConstantSpeed(theta0, omega))
     else:
@@ -75,17 +75,8 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
         # outer dead centre at t = asin(1 / stroke_fraction) / omega.
         motion = Harmonic(mean, half, abs(omega), phase=-math.pi / 2)
         driver = AbsoluteDriver("slider_drive", "slider", "x", motion)
-    return Scenario(
-        family="slider_crank",
-        variant=variant,
-        bodies=bodies,
-        joints=joints,
-        drivers=(driver,),
-        t_end=revolutions * period,
-        steps=int(p["steps"]),
-        characteristic_length=l2,
-        parameters=tuple(p.items()),
-        description=f"slider-crank driven by the {drive}",
+    return revolving(
+        "slider_crank", variant, p, bodies, joints, (driver,), l2, f"slider-crank driven by the {drive}"
     )
 
 

@@ -21,6 +21,7 @@ from scenarios.scenario import (
     ScenarioError,
     require_finite,
     require_positive,
+    revolving,
 )
 
 
@@ -53,17 +54,8 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
         GearPair("mesh", "gear_in", r1, "gear_out", r2, internal=internal, theta0_i=theta0),
     )
     driver = AbsoluteDriver("drive", "gear_in", "theta", ConstantSpeed(theta0, omega))
-    return Scenario(
-        family="spur_gears",
-        variant=variant,
-        bodies=bodies,
-        joints=joints,
-        drivers=(driver,),
-        t_end=float(p["revolutions"]) * 2.0 * math.pi / abs(omega),
-        steps=int(p["steps"]),
-        characteristic_length=r1,
-        parameters=tuple(p.items()),
-        description=f"spur gear pair, {mesh} mesh, fixed centres",
+    return revolving(
+        "spur_gears", variant, p, bodies, joints, (driver,), r1, f"spur gear pair, {mesh} mesh, fixed centres"
     )
 
 
