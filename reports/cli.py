@@ -24,7 +24,7 @@ from reports.atomic_write import atomic_output
 from reports.results_store import ResultsStore, read_results
 from reports.runner import Runner, RunOptions
 from reports.suites import Suite
-from scenarios import Scenario, ScenarioError, catalogue
+from scenarios import Scenario, ScenarioError, catalogue, families
 from scenarios import build as build_scenario
 
 DEFAULT_OUT = "mbxval-report"
@@ -93,7 +93,8 @@ def engine_setting(adapter: Adapter, scenario: Scenario, mode: str | None, optio
 
 
 def cmd_list(args: argparse.Namespace) -> int:
-    names = catalogue()
+    """A scenario x engine table of what each engine supports, the reasons below it, then each
+    family's parameters with their defaults."""
     engines = {}
     for name in adapters.names():
         try:
@@ -101,13 +102,26 @@ def cmd_list(args: argparse.Namespace) -> int:
         except adapters.EngineUnavailable as error:
             print(f"engine {name}: unavailable ({error})")
     print("engines: " + ", ".join(f"{n} {a._safe_version()}" for n, a in engines.items()))
-    print()
+    names = catalogue(include_stress=args.stress)
+    width = max(len(n) for n in names) + 2
+    print("\n" + "scenario".ljust(width) + "".join(e.ljust(12) for e in engines))
+    reasons: list[str] = []
     for name in names:
         scenario = build_scenario(name)
-        print(f"{name}: {scenario.description}")
+        cells = []
         for engine, adapter in engines.items():
             reason = adapter.supports(scenario)
-            print(f"    {engine:10s} {'yes' if reason is None else 'unsupported: ' + reason}")
+            if reason is None:
+                cells.append("yes")
+            else:
+                reasons.append(f"[{len(reasons) + 1}] {engine} on {name}: {reason}")
+                cells.append(f"no [{len(reasons)}]")
+        print(name.ljust(width) + "".join(c.ljust(12) for c in cells))
+    if reasons:
+        print("\n" + "\n".join(reasons))
+    print("\nparameters (defaults); set them with --set NAME=VALUE:")
+    for fam in families().values():
+        print(f"  {fam.name}: " + " ".join(f"{k}={v}" for k, v in fam.defaults.items()))
     return 0
 
 
@@ -268,7 +282,8 @@ def parser() -> argparse.ArgumentParser:
     top = _Parser(prog="mbxval", description=__doc__.splitlines()[0])
     sub = top.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
-    sub.add_parser("list", help="scenarios, variants, engines and what each supports")
+    listing = sub.add_parser("list", help="scenarios, variants, engines and what each supports")
+    listing.add_argument("--stress", action="store_true", help="include the stress variants")
 
     solve = sub.add_parser("solve", help="one trajectory as CSV")
     _scenario_arguments(solve, "reference")

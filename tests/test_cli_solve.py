@@ -113,12 +113,27 @@ def test_existing_output_survives_a_failed_solve(tmp_path: Path, capsys) -> None
     assert code == 2 and target.read_text() == "previous result\n"
 
 
-def test_list_names_every_scenario_and_engine(capsys) -> None:  # type: ignore[no-untyped-def]
+def test_list_is_a_table_of_what_each_engine_supports(capsys) -> None:  # type: ignore[no-untyped-def]
     code, out, _ = run(capsys, "list")
     assert code == 0
-    for name in scenarios.catalogue():
-        assert f"\n{name}:" in out or out.startswith(f"{name}:")
-    assert "reference" in out
+    rows = {
+        line.split()[0]: line.split()[1:]
+        for line in out.splitlines()
+        if line and line.split()[0] in scenarios.catalogue()
+    }
+    assert set(rows) == set(scenarios.catalogue())
+    header = next(line for line in out.splitlines() if line.startswith("scenario"))
+    assert header.split()[1:] == ["reference", "mujoco", "exudyn", "pinocchio"]
+    assert rows["slider_crank"] == ["yes"] * 4
+    mujoco_spline = rows["cam_roller/spline"][1:3]
+    assert mujoco_spline[0] == "no" and f"{mujoco_spline[1]} mujoco on cam_roller/spline: " in out
+    assert "slider_crank: crank_length=0.2 rod_length=0.4" in out
+    assert "stress_" not in out
+
+
+def test_list_stress_adds_the_stress_variants(capsys) -> None:  # type: ignore[no-untyped-def]
+    code, out, _ = run(capsys, "list", "--stress")
+    assert code == 0 and "slider_crank/stress_dead_centre" in out
 
 
 def test_console_script_exit_status() -> None:
