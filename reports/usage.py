@@ -1,0 +1,28 @@
+"""The command line's error convention: one line `mbxval: error: ...`, exit status 2."""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Sequence
+from typing import NoReturn
+
+
+class UsageError(Exception):
+    """Bad input from the user: reported as one line with exit status 2."""
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse with its errors on one line, like every other error of mbxval."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"mbxval: error: {message} (see `{self.prog} --help`)\n")
+
+
+def pairs(items: Sequence[str], what: str) -> dict[str, str]:
+    pairs = {}
+    for item in items:
+        key, sep, value = item.partition("=")
+        if not sep or not key:
+            raise UsageError(f"{what} expects NAME=VALUE, got '{item}'")
+        pairs[key] = value
+    return pairs
