@@ -113,7 +113,11 @@ class Runner:
         total = sum(len(p) for p in pending.values()) + len(truths_needed)
         tqdm.tqdm.monitor_interval = 0  # no monitor thread: the runs are forked
         truths: dict[str, Trajectory | str] = {}
-        with tqdm.tqdm(total=total, file=sys.stderr, disable=not self.progress, unit="run") as bar:
+        # In a log rather than a terminal (a CI job), a line every 10 s instead of one per update.
+        interval = 0.1 if sys.stderr.isatty() else 10.0
+        with tqdm.tqdm(
+            total=total, file=sys.stderr, disable=not self.progress, unit="run", mininterval=interval
+        ) as bar:
             try:
                 for group in groups:
                     name = group.scenario.name
@@ -122,7 +126,7 @@ class Runner:
                         self.store.add(group.verdict)
                         continue
                     if pending[id(group)] and name not in truths:
-                        bar.set_description(f"{name} truth")
+                        bar.set_description(f"{name} truth", refresh=False)
                         truths[name] = self._solve_truth(group.scenario)
                         bar.update()
                     self._run_group(group, pending[id(group)], truths.get(name, ""), bar)
@@ -193,7 +197,7 @@ class Runner:
     ) -> None:
         timed_out: set[str] = set()
         for setting, is_default in jobs:
-            bar.set_description(f"{group.scenario.name} {group.engine} {setting.label}")
+            bar.set_description(f"{group.scenario.name} {group.engine} {setting.label}", refresh=False)
             if setting.mode in timed_out:
                 message = "not run: a cheaper setting of this mode hit the time limit"
                 self._fail(group, setting, is_default, "timeout", message)
