@@ -45,14 +45,10 @@ def check_mobility(full: ConstraintSystem, q: np.ndarray) -> int:
     dof = n - joint_report.rank
     driver_rows = full.size - joints.size
     names = ", ".join(d.name for d in scenario.drivers) or "none"
-    if driver_rows > dof:
+    if driver_rows != dof:
+        kind = "over-driven" if driver_rows > dof else "under-driven"
         raise MobilityError(
-            f"{scenario.name}: over-driven: {driver_rows} driver equations ({names}) for {dof} "
-            f"degree(s) of freedom left by the joints"
-        )
-    if driver_rows < dof:
-        raise MobilityError(
-            f"{scenario.name}: under-driven: {driver_rows} driver equations ({names}) for {dof} "
+            f"{scenario.name}: {kind}: {driver_rows} driver equations ({names}) for {dof} "
             f"degree(s) of freedom left by the joints"
         )
     full_report = _structural_report(full, q)

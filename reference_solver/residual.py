@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from reference_solver.system import ConstraintSystem, equation_for
+from reference_solver.layout import Layout
+from reference_solver.system import equation_for
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -18,8 +19,7 @@ def constraint_residual(scenario: Scenario, trajectory: Trajectory) -> np.ndarra
     """
     if trajectory.position is None:
         raise ValueError("the trajectory has no positions")
-    system = ConstraintSystem(scenario)
-    layout = system.layout
+    layout = Layout.of(scenario)
     missing = [b for b in layout.bodies if b not in trajectory.bodies]
     if missing:
         raise ValueError(f"the trajectory lacks bodies {', '.join(missing)}")

@@ -60,9 +60,7 @@ class Scenario:
 
     @property
     def cams(self) -> tuple[CamContact, ...]:
-        from scenarios.cams import FlatFaceCam, KnifeEdgeCam, RollerCam
-
-        return tuple(j for j in self.joints if isinstance(j, KnifeEdgeCam | RollerCam | FlatFaceCam))
+        return tuple(j for j in self.joints if isinstance(j, CamContact))
 
     def body(self, name: str) -> Body:
         for b in self.bodies:
