@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 import pytest
+from mechanisms import differential_train
 
 import reference_solver
 from adapters.base import Setting
@@ -24,7 +25,6 @@ from scenarios import (
     Body,
     Constant,
     ConstantSpeed,
-    GearPair,
     Ground,
     Harmonic,
     Point,
@@ -46,19 +46,7 @@ def _scenario(name: str, bodies: tuple[Body, ...], joints: tuple, drivers: tuple
 
 def differential() -> Scenario:
     """A planetary train whose sun and arm both turn: the gear law ties three moving angles."""
-    rs, rp = 0.06, 0.03
-    arm = rs + rp
-    bodies = (
-        Body("sun", (0.0, 0.0, 0.0), mass=1.0, inertia=1e-3),
-        Body("arm", (arm / 2, 0.0, 0.0), mass=0.5, inertia=1e-3),
-        Body("planet", (arm, 0.0, 0.0), mass=0.3, inertia=1e-4),
-    )
-    joints = (
-        Revolute("sun_pivot", Point(GROUND), Point("sun")),
-        Revolute("arm_pivot", Point(GROUND), Point("arm", (-arm / 2, 0.0))),
-        Revolute("planet_pivot", Point("arm", (arm / 2, 0.0)), Point("planet")),
-        GearPair("mesh", "sun", rs, "planet", rp, carrier="arm"),
-    )
+    bodies, joints = differential_train(0.06, 0.03)
     drivers = (
         AbsoluteDriver("sun_drive", "sun", "theta", ConstantSpeed(0.0, 4.0)),
         RelativeRotationDriver("arm_drive", "arm", "sun", ConstantSpeed(0.0, 3.0)),

@@ -17,19 +17,16 @@ import mujoco
 import numpy as np
 import pytest
 from closed_forms import exact
+from mechanisms import differential_train
 
 import scenarios
 from adapters.base import Setting
 from adapters.mujoco import MujocoAdapter
 from scenarios import (
-    GROUND,
     AbsoluteDriver,
-    Body,
     ConstantSpeed,
-    GearPair,
     Point,
     PointPathDriver,
-    Revolute,
     RevoluteRevolute,
     Scenario,
 )
@@ -129,23 +126,12 @@ def test_export_reopens_in_mujoco_at_the_assembled_start(tmp_path: object) -> No
 def _differential(rs: float, rp: float, w_sun: float, w_arm: float) -> Scenario:
     """A differential planetary train outside the catalogue: sun and arm both driven about the
     origin, planet on the arm. The gear law ties three hinges, so MuJoCo needs a tendon."""
-    arm = rs + rp
-    bodies = (
-        Body("sun", (0.0, 0.0, 0.0), mass=0.1, inertia=1e-4),
-        Body("arm", (arm / 2, 0.0, 0.0), mass=0.1, inertia=1e-4, length=arm),
-        Body("planet", (arm, 0.0, 0.0), mass=0.05, inertia=1e-5),
-    )
-    joints = (
-        Revolute("sun_pivot", Point(GROUND), Point("sun")),
-        Revolute("arm_pivot", Point(GROUND), Point("arm", (-arm / 2, 0.0))),
-        Revolute("planet_pivot", Point("arm", (arm / 2, 0.0)), Point("planet")),
-        GearPair("mesh", "sun", rs, "planet", rp, carrier="arm"),
-    )
+    bodies, joints = differential_train(rs, rp)
     drivers = (
         AbsoluteDriver("sun_drive", "sun", "theta", ConstantSpeed(0.0, w_sun)),
         AbsoluteDriver("arm_drive", "arm", "theta", ConstantSpeed(0.0, w_arm)),
     )
-    return Scenario("differential", "default", bodies, joints, drivers, 0.5, 100, arm)
+    return Scenario("differential", "default", bodies, joints, drivers, 0.5, 100, rs + rp)
 
 
 def test_a_three_joint_gear_law_becomes_a_tendon_and_is_exact() -> None:
