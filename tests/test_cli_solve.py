@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
-from closed_forms import exact
+from scenarios.closed_form import exact
 
 import scenarios
 from reports.cli import main

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from closed_forms import exact
+from scenarios.closed_form import exact
 
 import reference_solver
 import scenarios

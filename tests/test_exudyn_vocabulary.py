@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 import pytest
-from mechanisms import differential_train
+from tests.support.mechanisms import differential_train
 
 import reference_solver
 from adapters.base import Setting

@@ -16,8 +16,8 @@ import math
 import mujoco
 import numpy as np
 import pytest
-from closed_forms import exact
-from mechanisms import differential_train
+from scenarios.closed_form import exact
+from tests.support.mechanisms import differential_train
 
 import scenarios
 from adapters.base import Setting

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from closed_forms import exact
+from scenarios.closed_form import exact
 
 import scenarios
 from adapters.mujoco import MujocoAdapter, engine_step

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import pytest
-from closed_forms import exact
+from scenarios.closed_form import exact
 
 import scenarios
 from adapters import load

@@ -54,16 +54,24 @@ def test_with_one_halving_the_guard_reports_where_the_solver_would_jump(
     monkeypatch.setattr(kinematics, "HALVINGS", 1)
     monkeypatch.setattr(kinematics, "JUMP", np.inf)  # the guard off: the solver jumps silently
     unguarded = PinocchioAdapter().run(scenario)
-    assert unguarded.status == "ok" and unguarded.trajectory is not None
-    errors = position_errors(scenario, unguarded.trajectory)
-    assert errors.max() > 0.01
-    jumped = float(unguarded.trajectory.times[np.argmax(errors > 1e-6)])
+    # Without the guard the solver either jumps to the other closure silently or, depending on the
+    # rounding of the last iterations, stalls there; either way the trouble starts at one time.
+    if unguarded.status == "ok":
+        assert unguarded.trajectory is not None
+        errors = position_errors(scenario, unguarded.trajectory)
+        assert errors.max() > 0.01
+        trouble = float(unguarded.trajectory.times[np.argmax(errors > 1e-6)])
+        lead = 1  # the guard stops within the step the jump happens in
+    else:
+        assert unguarded.status == "failed" and unguarded.failure_time is not None, unguarded.message
+        trouble = unguarded.failure_time
+        lead = 5  # a stall shows a few steps after the iterates have left the branch
     monkeypatch.setattr(kinematics, "JUMP", 0.5)
     guarded = PinocchioAdapter().run(scenario)
     assert guarded.status == "singular"
     assert "farther from the predictor" in guarded.message
     assert guarded.failure_time is not None
-    assert jumped - scenario.t_end / scenario.steps <= guarded.failure_time <= jumped
+    assert trouble - lead * scenario.t_end / scenario.steps <= guarded.failure_time <= trouble
 
 
 def test_the_guard_stays_quiet_on_the_regular_scenarios(monkeypatch: pytest.MonkeyPatch) -> None:

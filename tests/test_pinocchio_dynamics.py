@@ -13,7 +13,7 @@ import dataclasses
 
 import numpy as np
 import pytest
-from closed_forms import exact
+from scenarios.closed_form import exact
 
 import scenarios
 from adapters.pinocchio import PinocchioAdapter

@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
-from closed_forms import exact
+from scenarios.closed_form import exact
 
 import scenarios
 from adapters.pinocchio import PinocchioAdapter

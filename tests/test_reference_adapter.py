@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
-from closed_forms import exact
+from scenarios.closed_form import exact
 
 import adapters
 import scenarios

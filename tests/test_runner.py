@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
-from test_runner_fakes import BAD, GOOD, fake_loader, fake_truth
+from tests.support.fake_engine import BAD, GOOD, fake_loader, fake_truth
 
 from reports.results_store import TRUTH, ResultsStore, read_results, read_trajectories
 from reports.runner import Runner, RunOptions

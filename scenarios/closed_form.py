@@ -1,4 +1,4 @@
-"""Closed-form kinematics of every mechanism family, derived independently of the solver.
+"""Closed-form kinematics of every mechanism family, derived independently of the native solver.
 
 Angles come from the classical geometric solutions (triangle closures, inverse trigonometry); rates
 from differentiating the loop equations by hand (2x2 systems solved by Cramer's rule). Each
