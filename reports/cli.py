@@ -16,10 +16,13 @@ import numpy as np
 
 import adapters
 from adapters.base import Adapter, OptionValue, Setting
-from reports import suite_commands
+from reports import engine_options, suite_commands
 from reports.atomic_write import atomic_output
+from reports.harness import stop
+from reports.harness.store_files import StoreDamaged
+from reports.harness.store_lock import StoreBusy
 from reports.usage import Parser, UsageError, pairs
-from scenarios import Scenario, ScenarioError, catalogue, families
+from scenarios import Scenario, ScenarioError, catalogue, families, limits
 from scenarios import build as build_scenario
 
 
@@ -42,16 +45,19 @@ def load_engine(name: str) -> Adapter:
 def time_grid(scenario: Scenario, t_end: float | None, steps: int | None, dt: float | None) -> np.ndarray:
     """The output grid: `steps` equal steps over [0, t_end], or multiples of `dt` up to t_end."""
     t_end = scenario.t_end if t_end is None else t_end
-    if not (math.isfinite(t_end) and t_end > 0):
-        raise UsageError(f"--t-end must be a positive number, got {t_end}")
+    if not (math.isfinite(t_end) and 0 < t_end <= limits.MAX_T_END):
+        raise UsageError(f"--t-end must be positive and at most {limits.MAX_T_END:g} s, got {t_end}")
+    bodies = len(scenario.bodies)
     if dt is not None:
         if not (math.isfinite(dt) and 0 < dt <= t_end):
             raise UsageError(f"--dt must be positive and at most --t-end, got {dt}")
+        limits.check_grid(scenario.name, t_end / dt + 1, bodies)  # before allocating
         steps = math.floor(t_end / dt + 1e-9)
         return dt * np.arange(steps + 1)
     steps = scenario.steps if steps is None else steps
     if steps < 1:
         raise UsageError(f"--steps must be at least 1, got {steps}")
+    limits.check_grid(scenario.name, steps + 1, bodies)
     return np.linspace(0.0, t_end, steps + 1)
 
 
@@ -59,9 +65,9 @@ def engine_setting(adapter: Adapter, scenario: Scenario, mode: str | None, optio
     """The engine's default setting for the scenario, with a mode and options overridden."""
     setting = adapter.default_setting(scenario)
     if mode is not None:
-        setting = Setting(mode, setting.options)
+        setting = engine_options.with_mode(adapter, scenario, setting, mode)
     overrides = {k: _option_value(v) for k, v in pairs(options, "--setting").items()}
-    return setting.replace(**overrides) if overrides else setting
+    return engine_options.with_options(adapter, setting, overrides)
 
 
 def cmd_list(args: argparse.Namespace) -> int:
@@ -176,12 +182,17 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    args = parser().parse_args(argv)
+    """Run one command; bad input is one line and exit 2, Ctrl-C one line and exit 130, a closed
+    pipe (`mbxval solve ... | head`) ends quietly with 141 (128 + SIGPIPE, as a shell reports it)."""
     try:
+        args = parser().parse_args(argv)
         return COMMANDS[args.command](args)
-    except (UsageError, ScenarioError, OSError) as error:
-        print(f"mbxval: error: {error}", file=sys.stderr)
-        return 2
+    except BrokenPipeError:
+        return stop.closed_pipe()
+    except KeyboardInterrupt:
+        return stop.interrupted(f"interrupted ({' '.join(sys.argv[1:2]) or 'mbxval'})")
+    except (UsageError, ScenarioError, StoreDamaged, StoreBusy, OSError) as error:
+        return stop.usage_error(str(error))
 
 
 if __name__ == "__main__":

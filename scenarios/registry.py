@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import difflib
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
+from scenarios.limits import check_grid, check_parameter, check_t_end
 from scenarios.scenario import ParameterValue, Scenario, ScenarioError
 
 
@@ -76,7 +78,7 @@ def _typed(family_name: str, key: str, default: ParameterValue, value: Parameter
     try:
         if isinstance(default, int) and not isinstance(default, bool):
             number = float(value)
-            if number != int(number):
+            if not math.isfinite(number) or number != int(number):
                 raise ValueError
             return int(number)
         return float(value)
@@ -106,7 +108,16 @@ def build(
                 f"known: {', '.join(fam.defaults)}"
             )
         params[key] = _typed(name, key, fam.defaults[key], value)
-    return fam.build(params, variant)
+        check_parameter(name, key, params[key])
+    try:
+        scenario = fam.build(params, variant)
+    except ScenarioError:
+        raise
+    except (ArithmeticError, ValueError) as error:  # a combination no single bound excludes
+        raise ScenarioError(f"{name}: cannot be built with these parameters: {error}") from error
+    check_t_end(scenario.name, scenario.t_end)
+    check_grid(scenario.name, scenario.steps + 1, len(scenario.bodies))
+    return scenario
 
 
 def is_stress_variant(variant: str) -> bool:
