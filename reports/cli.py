@@ -18,6 +18,7 @@ import adapters
 from adapters.base import Adapter, OptionValue, Setting
 from reports import engine_options, suite_commands
 from reports.atomic_write import atomic_output
+from reports.gate import GateError
 from reports.harness import stop
 from reports.harness.store_files import StoreDamaged
 from reports.harness.store_lock import StoreBusy
@@ -191,7 +192,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return stop.closed_pipe()
     except KeyboardInterrupt:
         return stop.interrupted(f"interrupted ({' '.join(sys.argv[1:2]) or 'mbxval'})")
-    except (UsageError, ScenarioError, StoreDamaged, StoreBusy, OSError) as error:
+    except (UsageError, ScenarioError, StoreDamaged, StoreBusy, GateError, OSError) as error:
         return stop.usage_error(str(error))
 
 

@@ -54,7 +54,11 @@ class ReportData:
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> ReportData:
         frame, meta = read_results(path)
-        return cls(frame, meta, read_trajectories(path))
+        try:
+            trajectories = read_trajectories(path)
+        except FileNotFoundError:  # lost: the report draws no curves until a resume rebuilds them
+            trajectories = {}
+        return cls(frame, meta, trajectories)
 
     def scenarios(self) -> list[str]:
         """Scenarios in catalogue order, unknown ones after them."""

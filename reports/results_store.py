@@ -1,8 +1,11 @@
 """Stored results: tidy rows in results.parquet, a JSON sidecar results.json, and the trajectories
 the report draws (each engine's default-setting run and the reference truth) in trajectories.parquet.
 
-One row per run, keyed by (scenario, engine, setting). Every file is replaced whole, so an
-interrupted sweep leaves the rows stored so far, and a resumed sweep skips them.
+One row per run, keyed by (scenario, engine, setting). A save commits all three files together as
+a new generation with their checksums (reports.harness.store_files); a load verifies them, and a
+store that does not verify, or whose rows lack the columns every row has, is refused as damaged
+(StoreDamaged), never read or copied forward. A lost trajectories file is not damage: its rows
+stay, and `lost_trajectories` tells a resume to rebuild what the report draws.
 """
 
 from __future__ import annotations
@@ -10,13 +13,14 @@ from __future__ import annotations
 import json
 import math
 import os
-import tempfile
-from collections.abc import Callable, Iterable
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
 import pandas as pd
 
+from reports.harness import store_files
+from reports.harness.store_files import damaged
 from reports.metrics import METRIC_COLUMNS
 from scenarios.trajectory import Trajectory
 
@@ -52,6 +56,9 @@ COLUMNS: tuple[str, ...] = (
     "characteristic_length",
     "recorded_at",
 )
+REQUIRED = frozenset(COLUMNS)  # every store has these; the columns added since are optional
+ADDED: dict[str, Any] = {"revision": "", "stale": False}  # column -> value for rows stored before it
+COLUMNS = (*COLUMNS, *ADDED)
 Key = tuple[str, str, str]
 
 
@@ -67,10 +74,14 @@ class ResultsStore:
         self.rows: dict[Key, dict[str, Any]] = {}
         self.trajectories: dict[Key, Trajectory] = {}
         self.meta: dict[str, Any] = {}
-        if not fresh and (self.directory / RESULTS).exists():
+        self.lost_trajectories = False
+        if not fresh and store_files.committed(self.directory) is not None:
             frame, self.meta = read_results(self.directory)
             self.rows = {key_of(r): r for r in frame.to_dict("records")}
-            self.trajectories = read_trajectories(self.directory)
+            try:
+                self.trajectories = read_trajectories(self.directory)
+            except FileNotFoundError:
+                self.lost_trajectories = True
 
     def has(self, key: Key) -> bool:
         return key in self.rows
@@ -90,14 +101,16 @@ class ResultsStore:
         return rows_frame(self.rows.values())
 
     def save(self, meta: dict[str, Any]) -> None:
-        """Write every file of the store (the sidecar gets `meta` plus the schema version)."""
-        self.directory.mkdir(parents=True, exist_ok=True)
+        """Commit every file of the store at once (the sidecar gets `meta`, the schema version and
+        the checksums). The caller holds the store's writer lock (reports.harness.store_lock)."""
         self.meta = {**meta, "schema_version": SCHEMA_VERSION}
-        _write(self.directory / RESULTS, lambda path: self.frame().to_parquet(path, index=False))
-        trajectories = _trajectory_frame(self.trajectories)
-        _write(self.directory / TRAJECTORIES, lambda path: trajectories.to_parquet(path, index=False))
-        text = json.dumps(self.meta, indent=2, sort_keys=True, default=str)
-        _write(self.directory / SIDECAR, lambda path: Path(path).write_text(text + "\n"))
+        frame, trajectories = self.frame(), _trajectory_frame(self.trajectories)
+        writers = {
+            RESULTS: lambda path: frame.to_parquet(path, index=False),
+            TRAJECTORIES: lambda path: trajectories.to_parquet(path, index=False),
+        }
+        store_files.commit(self.directory, writers, self.meta)
+        self.lost_trajectories = False
 
 
 def rows_frame(rows: Iterable[dict[str, Any]]) -> pd.DataFrame:
@@ -117,31 +130,58 @@ def rows_frame(rows: Iterable[dict[str, Any]]) -> pd.DataFrame:
 def results_directory(path: str | os.PathLike[str]) -> Path:
     """The directory of stored results, given it or its results.parquet."""
     target = Path(path)
-    if target.is_file():
+    if target.name == RESULTS and not target.is_dir():
         target = target.parent
-    if not (target / RESULTS).is_file():
+    if store_files.committed(target) is None:
         raise FileNotFoundError(f"no {RESULTS} in {target}")
     return target
 
 
-def read_results(path: str | os.PathLike[str]) -> tuple[pd.DataFrame, dict[str, Any]]:
-    """The rows (without the derived opt_ columns) and the sidecar of stored results."""
-    directory = results_directory(path)
-    frame = pd.read_parquet(directory / RESULTS)
-    frame = frame[[c for c in COLUMNS if c in frame.columns]]
-    sidecar = directory / SIDECAR
-    meta = json.loads(sidecar.read_text()) if sidecar.is_file() else {}
+def _committed(path: str | os.PathLike[str]) -> tuple[Path, Path, dict[str, Any], set[str]]:
+    """The store's directory, its committed generation, verified sidecar and absent files."""
+    root = results_directory(path)
+    generation = store_files.committed(root)
+    assert generation is not None
+    meta = store_files.read_sidecar(generation, root)
+    absent = store_files.verify(generation, root, meta)
     if meta.get("schema_version", SCHEMA_VERSION) != SCHEMA_VERSION:
-        raise ValueError(f"{sidecar} has schema version {meta['schema_version']}, expected {SCHEMA_VERSION}")
+        raise damaged(root, f"schema version {meta['schema_version']}, this mbxval reads {SCHEMA_VERSION}")
+    return root, generation, meta, absent
+
+
+def read_results(path: str | os.PathLike[str]) -> tuple[pd.DataFrame, dict[str, Any]]:
+    """The rows (without the derived opt_ columns) and the sidecar of stored results, verified:
+    StoreDamaged for files that do not match their checksums or rows that lack required columns."""
+    root, generation, meta, absent = _committed(path)
+    if RESULTS in absent or not (generation / RESULTS).is_file():
+        raise damaged(root, f"{RESULTS} is missing")
+    try:
+        frame = pd.read_parquet(generation / RESULTS)
+    except Exception as error:  # pyarrow's errors have no common base worth naming
+        raise damaged(root, f"{RESULTS} cannot be read: {type(error).__name__}") from error
+    lacking = sorted(REQUIRED - set(frame.columns))
+    if lacking:
+        raise damaged(root, f"{RESULTS} lacks the columns {', '.join(lacking)}")
+    if frame["status"].isna().any() or frame[list(KEY)].isna().any().any():
+        raise damaged(root, f"{RESULTS} has rows without a status or key")
+    for column, value in ADDED.items():
+        if column not in frame.columns:
+            frame[column] = value
+    frame = frame[[c for c in COLUMNS if c in frame.columns]]
     return frame, meta
 
 
 def read_trajectories(path: str | os.PathLike[str]) -> dict[Key, Trajectory]:
-    """Every stored trajectory by (scenario, engine, setting); the truth under engine TRUTH."""
-    file = results_directory(path) / TRAJECTORIES
+    """Every stored trajectory by (scenario, engine, setting); the truth under engine TRUTH.
+    FileNotFoundError when the store has lost its trajectories file (a resume rebuilds it)."""
+    root, generation, _, _ = _committed(path)
+    file = generation / TRAJECTORIES
     if not file.is_file():
-        return {}
-    frame = pd.read_parquet(file)
+        raise FileNotFoundError(f"{root} has lost {TRAJECTORIES}")
+    try:
+        frame = pd.read_parquet(file)
+    except Exception as error:
+        raise damaged(root, f"{TRAJECTORIES} cannot be read: {type(error).__name__}") from error
     stored: dict[Key, Trajectory] = {}
     for key, part in frame.groupby(list(KEY), sort=False):
         columns = part.drop(columns=list(KEY)).dropna(axis=1, how="all").reset_index(drop=True)
@@ -158,15 +198,3 @@ def _trajectory_frame(trajectories: dict[Key, Trajectory]) -> pd.DataFrame:
         part.insert(0, "scenario", scenario)
         parts.append(part)
     return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=list(KEY))
-
-
-def _write(path: Path, writer: Callable[[str], object]) -> None:
-    fd, temp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    os.close(fd)
-    os.chmod(temp, 0o644)
-    try:
-        writer(temp)
-        os.replace(temp, path)
-    except BaseException:
-        Path(temp).unlink(missing_ok=True)
-        raise

@@ -44,6 +44,8 @@ def base_row(
         "t_end": scenario.t_end,
         "characteristic_length": scenario.characteristic_length,
         "recorded_at": now(),
+        "revision": "",  # the git revision the run was made under, stamped by the runner
+        "stale": False,  # kept by a resume under another revision or engine version (--keep-stale)
     }
     row.update(dict.fromkeys(METRIC_COLUMNS, math.nan))
     return row

@@ -24,6 +24,7 @@ import tqdm
 import adapters
 from adapters.base import Adapter, RunResult, Setting
 from reports import provenance
+from reports.harness.resume import STALE, ResumeLog, ResumePolicy, rerun_reason, staleness
 from reports.isolation import run_here, run_isolated
 from reports.metrics import HEADLINE_DEFINITION, Residual, compared_levels, error_metrics, residual_metric
 from reports.results_store import ResultsStore
@@ -49,6 +50,8 @@ class RunOptions:
     warmup: int = 1
     timeout: float = 60.0
     rerun: bool = False
+    keep_failures: bool = False  # keep stored failed/timeout rows instead of retrying them
+    keep_stale: bool = False  # keep rows of another revision or engine version, marked stale
     truth_timeout: float = 600.0  # our own solver; its first call may compile its kernels
 
 
@@ -98,6 +101,9 @@ class Runner:
         self.settings = settings
         self.residual = residual if residual is not None else reference_residual()
         self.adapters: dict[str, Adapter | str] = {}
+        self.revision = provenance.git_revision()
+        self.policy = ResumePolicy(options.rerun, options.keep_failures, options.keep_stale)
+        self.resume_log = ResumeLog()
         for name in self.engines:
             try:
                 self.adapters[name] = loader(name)
@@ -107,8 +113,9 @@ class Runner:
     def run(self, scenario_names: Sequence[str]) -> None:
         """Plan every group, then run what is not stored yet, saving after each group."""
         groups = [g for name in scenario_names for g in self._plan(name)]
-        rerun = self.options.rerun
-        pending = {id(g): [j for j in g.jobs if rerun or not self._stored(g, j[0])] for g in groups}
+        pending = {id(g): [j for j in g.jobs if not self._stored(g, j[0])] for g in groups}
+        for line in self.resume_log.lines():
+            print(f"mbxval: {line}", file=sys.stderr)
         truths_needed = {g.scenario.name for g in groups if pending[id(g)]}
         total = sum(len(p) for p in pending.values()) + len(truths_needed)
         tqdm.tqdm.monitor_interval = 0  # no monitor thread: the runs are forked
@@ -121,9 +128,11 @@ class Runner:
             try:
                 for group in groups:
                     name = group.scenario.name
+                    if group.adapter is None and self._stored_results(group):
+                        continue  # unavailable now: its stored rows stay as they are
                     self._reconcile(group)
                     if group.verdict is not None:
-                        self.store.add(group.verdict)
+                        self._add(group.verdict)
                         continue
                     if pending[id(group)] and name not in truths:
                         bar.set_description(f"{name} truth", refresh=False)
@@ -167,7 +176,31 @@ class Runner:
         return group
 
     def _stored(self, group: Group, setting: Setting) -> bool:
-        return self.store.has((group.scenario.name, group.engine, setting.label))
+        """Whether the stored row of this run is kept (see reports.harness.resume)."""
+        key = (group.scenario.name, group.engine, setting.label)
+        row = self.store.rows.get(key)
+        if row is None:
+            return False
+        reason = rerun_reason(row, self.revision, group.version, key in self.store.trajectories, self.policy)
+        log = self.resume_log
+        if reason is not None:
+            log.reasons[reason] += 1
+        stale = staleness(row, self.revision, group.version)
+        if stale and reason in (STALE, None):
+            log.stale_from[stale] += 1
+        if reason is None and stale:
+            log.kept_stale += 1
+            row["stale"] = True
+        return reason is None
+
+    def _stored_results(self, group: Group) -> bool:
+        """Whether the store has rows of an engine that cannot be loaded now (counted in the log)."""
+        pair = (group.scenario.name, group.engine)
+        count = sum(1 for k in self.store.rows if k[:2] == pair and k[2] != NOT_RUN)
+        if count:
+            log = self.resume_log.kept_unavailable
+            log[group.engine] = log.get(group.engine, 0) + count
+        return count > 0
 
     def _reconcile(self, group: Group) -> None:
         """Make the stored rows of this scenario-engine pair agree with the plan: a pair that no
@@ -229,11 +262,16 @@ class Runner:
             row["engine"] = group.engine  # the name it was asked by, whatever the adapter calls itself
             keep = result.trajectory if is_default and result.status == "ok" else None
             keep = keep.select(scenario.output_bodies) if keep is not None else None
-            self.store.add(row, keep)
+            self._add(row, keep)
 
     def _fail(self, group: Group, setting: Setting, is_default: bool, status: Any, message: str) -> None:
         row = failure_row(group.scenario, group.engine, group.version, setting, is_default, status, message)
-        self.store.add(row)
+        self._add(row)
+
+    def _add(self, row: dict[str, Any], trajectory: Trajectory | None = None) -> None:
+        """Store a row made now: stamped with the revision, not stale."""
+        row.update(revision=self.revision, stale=False)
+        self.store.add(row, trajectory)
 
     def _save(self) -> None:
         versions = {
@@ -246,6 +284,8 @@ class Runner:
             "repeats": self.options.repeats,
             "warmup": self.options.warmup,
             "timeout": self.options.timeout,
+            "revisions": sorted({str(r.get("revision") or "unknown") for r in self.store.rows.values()}),
+            "resume": self.resume_log.lines(),
             "truth": f"reference_solver.solve at tolerance {TRUTH_TOLERANCE:g} on each scenario's grid",
             "headline": HEADLINE_DEFINITION,
         }

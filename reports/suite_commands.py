@@ -4,13 +4,17 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import sys
+import math
 import tempfile
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import adapters
 from reports import gate, suites
+from reports.harness import stop
+from reports.harness.store_lock import WriterLock
 from reports.results_store import ResultsStore, read_results
 from reports.runner import Runner, RunOptions
 from reports.suites import Suite
@@ -18,6 +22,8 @@ from reports.usage import UsageError
 from scenarios import build as build_scenario
 
 DEFAULT_OUT = "mbxval-report"
+MAX_REPEATS = 1000
+MAX_TIMEOUT = 86400.0  # seconds: one day per run
 
 
 def _selection(args: argparse.Namespace) -> tuple[Suite, list[str], list[str]]:
@@ -35,28 +41,59 @@ def _selection(args: argparse.Namespace) -> tuple[Suite, list[str], list[str]]:
     return suite, names, args.engine or adapters.names()
 
 
-def run_selection(args: argparse.Namespace, out: Path, progress: bool) -> Path:
-    """Run the selected scenarios and engines into `out`; returns the results directory."""
+def _run_options(args: argparse.Namespace, suite: Suite, rerun: bool) -> RunOptions:
+    """The run's options, each checked against its range (UsageError naming it)."""
+    repeats = suite.repeats if args.repeats is None else args.repeats
+    warmup = suite.warmup if args.warmup is None else args.warmup
+    timeout = suite.timeout if args.timeout is None else args.timeout
+    if not 1 <= repeats <= MAX_REPEATS:
+        raise UsageError(f"--repeats must be in [1, {MAX_REPEATS}], got {repeats}")
+    if not 0 <= warmup <= MAX_REPEATS:
+        raise UsageError(f"--warmup must be in [0, {MAX_REPEATS}], got {warmup}")
+    if not (math.isfinite(timeout) and 0 < timeout <= MAX_TIMEOUT):
+        raise UsageError(f"--timeout must be in (0, {MAX_TIMEOUT:g}] seconds, got {timeout}")
+    return RunOptions(
+        sweep=suite.sweep,
+        repeats=repeats,
+        warmup=warmup,
+        timeout=timeout,
+        rerun=rerun,
+        keep_failures=args.keep_failures,
+        keep_stale=args.keep_stale,
+    )
+
+
+@dataclass(frozen=True)
+class Selection:
+    """A checked selection: what to run and how, before anything is written."""
+
+    suite: Suite
+    names: list[str]
+    engines: list[str]
+    options: RunOptions
+
+
+def select(args: argparse.Namespace, out: Path, rerun: bool = False) -> Selection:
+    """The selection and run options of the command line, checked (UsageError) before any write."""
     suite, names, engines = _selection(args)
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} is a file, not a directory")
-    options = RunOptions(
-        sweep=suite.sweep,
-        repeats=suite.repeats if args.repeats is None else args.repeats,
-        warmup=suite.warmup if args.warmup is None else args.warmup,
-        timeout=suite.timeout if args.timeout is None else args.timeout,
-        rerun=args.rerun,
-    )
+    return Selection(suite, names, engines, _run_options(args, suite, rerun or args.rerun))
+
+
+def run_selection(selection: Selection, out: Path, progress: bool) -> Path:
+    """Run a checked selection into `out` (the caller holds its writer lock); returns `out`."""
+    suite = selection.suite
     runner = Runner(
         ResultsStore(out),
-        engines,
-        options,
+        selection.engines,
+        selection.options,
         truth=suite.truth,
         progress=progress,
         suite=suite.name,
         settings=suite.settings,
     )
-    runner.run(names)
+    runner.run(selection.names)
     return out
 
 
@@ -68,15 +105,14 @@ def render_reports(results: Path | str, out: str | None = None) -> Path:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    try:
-        out = run_selection(args, Path(args.out), progress=not args.quiet)
-    except KeyboardInterrupt:
-        print(
-            f"mbxval: interrupted; the runs made so far are stored in {args.out}: run again to resume",
-            file=sys.stderr,
-        )
-        return 130
-    page = render_reports(out)
+    out = Path(args.out)
+    selection = select(args, out)
+    with WriterLock(out, wait=args.wait):
+        try:
+            run_selection(selection, out, progress=not args.quiet)
+        except KeyboardInterrupt:
+            return stop.interrupted(f"interrupted; the runs made so far are stored in {out}: run again to resume")
+        page = render_reports(out)
     frame, _ = read_results(out)
     counts = ", ".join(f"{k} {v}" for k, v in frame["status"].value_counts().items())
     print(f"{len(frame)} runs ({counts}); report: {page}")
@@ -84,34 +120,39 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 
 def cmd_report(args: argparse.Namespace) -> int:
+    if args.out is not None and Path(args.out).exists() and not Path(args.out).is_dir():
+        raise UsageError(f"--out {args.out} is a file, not a directory")
     try:
         page = render_reports(args.results, args.out)
-    except (FileNotFoundError, ValueError) as error:
+    except FileNotFoundError as error:
         raise UsageError(str(error)) from error
     print(f"report: {page}")
     return 0
 
 
 def cmd_check(args: argparse.Namespace) -> int:
+    """The gate runs what it compares (every selected run made afresh) unless --results is given."""
+    if not (math.isfinite(args.factor) and args.factor > 0):
+        raise UsageError(f"--factor must be a finite positive number, got {args.factor}")
+    baseline = None if args.update else gate.read_baseline(args.baseline)  # bad baseline: before running
     if args.results is not None:
-        return _check(args, Path(args.results))
-    if args.out is not None:
-        return _check(args, run_selection(args, Path(args.out), progress=not args.quiet))
+        return _check(args, Path(args.results), baseline)
+    out = Path(args.out) if args.out is not None else None
+    selection = select(args, out or Path(tempfile.gettempdir()), rerun=True)
+    if out is not None:
+        with WriterLock(out, wait=args.wait):
+            return _check(args, run_selection(selection, out, progress=not args.quiet), baseline)
     with tempfile.TemporaryDirectory(prefix="mbxval-check-") as temporary:
-        return _check(args, run_selection(args, Path(temporary), progress=not args.quiet))
+        return _check(args, run_selection(selection, Path(temporary), progress=not args.quiet), baseline)
 
 
-def _check(args: argparse.Namespace, directory: Path) -> int:
+def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, Any]] | None) -> int:
     """Compare the results in `directory` with the baseline, or write the baseline (--update)."""
-    try:
-        frame, meta = read_results(directory)
-        if args.update:
-            gate.write_baseline(args.baseline, frame, meta)
-            print(f"wrote baseline {args.baseline} from {directory} ({len(frame)} cells)")
-            return 0
-        verdict = gate.compare(gate.read_baseline(args.baseline), frame, args.factor)
-    except (FileNotFoundError, ValueError, KeyError) as error:
-        raise UsageError(f"{type(error).__name__}: {error}") from error
+    frame, meta = read_results(directory)
+    if baseline is None:
+        print(gate.update_baseline(args.baseline, frame, meta))
+        return 0
+    verdict = gate.compare(baseline, frame, args.factor)
     print(gate.describe(verdict, args.baseline, args.factor))
     return 0 if verdict.passed else 1
 
@@ -124,6 +165,15 @@ def _selection_arguments(parser: argparse.ArgumentParser, suite: str) -> None:
     parser.add_argument("--warmup", type=int, help="untimed warm-up runs (default: the suite's)")
     parser.add_argument("--timeout", type=float, help="time limit per run in seconds (default: the suite's)")
     parser.add_argument("--rerun", action="store_true", help="redo runs already stored in the directory")
+    parser.add_argument(
+        "--keep-failures", action="store_true", help="keep stored failed/timeout rows (default: retry them)"
+    )
+    parser.add_argument(
+        "--keep-stale",
+        action="store_true",
+        help="keep rows made under another revision or engine version, marked stale (default: rerun them)",
+    )
+    parser.add_argument("--wait", action="store_true", help="wait for another run writing --out to end")
 
 
 BENCHMARKS = {"speed": "benchmarks.solver_speed", "scaling": "benchmarks.chain_scaling"}

@@ -14,7 +14,7 @@ import pytest
 
 from reports import gate
 from reports.cli import main
-from reports.results_store import RESULTS, read_results
+from reports.results_store import ResultsStore, key_of, read_results
 
 BASELINE = Path(__file__).resolve().parent.parent / "baselines" / "default.json"
 SUBSET = ["--scenario", "slider_crank", "--scenario", "cam_roller"]
@@ -40,10 +40,14 @@ def test_check_passes_on_the_baseline(checked) -> None:
 
 
 def doctor(source: Path, target: Path, edit) -> Path:  # type: ignore[no-untyped-def]
-    shutil.copytree(source, target)
-    frame = pd.read_parquet(target / RESULTS)
+    """A copy of the results with rows edited and committed as the store commits them (an edit of
+    the file alone is refused as damage: see tests/reports/test_reliability.py)."""
+    shutil.copytree(source, target, symlinks=True)
+    store = ResultsStore(target)
+    frame, _ = read_results(target)
     edit(frame)
-    frame.to_parquet(target / RESULTS, index=False)
+    store.rows = {key_of(r): r for r in frame.to_dict("records")}
+    store.save(store.meta)
     return target
 
 
@@ -68,7 +72,7 @@ def test_check_fails_readably_on_a_doctored_copy(checked, tmp_path: Path, capsys
     assert status == 1
     assert "2 regressions:" in text
     w, b = original.loc[worse], original.loc[broken]
-    assert f"{w['scenario']} x {w['engine']} [(default)]: error " in text
+    assert f"{w['scenario']} x {w['engine']} [(default)]: position error " in text
     assert f"> 10 x baseline {w['error']:.3g}" in text
     assert (
         f"{b['scenario']} x {b['engine']} [(default)]: status ok -> diverged: doctored: state exploded"
@@ -116,7 +120,7 @@ def test_status_order_floor_and_coverage() -> None:
     )
     text = [str(r) for r in worse.regressions]
     assert text == [
-        "a x e1 [(default)]: error 2e-11 > 10 x baseline 1e-15",
+        "a x e1 [(default)]: position error 2e-11 > 10 x baseline 1e-15",
         "a x e2 [(default)]: status unsupported -> failed",
         "a x e3 [(default)]: missing: no default-setting row (baseline: ok)",
     ]  # scenario b was not run, so its cells are not compared

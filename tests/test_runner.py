@@ -3,6 +3,8 @@ row survives, each failure is recorded with its reason, and a resumed run redoes
 
 from __future__ import annotations
 
+import dataclasses
+
 import math
 from pathlib import Path
 
@@ -109,7 +111,7 @@ def test_a_resumed_run_redoes_only_the_missing_rows(first_run, tmp_path: Path) -
     del store.rows[(SCENARIO, "fake", "good dt=0.01")]  # as if interrupted before that run
     store.save(meta)
     log = directory / "calls.log"
-    run(directory, log)
+    run(directory, log, dataclasses.replace(OPTIONS, keep_failures=True))  # failures kept, not retried
     assert log.read_text().splitlines() == [f"{SCENARIO} good dt=0.01"] * 3  # warm-up + 2 repeats
     after, _ = read_results(directory)
     assert len(after) == len(frame)
