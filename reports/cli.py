@@ -19,7 +19,7 @@ from adapters.base import Adapter, OptionValue, Setting
 from reports import suite_commands
 from reports.atomic_write import atomic_output
 from reports.usage import Parser, UsageError, pairs
-from scenarios import Scenario, ScenarioError, catalogue, families
+from scenarios import Scenario, ScenarioError, all_families, catalogue
 from scenarios import build as build_scenario
 
 
@@ -91,9 +91,11 @@ def cmd_list(args: argparse.Namespace) -> int:
         print(name.ljust(width) + "".join(c.ljust(12) for c in cells))
     if reasons:
         print("\n" + "\n".join(reasons))
-    print("\nparameters (defaults); set them with --set NAME=VALUE:")
-    for fam in families().values():
-        print(f"  {fam.name}: " + " ".join(f"{k}={v}" for k, v in fam.defaults.items()))
+    print("\nparameters: default and range; set them with --set NAME=VALUE:")
+    for fam in all_families().values():
+        print(f"  {fam.name}:")
+        for key, parameter in fam.parameters.items():
+            print(f"    {key}={parameter.default}  ({parameter.describe()})")
     return 0
 
 

@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from scenarios import Scenario, Trajectory
-from scenarios.slider_crank import stroke_limits
+from scenarios.families.slider_crank import stroke_limits
 
 
 def _e(theta: np.ndarray) -> np.ndarray:
