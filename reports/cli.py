@@ -147,7 +147,13 @@ def _scenario_arguments(parser: argparse.ArgumentParser, engine_default: str) ->
 
 
 def parser() -> argparse.ArgumentParser:
-    top = Parser(prog="mbxval", description=__doc__.splitlines()[0])
+    top = Parser(
+        prog="mbxval",
+        description="Cross-validate planar multibody kinematics: solve the same mechanism with a "
+        "reference solver and several engines, and compare their errors.",
+        epilog="example: mbxval list; mbxval solve four_bar --out four_bar.csv; "
+        "mbxval run --out results; mbxval report results",
+    )
     sub = top.add_subparsers(dest="command", required=True, parser_class=Parser)
 
     listing = sub.add_parser("list", help="scenarios, variants, engines and what each supports")
