@@ -110,7 +110,6 @@ def test_every_module_imports_alone() -> None:
     assert done.stdout.strip() == ""
 
 
-@pytest.mark.xfail(strict=True, reason="issue 18: three known cycles until the layout branches merge")
 def test_package_import_graph_has_no_cycle() -> None:
     paths = module_paths()
     known = set(paths)

@@ -17,7 +17,7 @@ import time
 from pathlib import Path
 from types import TracebackType
 
-from reports.provenance import now
+from reports.harness.provenance import now
 
 LOCK = ".lock"
 POLL = 0.2  # seconds between attempts while waiting

@@ -1,0 +1,224 @@
+"""The harness's commands: run, report, check and bench."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import math
+import tempfile
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import adapters
+from reports.cli.usage import UsageError
+from reports.harness import gate, stop, suites
+from reports.harness.results_store import ResultsStore, read_results
+from reports.harness.runner import Runner, RunOptions
+from reports.harness.store_lock import WriterLock
+from reports.harness.suites import Suite
+from scenarios import build as build_scenario
+
+DEFAULT_OUT = "mbxval-report"
+MAX_REPEATS = 1000
+MAX_TIMEOUT = 86400.0  # seconds: one day per run
+
+
+def _selection(args: argparse.Namespace) -> tuple[Suite, list[str], list[str]]:
+    """The suite, its scenarios (or the --scenario ones) and the engines (or the --engine ones)."""
+    try:
+        suite = suites.get(args.suite)
+    except KeyError as error:
+        raise UsageError(error.args[0]) from error
+    names = args.scenario or suite.scenarios()
+    for name in args.scenario:
+        build_scenario(name)  # an unknown name fails here, with the known ones listed
+    unknown = [e for e in args.engine if e not in adapters.names()]
+    if unknown:
+        raise UsageError(f"unknown engine '{unknown[0]}'; known: {', '.join(adapters.names())}")
+    return suite, names, args.engine or adapters.names()
+
+
+def _run_options(args: argparse.Namespace, suite: Suite, rerun: bool) -> RunOptions:
+    """The run's options, each checked against its range (UsageError naming it)."""
+    repeats = suite.repeats if args.repeats is None else args.repeats
+    warmup = suite.warmup if args.warmup is None else args.warmup
+    timeout = suite.timeout if args.timeout is None else args.timeout
+    if not 1 <= repeats <= MAX_REPEATS:
+        raise UsageError(f"--repeats must be in [1, {MAX_REPEATS}], got {repeats}")
+    if not 0 <= warmup <= MAX_REPEATS:
+        raise UsageError(f"--warmup must be in [0, {MAX_REPEATS}], got {warmup}")
+    if not (math.isfinite(timeout) and 0 < timeout <= MAX_TIMEOUT):
+        raise UsageError(f"--timeout must be in (0, {MAX_TIMEOUT:g}] seconds, got {timeout}")
+    return RunOptions(
+        sweep=suite.sweep,
+        repeats=repeats,
+        warmup=warmup,
+        timeout=timeout,
+        rerun=rerun,
+        keep_failures=args.keep_failures,
+        keep_stale=args.keep_stale,
+    )
+
+
+@dataclass(frozen=True)
+class Selection:
+    """A checked selection: what to run and how, before anything is written."""
+
+    suite: Suite
+    names: list[str]
+    engines: list[str]
+    options: RunOptions
+
+
+def select(args: argparse.Namespace, out: Path, rerun: bool = False) -> Selection:
+    """The selection and run options of the command line, checked (UsageError) before any write."""
+    suite, names, engines = _selection(args)
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"--out {out} is a file, not a directory")
+    return Selection(suite, names, engines, _run_options(args, suite, rerun or args.rerun))
+
+
+def run_selection(selection: Selection, out: Path, progress: bool) -> Path:
+    """Run a checked selection into `out` (the caller holds its writer lock); returns `out`."""
+    suite = selection.suite
+    runner = Runner(
+        ResultsStore(out),
+        selection.engines,
+        selection.options,
+        truth=suite.truth,
+        progress=progress,
+        suite=suite.name,
+        settings=suite.settings,
+    )
+    runner.run(selection.names)
+    return out
+
+
+def render_reports(results: Path | str, out: str | None = None) -> Path:
+    """reports.render.report.render_reports, imported when needed: matplotlib is slow to import."""
+    from reports.render.report import render_reports as render
+
+    return render(results, out)
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    out = Path(args.out)
+    selection = select(args, out)
+    with WriterLock(out, wait=args.wait):
+        try:
+            run_selection(selection, out, progress=not args.quiet)
+        except KeyboardInterrupt:
+            return stop.interrupted(f"interrupted; the runs made so far are stored in {out}: run again to resume")
+        page = render_reports(out)
+    frame, _ = read_results(out)
+    counts = ", ".join(f"{k} {v}" for k, v in frame["status"].value_counts().items())
+    print(f"{len(frame)} runs ({counts}); report: {page}")
+    return 0
+
+
+def cmd_report(args: argparse.Namespace) -> int:
+    if args.out is not None and Path(args.out).exists() and not Path(args.out).is_dir():
+        raise UsageError(f"--out {args.out} is a file, not a directory")
+    try:
+        page = render_reports(args.results, args.out)
+    except FileNotFoundError as error:
+        raise UsageError(str(error)) from error
+    print(f"report: {page}")
+    return 0
+
+
+def cmd_check(args: argparse.Namespace) -> int:
+    """The gate runs what it compares (every selected run made afresh) unless --results is given."""
+    if not (math.isfinite(args.factor) and args.factor > 0):
+        raise UsageError(f"--factor must be a finite positive number, got {args.factor}")
+    baseline = None if args.update else gate.read_baseline(args.baseline)  # bad baseline: before running
+    if args.results is not None:
+        return _check(args, Path(args.results), baseline)
+    out = Path(args.out) if args.out is not None else None
+    selection = select(args, out or Path(tempfile.gettempdir()), rerun=True)
+    if out is not None:
+        with WriterLock(out, wait=args.wait):
+            return _check(args, run_selection(selection, out, progress=not args.quiet), baseline)
+    with tempfile.TemporaryDirectory(prefix="mbxval-check-") as temporary:
+        return _check(args, run_selection(selection, Path(temporary), progress=not args.quiet), baseline)
+
+
+def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, Any]] | None) -> int:
+    """Compare the results in `directory` with the baseline, or write the baseline (--update)."""
+    frame, meta = read_results(directory)
+    if baseline is None:
+        print(gate.update_baseline(args.baseline, frame, meta))
+        return 0
+    verdict = gate.compare(baseline, frame, args.factor)
+    print(gate.describe(verdict, args.baseline, args.factor))
+    return 0 if verdict.passed else 1
+
+
+def _selection_arguments(parser: argparse.ArgumentParser, suite: str) -> None:
+    parser.add_argument("--suite", default=suite, help=f"suite ({', '.join(suites.SUITES)}; default {suite})")
+    parser.add_argument("--scenario", action="append", default=[], help="run only this scenario (repeatable)")
+    parser.add_argument("--engine", action="append", default=[], help="run only this engine (repeatable)")
+    parser.add_argument("--repeats", type=int, help="timed repeats per run (default: the suite's)")
+    parser.add_argument("--warmup", type=int, help="untimed warm-up runs (default: the suite's)")
+    parser.add_argument("--timeout", type=float, help="time limit per run in seconds (default: the suite's)")
+    parser.add_argument("--rerun", action="store_true", help="redo runs already stored in the directory")
+    parser.add_argument(
+        "--keep-failures", action="store_true", help="keep stored failed/timeout rows (default: retry them)"
+    )
+    parser.add_argument(
+        "--keep-stale",
+        action="store_true",
+        help="keep rows made under another revision or engine version, marked stale (default: rerun them)",
+    )
+    parser.add_argument("--wait", action="store_true", help="wait for another run writing --out to end")
+
+
+BENCHMARKS = {"speed": "benchmarks.solver_speed", "scaling": "benchmarks.chain_scaling"}
+
+
+def cmd_bench(args: argparse.Namespace) -> int:
+    """Run one of the benchmark scripts, which print their own tables."""
+    module = importlib.import_module(BENCHMARKS[args.which])
+    module.main(list(args.options))
+    return 0
+
+
+def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    """Add the harness's subcommands (COMMANDS) to the command line."""
+    run = sub.add_parser("run", help="run a suite on every engine, store results, render the report")
+    _selection_arguments(run, "default")
+    run.add_argument("--out", default=DEFAULT_OUT, help=f"output directory (default {DEFAULT_OUT})")
+    run.add_argument("--quiet", action="store_true", help="no progress bar")
+
+    report = sub.add_parser("report", help="re-render the report from stored results")
+    report.add_argument("results", help="results directory (or its results.parquet)")
+    report.add_argument("--out", help="directory for index.html and summary.md (default: RESULTS)")
+
+    check = sub.add_parser("check", help="regression gate: compare results with a baseline (exit 1 if worse)")
+    check.add_argument("--baseline", required=True, help="baseline JSON file (see baselines/)")
+    check.add_argument("--results", help="compare these stored results instead of running the suite")
+    _selection_arguments(check, "quick")
+    check.add_argument("--out", help="directory for the results of the run (default: a temporary one)")
+    check.add_argument("--factor", type=float, default=gate.DEFAULT_FACTOR, help="allowed error growth")
+    check.add_argument("--update", action="store_true", help="write the baseline from the results instead")
+    check.add_argument("--quiet", action="store_true", help="no progress bar")
+
+    bench = sub.add_parser("bench", help="speed of the native solver against the engines (benchmarks/)")
+    bench.add_argument(
+        "which",
+        nargs="?",
+        choices=sorted(BENCHMARKS),
+        default="speed",
+        help="speed: cost per time point per family; scaling: cost against chain size",
+    )
+    bench.add_argument("options", nargs=argparse.REMAINDER, help="passed to the benchmark (see its --help)")
+
+
+COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
+    "run": cmd_run,
+    "report": cmd_report,
+    "check": cmd_check,
+    "bench": cmd_bench,
+}
