@@ -2,11 +2,17 @@
 
 `analyse` returns the Analysis, or None when the plain path must run: numba is not installed, the
 scenario has a constraint with no kernel, or the kernel met anything abnormal (see fast.path).
+Where numba can cache its machine code nowhere (a read-only checkout with a read-only HOME and no
+NUMBA_CACHE_DIR), its kernels cannot even be defined; the plain path then runs, and every solve
+says so in a RuntimeWarning, which the run's warnings record.
 """
 
 from __future__ import annotations
 
+import warnings
+from functools import lru_cache
 from importlib.util import find_spec
+from types import ModuleType
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -21,6 +27,21 @@ AVAILABLE = find_spec("numba") is not None
 def analyse(scenario: Scenario, grid: np.ndarray, tolerance: float, max_iterations: int) -> Analysis | None:
     if not AVAILABLE:
         return None
-    from reference_solver.fast import path
+    path, problem = _compiled()
+    if path is None:
+        warnings.warn(f"native solver: the plain path runs, {problem}", RuntimeWarning, stacklevel=2)
+        return None
+    result: Analysis | None = path.analyse(scenario, grid, tolerance, max_iterations)
+    return result
 
-    return path.analyse(scenario, grid, tolerance, max_iterations)
+
+@lru_cache(maxsize=1)
+def _compiled() -> tuple[ModuleType | None, str]:
+    """The compiled path's module, or None and why it cannot be defined here."""
+    try:
+        from reference_solver.fast import path
+    except RuntimeError as error:  # numba: "cannot cache function ...: no locator available"
+        if "cannot cache" not in str(error):
+            raise
+        return None, f"numba cannot cache its compiled kernels anywhere writable ({error})"
+    return path, ""
