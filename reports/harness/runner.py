@@ -119,6 +119,7 @@ class Runner:
     def run(self, scenario_names: Sequence[str]) -> None:
         """Plan every group, then run what is not stored yet, saving after each group."""
         groups = [g for name in scenario_names for g in self._plan(name)]
+        kept = {id(g) for g in groups if g.adapter is None and self._stored_results(g)}
         pending = {id(g): [j for j in g.jobs if not self._stored(g, j[0])] for g in groups}
         for line in self.resume_log.lines():
             print(f"mbxval: {line}", file=sys.stderr)
@@ -134,7 +135,7 @@ class Runner:
             try:
                 for group in groups:
                     name = group.scenario.name
-                    if group.adapter is None and self._stored_results(group):
+                    if id(group) in kept:
                         continue  # unavailable now: its stored rows stay as they are
                     self._reconcile(group)
                     if group.verdict is not None:

@@ -1,0 +1,432 @@
+"""Issue 12 replayed: every case it lists, each asserting its promise (exit code, one line, no
+file, no row lost). The store cases use the fake engine (tests/support/fake_engine.py) so they stay
+fast; the command-line cases call `main` in this process."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import os
+import random
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from reports.cli import suite_commands
+from reports.cli.main import main
+from reports.harness import gate, store_files
+from reports.harness.results_store import RESULTS, TRAJECTORIES, ResultsStore, read_results, read_trajectories
+from reports.harness.runner import Runner, RunOptions
+from reports.harness.store_files import StoreDamaged
+from reports.harness.store_lock import StoreBusy, WriterLock
+from tests.support.fake_engine import GOOD, FakeAdapter, fake_truth
+
+ROOT = Path(__file__).resolve().parents[2]
+SCENARIO = "slider_crank"
+OPTIONS = RunOptions(repeats=1, warmup=0, timeout=10.0)
+
+
+class QuickFake(FakeAdapter):
+    """The fake engine with two good settings and one that raises (no slow modes)."""
+
+    def sweep(self, scenario):  # type: ignore[no-untyped-def]
+        from adapters.base import Setting
+
+        return [*GOOD, Setting.of("raise")]
+
+
+def fake_run(directory: Path, options: RunOptions = OPTIONS, loader=None, version: str | None = None) -> Runner:  # type: ignore[no-untyped-def]
+    log = directory.parent / "calls.log"
+
+    def load(name: str) -> FakeAdapter:
+        adapter = QuickFake(log)
+        if version is not None:
+            adapter.version = lambda: version  # type: ignore[method-assign]
+        return adapter
+
+    runner = Runner(ResultsStore(directory), ["fake"], options, loader=loader or load, truth=fake_truth, progress=False)
+    runner.run([SCENARIO])
+    return runner
+
+
+@pytest.fixture(scope="module")
+def stored(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    directory = tmp_path_factory.mktemp("stored") / "out"
+    fake_run(directory)
+    return directory
+
+
+def copy(source: Path, target: Path) -> Path:
+    import shutil
+
+    shutil.copytree(source, target, symlinks=True)
+    return target
+
+
+def one_line_error(capsys: pytest.CaptureFixture[str], *words: str) -> str:
+    err = capsys.readouterr().err
+    assert err.startswith("mbxval: error: ") and err.count("\n") == 1, err
+    for word in words:
+        assert word in err, err
+    return err
+
+
+def rows(directory: Path) -> pd.DataFrame:
+    return read_results(directory)[0].set_index(["scenario", "engine", "setting"]).sort_index()
+
+
+# --- one writer per store ------------------------------------------------------------------------
+def test_a_second_writer_is_refused_naming_the_holder(stored: Path, tmp_path: Path, capsys) -> None:
+    out = copy(stored, tmp_path / "out")
+    before = rows(out)
+    with WriterLock(out):
+        status = main(["run", "--out", str(out), "--engine", "reference", "--scenario", SCENARIO, "--quiet"])
+        assert status == 2
+        one_line_error(capsys, "is being written by process", str(os.getpid()), "--wait")
+        assert rows(out).equals(before)  # readers never block, and nothing changed
+        assert main(["report", str(out), "--out", str(tmp_path / "page")]) == 0
+
+
+def test_wait_takes_the_lock_when_the_holder_ends(tmp_path: Path) -> None:
+    holder = WriterLock(tmp_path)
+    holder.__enter__()
+    threading.Timer(0.4, holder.__exit__, (None, None, None)).start()
+    started = time.monotonic()
+    with pytest.raises(StoreBusy):
+        WriterLock(tmp_path).__enter__()
+    with WriterLock(tmp_path, wait=True):
+        assert time.monotonic() - started >= 0.3
+
+
+# --- atomic, verifiable saves ---------------------------------------------------------------------
+def test_a_save_killed_between_its_files_leaves_the_old_generation(stored: Path, tmp_path: Path, monkeypatch) -> None:
+    out = copy(stored, tmp_path / "out")
+    before, trajectories = rows(out), read_trajectories(out)
+    store = ResultsStore(out)
+    store.rows.clear()
+    real = store_files._sync
+
+    def die_after_first_file(path: Path) -> None:
+        real(path)
+        if path.name == RESULTS:
+            raise KeyboardInterrupt
+
+    monkeypatch.setattr(store_files, "_sync", die_after_first_file)
+    with pytest.raises(KeyboardInterrupt):
+        store.save({})
+    monkeypatch.undo()
+    assert rows(out).equals(before) and set(read_trajectories(out)) == set(trajectories)
+    assert not list((out / store_files.GENERATIONS).glob("tmp-*"))  # no temporary file left
+
+
+def test_a_deleted_trajectories_file_is_rebuilt_on_resume(stored: Path, tmp_path: Path) -> None:
+    out = copy(stored, tmp_path / "out")
+    expected = set(read_trajectories(out))
+    (out / "current" / TRAJECTORIES).unlink()
+    assert ResultsStore(out).lost_trajectories
+    fake_run(out, dataclasses.replace(OPTIONS, keep_failures=True))
+    assert set(read_trajectories(out)) == expected
+    assert len(rows(out)) == len(rows(stored))
+
+
+@pytest.mark.parametrize("name", [RESULTS, TRAJECTORIES])
+def test_every_bit_flip_is_detected_and_never_copied_forward(stored: Path, tmp_path: Path, name: str, capsys) -> None:
+    out = copy(stored, tmp_path / "out")
+    target = (out / "current" / name).resolve()
+    pristine = target.read_bytes()
+    generator, detected = random.Random(5), 0
+    flips = 100
+    for _ in range(flips):
+        data = bytearray(pristine)
+        data[generator.randrange(len(data))] ^= 1 << generator.randrange(8)
+        target.write_bytes(bytes(data))
+        with pytest.raises(StoreDamaged, match="does not match its checksum"):
+            ResultsStore(out)
+        detected += 1
+    assert detected == flips
+    status = main(["run", "--out", str(out), "--engine", "reference", "--scenario", SCENARIO, "--quiet"])
+    assert status == 2
+    one_line_error(capsys, "is damaged", name, "move it aside")
+    assert target.read_bytes() != pristine  # left as it is, not overwritten by a copy of itself
+    assert main(["report", str(out)]) == 2
+    one_line_error(capsys, "is damaged")
+
+
+def test_a_store_without_its_status_column_is_refused(stored: Path, tmp_path: Path, capsys) -> None:
+    """A store from before generations (plain files, no checksums) is still checked for its columns."""
+    out = tmp_path / "legacy"
+    out.mkdir()
+    frame, _ = read_results(stored)
+    frame.drop(columns=["status"]).to_parquet(out / RESULTS, index=False)
+    assert main(["report", str(out)]) == 2
+    one_line_error(capsys, "lacks the columns status")
+
+
+def test_a_store_from_before_generations_is_read_and_converted(stored: Path, tmp_path: Path) -> None:
+    out = tmp_path / "legacy"
+    out.mkdir()
+    for name in (RESULTS, TRAJECTORIES):
+        (out / name).write_bytes((stored / name).read_bytes())
+    meta = json.loads((stored / "results.json").read_text())
+    del meta["files"]
+    (out / "results.json").write_text(json.dumps(meta))
+    fake_run(out, dataclasses.replace(OPTIONS, keep_failures=True))
+    assert (out / "current").is_symlink() and (out / RESULTS).is_symlink()
+    assert rows(out).drop(columns=["recorded_at"]).equals(rows(stored).drop(columns=["recorded_at"]))
+
+
+# --- resume never loses a good row ----------------------------------------------------------------
+def test_an_unavailable_engine_keeps_its_rows(stored: Path, tmp_path: Path, capsys) -> None:
+    out = copy(stored, tmp_path / "out")
+    before = rows(out)
+
+    def broken(name: str) -> FakeAdapter:
+        raise ImportError("libfake.so: cannot open shared object file")
+
+    fake_run(out, loader=broken)
+    assert rows(out).drop(columns=["recorded_at"]).equals(before.drop(columns=["recorded_at"]))
+    assert "fake is unavailable: its 3 stored rows are kept" in capsys.readouterr().err
+
+
+def test_failures_are_retried_unless_kept(stored: Path, tmp_path: Path) -> None:
+    out = copy(stored, tmp_path / "out")
+    log = tmp_path / "calls.log"
+    fake_run(out, dataclasses.replace(OPTIONS, keep_failures=True))
+    assert not log.exists() or "raise" not in log.read_text()
+    fake_run(out)
+    assert log.read_text().splitlines() == [f"{SCENARIO} raise"]  # the failed row, and only it
+    assert len(rows(out)) == len(rows(stored))
+
+
+def test_stale_rows_are_rerun_or_kept_marked(stored: Path, tmp_path: Path, capsys) -> None:
+    out = copy(stored, tmp_path / "out")
+    log = tmp_path / "calls.log"
+    fake_run(out, dataclasses.replace(OPTIONS, keep_failures=True, keep_stale=True), version="0.1-fake")
+    after = rows(out)
+    assert after["stale"].all() and not log.exists()
+    assert "keeping 3 stale rows, marked stale (3 from fake 0.0-fake)" in capsys.readouterr().err
+    fake_run(out, dataclasses.replace(OPTIONS, keep_failures=True), version="0.1-fake")
+    assert "rerunning 3 stale rows" in capsys.readouterr().err
+    after = rows(out)
+    assert not after["stale"].any() and set(after["engine_version"]) == {"0.1-fake"}
+    assert len(after) == len(rows(stored))
+
+
+def test_rows_carry_the_revision_they_were_made_under(stored: Path, tmp_path: Path) -> None:
+    out = copy(stored, tmp_path / "out")
+    store = ResultsStore(out)
+    for row in store.rows.values():
+        row["revision"] = "0" * 40
+    store.save(store.meta)
+    log = tmp_path / "calls.log"
+    fake_run(out, dataclasses.replace(OPTIONS, keep_failures=True))
+    assert len(log.read_text().splitlines()) == 3  # every row made again under this revision
+    assert "0" * 40 not in set(rows(out)["revision"])
+
+
+# --- a gate that cannot pass by accident ----------------------------------------------------------
+def write_baseline(path: Path, cells: object) -> Path:
+    path.write_text(json.dumps({"schema_version": 1, "cells": cells}))
+    return path
+
+
+@pytest.mark.parametrize(
+    ("cells", "words"),
+    [
+        ("not a list", "'cells' must be a non-empty list"),
+        ([], "'cells' must be a non-empty list"),
+        ([{"scenario": "a", "engine": "e", "setting": "s", "is_default": True, "status": "ok", "error": "1e-9"}],
+         "'error' must be a number or null"),
+        ([{"scenario": "a", "engine": "e", "setting": "s", "is_default": True, "status": "ok", "error": None}],
+         "an ok cell without an error"),
+    ],
+)  # fmt: skip
+def test_an_unsound_baseline_is_bad_input(stored: Path, tmp_path: Path, cells, words: str, capsys) -> None:
+    baseline = write_baseline(tmp_path / "b.json", cells)
+    assert main(["check", "--baseline", str(baseline), "--results", str(stored)]) == 2
+    one_line_error(capsys, words)
+
+
+@pytest.mark.parametrize("factor", ["nan", "0", "-1", "inf"])
+def test_a_factor_that_is_not_positive_and_finite_is_bad_input(stored: Path, tmp_path: Path, factor, capsys) -> None:
+    baseline = tmp_path / "b.json"
+    gate.write_baseline(baseline, read_results(stored)[0], {})
+    assert main(["check", "--baseline", str(baseline), "--results", str(stored), "--factor", factor]) == 2
+    one_line_error(capsys, "--factor")
+
+
+def test_no_cell_in_common_or_a_smaller_baseline_is_bad_input(stored: Path, tmp_path: Path, capsys) -> None:
+    frame = read_results(stored)[0]
+    other = frame.assign(scenario="four_bar")
+    baseline = tmp_path / "b.json"
+    gate.write_baseline(baseline, pd.concat([other, frame.iloc[:1]]), {})
+    assert main(["check", "--baseline", str(baseline), "--results", str(stored)]) == 2
+    one_line_error(capsys, "the baseline lacks 2 of the 3 cells")
+    with pytest.raises(gate.GateError, match="0 cells compared"):
+        gate.compare(gate.baseline_cells(other), frame.iloc[:0])
+
+
+def test_every_level_is_compared_keyed_per_level() -> None:
+    def cell(**errors: float) -> pd.DataFrame:
+        row = {"scenario": "a", "engine": "e", "setting": "x", "is_default": True, "status": "ok", "message": ""}
+        return pd.DataFrame([{**row, "error": errors.get("error_position", math.nan), **errors}])
+
+    base = gate.baseline_cells(cell(error_position=1e-9, error_velocity=1e-8, error_acceleration=math.nan))
+    assert gate.compare(base, cell(error_position=1e-9, error_velocity=1e-8)).passed  # a level NaN in both
+    worse = gate.compare(base, cell(error_position=1e-9, error_velocity=1e-6, error_acceleration=1.0))
+    assert [r.what for r in worse.regressions] == ["velocity error 1e-06 > 10 x baseline 1e-08"]
+    lost = gate.compare(base, cell(error_position=1e-9))  # no velocity column: the level not produced
+    assert [r.what for r in lost.regressions] == ["velocity error no longer measured (baseline 1e-08)"]
+
+
+def test_update_says_what_it_adds_drops_and_changes(stored: Path, tmp_path: Path, capsys) -> None:
+    frame = read_results(stored)[0]
+    old = pd.concat([frame.iloc[1:], frame.iloc[:1].assign(scenario="four_bar")])
+    old.loc[old.index[0], "error"] = 0.5
+    baseline = tmp_path / "b.json"
+    gate.write_baseline(baseline, old, {})
+    assert main(["check", "--baseline", str(baseline), "--results", str(stored), "--update"]) == 0
+    text = capsys.readouterr().out
+    assert "3 cells (was 3): 1 added, 1 dropped, 1 changed" in text
+    assert "  + slider_crank x fake" in text and "  - four_bar x fake" in text and "  ~ slider_crank" in text
+
+
+def test_check_runs_what_it_compares_unless_results_is_given(tmp_path: Path) -> None:
+    args = suite_commands_parser(["check", "--baseline", "b.json", "--out", str(tmp_path), "--scenario", SCENARIO])
+    assert suite_commands.select(args, tmp_path, rerun=True).options.rerun
+
+
+def suite_commands_parser(argv: list[str]):  # type: ignore[no-untyped-def]
+    from reports.cli.main import parser
+
+    return parser().parse_args(argv)
+
+
+# --- inputs validated where they enter ------------------------------------------------------------
+BAD_INPUTS = [
+    (["solve", "four_bar_chain", "--set", "loops=1e30"], "loops"),
+    (["solve", SCENARIO, "--steps", "1000000000"], "GiB"),
+    (["solve", SCENARIO, "--steps", "50000000"], "GiB"),
+    (["solve", SCENARIO, "--set", "crank_length=1e308"], "crank_length"),
+    (["solve", SCENARIO, "--set", "steps=inf"], "steps"),
+    (["solve", "four_bar", "--set", "branch=inf"], "branch"),
+    (["solve", "cam_roller", "--set", "profile=spline", "--set", "knots=1e30"], "knots"),
+    (["solve", SCENARIO, "--dt", "1e-15"], "GiB"),
+    (["solve", SCENARIO, "--t-end", "1e300"], "--t-end"),
+    (["solve", SCENARIO, "--setting", "nosuch=1"], "unknown reference setting 'nosuch'; known: tolerance"),
+    (["solve", SCENARIO, "--engine", "pinocchio", "--setting", "tol=-1"], "tol"),
+    (["solve", SCENARIO, "--engine", "pinocchio", "--setting", "tol=nan"], "tol"),
+    (["solve", SCENARIO, "--engine", "pinocchio", "--setting", "nosuch=1"], "known:"),
+    (["solve", SCENARIO, "--engine", "mujoco", "--setting", "tc_steps=0"], "tc_steps"),
+    (["solve", SCENARIO, "--engine", "mujoco", "--setting", "impedance=2"], "impedance"),
+    (["solve", SCENARIO, "--engine", "mujoco", "--setting", "dt=0"], "dt"),
+    (["solve", SCENARIO, "--engine", "mujoco", "--setting", "nosuch=1"], "known:"),
+    (["export", SCENARIO, "--setting", "dt=nan"], "dt"),
+    (["export", SCENARIO, "--setting", "dt=0"], "dt"),
+    (["export", SCENARIO, "--setting", "dt=abc"], "dt"),
+    (["export", SCENARIO, "--setting", "nosuch=1"], "known:"),
+    (["export", SCENARIO, "--mode", "nosuch"], "unknown mujoco mode 'nosuch'; known:"),
+]
+
+
+@pytest.mark.parametrize(("argv", "words"), BAD_INPUTS, ids=[" ".join(a[2:]) for a, _ in BAD_INPUTS])
+def test_bad_input_is_one_line_exit_2_and_no_file(argv: list[str], words: str, tmp_path: Path, capsys) -> None:
+    out = tmp_path / "out.file"
+    assert main([*argv, "--out", str(out)]) == 2
+    one_line_error(capsys, words)
+    assert not out.exists() and not list(tmp_path.iterdir())
+
+
+RUN_OPTIONS = [
+    (["--timeout", "nan"], "--timeout"),
+    (["--timeout", "0"], "--timeout"),
+    (["--timeout", "-1"], "--timeout"),
+    (["--repeats", "-3"], "--repeats"),
+    (["--warmup", "-2"], "--warmup"),
+]
+
+
+@pytest.mark.parametrize(("options", "words"), RUN_OPTIONS)
+def test_bad_run_options_are_refused_before_anything_is_written(options, words, tmp_path: Path, capsys) -> None:
+    out = tmp_path / "out"
+    assert main(["run", "--out", str(out), "--scenario", SCENARIO, "--engine", "reference", *options]) == 2
+    one_line_error(capsys, words)
+    assert not out.exists()
+
+
+def test_report_into_an_existing_file_is_refused(stored: Path, tmp_path: Path, capsys) -> None:
+    existing = tmp_path / "existing.csv"
+    existing.write_text("mine\n")
+    assert main(["report", str(stored), "--out", str(existing)]) == 2
+    one_line_error(capsys, "is a file")
+    assert existing.read_text() == "mine\n"
+
+
+# --- Ctrl-C and closed pipes ----------------------------------------------------------------------
+def interrupt(*args: object, **kwargs: object) -> None:
+    raise KeyboardInterrupt
+
+
+def test_ctrl_c_while_writing_a_csv_leaves_no_file(tmp_path: Path, monkeypatch, capsys) -> None:
+    from scenarios.trajectory import Trajectory
+
+    monkeypatch.setattr(Trajectory, "write_csv", interrupt)
+    assert main(["solve", SCENARIO, "--steps", "10", "--out", str(tmp_path / "t.csv")]) == 130
+    err = capsys.readouterr().err
+    assert err.startswith("mbxval: interrupted") and err.count("\n") == 1
+    assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("command", ["report", "check"])
+def test_ctrl_c_in_report_or_check_is_one_line(stored: Path, tmp_path: Path, command: str, monkeypatch, capsys) -> None:
+    monkeypatch.setattr(suite_commands, "render_reports", interrupt)
+    monkeypatch.setattr(gate, "compare", interrupt)
+    baseline = tmp_path / "b.json"
+    gate.write_baseline(baseline, read_results(stored)[0], {})
+    argv = ["report", str(stored)] if command == "report" else ["check", "--baseline", str(baseline), "--results", str(stored)]
+    assert main(argv) == 130
+    err = capsys.readouterr().err
+    assert err.startswith("mbxval: interrupted") and err.count("\n") == 1
+
+
+def test_ctrl_c_in_the_final_render_of_run_is_one_line(tmp_path: Path, monkeypatch, capsys) -> None:
+    monkeypatch.setattr(suite_commands, "run_selection", lambda *a, **k: None)
+    monkeypatch.setattr(suite_commands, "render_reports", interrupt)
+    assert main(["run", "--out", str(tmp_path / "out"), "--scenario", SCENARIO, "--engine", "reference"]) == 130
+    err = capsys.readouterr().err
+    assert err.startswith("mbxval: interrupted") and err.count("\n") == 1
+
+
+def test_a_closed_pipe_ends_quietly() -> None:
+    command = f"{sys.executable} -m reports.cli solve {SCENARIO} --steps 200000 | head -n 1"
+    done = subprocess.run(
+        ["bash", "-o", "pipefail", "-c", command], capture_output=True, text=True, cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=300
+    )
+    assert done.stdout.count("\n") == 1 and done.stderr == ""
+    assert done.returncode == 141
+
+
+# --- the native solver without a writable numba cache ----------------------------------------------
+def test_the_native_solver_runs_without_a_writable_cache(tmp_path: Path) -> None:
+    script = tmp_path / "nocache.py"
+    script.write_text(
+        "import numba.core.caching as caching\n"
+        "def refuse(self):\n    raise OSError('read-only file system')\n"
+        "caching._CacheLocator.ensure_cache_path = refuse\n"
+        "import numpy as np, adapters, scenarios\n"
+        "s = scenarios.build('slider_crank')\n"
+        "a = adapters.load('reference')\n"
+        "r = a.run(s, a.default_setting(s), np.asarray(s.times()))\n"
+        "print(r.status, np.isfinite(r.trajectory.position).all(), ' | '.join(r.warnings))\n"
+    )
+    done = subprocess.run(
+        [sys.executable, str(script)], capture_output=True, text=True, cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=300
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.startswith("ok True") and "the plain path runs" in done.stdout
