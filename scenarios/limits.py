@@ -19,7 +19,9 @@ MAX_TRAJECTORY_BYTES = 2 * 1024**3
 
 def check_t_end(name: str, t_end: float) -> None:
     if not (math.isfinite(t_end) and 0 < t_end <= MAX_T_END):
-        raise ScenarioError(f"{name}: the end time must be positive and at most {MAX_T_END:g} s, got {t_end:g}")
+        raise ScenarioError(
+            f"{name}: the end time must be positive and at most {MAX_T_END:g} s, got {t_end:g}"
+        )
 
 
 def trajectory_bytes(points: float, bodies: int) -> float:
@@ -36,5 +38,6 @@ def check_grid(name: str, points: float, bodies: int) -> None:
         most = math.floor(MAX_TRAJECTORY_BYTES / trajectory_bytes(1, bodies)) - 1
         raise ScenarioError(
             f"{name}: {points:.4g} grid points of {bodies} bodies would take {size / 1024**3:.3g} GiB, "
-            f"above the limit of {MAX_TRAJECTORY_BYTES / 1024**3:g} GiB of trajectory; use at most {most} steps"
+            f"above the limit of {MAX_TRAJECTORY_BYTES / 1024**3:g} GiB of trajectory; "
+            f"use at most {most} steps"
         )

@@ -36,7 +36,9 @@ class OptionRange:
             left = "[" if self.closed else "("
             unit = f" {self.unit}" if self.unit else ""
             kind = "an integer" if self.integer else "a number"
-            raise UsageError(f"--setting {key} must be {kind} in {left}{self.low:g}, {self.high:g}]{unit}, got {value}")
+            raise UsageError(
+                f"--setting {key} must be {kind} in {left}{self.low:g}, {self.high:g}]{unit}, got {value}"
+            )
 
 
 STEP = OptionRange(0.0, 1.0, "s")

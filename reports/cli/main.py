@@ -15,9 +15,9 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 import adapters
+import reports.cli.engine_options as engine_options
 import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting
-from reports.cli import engine_options
 from reports.cli.usage import Parser, UsageError, pairs
 from reports.harness import stop
 from reports.harness.atomic_write import atomic_output

@@ -110,7 +110,9 @@ def cmd_run(args: argparse.Namespace) -> int:
         try:
             run_selection(selection, out, progress=not args.quiet)
         except KeyboardInterrupt:
-            return stop.interrupted(f"interrupted; the runs made so far are stored in {out}: run again to resume")
+            return stop.interrupted(
+                f"interrupted; the runs made so far are stored in {out}: run again to resume"
+            )
         page = render_reports(out)
     frame, _ = read_results(out)
     counts = ", ".join(f"{k} {v}" for k, v in frame["status"].value_counts().items())

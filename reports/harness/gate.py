@@ -100,7 +100,9 @@ def read_baseline(path: str | os.PathLike[str]) -> list[dict[str, Any]]:
     for number, cell in enumerate(cells):
         problem = _unsound(cell)
         if problem:
-            raise GateError(f"baseline {path}, cell {number}: {problem}; regenerate it with `mbxval check --update`")
+            raise GateError(
+                f"baseline {path}, cell {number}: {problem}; regenerate it with `mbxval check --update`"
+            )
     return cells
 
 
@@ -134,8 +136,8 @@ def compare(baseline: list[dict[str, Any]], current: pd.DataFrame, factor: float
     if unknown:
         example = " x ".join(unknown[0])
         raise GateError(
-            f"the baseline lacks {len(unknown)} of the {len(index)} cells of the results (such as {example}): "
-            "it is older or smaller than what was run; update it with --update"
+            f"the baseline lacks {len(unknown)} of the {len(index)} cells of the results "
+            f"(such as {example}): it is older or smaller than what was run; update it with --update"
         )
     covered = set(zip(current["scenario"], current["engine"], strict=True))
     regressions, compared = [], 0

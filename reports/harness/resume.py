@@ -63,10 +63,14 @@ class ResumeLog:
     def lines(self) -> list[str]:
         out = []
         if self.reasons[RETRY]:
-            out.append(f"retrying {self.reasons[RETRY]} stored failed/timeout rows (--keep-failures keeps them)")
+            out.append(
+                f"retrying {self.reasons[RETRY]} stored failed/timeout rows (--keep-failures keeps them)"
+            )
         if self.reasons[STALE]:
             what = ", ".join(f"{n} from {w}" for w, n in sorted(self.stale_from.items()))
-            out.append(f"rerunning {self.reasons[STALE]} stale rows ({what}; --keep-stale keeps them, marked)")
+            out.append(
+                f"rerunning {self.reasons[STALE]} stale rows ({what}; --keep-stale keeps them, marked)"
+            )
         if self.kept_stale:
             what = ", ".join(f"{n} from {w}" for w, n in sorted(self.stale_from.items()))
             out.append(f"keeping {self.kept_stale} stale rows, marked stale ({what})")

@@ -86,7 +86,10 @@ def verify(generation: Path, root: Path, meta: Mapping[str, Any]) -> set[str]:
             absent.add(name)
             continue
         size, digest = checksum(path)
-        if not isinstance(expected, dict) or (size, digest) != (expected.get("bytes"), expected.get("sha256")):
+        if not isinstance(expected, dict) or (size, digest) != (
+            expected.get("bytes"),
+            expected.get("sha256"),
+        ):
             raise damaged(root, f"{name} does not match its checksum")
     return absent
 

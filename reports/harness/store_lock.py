@@ -74,4 +74,5 @@ def holder(directory: str | os.PathLike[str]) -> str:
         record = {}
     if not record:
         return "another process"
-    return f"process {record.get('pid')} on {record.get('host')} since {record.get('since')} ({record.get('command')})"
+    where = f"on {record.get('host')} since {record.get('since')}"
+    return f"process {record.get('pid')} {where} ({record.get('command')})"

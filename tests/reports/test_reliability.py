@@ -41,7 +41,9 @@ class QuickFake(FakeAdapter):
         return [*GOOD, Setting.of("raise")]
 
 
-def fake_run(directory: Path, options: RunOptions = OPTIONS, loader=None, version: str | None = None) -> Runner:  # type: ignore[no-untyped-def]
+def fake_run(
+    directory: Path, options: RunOptions = OPTIONS, loader=None, version: str | None = None
+) -> Runner:  # type: ignore[no-untyped-def]
     log = directory.parent / "calls.log"
 
     def load(name: str) -> FakeAdapter:
@@ -50,7 +52,9 @@ def fake_run(directory: Path, options: RunOptions = OPTIONS, loader=None, versio
             adapter.version = lambda: version  # type: ignore[method-assign]
         return adapter
 
-    runner = Runner(ResultsStore(directory), ["fake"], options, loader=loader or load, truth=fake_truth, progress=False)
+    runner = Runner(
+        ResultsStore(directory), ["fake"], options, loader=loader or load, truth=fake_truth, progress=False
+    )
     runner.run([SCENARIO])
     return runner
 
@@ -105,7 +109,9 @@ def test_wait_takes_the_lock_when_the_holder_ends(tmp_path: Path) -> None:
 
 
 # --- atomic, verifiable saves ---------------------------------------------------------------------
-def test_a_save_killed_between_its_files_leaves_the_old_generation(stored: Path, tmp_path: Path, monkeypatch) -> None:
+def test_a_save_killed_between_its_files_leaves_the_old_generation(
+    stored: Path, tmp_path: Path, monkeypatch
+) -> None:
     out = copy(stored, tmp_path / "out")
     before, trajectories = rows(out), read_trajectories(out)
     store = ResultsStore(out)
@@ -136,7 +142,9 @@ def test_a_deleted_trajectories_file_is_rebuilt_on_resume(stored: Path, tmp_path
 
 
 @pytest.mark.parametrize("name", [RESULTS, TRAJECTORIES])
-def test_every_bit_flip_is_detected_and_never_copied_forward(stored: Path, tmp_path: Path, name: str, capsys) -> None:
+def test_every_bit_flip_is_detected_and_never_copied_forward(
+    stored: Path, tmp_path: Path, name: str, capsys
+) -> None:
     out = copy(stored, tmp_path / "out")
     target = (out / "current" / name).resolve()
     pristine = target.read_bytes()
@@ -231,6 +239,9 @@ def test_rows_carry_the_revision_they_were_made_under(stored: Path, tmp_path: Pa
 
 
 # --- a gate that cannot pass by accident ----------------------------------------------------------
+CELL = {"scenario": "a", "engine": "e", "setting": "s", "is_default": True, "status": "ok"}
+
+
 def write_baseline(path: Path, cells: object) -> Path:
     path.write_text(json.dumps({"schema_version": 1, "cells": cells}))
     return path
@@ -241,10 +252,8 @@ def write_baseline(path: Path, cells: object) -> Path:
     [
         ("not a list", "'cells' must be a non-empty list"),
         ([], "'cells' must be a non-empty list"),
-        ([{"scenario": "a", "engine": "e", "setting": "s", "is_default": True, "status": "ok", "error": "1e-9"}],
-         "'error' must be a number or null"),
-        ([{"scenario": "a", "engine": "e", "setting": "s", "is_default": True, "status": "ok", "error": None}],
-         "an ok cell without an error"),
+        ([{**CELL, "error": "1e-9"}], "'error' must be a number or null"),
+        ([{**CELL, "error": None}], "an ok cell without an error"),
     ],
 )  # fmt: skip
 def test_an_unsound_baseline_is_bad_input(stored: Path, tmp_path: Path, cells, words: str, capsys) -> None:
@@ -254,7 +263,9 @@ def test_an_unsound_baseline_is_bad_input(stored: Path, tmp_path: Path, cells, w
 
 
 @pytest.mark.parametrize("factor", ["nan", "0", "-1", "inf"])
-def test_a_factor_that_is_not_positive_and_finite_is_bad_input(stored: Path, tmp_path: Path, factor, capsys) -> None:
+def test_a_factor_that_is_not_positive_and_finite_is_bad_input(
+    stored: Path, tmp_path: Path, factor, capsys
+) -> None:
     baseline = tmp_path / "b.json"
     gate.write_baseline(baseline, read_results(stored)[0], {})
     assert main(["check", "--baseline", str(baseline), "--results", str(stored), "--factor", factor]) == 2
@@ -274,7 +285,14 @@ def test_no_cell_in_common_or_a_smaller_baseline_is_bad_input(stored: Path, tmp_
 
 def test_every_level_is_compared_keyed_per_level() -> None:
     def cell(**errors: float) -> pd.DataFrame:
-        row = {"scenario": "a", "engine": "e", "setting": "x", "is_default": True, "status": "ok", "message": ""}
+        row = {
+            "scenario": "a",
+            "engine": "e",
+            "setting": "x",
+            "is_default": True,
+            "status": "ok",
+            "message": "",
+        }
         return pd.DataFrame([{**row, "error": errors.get("error_position", math.nan), **errors}])
 
     base = gate.baseline_cells(cell(error_position=1e-9, error_velocity=1e-8, error_acceleration=math.nan))
@@ -298,7 +316,9 @@ def test_update_says_what_it_adds_drops_and_changes(stored: Path, tmp_path: Path
 
 
 def test_check_runs_what_it_compares_unless_results_is_given(tmp_path: Path) -> None:
-    args = suite_commands_parser(["check", "--baseline", "b.json", "--out", str(tmp_path), "--scenario", SCENARIO])
+    args = suite_commands_parser(
+        ["check", "--baseline", "b.json", "--out", str(tmp_path), "--scenario", SCENARIO]
+    )
     assert suite_commands.select(args, tmp_path, rerun=True).options.rerun
 
 
@@ -336,7 +356,9 @@ BAD_INPUTS = [
 
 
 @pytest.mark.parametrize(("argv", "words"), BAD_INPUTS, ids=[" ".join(a[2:]) for a, _ in BAD_INPUTS])
-def test_bad_input_is_one_line_exit_2_and_no_file(argv: list[str], words: str, tmp_path: Path, capsys) -> None:
+def test_bad_input_is_one_line_exit_2_and_no_file(
+    argv: list[str], words: str, tmp_path: Path, capsys
+) -> None:
     out = tmp_path / "out.file"
     assert main([*argv, "--out", str(out)]) == 2
     one_line_error(capsys, words)
@@ -353,7 +375,9 @@ RUN_OPTIONS = [
 
 
 @pytest.mark.parametrize(("options", "words"), RUN_OPTIONS)
-def test_bad_run_options_are_refused_before_anything_is_written(options, words, tmp_path: Path, capsys) -> None:
+def test_bad_run_options_are_refused_before_anything_is_written(
+    options, words, tmp_path: Path, capsys
+) -> None:
     out = tmp_path / "out"
     assert main(["run", "--out", str(out), "--scenario", SCENARIO, "--engine", "reference", *options]) == 2
     one_line_error(capsys, words)
@@ -384,12 +408,18 @@ def test_ctrl_c_while_writing_a_csv_leaves_no_file(tmp_path: Path, monkeypatch, 
 
 
 @pytest.mark.parametrize("command", ["report", "check"])
-def test_ctrl_c_in_report_or_check_is_one_line(stored: Path, tmp_path: Path, command: str, monkeypatch, capsys) -> None:
+def test_ctrl_c_in_report_or_check_is_one_line(
+    stored: Path, tmp_path: Path, command: str, monkeypatch, capsys
+) -> None:
     monkeypatch.setattr(suite_commands, "render_reports", interrupt)
     monkeypatch.setattr(gate, "compare", interrupt)
     baseline = tmp_path / "b.json"
     gate.write_baseline(baseline, read_results(stored)[0], {})
-    argv = ["report", str(stored)] if command == "report" else ["check", "--baseline", str(baseline), "--results", str(stored)]
+    argv = (
+        ["report", str(stored)]
+        if command == "report"
+        else ["check", "--baseline", str(baseline), "--results", str(stored)]
+    )
     assert main(argv) == 130
     err = capsys.readouterr().err
     assert err.startswith("mbxval: interrupted") and err.count("\n") == 1
@@ -398,7 +428,9 @@ def test_ctrl_c_in_report_or_check_is_one_line(stored: Path, tmp_path: Path, com
 def test_ctrl_c_in_the_final_render_of_run_is_one_line(tmp_path: Path, monkeypatch, capsys) -> None:
     monkeypatch.setattr(suite_commands, "run_selection", lambda *a, **k: None)
     monkeypatch.setattr(suite_commands, "render_reports", interrupt)
-    assert main(["run", "--out", str(tmp_path / "out"), "--scenario", SCENARIO, "--engine", "reference"]) == 130
+    assert (
+        main(["run", "--out", str(tmp_path / "out"), "--scenario", SCENARIO, "--engine", "reference"]) == 130
+    )
     err = capsys.readouterr().err
     assert err.startswith("mbxval: interrupted") and err.count("\n") == 1
 
@@ -406,7 +438,12 @@ def test_ctrl_c_in_the_final_render_of_run_is_one_line(tmp_path: Path, monkeypat
 def test_a_closed_pipe_ends_quietly() -> None:
     command = f"{sys.executable} -m reports.cli solve {SCENARIO} --steps 200000 | head -n 1"
     done = subprocess.run(
-        ["bash", "-o", "pipefail", "-c", command], capture_output=True, text=True, cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=300
+        ["bash", "-o", "pipefail", "-c", command],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        env={**os.environ, "PYTHONPATH": str(ROOT)},
+        timeout=300,
     )
     assert done.stdout.count("\n") == 1 and done.stderr == ""
     assert done.returncode == 141
@@ -426,7 +463,12 @@ def test_the_native_solver_runs_without_a_writable_cache(tmp_path: Path) -> None
         "print(r.status, np.isfinite(r.trajectory.position).all(), ' | '.join(r.warnings))\n"
     )
     done = subprocess.run(
-        [sys.executable, str(script)], capture_output=True, text=True, cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=300
+        [sys.executable, str(script)],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        env={**os.environ, "PYTHONPATH": str(ROOT)},
+        timeout=300,
     )
     assert done.returncode == 0, done.stderr
     assert done.stdout.startswith("ok True") and "the plain path runs" in done.stdout

@@ -72,7 +72,10 @@ def option_overrides(draw: st.DrawFn) -> list[str]:
     argv = ["solve", "slider_crank", "--engine", engine, "--steps", STEPS]
     argv += ["--setting", f"{key}={draw(values(declared.get(key)))}"]
     if draw(st.booleans()):
-        argv += ["--mode", draw(st.sampled_from(["kinematic", "RK4", "implicitfast", "GA3", "newton", "nosuch"]))]
+        argv += [
+            "--mode",
+            draw(st.sampled_from(["kinematic", "RK4", "implicitfast", "GA3", "newton", "nosuch"])),
+        ]
     return argv
 
 

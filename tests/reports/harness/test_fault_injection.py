@@ -34,7 +34,12 @@ class QuickFake(FakeAdapter):
 def run(directory: Path) -> None:
     log = directory.parent / f"{directory.name}.log"
     runner = Runner(
-        ResultsStore(directory), ["fake"], OPTIONS, loader=lambda name: QuickFake(log), truth=fake_truth, progress=False
+        ResultsStore(directory),
+        ["fake"],
+        OPTIONS,
+        loader=lambda name: QuickFake(log),
+        truth=fake_truth,
+        progress=False,
     )
     runner.run(SCENARIOS)
 
@@ -74,10 +79,14 @@ def killed_run(directory: Path, after: int) -> int:
     return int(text) if text else -1 if os.WIFSIGNALED(status) else 0
 
 
-def snapshot(directory: Path) -> tuple[dict[tuple[str, str, str], tuple[object, ...]], set[tuple[str, str, str]]]:
+def snapshot(
+    directory: Path,
+) -> tuple[dict[tuple[str, str, str], tuple[object, ...]], set[tuple[str, str, str]]]:
     frame, _ = read_results(directory)
     rows = {
-        (r["scenario"], r["engine"], r["setting"]): tuple(None if r[c] != r[c] else r[c] for c in COMPARED)  # NaN
+        (r["scenario"], r["engine"], r["setting"]): tuple(
+            None if r[c] != r[c] else r[c] for c in COMPARED
+        )  # NaN
         for r in frame.to_dict("records")
     }
     return rows, set(read_trajectories(directory))

@@ -4,7 +4,6 @@ row survives, each failure is recorded with its reason, and a resumed run redoes
 from __future__ import annotations
 
 import dataclasses
-
 import math
 from pathlib import Path
 
