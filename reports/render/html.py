@@ -10,6 +10,7 @@ from __future__ import annotations
 import html
 from typing import Any
 
+from reports.harness.provenance import revision_label
 from reports.render import plots, stability_render
 from reports.render.report_data import ReportData, cell_text, number, table
 
@@ -68,7 +69,7 @@ def _definitions(meta: dict[str, Any]) -> str:
 
 
 def _provenance(meta: dict[str, Any]) -> str:
-    revision = str(meta.get("git_revision", "?"))[:12]
+    revision = revision_label(meta)
     return (
         f"suite {meta.get('suite', '?')}, {meta.get('date', '?')}, git {revision}, "
         f"timing: minimum of {meta.get('repeats', '?')} repeats after {meta.get('warmup', '?')} warm-up, "

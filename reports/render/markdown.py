@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from reports.harness.provenance import revision_label
 from reports.render import stability_render
 from reports.render.markdown_table import markdown_table
 from reports.render.report_data import HEADINGS, ReportData, number, table
@@ -14,7 +15,7 @@ def render(data: ReportData) -> str:
     meta = data.meta
     engines = ", ".join(f"{k} {v}" for k, v in meta.get("engines", {}).items())
     machine = meta.get("machine", {})
-    revision = str(meta.get("git_revision", "?"))[:12]
+    revision = revision_label(meta)
     lines = [
         "# mbxval report",
         "",
