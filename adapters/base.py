@@ -26,7 +26,6 @@ raises out of `run`.
 from __future__ import annotations
 
 import math
-import time
 import traceback
 import warnings
 from collections.abc import Mapping, Sequence
@@ -35,6 +34,7 @@ from typing import Any, ClassVar, Literal
 
 import numpy as np
 
+from adapters.timing import fastest
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -242,18 +242,13 @@ class Adapter:
         try:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
-                start = time.perf_counter()
-                model = self.build(scenario, setting)
-                build_time = time.perf_counter() - start
-                for _ in range(warmup):
-                    self.simulate(model, grid)
-                best = math.inf
-                trajectory = None
-                for _ in range(max(1, repeats)):
+                build_time, model = fastest(lambda: self.build(scenario, setting))
+
+                def simulate() -> Trajectory:
                     self._steps = 0
-                    start = time.perf_counter()
-                    trajectory = self.simulate(model, grid)
-                    best = min(best, time.perf_counter() - start)
+                    return self.simulate(model, grid)
+
+                best, trajectory = fastest(simulate, repeats, warmup)
         except EngineFailure as failure:
             return RunResult(
                 **base,
@@ -270,7 +265,6 @@ class Adapter:
                 message=_one_line(f"{type(error).__name__}: {error} (at {where.name}:{where.lineno})"),
                 warnings=_texts(caught),
             )
-        assert trajectory is not None
         if not trajectory.is_finite():
             return RunResult(
                 **base,

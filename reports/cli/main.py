@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+import textwrap
 from collections.abc import Callable, Sequence
 
 import numpy as np
@@ -177,7 +178,48 @@ def parser() -> argparse.ArgumentParser:
     export.add_argument("--out", required=True, help="model file to write")
 
     suite_commands.add_parsers(sub)
+    for name, subparser in sub.choices.items():
+        what, example = GUIDE[name]
+        subparser.description, subparser.epilog = textwrap.fill(what, 90), "example:\n  " + example
+        subparser.formatter_class = argparse.RawDescriptionHelpFormatter
     return top
+
+
+GUIDE: dict[str, tuple[str, str]] = {
+    "list": (
+        "Which scenarios exist, which engine can represent each (and why not), and every scenario "
+        "parameter with its default and allowed range.",
+        "mbxval list --stress",
+    ),
+    "solve": (
+        "Solve one scenario with one engine and write its trajectory as CSV: t, then x, y, theta and "
+        "their first and second derivatives for every moving body.",
+        "mbxval solve slider_crank --engine mujoco --set offset=0.05 --steps 100 --out sc.csv",
+    ),
+    "export": (
+        "Write the engine's own model of a scenario, to open in that engine's tools.",
+        "mbxval export four_bar --engine mujoco --out four_bar.xml\n"
+        "  python -m mujoco.viewer --mjcf four_bar.xml",
+    ),
+    "run": (
+        "The main job: run a suite of scenarios on every engine over its settings, store one row per "
+        "run, and write an HTML and a Markdown report. Runs already stored are skipped.",
+        "mbxval run --out mbxval-report --scenario four_bar --engine exudyn",
+    ),
+    "report": (
+        "Render the report again from stored results alone, without running anything.",
+        "mbxval report mbxval-report",
+    ),
+    "check": (
+        "Regression gate for CI: compare results with a committed baseline; exit 1 with one line per "
+        "cell whose status got worse or whose error grew past the factor.",
+        "mbxval check --baseline baselines/default.json",
+    ),
+    "bench": (
+        "Measure the native solver's speed beside the engines (benchmarks, run on demand).",
+        "mbxval bench speed",
+    ),
+}
 
 
 COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
