@@ -19,8 +19,9 @@ from adapters.base import Adapter, OptionValue, Setting
 from reports import suite_commands
 from reports.atomic_write import atomic_output
 from reports.usage import Parser, UsageError, pairs
-from scenarios import Scenario, ScenarioError, catalogue, families
+from scenarios import Scenario, ScenarioError, catalogue, families, load
 from scenarios import build as build_scenario
+from scenarios.files import scenario_toml
 
 
 def _option_value(text: str) -> OptionValue:
@@ -98,7 +99,7 @@ def cmd_list(args: argparse.Namespace) -> int:
 
 
 def cmd_solve(args: argparse.Namespace) -> int:
-    scenario = build_scenario(args.scenario, overrides=pairs(args.set, "--set"))
+    scenario = load(args.scenario, pairs(args.set, "--set"))
     grid = time_grid(scenario, args.t_end, args.steps, args.dt)
     adapter = load_engine(args.engine)
     setting = engine_setting(adapter, scenario, args.mode, args.setting)
@@ -116,7 +117,12 @@ def cmd_solve(args: argparse.Namespace) -> int:
 
 
 def cmd_export(args: argparse.Namespace) -> int:
-    scenario = build_scenario(args.scenario, overrides=pairs(args.set, "--set"))
+    scenario = load(args.scenario, pairs(args.set, "--set"))
+    if args.format == "toml":
+        with atomic_output(args.out) as stream:
+            stream.write(scenario_toml(scenario))
+        print(f"wrote {args.out}")
+        return 0
     adapter = load_engine(args.engine)
     setting = engine_setting(adapter, scenario, args.mode, args.setting)
     reason = adapter.supports(scenario)
@@ -131,9 +137,17 @@ def cmd_export(args: argparse.Namespace) -> int:
 
 
 def _scenario_arguments(parser: argparse.ArgumentParser, engine_default: str) -> None:
-    parser.add_argument("scenario", help="scenario name, or family/variant (see `mbxval list`)")
+    parser.add_argument(
+        "scenario", help="scenario name, family/variant (see `mbxval list`), or a scenario file (.toml)"
+    )
     parser.add_argument("--engine", default=engine_default, help=f"engine (default {engine_default})")
-    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="scenario parameter")
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="family parameter, or a scenario file's value by dotted key path",
+    )
     parser.add_argument("--mode", help="engine mode (for example RK4, implicitfast, kinematic)")
     parser.add_argument(
         "--setting",
@@ -162,6 +176,12 @@ def parser() -> argparse.ArgumentParser:
     export = sub.add_parser("export", help="write the engine's own model file")
     _scenario_arguments(export, "mujoco")
     export.add_argument("--out", required=True, help="model file to write")
+    export.add_argument(
+        "--format",
+        choices=("engine", "toml"),
+        default="engine",
+        help="engine: the engine's own model file; toml: an mbxval scenario file",
+    )
 
     suite_commands.add_parsers(sub)
     return top

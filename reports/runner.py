@@ -29,7 +29,7 @@ from reports.metrics import HEADLINE_DEFINITION, Residual, compared_levels, erro
 from reports.results_store import ResultsStore
 from reports.rows import NOT_RUN, failure_row, result_row
 from scenarios import Scenario, ScenarioError
-from scenarios import build as build_scenario
+from scenarios import load as build_scenario
 from scenarios.trajectory import Trajectory
 
 TRUTH_TOLERANCE = 1e-12

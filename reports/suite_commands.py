@@ -15,7 +15,7 @@ from reports.results_store import ResultsStore, read_results
 from reports.runner import Runner, RunOptions
 from reports.suites import Suite
 from reports.usage import UsageError
-from scenarios import build as build_scenario
+from scenarios import load as build_scenario
 
 DEFAULT_OUT = "mbxval-report"
 

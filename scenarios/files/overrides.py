@@ -7,10 +7,11 @@ text is read as a TOML value (`2`, `0.5`, `[0, 0.1]`, `true`), else kept as a st
 
 from __future__ import annotations
 
-import difflib
 import tomllib
 from collections.abc import Callable, Mapping
 from typing import Any, NoReturn
+
+from scenarios.files.schema import suggestion
 
 
 def override_value(text: object) -> object:
@@ -52,9 +53,7 @@ def apply_overrides(
             elif isinstance(node, dict):
                 index = part
                 if part not in node and not last:
-                    close = difflib.get_close_matches(part, list(node), n=1)
-                    hint = f" (did you mean '{close[0]}'?)" if close else ""
-                    fail(where, f"no key '{part}'{hint}")
+                    fail(where, f"no key '{part}'{suggestion(part, list(node))}")
             else:
                 fail(where, f"'{'.'.join(parts[:depth])}' holds a value, not a table")
             if last:

@@ -7,7 +7,6 @@ Every problem is one ScenarioFileError whose message names the file, the key pat
 from __future__ import annotations
 
 import dataclasses
-import difflib
 import tomllib
 from collections.abc import Mapping
 from pathlib import Path
@@ -28,18 +27,13 @@ from scenarios.files.schema import (
     Key,
     Kind,
     in_range,
+    suggestion,
 )
 from scenarios.scenario import LEVELS, Scenario, ScenarioError
 
 
 class ScenarioFileError(ScenarioError):
     """A scenario file that cannot be read: the message is `FILE: KEY.PATH: what is wrong`."""
-
-
-def suggestion(word: str, choices: list[str]) -> str:
-    """` (did you mean 'x'?)` for the closest choice, or nothing."""
-    close = difflib.get_close_matches(word, choices, n=1)
-    return f" (did you mean '{close[0]}'?)" if close else ""
 
 
 def toml_type(value: object) -> str:

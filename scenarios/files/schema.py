@@ -7,6 +7,7 @@ format for people; the reader and the writer both work from these declarations a
 
 from __future__ import annotations
 
+import difflib
 import itertools
 import math
 from collections.abc import Callable, Mapping
@@ -268,3 +269,9 @@ def kind_name(obj: object, kinds: Mapping[str, Kind]) -> str:
         if type(obj) is kind.cls:
             return name
     raise TypeError(f"no scenario-file kind for {type(obj).__name__}")
+
+
+def suggestion(word: str, choices: list[str]) -> str:
+    """` (did you mean 'x'?)` for the closest choice, or nothing."""
+    close = difflib.get_close_matches(word, choices, n=1)
+    return f" (did you mean '{close[0]}'?)" if close else ""
