@@ -47,9 +47,7 @@ def apply_overrides(
                 index = _element(node, part)
                 if index is None:
                     names = [str(i.get("name")) for i in node if isinstance(i, dict)]
-                    fail(
-                        where, f"no element '{part}' in {'.'.join(parts[:depth])}; names: {', '.join(names)}"
-                    )
+                    fail(where, f"no element '{part}'{suggestion(part, names)}; names: {', '.join(names)}")
             elif isinstance(node, dict):
                 index = part
                 if part not in node and not last:
