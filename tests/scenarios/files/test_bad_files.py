@@ -14,6 +14,7 @@ SLIDER_CRANK = scenario_toml(scenarios.build("slider_crank"))
 CAM = scenario_toml(scenarios.build("cam_roller"))
 GEARS = scenario_toml(scenarios.build("spur_gears"))
 DRIVE = 'motion = { kind = "constant_speed", start = 0.3, rate = 50.0 }'
+TABULATED = 'motion = { kind = "tabulated", times = [0.0, 1.0, 2.0]'
 ROLLER = 'profile = { kind = "eccentric_disc", radius = 0.05, eccentricity = 0.01 }'
 
 # (base text, text replaced, replacement, expected message after "my.toml: ")
@@ -248,19 +249,19 @@ CASES = {
     "tabulated values and times differ in length": (
         SLIDER_CRANK,
         DRIVE,
-        'motion = { kind = "tabulated", times = [0.0, 1.0, 2.0], values = [0.0, 1.0, 2.0, 3.0] }',
+        TABULATED + ", values = [0.0, 1.0, 2.0, 3.0] }",
         "drivers[0].motion.values: has 4 entries for 3 times",
     ),
     "periodic law that does not close": (
         SLIDER_CRANK,
         DRIVE,
-        'motion = { kind = "tabulated", times = [0.0, 1.0, 2.0], values = [0.0, 1.0, 0.5], ends = "periodic" }',
+        TABULATED + ', values = [0.0, 1.0, 0.5], ends = "periodic" }',
         "drivers[0].motion.values: a periodic law must end where it starts",
     ),
     "unknown spline end condition": (
         SLIDER_CRANK,
         DRIVE,
-        'motion = { kind = "tabulated", times = [0.0, 1.0, 2.0], values = [0.0, 1.0, 0.0], ends = "natural" }',
+        TABULATED + ', values = [0.0, 1.0, 0.0], ends = "natural" }',
         "drivers[0].motion.ends: unknown value 'natural'",
     ),
     "missing profile csv": (
