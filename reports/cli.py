@@ -20,7 +20,6 @@ from reports import suite_commands
 from reports.atomic_write import atomic_output
 from reports.usage import Parser, UsageError, pairs
 from scenarios import Scenario, ScenarioError, catalogue, families, load
-from scenarios import build as build_scenario
 from scenarios.files import scenario_toml
 
 
@@ -75,12 +74,12 @@ def cmd_list(args: argparse.Namespace) -> int:
         except adapters.EngineUnavailable as error:
             print(f"engine {name}: unavailable ({error})")
     print("engines: " + ", ".join(f"{n} {a._safe_version()}" for n, a in engines.items()))
-    names = catalogue(include_stress=args.stress)
+    names = args.scenarios or catalogue(include_stress=args.stress)
     width = max(len(n) for n in names) + 2
     print("\n" + "scenario".ljust(width) + "".join(e.ljust(12) for e in engines))
     reasons: list[str] = []
     for name in names:
-        scenario = build_scenario(name)
+        scenario = load(name)
         cells = []
         for engine, adapter in engines.items():
             reason = adapter.supports(scenario)
@@ -92,6 +91,8 @@ def cmd_list(args: argparse.Namespace) -> int:
         print(name.ljust(width) + "".join(c.ljust(12) for c in cells))
     if reasons:
         print("\n" + "\n".join(reasons))
+    if args.scenarios:
+        return 0
     print("\nparameters (defaults); set them with --set NAME=VALUE:")
     for fam in families().values():
         print(f"  {fam.name}: " + " ".join(f"{k}={v}" for k, v in fam.defaults.items()))
@@ -164,6 +165,7 @@ def parser() -> argparse.ArgumentParser:
 
     listing = sub.add_parser("list", help="scenarios, variants, engines and what each supports")
     listing.add_argument("--stress", action="store_true", help="include the stress variants")
+    listing.add_argument("scenarios", nargs="*", help="only these scenarios or scenario files (.toml)")
 
     solve = sub.add_parser("solve", help="one trajectory as CSV")
     _scenario_arguments(solve, "reference")

@@ -95,3 +95,12 @@ def test_mobility_errors_name_the_files_constraints(tmp_path: Path, capsys) -> N
 def test_missing_file(capsys) -> None:  # type: ignore[no-untyped-def]
     code, out, err = run(capsys, "solve", "no/such/file.toml")
     assert code == 2 and out == "" and err.startswith("mbxval: error: no/such/file.toml: cannot read")
+
+
+def test_list_takes_files_and_names(capsys) -> None:  # type: ignore[no-untyped-def]
+    example = str(EXAMPLES / "watt_six_bar.toml")
+    code, out, err = run(capsys, "list", example, "four_bar")
+    assert code == 0
+    rows = [line.split()[0] for line in out.splitlines() if line.startswith((example, "four_bar"))]
+    assert rows == [example, "four_bar"]
+    assert "parameters (defaults)" not in out
