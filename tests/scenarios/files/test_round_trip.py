@@ -5,14 +5,20 @@ from __future__ import annotations
 
 import math
 import tomllib
+import typing
 
 import numpy as np
 import pytest
 
 import scenarios
 from reference_solver import solve
-from scenarios.files import parse_scenario, scenario_toml
+from scenarios.cam_profiles import Profile
+from scenarios.cams import CamContact
+from scenarios.drivers import Driver
+from scenarios.files import parse_scenario, scenario_toml, schema
 from scenarios.files.writer import toml_value
+from scenarios.joints import Joint
+from scenarios.motions import Motion
 
 LEVELS = ("position", "velocity", "acceleration")
 
@@ -81,3 +87,25 @@ def test_new_motion_laws_round_trip_and_drive_the_native_solver() -> None:
             got = solved.level(level)
             assert got is not None
             np.testing.assert_allclose(got[:, 0, 2], [values(x) for x in t], atol=1e-12)
+
+
+def test_the_format_has_a_kind_for_every_class_of_the_vocabulary() -> None:
+    """A class added to the vocabulary without a kind in the schema could not be written."""
+    expected = {
+        "joints": {
+            *typing.get_args(Joint),
+            *typing.get_args(CamContact),
+            scenarios.GearPair,
+            scenarios.RackPinion,
+        },
+        "drivers": set(typing.get_args(Driver)),
+        "motions": set(typing.get_args(Motion)),
+        "profiles": set(typing.get_args(Profile)),
+    }
+    declared = {
+        "joints": {k.cls for k in schema.JOINTS.values()},
+        "drivers": {k.cls for k in schema.DRIVERS.values()},
+        "motions": {k.cls for k in schema.MOTIONS.values()},
+        "profiles": {k.cls for k in schema.PROFILES.values()},
+    }
+    assert declared == expected
