@@ -14,6 +14,7 @@ from typing import Any, NoReturn
 
 from scenarios.bodies import GROUND, Body, Point
 from scenarios.files.overrides import apply_overrides
+from scenarios.files.profile_csv import read_radii
 from scenarios.files.schema import (
     BODY_KEYS,
     FORMAT,
@@ -206,22 +207,15 @@ class Reader:
         return spec.cls(**values)
 
     def csv_table(self, raw: object, path: str) -> list[float]:
-        """A spline profile's radii from a CSV file: one radius per line, an optional header line."""
+        """A spline profile's radii from a CSV file named relative to the scenario file."""
         if not isinstance(raw, str):
             self.fail(path, f"expected a file path, got {toml_type(raw)}")
-        file = self.directory / raw
         try:
-            lines = [line.strip() for line in file.read_text().splitlines() if line.strip()]
+            return read_radii(self.directory / raw)
         except OSError as error:
-            self.fail(path, f"cannot read {file}: {error.strerror or error}")
-        radii: list[float] = []
-        for number, line in enumerate(lines, start=1):
-            try:
-                radii.append(float(line.split(",")[-1]))
-            except ValueError:
-                if number > 1:
-                    self.fail(path, f"{file} line {number}: not a number: {line!r}")
-        return radii
+            self.fail(path, f"cannot read {self.directory / raw}: {error.strerror or error}")
+        except ValueError as error:
+            self.fail(path, str(error))
 
 
 def join(path: str, key: str) -> str:
