@@ -4,39 +4,35 @@ driven by each driver kind solved natively from its file."""
 
 from __future__ import annotations
 
+import dataclasses
+from typing import Any
+
 import numpy as np
 
 from reference_solver import solve
-from scenarios import (
-    GROUND,
+from scenarios.bodies import GROUND, Body, Point
+from scenarios.cam_profiles import LobedProfile, SplineProfile
+from scenarios.cams import FlatFaceCam, KnifeEdgeCam, RollerCam
+from scenarios.drivers import (
     AbsoluteDriver,
-    Body,
-    Constant,
-    FlatFaceCam,
-    GearPair,
-    Ground,
-    Harmonic,
-    KnifeEdgeCam,
-    LobedProfile,
-    Point,
     PointPathDriver,
-    Polynomial,
-    Prismatic,
-    RackPinion,
     RelativeDisplacementDriver,
     RelativeRotationDriver,
-    Revolute,
-    RevoluteRevolute,
-    RollerCam,
-    Scenario,
-    SplineProfile,
-    TabulatedLaw,
 )
 from scenarios.files import parse_scenario, scenario_toml
+from scenarios.gears import GearPair, RackPinion
+from scenarios.joints import Ground, Prismatic, Revolute, RevoluteRevolute
+from scenarios.motion_laws import Polynomial, TabulatedLaw
+from scenarios.motions import Constant, Harmonic
+from scenarios.scenario import Scenario
 
 BODIES = tuple(
     Body(n, (0.1 * k, -0.2 * k, 0.3 * k), 0.5 + k, 1e-3 * (k + 1), 0.1 * k) for k, n in enumerate("abcd")
 )
+
+
+def _scenario(name: str, joints: tuple[Any, ...], drivers: tuple[Any, ...]) -> Scenario:
+    return Scenario(name, "default", BODIES, joints, drivers, t_end=1.2, steps=24, characteristic_length=0.1)
 
 
 def test_every_joint_and_optional_key_round_trips() -> None:
@@ -81,20 +77,14 @@ def test_every_joint_and_optional_key_round_trips() -> None:
             TabulatedLaw((0.0, 0.5, 1.0), (0.0, 0.2, 0.1), "clamped", (0.3, -0.1)),
         ),
     )
-    scenario = Scenario(
-        family="every_kind",
+    scenario = dataclasses.replace(
+        _scenario("every_kind", joints, drivers),
         variant="v2",
-        bodies=BODIES,
-        joints=joints,
-        drivers=drivers,
-        t_end=1.5,
-        steps=7,
-        characteristic_length=0.05,
         outputs=("b", "d"),
         levels=("position", "velocity"),
-        parameters=(("note", "synthetic"), ("count", 3), ("scale", 0.5)),
-        description='kinds "no family" uses',
     )
+    parameters = (("note", "synthetic"), ("count", 3), ("scale", 0.5))
+    scenario = dataclasses.replace(scenario, parameters=parameters, description='kinds "no family" uses')
     assert parse_scenario(scenario_toml(scenario)) == scenario
 
 
@@ -102,24 +92,15 @@ def test_every_driver_kind_solves_from_its_file() -> None:
     """a is fixed by a ground joint; b turns about it by a relative rotation; c's point follows a
     path with c's angle held; d keeps a prescribed offset from c and turns with it."""
     x_law = TabulatedLaw((0.0, 0.4, 1.0), (0.2, 0.3, 0.25), "clamped", (0.0, 0.0))
-    scenario = Scenario(
-        family="drivers",
-        variant="default",
-        bodies=BODIES,
-        joints=(Ground("fix", "a", (0.0, 0.0, 0.0)), Revolute("hinge", Point("a"), Point("b", (-0.1, 0.0)))),
-        drivers=(
-            RelativeRotationDriver("turn", "b", "a", Polynomial((0.1, 0.5, -0.2))),
-            PointPathDriver("path", Point("c", (0.05, 0.0)), x_law, Harmonic(0.1, 0.05, 4.0)),
-            AbsoluteDriver("hold", "c", "theta", Constant(0.0)),
-            RelativeDisplacementDriver(
-                "offset", Point("d"), Point("c"), Constant(0.2), Polynomial((0.0, 0.1))
-            ),
-            RelativeRotationDriver("with_c", "d", "c", Constant(0.0)),
-        ),
-        t_end=1.2,
-        steps=24,
-        characteristic_length=0.1,
+    joints = (Ground("fix", "a", (0.0, 0.0, 0.0)), Revolute("hinge", Point("a"), Point("b", (-0.1, 0.0))))
+    drivers = (
+        RelativeRotationDriver("turn", "b", "a", Polynomial((0.1, 0.5, -0.2))),
+        PointPathDriver("path", Point("c", (0.05, 0.0)), x_law, Harmonic(0.1, 0.05, 4.0)),
+        AbsoluteDriver("hold", "c", "theta", Constant(0.0)),
+        RelativeDisplacementDriver("offset", Point("d"), Point("c"), Constant(0.2), Polynomial((0.0, 0.1))),
+        RelativeRotationDriver("with_c", "d", "c", Constant(0.0)),
     )
+    scenario = _scenario("drivers", joints, drivers)
     from_file = parse_scenario(scenario_toml(scenario))
     solved, direct = solve(from_file), solve(scenario)
     for level in ("position", "velocity", "acceleration"):
