@@ -13,7 +13,7 @@ from typing import Any
 
 from scenarios.bodies import Body, Point
 from scenarios.files.schema import FORMAT, MOTIONS, PROFILES, SECTIONS, Kind, kind_name
-from scenarios.scenario import LEVELS, Scenario
+from scenarios.scenario import LEVELS, Scenario, ScenarioError
 
 
 def toml_value(value: Any) -> str:
@@ -75,8 +75,31 @@ def _body(body: Body) -> dict[str, Any]:
     return {"name": body.name, **{k: v for k, v in _fields(body).items() if k != "name"}}
 
 
+WRITTEN = frozenset(
+    {"family", "variant", "description", "t_end", "steps", "characteristic_length", "outputs", "levels"}
+    | {"parameters", "bodies", "joints", "drivers"}
+)
+"""The Scenario fields format 1 holds. Any other field with a value off its default is refused, so
+that a file never silently drops part of a scenario."""
+
+
+def _default(field: dataclasses.Field[Any]) -> Any:
+    if field.default_factory is not dataclasses.MISSING:
+        return field.default_factory()
+    return field.default
+
+
+def _refuse_unwritten(scenario: Scenario) -> None:
+    for field in dataclasses.fields(scenario):
+        if field.name not in WRITTEN and getattr(scenario, field.name) != _default(field):
+            raise ScenarioError(
+                f"{scenario.name}: scenario files (format {FORMAT}) cannot hold {field.name} yet"
+            )
+
+
 def scenario_toml(scenario: Scenario) -> str:
     """The scenario file text that reads back as `scenario`."""
+    _refuse_unwritten(scenario)
     lines = [
         "# mbxval scenario file (see docs/scenario-files.md)",
         f"format = {FORMAT}",

@@ -3,6 +3,7 @@ native solver gives bit-identical results from the file."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import tomllib
 import typing
@@ -109,3 +110,15 @@ def test_the_format_has_a_kind_for_every_class_of_the_vocabulary() -> None:
         "profiles": {k.cls for k in schema.PROFILES.values()},
     }
     assert declared == expected
+
+
+def test_a_field_the_format_cannot_hold_is_refused_not_dropped() -> None:
+    @dataclasses.dataclass(frozen=True)
+    class WithGravity(scenarios.Scenario):
+        gravity: tuple[float, float] = (0.0, 0.0)
+
+    plain = scenarios.build("slider_crank")
+    fields = {f.name: getattr(plain, f.name) for f in dataclasses.fields(plain)}
+    assert parse_scenario(scenario_toml(WithGravity(**fields))) == plain
+    with pytest.raises(scenarios.ScenarioError, match="cannot hold gravity"):
+        scenario_toml(WithGravity(**fields, gravity=(0.0, -9.81)))
