@@ -19,7 +19,7 @@ from adapters.base import Adapter, OptionValue, Setting
 from reports import suite_commands
 from reports.atomic_write import atomic_output
 from reports.usage import Parser, UsageError, pairs
-from scenarios import Scenario, ScenarioError, catalogue, families, load
+from scenarios import Scenario, ScenarioError, all_families, catalogue, load
 from scenarios.files import scenario_toml
 
 
@@ -93,9 +93,11 @@ def cmd_list(args: argparse.Namespace) -> int:
         print("\n" + "\n".join(reasons))
     if args.scenarios:
         return 0
-    print("\nparameters (defaults); set them with --set NAME=VALUE:")
-    for fam in families().values():
-        print(f"  {fam.name}: " + " ".join(f"{k}={v}" for k, v in fam.defaults.items()))
+    print("\nparameters: default and range; set them with --set NAME=VALUE:")
+    for fam in all_families().values():
+        print(f"  {fam.name}:")
+        for key, parameter in fam.parameters.items():
+            print(f"    {key}={parameter.default}  ({parameter.describe()})")
     return 0
 
 
@@ -160,7 +162,13 @@ def _scenario_arguments(parser: argparse.ArgumentParser, engine_default: str) ->
 
 
 def parser() -> argparse.ArgumentParser:
-    top = Parser(prog="mbxval", description=__doc__.splitlines()[0])
+    top = Parser(
+        prog="mbxval",
+        description="Cross-validate planar multibody kinematics: solve the same mechanism with a "
+        "reference solver and several engines, and compare their errors.",
+        epilog="example: mbxval list; mbxval solve four_bar --out four_bar.csv; "
+        "mbxval run --out results; mbxval report results",
+    )
     sub = top.add_subparsers(dest="command", required=True, parser_class=Parser)
 
     listing = sub.add_parser("list", help="scenarios, variants, engines and what each supports")

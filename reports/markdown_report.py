@@ -2,23 +2,12 @@
 
 from __future__ import annotations
 
-import pandas as pd
-
 from reports import stability_render
+from reports.markdown_table import markdown_table
 from reports.report_data import HEADINGS, ReportData, number, table
 
 SHOWN = ("engine", "setting", "status", "error", "constraint_residual", "run_time", "message")
 SUMMARY_COLUMNS = tuple(HEADINGS.get(c, c) for c in SHOWN)
-
-
-def markdown_table(frame: pd.DataFrame, index_name: str | None = None) -> str:
-    """A GitHub-flavoured Markdown table (pipes in cells escaped)."""
-    columns = ([index_name] if index_name else []) + [str(c) for c in frame.columns]
-    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
-    for index, row in frame.iterrows():
-        cells = ([str(index)] if index_name else []) + [str(v) for v in row]
-        lines.append("| " + " | ".join(c.replace("|", "\\|").replace("\n", " ") for c in cells) + " |")
-    return "\n".join(lines)
 
 
 def render(data: ReportData) -> str:

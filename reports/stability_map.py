@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from reports.branch_check import LOST, ON_CLOSURE, BranchCheck, check_branch
+from reports.branch_check import LOST, ON_CLOSURE, check_branch
 from reports.metrics import headline_series
 from reports.report_data import ReportData
 from reports.stress_cases import CASES
@@ -174,9 +174,3 @@ def _false_alarm(truth: Trajectory | None, time: float) -> str:
     if math.isfinite(end) and end > time:
         return f"the truth goes on regular past {time:.4g} s, to {end:.4g} s (a false alarm or a jump)"
     return ""
-
-
-def branch_summary(check: BranchCheck) -> str:
-    """One line on what a branch check found (for tests and debugging)."""
-    kinds = sorted({p.kind for p in check.points})
-    return ", ".join(kinds) or "same"

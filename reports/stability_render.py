@@ -22,6 +22,7 @@ import pandas as pd
 
 from reference_solver import constraint_residual
 from reports.branch_check import LOST
+from reports.markdown_table import markdown_table
 from reports.metrics import headline_series
 from reports.report_data import ReportData
 from reports.stability_map import Verdict, verdicts
@@ -231,8 +232,6 @@ def _tables(data: ReportData) -> list[tuple[str, pd.DataFrame]]:
 
 def markdown_section(data: ReportData) -> str:
     """The stability map in Markdown ("" without stress results)."""
-    from reports.markdown_report import markdown_table
-
     tables = _tables(data)
     if not tables:
         return ""

@@ -14,7 +14,7 @@ from scenarios.joints import Ground, Prismatic, Revolute, RevoluteRevolute
 from scenarios.loading import load
 from scenarios.motion_laws import Polynomial, TabulatedLaw
 from scenarios.motions import Constant, ConstantSpeed, Harmonic
-from scenarios.registry import build, catalogue, families, family
+from scenarios.registry import all_families, build, catalogue, family
 from scenarios.scenario import LEVELS, Scenario, ScenarioError
 from scenarios.trajectory import Trajectory
 
@@ -47,9 +47,9 @@ __all__ = [
     "SplineProfile",
     "TabulatedLaw",
     "Trajectory",
+    "all_families",
     "build",
     "catalogue",
-    "families",
     "family",
     "load",
 ]

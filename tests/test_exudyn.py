@@ -20,13 +20,13 @@ from typing import Any
 
 import numpy as np
 import pytest
-from scenarios.closed_form import exact
 
 import reference_solver
 import scenarios
 from adapters.base import Setting
 from adapters.exudyn import ExudynAdapter
 from scenarios import Point, RevoluteRevolute, Scenario, Trajectory
+from scenarios.closed_form import exact
 from scenarios.scenario import Level
 
 ADAPTER = ExudynAdapter()

@@ -14,7 +14,6 @@ import math
 
 import numpy as np
 import pytest
-from tests.support.mechanisms import differential_train
 
 import reference_solver
 from adapters.base import Setting
@@ -36,6 +35,7 @@ from scenarios import (
     RevoluteRevolute,
     Scenario,
 )
+from tests.support.mechanisms import differential_train
 
 ADAPTER = ExudynAdapter()
 

@@ -16,8 +16,6 @@ import math
 import mujoco
 import numpy as np
 import pytest
-from scenarios.closed_form import exact
-from tests.support.mechanisms import differential_train
 
 import scenarios
 from adapters.base import Setting
@@ -30,6 +28,8 @@ from scenarios import (
     RevoluteRevolute,
     Scenario,
 )
+from scenarios.closed_form import exact
+from tests.support.mechanisms import differential_train
 
 ADAPTER = MujocoAdapter()
 

@@ -13,11 +13,11 @@ import math
 
 import numpy as np
 import pytest
-from scenarios.closed_form import exact
 
 import scenarios
 from adapters.mujoco import MujocoAdapter
 from scenarios import Scenario
+from scenarios.closed_form import exact
 
 ADAPTER = MujocoAdapter()
 SHORT = {"revolutions": 0.25, "steps": 10}

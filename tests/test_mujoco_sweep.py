@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scenarios.closed_form import exact
 
 import scenarios
 from adapters.mujoco import MujocoAdapter, engine_step
+from scenarios.closed_form import exact
 
 ADAPTER = MujocoAdapter()
 

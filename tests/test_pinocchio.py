@@ -11,12 +11,12 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import pytest
-from scenarios.closed_form import exact
 
 import scenarios
 from adapters import load
 from adapters.pinocchio import PinocchioAdapter
 from reference_solver import solve
+from scenarios.closed_form import exact
 
 BOUNDS = {"position": 1e-12, "velocity": 1e-11, "acceleration": 1e-10}
 PHI_BOUND = 1e-12

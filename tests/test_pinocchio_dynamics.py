@@ -13,10 +13,10 @@ import dataclasses
 
 import numpy as np
 import pytest
-from scenarios.closed_form import exact
 
 import scenarios
 from adapters.pinocchio import PinocchioAdapter
+from scenarios.closed_form import exact
 
 LEVELS = ("position", "velocity", "acceleration")
 BOUNDS = {

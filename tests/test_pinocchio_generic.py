@@ -11,7 +11,6 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
-from scenarios.closed_form import exact
 
 import scenarios
 from adapters.pinocchio import PinocchioAdapter
@@ -28,6 +27,7 @@ from scenarios import (
     RevoluteRevolute,
     Scenario,
 )
+from scenarios.closed_form import exact
 
 LEVELS = ("position", "velocity", "acceleration")
 BOUNDS = (1e-12, 1e-11, 1e-9)

@@ -7,10 +7,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scenarios.closed_form import exact
 
 import scenarios
 from adapters.pinocchio import PinocchioAdapter
+from scenarios.closed_form import exact
 
 SHORT = {"revolutions": 0.25, "steps": 20}
 

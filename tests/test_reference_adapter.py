@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import numpy as np
-from scenarios.closed_form import exact
 
 import adapters
 import scenarios
 from adapters.base import Setting
+from scenarios.closed_form import exact
 
 
 def test_reference_runs_through_the_contract() -> None:

@@ -8,10 +8,10 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
-from tests.support.fake_engine import BAD, GOOD, fake_loader, fake_truth
 
 from reports.results_store import TRUTH, ResultsStore, read_results, read_trajectories
 from reports.runner import Runner, RunOptions
+from tests.support.fake_engine import BAD, GOOD, fake_loader, fake_truth
 
 SCENARIO = "slider_crank"
 OPTIONS = RunOptions(repeats=2, warmup=1, timeout=1.5)

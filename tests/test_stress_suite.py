@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scenarios.closed_form import exact
 
 import adapters
 import scenarios
@@ -13,6 +12,7 @@ from reference_solver import solve
 from reports import suites
 from reports.stress_cases import CASES, NOMINAL_SPEED
 from reports.stress_truth import partial_truth, stress_truth
+from scenarios.closed_form import exact
 from scenarios.scenario import LEVELS
 from scenarios.trajectory import Trajectory
 

@@ -99,7 +99,7 @@ def test_missing_file(capsys) -> None:  # type: ignore[no-untyped-def]
 
 def test_list_takes_files_and_names(capsys) -> None:  # type: ignore[no-untyped-def]
     example = str(EXAMPLES / "watt_six_bar.toml")
-    code, out, err = run(capsys, "list", example, "four_bar")
+    code, out, _ = run(capsys, "list", example, "four_bar")
     assert code == 0
     rows = [line.split()[0] for line in out.splitlines() if line.startswith((example, "four_bar"))]
     assert rows == [example, "four_bar"]

@@ -6,8 +6,8 @@ import math
 
 from scenarios.bodies import Point
 from scenarios.cams import KnifeEdgeCam
-from scenarios.disc_cam import DEFAULTS, SPLINE_VARIANTS, build_disc_cam
-from scenarios.registry import Family
+from scenarios.families.disc_cam import PARAMETERS, SPLINE_VARIANTS, build_disc_cam
+from scenarios.family import Family
 from scenarios.scenario import ParameterValue, Scenario
 
 
@@ -24,7 +24,7 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
 FAMILY = Family(
     name="cam_knife_edge",
     summary="driven disc cam, translating knife-edge follower",
-    defaults=DEFAULTS,
+    parameters=PARAMETERS,
     build=_build,
     variants={
         **SPLINE_VARIANTS,

@@ -6,11 +6,11 @@ import math
 
 import numpy as np
 import pytest
-from scenarios.closed_form import exact
 
 import scenarios
 from reference_solver import solve
 from scenarios import ScenarioError
+from scenarios.closed_form import exact
 
 
 @pytest.mark.parametrize("loops", [1, 4, 40])

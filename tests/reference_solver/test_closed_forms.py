@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scenarios.closed_form import exact
 
 import scenarios
 from reference_solver import solve
+from scenarios.closed_form import exact
 
 DISC_SCENARIOS = [name for name in scenarios.catalogue() if "spline" not in name]
 LEVELS = ("position", "velocity", "acceleration")

@@ -11,16 +11,14 @@ import math
 
 from scenarios.bodies import GROUND, Body, Point
 from scenarios.drivers import AbsoluteDriver
+from scenarios.family import Family, angle, choice, length, speed, time_grid
 from scenarios.gears import GearPair
 from scenarios.joints import Revolute
 from scenarios.motions import ConstantSpeed
-from scenarios.registry import Family
 from scenarios.scenario import (
     ParameterValue,
     Scenario,
     ScenarioError,
-    require_finite,
-    require_positive,
     revolving,
 )
 
@@ -34,12 +32,6 @@ def gear_body(name: str, centre: tuple[float, float], radius: float, angle: floa
 def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     r1, r2 = float(p["radius_in"]), float(p["radius_out"])
     omega, theta0, mesh = float(p["omega"]), float(p["theta0"]), str(p["mesh"])
-    require_positive("spur_gears", radius_in=r1, radius_out=r2, revolutions=float(p["revolutions"]))
-    require_finite("spur_gears", omega=omega, theta0=theta0)
-    if omega == 0.0:
-        raise ScenarioError("spur_gears: omega must be non-zero")
-    if mesh not in ("external", "internal"):
-        raise ScenarioError(f"spur_gears: mesh must be 'external' or 'internal', got '{mesh}'")
     internal = mesh == "internal"
     if internal and r2 <= r1:
         raise ScenarioError(f"spur_gears: an internal mesh needs radius_out > radius_in, got {r2} <= {r1}")
@@ -62,14 +54,13 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
 FAMILY = Family(
     name="spur_gears",
     summary="two spur gears on fixed centres, external or internal mesh",
-    defaults={
-        "radius_in": 0.05,
-        "radius_out": 0.15,
-        "omega": 10.0,
-        "theta0": 0.0,
-        "mesh": "external",
-        "revolutions": 1.0,
-        "steps": 200,
+    parameters={
+        "radius_in": length(0.05),
+        "radius_out": length(0.15),
+        "omega": speed(10.0),
+        "theta0": angle(0.0),
+        "mesh": choice("external", "internal"),
+        **time_grid(),
     },
     build=_build,
     variants={

@@ -10,29 +10,22 @@ import math
 
 from scenarios.bodies import GROUND, Point
 from scenarios.drivers import AbsoluteDriver
-from scenarios.four_bar import link
+from scenarios.families.four_bar import link
+from scenarios.families.spur_gears import gear_body
+from scenarios.family import Family, angle, length, speed, time_grid
 from scenarios.gears import GearPair
 from scenarios.joints import Revolute
 from scenarios.motions import ConstantSpeed
-from scenarios.registry import Family
 from scenarios.scenario import (
     ParameterValue,
     Scenario,
-    ScenarioError,
-    require_finite,
-    require_positive,
     revolving,
 )
-from scenarios.spur_gears import gear_body
 
 
 def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     rs, rp = float(p["radius_sun"]), float(p["radius_planet"])
     omega, theta0 = float(p["omega"]), float(p["theta0"])
-    require_positive("planetary_gears", radius_sun=rs, radius_planet=rp, revolutions=float(p["revolutions"]))
-    require_finite("planetary_gears", omega=omega, theta0=theta0)
-    if omega == 0.0:
-        raise ScenarioError("planetary_gears: omega must be non-zero")
     arm_length = rs + rp
     end = (arm_length * math.cos(theta0), arm_length * math.sin(theta0))
     bodies = (link("arm", (0.0, 0.0), end, arm_length), gear_body("planet", end, rp, 0.0))
@@ -58,13 +51,12 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
 FAMILY = Family(
     name="planetary_gears",
     summary="fixed sun, driven arm and a planet",
-    defaults={
-        "radius_sun": 0.06,
-        "radius_planet": 0.03,
-        "omega": 10.0,
-        "theta0": 0.0,
-        "revolutions": 1.0,
-        "steps": 200,
+    parameters={
+        "radius_sun": length(0.06),
+        "radius_planet": length(0.03),
+        "omega": speed(10.0),
+        "theta0": angle(0.0),
+        **time_grid(),
     },
     build=_build,
     variants={},

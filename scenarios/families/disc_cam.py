@@ -18,27 +18,23 @@ from scenarios.bodies import GROUND, Body, Point
 from scenarios.cam_profiles import EccentricDisc, LobedProfile, Profile, SplineProfile
 from scenarios.cams import CamContact
 from scenarios.drivers import AbsoluteDriver
+from scenarios.family import MAX_LENGTH, Parameter, angle, choice, count, length, speed, time_grid
 from scenarios.joints import Prismatic, Revolute
 from scenarios.motions import ConstantSpeed
-from scenarios.scenario import (
-    ParameterValue,
-    Scenario,
-    ScenarioError,
-    require_finite,
-    require_positive,
-    revolving,
-)
+from scenarios.scenario import ParameterValue, Scenario, ScenarioError, revolving
 
-DEFAULTS: dict[str, ParameterValue] = {
-    "radius": 0.05,
-    "eccentricity": 0.01,
-    "omega": 10.0,
-    "theta0": 0.0,
-    "profile": "disc",
-    "knots": 72,
-    "lobes": 3,
-    "revolutions": 1.0,
-    "steps": 200,
+MAX_KNOTS = 10_000
+MAX_LOBES = 100
+
+PARAMETERS: dict[str, Parameter] = {
+    "radius": length(0.05),
+    "eccentricity": Parameter(0.01, "m", low=0.0, high=MAX_LENGTH),
+    "omega": speed(10.0),
+    "theta0": angle(0.0),
+    "profile": choice("disc", "spline", "lobed"),
+    "knots": count(72, 4, MAX_KNOTS),
+    "lobes": count(3, 1, MAX_LOBES),
+    **time_grid(),
 }
 
 SPLINE_VARIANTS: dict[str, dict[str, ParameterValue]] = {"spline": {"profile": "spline"}}
@@ -57,10 +53,6 @@ def build_disc_cam(
     `contact(profile, phi_guess)` the cam contact."""
     big_r, e = float(p["radius"]), float(p["eccentricity"])
     omega, theta0 = float(p["omega"]), float(p["theta0"])
-    require_positive(family, radius=big_r, revolutions=float(p["revolutions"]))
-    require_finite(family, eccentricity=e, omega=omega, theta0=theta0)
-    if omega == 0.0:
-        raise ScenarioError(f"{family}: omega must be non-zero")
     if not 0.0 <= e < big_r:
         raise ScenarioError(f"{family}: eccentricity must be in [0, radius), got {e}")
     disc = EccentricDisc(big_r, e)
@@ -69,17 +61,9 @@ def build_disc_cam(
     if kind == "disc":
         profile = disc
     elif kind == "spline":
-        knots = int(p["knots"])
-        if knots < 4:
-            raise ScenarioError(f"{family}: knots must be at least 4, got {knots}")
-        profile = SplineProfile.sample(disc, knots)
-    elif kind == "lobed":
-        lobes = int(p["lobes"])
-        if lobes < 1:
-            raise ScenarioError(f"{family}: lobes must be at least 1, got {lobes}")
-        profile = LobedProfile(big_r, e, lobes)
-    else:
-        raise ScenarioError(f"{family}: profile must be 'disc' or 'spline' or 'lobed', got '{kind}'")
+        profile = SplineProfile.sample(disc, int(p["knots"]))
+    else:  # lobed, the only other choice the declaration admits
+        profile = LobedProfile(big_r, e, int(p["lobes"]))
     # The follower's guess: the disc's closed form, or for a lobed cam that of a centred disc of the
     # profile's radius where the follower's axis meets it.
     height = (

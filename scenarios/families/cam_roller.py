@@ -6,14 +6,13 @@ import math
 
 from scenarios.bodies import Point
 from scenarios.cams import RollerCam
-from scenarios.disc_cam import DEFAULTS, SPLINE_VARIANTS, build_disc_cam
-from scenarios.registry import Family
-from scenarios.scenario import ParameterValue, Scenario, require_positive
+from scenarios.families.disc_cam import PARAMETERS, SPLINE_VARIANTS, build_disc_cam
+from scenarios.family import Family, length
+from scenarios.scenario import ParameterValue, Scenario
 
 
 def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     rr = float(p["roller_radius"])
-    require_positive("cam_roller", roller_radius=rr)
     return build_disc_cam(
         "cam_roller",
         p,
@@ -26,7 +25,7 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
 FAMILY = Family(
     name="cam_roller",
     summary="driven disc cam, translating roller follower",
-    defaults={**DEFAULTS, "roller_radius": 0.02},
+    parameters={**PARAMETERS, "roller_radius": length(0.02)},
     build=_build,
     variants={
         **SPLINE_VARIANTS,

@@ -17,16 +17,24 @@ import math
 
 from scenarios.bodies import GROUND, Body, Point
 from scenarios.drivers import AbsoluteDriver
-from scenarios.four_bar import link
+from scenarios.families.four_bar import link
+from scenarios.family import (
+    MAX_ANGLE,
+    MAX_RATE,
+    MAX_REVOLUTIONS,
+    MAX_STEPS,
+    Family,
+    Parameter,
+    angle,
+    count,
+    length,
+    positive,
+)
 from scenarios.joints import Revolute
 from scenarios.motions import Harmonic
-from scenarios.registry import Family
 from scenarios.scenario import (
     ParameterValue,
     Scenario,
-    ScenarioError,
-    require_finite,
-    require_positive,
 )
 
 
@@ -38,11 +46,6 @@ def rocker(k: int) -> str:
 def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     loops, length, spacing = int(p["loops"]), float(p["link_length"]), float(p["coupler_length"])
     omega, amplitude, theta0 = float(p["omega"]), float(p["amplitude"]), float(p["theta0"])
-    require_positive("four_bar_chain", link_length=length, coupler_length=spacing)
-    require_positive("four_bar_chain", periods=float(p["periods"]), omega=omega)
-    require_finite("four_bar_chain", amplitude=amplitude, theta0=theta0)
-    if loops < 1:
-        raise ScenarioError(f"four_bar_chain: loops must be at least 1, got {loops}")
 
     def tip(k: int) -> tuple[float, float]:
         return k * spacing + length * math.cos(theta0), length * math.sin(theta0)
@@ -79,15 +82,15 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
 FAMILY = Family(
     name="four_bar_chain",
     summary="N parallelogram four-bar loops in a row sharing rockers (IFToMM N-four-bar), crank swinging",
-    defaults={
-        "loops": 4,
-        "link_length": 0.1,
-        "coupler_length": 0.1,
-        "omega": 10.0,
-        "amplitude": 1.0,
-        "theta0": math.pi / 2,
-        "periods": 1.0,
-        "steps": 200,
+    parameters={
+        "loops": count(4, 1, 1000),
+        "link_length": length(0.1),
+        "coupler_length": length(0.1),
+        "omega": positive(10.0, MAX_RATE, "rad/s"),
+        "amplitude": Parameter(1.0, "rad", low=-MAX_ANGLE, high=MAX_ANGLE),
+        "theta0": angle(math.pi / 2),
+        "periods": positive(1.0, MAX_REVOLUTIONS, "periods"),
+        "steps": count(200, 1, MAX_STEPS),
     },
     build=_build,
     variants={},

@@ -136,7 +136,7 @@ def test_a_mechanism_that_cannot_assemble_is_diagnosed_as_plain() -> None:
 
 
 BASE = scenarios.build("four_bar")
-AGAIN = Revolute("O4_again", Point(GROUND, (0.1, 0.0)), Point("rocker", (-0.0625, 0.0)))
+SECOND_O4 = Revolute("O4_again", Point(GROUND, (0.1, 0.0)), Point("rocker", (-0.0625, 0.0)))
 MOBILITY = {
     "over-driven": dataclasses.replace(
         BASE, drivers=(*BASE.drivers, AbsoluteDriver("rocker_hold", "rocker", "theta", Constant(1.0)))

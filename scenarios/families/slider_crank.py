@@ -11,15 +11,13 @@ import math
 
 from scenarios.bodies import GROUND, Body, Point
 from scenarios.drivers import AbsoluteDriver
+from scenarios.family import Family, angle, choice, length, offset, positive, speed, time_grid
 from scenarios.joints import Prismatic, Revolute
 from scenarios.motions import ConstantSpeed, Harmonic
-from scenarios.registry import Family
 from scenarios.scenario import (
     ParameterValue,
     Scenario,
     ScenarioError,
-    require_finite,
-    require_positive,
     revolving,
 )
 
@@ -34,17 +32,11 @@ def stroke_limits(l2: float, l3: float, h: float) -> tuple[float, float]:
 def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     l2, l3, h = float(p["crank_length"]), float(p["rod_length"]), float(p["offset"])
     omega, theta0 = float(p["omega"]), float(p["theta0"])
-    drive, revolutions = str(p["drive"]), float(p["revolutions"])
-    require_positive("slider_crank", crank_length=l2, rod_length=l3, revolutions=revolutions)
-    require_finite("slider_crank", offset=h, omega=omega, theta0=theta0)
-    if omega == 0.0:
-        raise ScenarioError("slider_crank: omega must be non-zero")
+    drive = str(p["drive"])
     if abs(h) >= l2 + l3:
         raise ScenarioError(
             f"slider_crank: |offset| {abs(h)} must be below crank_length + rod_length {l2 + l3}"
         )
-    if drive not in ("crank", "slider"):
-        raise ScenarioError(f"slider_crank: drive must be 'crank' or 'slider', got '{drive}'")
 
     # Rough guess: crank at theta0, rod angle from the closure of the y-coordinates.
     s3 = max(-1.0, min(1.0, (h - l2 * math.sin(theta0)) / l3))
@@ -69,7 +61,6 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     else:
         outer, inner = stroke_limits(l2, l3, h)
         fraction = float(p["stroke_fraction"])
-        require_positive("slider_crank", stroke_fraction=fraction)
         mean, half = (outer + inner) / 2, fraction * (outer - inner) / 2
         # x = mean + half sin(omega t): from mid-stroke outwards, so a stroke_fraction >= 1 reaches the
         # outer dead centre at t = asin(1 / stroke_fraction) / omega.
@@ -83,16 +74,15 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
 FAMILY = Family(
     name="slider_crank",
     summary="crank, rod and slider; crank- or slider-driven, optional offset",
-    defaults={
-        "crank_length": 0.2,
-        "rod_length": 0.4,
-        "offset": 0.0,
-        "omega": 50.0,
-        "theta0": 0.3,
-        "drive": "crank",
-        "stroke_fraction": 0.9,
-        "revolutions": 1.0,
-        "steps": 200,
+    parameters={
+        "crank_length": length(0.2),
+        "rod_length": length(0.4),
+        "offset": offset(0.0),
+        "omega": speed(50.0),
+        "theta0": angle(0.3),
+        "drive": choice("crank", "slider"),
+        "stroke_fraction": positive(0.9, 10.0),
+        **time_grid(),
     },
     build=_build,
     variants={

@@ -6,27 +6,20 @@ from __future__ import annotations
 
 from scenarios.bodies import GROUND, Body, Point
 from scenarios.drivers import AbsoluteDriver
+from scenarios.families.spur_gears import gear_body
+from scenarios.family import Family, angle, length, speed, time_grid
 from scenarios.gears import RackPinion
 from scenarios.joints import Prismatic, Revolute
 from scenarios.motions import ConstantSpeed
-from scenarios.registry import Family
 from scenarios.scenario import (
     ParameterValue,
     Scenario,
-    ScenarioError,
-    require_finite,
-    require_positive,
     revolving,
 )
-from scenarios.spur_gears import gear_body
 
 
 def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     r, omega, theta0 = float(p["radius"]), float(p["omega"]), float(p["theta0"])
-    require_positive("rack_pinion", radius=r, revolutions=float(p["revolutions"]))
-    require_finite("rack_pinion", omega=omega, theta0=theta0)
-    if omega == 0.0:
-        raise ScenarioError("rack_pinion: omega must be non-zero")
     bodies = (gear_body("pinion", (0.0, 0.0), r, theta0), Body("rack", (0.0, -r, 0.0), mass=1.0))
     joints = (
         Revolute("pivot", Point(GROUND, (0.0, 0.0)), Point("pinion")),
@@ -50,7 +43,7 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
 FAMILY = Family(
     name="rack_pinion",
     summary="driven pinion and sliding rack",
-    defaults={"radius": 0.05, "omega": 10.0, "theta0": 0.0, "revolutions": 1.0, "steps": 200},
+    parameters={"radius": length(0.05), "omega": speed(10.0), "theta0": angle(0.0), **time_grid()},
     build=_build,
     variants={},
 )

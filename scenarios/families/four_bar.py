@@ -12,15 +12,12 @@ from dataclasses import replace
 
 from scenarios.bodies import GROUND, Body, Point
 from scenarios.drivers import AbsoluteDriver
+from scenarios.family import Family, Parameter, angle, length, positive, speed, time_grid
 from scenarios.joints import Revolute
 from scenarios.motions import ConstantSpeed
-from scenarios.registry import Family
 from scenarios.scenario import (
     ParameterValue,
     Scenario,
-    ScenarioError,
-    require_finite,
-    require_positive,
     revolving,
 )
 
@@ -37,13 +34,6 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     b, c = float(p["coupler_length"]), float(p["rocker_length"])
     omega, theta0, branch = float(p["omega"]), float(p["theta0"]), int(p["branch"])
     mass_ratio = float(p["mass_ratio"])
-    require_positive("four_bar", ground_length=g, crank_length=a, coupler_length=b, rocker_length=c)
-    require_positive("four_bar", revolutions=float(p["revolutions"]), mass_ratio=mass_ratio)
-    require_finite("four_bar", omega=omega, theta0=theta0)
-    if omega == 0.0:
-        raise ScenarioError("four_bar: omega must be non-zero")
-    if branch not in (1, -1):
-        raise ScenarioError(f"four_bar: branch must be 1 or -1, got {branch}")
 
     ax, ay = a * math.cos(theta0), a * math.sin(theta0)
     dx, dy = g - ax, -ay
@@ -69,17 +59,16 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
 FAMILY = Family(
     name="four_bar",
     summary="crank, coupler and rocker; a Grashof crank-rocker by default",
-    defaults={
-        "ground_length": 0.1,
-        "crank_length": 0.05,
-        "coupler_length": 0.1,
-        "rocker_length": 0.125,
-        "omega": 50.0,
-        "theta0": 0.3,
-        "branch": 1,
-        "mass_ratio": 1.0,
-        "revolutions": 1.0,
-        "steps": 200,
+    parameters={
+        "ground_length": length(0.1),
+        "crank_length": length(0.05),
+        "coupler_length": length(0.1),
+        "rocker_length": length(0.125),
+        "omega": speed(50.0),
+        "theta0": angle(0.3),
+        "branch": Parameter(1, low=-1, high=1, nonzero=True),
+        "mass_ratio": positive(1.0, 1e12),
+        **time_grid(),
     },
     build=_build,
     variants={

@@ -1,0 +1,1 @@
+"""The mechanism families, one module each; each declares itself as a `Family` (scenarios/family.py)."""
