@@ -16,7 +16,7 @@ import numpy as np
 
 import adapters
 import reports.cli.suite_commands as suite_commands
-from adapters.base import Adapter, OptionValue, Setting
+from adapters.base import Adapter, OptionValue, Setting, SettingError
 from reports.cli.usage import Parser, UsageError, pairs
 from reports.harness.atomic_write import atomic_output
 from scenarios import Scenario, ScenarioError, all_families, catalogue, load
@@ -61,7 +61,12 @@ def engine_setting(adapter: Adapter, scenario: Scenario, mode: str | None, optio
     if mode is not None:
         setting = Setting(mode, setting.options)
     overrides = {k: _option_value(v) for k, v in pairs(options, "--setting").items()}
-    return setting.replace(**overrides) if overrides else setting
+    setting = setting.replace(**overrides) if overrides else setting
+    try:
+        adapter.check_setting(setting)
+    except SettingError as error:
+        raise UsageError(str(error)) from None
+    return setting
 
 
 def cmd_list(args: argparse.Namespace) -> int:
