@@ -20,8 +20,8 @@ import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
 from reports.cli.usage import Parser, UsageError, pairs
 from reports.harness.atomic_write import atomic_output
-from scenarios import Scenario, ScenarioError, all_families, catalogue
-from scenarios import build as build_scenario
+from scenarios import Scenario, ScenarioError, all_families, catalogue, load
+from scenarios.files import scenario_toml
 
 
 def _option_value(text: str) -> OptionValue:
@@ -80,12 +80,12 @@ def cmd_list(args: argparse.Namespace) -> int:
         except adapters.EngineUnavailable as error:
             print(f"engine {name}: unavailable ({error})")
     print("engines: " + ", ".join(f"{n} {a._safe_version()}" for n, a in engines.items()))
-    names = catalogue(include_stress=args.stress)
+    names = args.scenarios or catalogue(include_stress=args.stress)
     width = max(len(n) for n in names) + 2
     print("\n" + "scenario".ljust(width) + "".join(e.ljust(12) for e in engines))
     reasons: list[str] = []
     for name in names:
-        scenario = build_scenario(name)
+        scenario = load(name)
         cells = []
         for engine, adapter in engines.items():
             reason = adapter.supports(scenario)
@@ -97,6 +97,8 @@ def cmd_list(args: argparse.Namespace) -> int:
         print(name.ljust(width) + "".join(c.ljust(12) for c in cells))
     if reasons:
         print("\n" + "\n".join(reasons))
+    if args.scenarios:
+        return 0
     print("\nparameters: default and range; set them with --set NAME=VALUE:")
     for fam in all_families().values():
         print(f"  {fam.name}:")
@@ -106,7 +108,7 @@ def cmd_list(args: argparse.Namespace) -> int:
 
 
 def cmd_solve(args: argparse.Namespace) -> int:
-    scenario = build_scenario(args.scenario, overrides=pairs(args.set, "--set"))
+    scenario = load(args.scenario, pairs(args.set, "--set"))
     grid = time_grid(scenario, args.t_end, args.steps, args.dt)
     adapter = load_engine(args.engine)
     setting = engine_setting(adapter, scenario, args.mode, args.setting)
@@ -124,7 +126,12 @@ def cmd_solve(args: argparse.Namespace) -> int:
 
 
 def cmd_export(args: argparse.Namespace) -> int:
-    scenario = build_scenario(args.scenario, overrides=pairs(args.set, "--set"))
+    scenario = load(args.scenario, pairs(args.set, "--set"))
+    if args.format == "toml":
+        with atomic_output(args.out) as stream:
+            stream.write(scenario_toml(scenario))
+        print(f"wrote {args.out}")
+        return 0
     adapter = load_engine(args.engine)
     setting = engine_setting(adapter, scenario, args.mode, args.setting)
     reason = adapter.supports(scenario)
@@ -139,9 +146,17 @@ def cmd_export(args: argparse.Namespace) -> int:
 
 
 def _scenario_arguments(parser: argparse.ArgumentParser, engine_default: str) -> None:
-    parser.add_argument("scenario", help="scenario name, or family/variant (see `mbxval list`)")
+    parser.add_argument(
+        "scenario", help="scenario name, family/variant (see `mbxval list`), or a scenario file (.toml)"
+    )
     parser.add_argument("--engine", default=engine_default, help=f"engine (default {engine_default})")
-    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="scenario parameter")
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="family parameter, or a scenario file's value by dotted key path",
+    )
     parser.add_argument("--mode", help="engine mode (for example RK4, implicitfast, kinematic)")
     parser.add_argument(
         "--setting",
@@ -164,6 +179,7 @@ def parser() -> argparse.ArgumentParser:
 
     listing = sub.add_parser("list", help="scenarios, variants, engines and what each supports")
     listing.add_argument("--stress", action="store_true", help="include the stress variants")
+    listing.add_argument("scenarios", nargs="*", help="only these scenarios or scenario files (.toml)")
 
     solve = sub.add_parser("solve", help="one trajectory as CSV")
     _scenario_arguments(solve, "reference")
@@ -176,6 +192,12 @@ def parser() -> argparse.ArgumentParser:
     export = sub.add_parser("export", help="write the engine's own model file")
     _scenario_arguments(export, "mujoco")
     export.add_argument("--out", required=True, help="model file to write")
+    export.add_argument(
+        "--format",
+        choices=("engine", "toml"),
+        default="engine",
+        help="engine: the engine's own model file; toml: an mbxval scenario file",
+    )
 
     suite_commands.add_parsers(sub)
     for name, subparser in sub.choices.items():

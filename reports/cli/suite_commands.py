@@ -15,7 +15,7 @@ from reports.harness import gate, suites
 from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import Runner, RunOptions
 from reports.harness.suites import Suite
-from scenarios import build as build_scenario
+from scenarios import load as build_scenario
 
 DEFAULT_OUT = "mbxval-report"
 

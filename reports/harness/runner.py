@@ -36,7 +36,7 @@ from reports.harness.metrics import (
 from reports.harness.results_store import ResultsStore
 from reports.harness.rows import failure_row, result_row
 from scenarios import Scenario, ScenarioError
-from scenarios import build as build_scenario
+from scenarios import load as build_scenario
 from scenarios.trajectory import Trajectory
 
 TRUTH_TOLERANCE = 1e-12
