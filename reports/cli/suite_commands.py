@@ -18,7 +18,7 @@ from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import Runner, RunOptions
 from reports.harness.store_lock import WriterLock
 from reports.harness.suites import Suite
-from scenarios import build as build_scenario
+from scenarios import load as build_scenario
 
 DEFAULT_OUT = "mbxval-report"
 MAX_REPEATS = 1000

@@ -54,7 +54,7 @@ class Regression:
 
 
 @dataclass(frozen=True)
-class Verdict:
+class GateResult:
     compared: int
     regressions: tuple[Regression, ...]
 
@@ -125,7 +125,9 @@ def _unsound(cell: Any) -> str:
     return ""
 
 
-def compare(baseline: list[dict[str, Any]], current: pd.DataFrame, factor: float = DEFAULT_FACTOR) -> Verdict:
+def compare(
+    baseline: list[dict[str, Any]], current: pd.DataFrame, factor: float = DEFAULT_FACTOR
+) -> GateResult:
     """Every regression of `current` (a results table) against the `baseline` cells; GateError
     when the baseline lacks cells of the results or nothing is compared."""
     if not (math.isfinite(factor) and factor > 0):
@@ -155,7 +157,7 @@ def compare(baseline: list[dict[str, Any]], current: pd.DataFrame, factor: float
             regressions.append(Regression(old["scenario"], old["engine"], label, what))
     if compared == 0:
         raise GateError("0 cells compared: the results and the baseline have no cell in common")
-    return Verdict(compared, tuple(regressions))
+    return GateResult(compared, tuple(regressions))
 
 
 def level_errors(cell: dict[str, Any]) -> dict[str, float | None]:
@@ -227,11 +229,11 @@ def _change(before: dict[Any, Any], after: dict[Any, Any], key: Any, sign: str) 
     return f": {old.get('status')} {old.get('error')} -> {new.get('status')} {new.get('error')}"
 
 
-def describe(verdict: Verdict, baseline: str, factor: float) -> str:
-    """The readable verdict: one line, or a header and one line per regression."""
-    head = f"check against {baseline} (error factor {factor:g}): {verdict.compared} cells compared"
-    if verdict.passed:
+def describe(result: GateResult, baseline: str, factor: float) -> str:
+    """The readable result: one line, or a header and one line per regression."""
+    head = f"check against {baseline} (error factor {factor:g}): {result.compared} cells compared"
+    if result.passed:
         return f"{head}, no regressions"
-    lines = [f"{head}, {len(verdict.regressions)} regressions:"]
-    lines += [f"  - {r}" for r in verdict.regressions]
+    lines = [f"{head}, {len(result.regressions)} regressions:"]
+    lines += [f"  - {r}" for r in result.regressions]
     return "\n".join(lines)

@@ -20,7 +20,7 @@ from typing import Any
 import pandas as pd
 
 from reports.harness import store_files
-from reports.harness.metrics import METRIC_COLUMNS
+from reports.harness.columns import COLUMNS, DECLARED
 from reports.harness.store_files import damaged
 from scenarios.trajectory import Trajectory
 
@@ -28,37 +28,8 @@ SCHEMA_VERSION = 1
 RESULTS, SIDECAR, TRAJECTORIES = "results.parquet", "results.json", "trajectories.parquet"
 KEY = ("scenario", "engine", "setting")
 TRUTH = "truth"
-COLUMNS: tuple[str, ...] = (
-    "scenario",
-    "family",
-    "variant",
-    "engine",
-    "engine_version",
-    "mode",
-    "setting",
-    "options",
-    "is_default",
-    "status",
-    "message",
-    "failure_time",
-    "warnings",
-    "levels",
-    "error",
-    *METRIC_COLUMNS,
-    "constraint_residual",
-    "build_time",
-    "run_time",
-    "steps",
-    "repeats",
-    "warmup",
-    "grid_points",
-    "t_end",
-    "characteristic_length",
-    "recorded_at",
-)
-REQUIRED = frozenset(COLUMNS)  # every store has these; the columns added since are optional
-ADDED: dict[str, Any] = {"revision": "", "stale": False}  # column -> value for rows stored before it
-COLUMNS = (*COLUMNS, *ADDED)
+REQUIRED = frozenset((*KEY, "engine_version", "mode", "options", "is_default", "status", "error"))
+"""Columns every store has had; a declared column added since is filled with its empty value."""
 Key = tuple[str, str, str]
 
 
@@ -164,9 +135,9 @@ def read_results(path: str | os.PathLike[str]) -> tuple[pd.DataFrame, dict[str, 
         raise damaged(root, f"{RESULTS} lacks the columns {', '.join(lacking)}")
     if frame["status"].isna().any() or frame[list(KEY)].isna().any().any():
         raise damaged(root, f"{RESULTS} has rows without a status or key")
-    for column, value in ADDED.items():
-        if column not in frame.columns:
-            frame[column] = value
+    for column in DECLARED:
+        if column.name not in frame.columns:
+            frame[column.name] = column.empty
     frame = frame[[c for c in COLUMNS if c in frame.columns]]
     return frame, meta
 

@@ -339,7 +339,7 @@ BAD_INPUTS = [
     (["solve", "cam_roller", "--set", "profile=spline", "--set", "knots=1e30"], "knots"),
     (["solve", SCENARIO, "--dt", "1e-15"], "GiB"),
     (["solve", SCENARIO, "--t-end", "1e300"], "--t-end"),
-    (["solve", SCENARIO, "--setting", "nosuch=1"], "unknown reference setting 'nosuch'; known: tolerance"),
+    (["solve", SCENARIO, "--setting", "nosuch=1"], "reference: unknown option 'nosuch'; known: tolerance"),
     (["solve", SCENARIO, "--engine", "pinocchio", "--setting", "tol=-1"], "tol"),
     (["solve", SCENARIO, "--engine", "pinocchio", "--setting", "tol=nan"], "tol"),
     (["solve", SCENARIO, "--engine", "pinocchio", "--setting", "nosuch=1"], "known:"),
@@ -351,7 +351,7 @@ BAD_INPUTS = [
     (["export", SCENARIO, "--setting", "dt=0"], "dt"),
     (["export", SCENARIO, "--setting", "dt=abc"], "dt"),
     (["export", SCENARIO, "--setting", "nosuch=1"], "known:"),
-    (["export", SCENARIO, "--mode", "nosuch"], "unknown mujoco mode 'nosuch'; known:"),
+    (["export", SCENARIO, "--mode", "nosuch"], "mujoco: unknown mode 'nosuch'; known:"),
 ]
 
 

@@ -14,11 +14,14 @@ import pandas as pd
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from reports.cli.engine_options import OPTIONS
+import adapters
 from reports.cli.main import main
 from scenarios import all_families
 
 FAMILIES = all_families()
+ENGINES = {name: adapters.load(name) for name in adapters.names()}
+OPTIONS = {name: {o.name: o for o in engine.options} for name, engine in ENGINES.items()}
+MODES = sorted({mode for engine in ENGINES.values() for mode in engine.modes} | {"nosuch"})
 STEPS = "12"  # a short grid: the property is about inputs, not about long solves
 
 
@@ -30,7 +33,7 @@ def values(declared: object) -> st.SearchStrategy[str]:
         st.integers(min_value=-(10**7), max_value=10**7),
         st.sampled_from([0.0, -0.0, 1e-300, 1e300, 0.5, 1.0, 2.0]),
     ).map(repr)
-    choices = getattr(declared, "choices", ()) or (declared if isinstance(declared, tuple) else ())
+    choices = tuple(getattr(declared, "choices", None) or ())
     words = st.sampled_from([*choices, "abc", "", "1e", "nosuch"])
     return st.one_of(numbers, words)
 
@@ -72,10 +75,7 @@ def option_overrides(draw: st.DrawFn) -> list[str]:
     argv = ["solve", "slider_crank", "--engine", engine, "--steps", STEPS]
     argv += ["--setting", f"{key}={draw(values(declared.get(key)))}"]
     if draw(st.booleans()):
-        argv += [
-            "--mode",
-            draw(st.sampled_from(["kinematic", "RK4", "implicitfast", "GA3", "newton", "nosuch"])),
-        ]
+        argv += ["--mode", draw(st.sampled_from(MODES))]
     return argv
 
 
