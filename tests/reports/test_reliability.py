@@ -472,3 +472,22 @@ def test_the_native_solver_runs_without_a_writable_cache(tmp_path: Path) -> None
     )
     assert done.returncode == 0, done.stderr
     assert done.stdout.startswith("ok True") and "the plain path runs" in done.stdout
+
+
+def test_ctrl_c_while_the_command_line_loads_is_one_line() -> None:
+    import signal
+
+    code = "import sys; from reports.entry import main; sys.exit(main(['solve', 'slider_crank']))"
+    child = subprocess.Popen(
+        [sys.executable, "-c", code],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=ROOT,
+        env={**os.environ, "PYTHONPATH": str(ROOT)},
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),  # as in a terminal
+    )
+    time.sleep(0.5)  # Python is up; numpy, the engines and the solver are still loading
+    child.send_signal(signal.SIGINT)
+    out, err = child.communicate(timeout=120)
+    assert (child.returncode, err, out) == (130, "mbxval: interrupted while starting\n", "")
