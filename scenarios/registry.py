@@ -21,6 +21,9 @@ class Family:
     defaults: Mapping[str, ParameterValue]
     build: Callable[[dict[str, ParameterValue], str], Scenario]
     variants: Mapping[str, Mapping[str, ParameterValue]]
+    dynamic: bool = False
+    """Forward dynamics (gravity, forces) rather than a driven kinematic analysis: left out of the
+    kinematic catalogue until the engines compare dynamics."""
 
 
 def _families() -> dict[str, Family]:
@@ -36,6 +39,8 @@ def _families() -> dict[str, Family]:
         spur_gears,
     )
 
+    from scenarios.families import compound_pendulum
+
     modules = (
         slider_crank,
         four_bar,
@@ -46,6 +51,7 @@ def _families() -> dict[str, Family]:
         cam_roller,
         cam_flat_face,
         four_bar_chain,
+        compound_pendulum,
     )
     return {m.FAMILY.name: m.FAMILY for m in modules}
 
@@ -114,7 +120,7 @@ def is_stress_variant(variant: str) -> bool:
     return variant.startswith("stress")
 
 
-def catalogue(include_stress: bool = False) -> list[str]:
+def catalogue(include_stress: bool = False, include_dynamic: bool = False) -> list[str]:
     """Every scenario name: each family's default and its named variants as `family/variant`.
 
     Stress variants are left out unless `include_stress`: they belong to the stress suite, not to
@@ -122,6 +128,8 @@ def catalogue(include_stress: bool = False) -> list[str]:
     """
     names = []
     for fam in families().values():
+        if fam.dynamic and not include_dynamic:
+            continue
         names.append(fam.name)
         names.extend(f"{fam.name}/{v}" for v in fam.variants if include_stress or not is_stress_variant(v))
     return names
