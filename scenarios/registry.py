@@ -39,7 +39,7 @@ def _families() -> dict[str, Family]:
         spur_gears,
     )
 
-    from scenarios.families import compound_pendulum
+    from scenarios.families import andrews_squeezer, compound_pendulum
 
     modules = (
         slider_crank,
@@ -52,6 +52,7 @@ def _families() -> dict[str, Family]:
         cam_flat_face,
         four_bar_chain,
         compound_pendulum,
+        andrews_squeezer,
     )
     return {m.FAMILY.name: m.FAMILY for m in modules}
 

@@ -12,6 +12,7 @@ from scenarios.drivers import Driver
 from scenarios.forces import Force
 from scenarios.gears import GearPair, RackPinion
 from scenarios.joints import Joint
+from scenarios.outputs import AngleOutput
 
 Level = Literal["position", "velocity", "acceleration"]
 Analysis = Literal["kinematic", "dynamic"]
@@ -37,6 +38,7 @@ class Scenario:
     frame origin; `forces` are the applied loads and spring-dampers. `analysis` "dynamic" asks for
     forward dynamics (the drivers leave degrees of freedom the forces move); "kinematic" scenes
     are fully driven, and their loads give the drivers' forces by inverse dynamics.
+    `angle_outputs` are extra columns of absolute or joint angles.
     """
 
     family: str
@@ -54,6 +56,7 @@ class Scenario:
     gravity: tuple[float, float] = (0.0, 0.0)
     forces: tuple[Force, ...] = ()
     analysis: Analysis = "kinematic"
+    angle_outputs: tuple[AngleOutput, ...] = ()
 
     @property
     def name(self) -> str:

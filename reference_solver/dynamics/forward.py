@@ -161,6 +161,16 @@ def simulate(
     return _result(system, mass, grid, states, np.array(works), energy0, evaluations, partitions)
 
 
+def angle_columns(scenario: Scenario, layout: Layout, q: np.ndarray) -> dict[str, np.ndarray]:
+    """The scenario's extra angle columns from the absolute angles."""
+
+    def angle(body: str) -> np.ndarray:
+        col = layout.body_column(body)
+        return np.zeros(len(q)) if col is None else q[:, col + 2]
+
+    return {a.name: angle(a.body) - angle(a.relative_to) for a in scenario.angle_outputs}
+
+
 def _result(
     system: ConstraintSystem,
     mass: np.ndarray,
@@ -187,6 +197,7 @@ def _result(
             "energy.balance": kinetic + potential - energy0 - works[:, 0] - works[:, 2] + works[:, 1],
         }
     )
+    extras.update(angle_columns(system.scenario, system.layout, q))
     return DynamicAnalysis(
         system.layout,
         grid.copy(),
