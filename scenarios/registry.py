@@ -39,7 +39,13 @@ def _families() -> dict[str, Family]:
         spur_gears,
     )
 
-    from scenarios.families import andrews_squeezer, compound_pendulum
+    from scenarios.families import (
+        andrews_squeezer,
+        compound_pendulum,
+        four_bar_gravity,
+        slider_crank_spring,
+        stiff_spring,
+    )
 
     modules = (
         slider_crank,
@@ -52,7 +58,10 @@ def _families() -> dict[str, Family]:
         cam_flat_face,
         four_bar_chain,
         compound_pendulum,
+        four_bar_gravity,
+        slider_crank_spring,
         andrews_squeezer,
+        stiff_spring,
     )
     return {m.FAMILY.name: m.FAMILY for m in modules}
 

@@ -8,7 +8,7 @@ at every output point.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -140,25 +140,42 @@ def simulate(
                 (t, float(grid[-1])),
                 ode.pack(state, work),
                 method=method,
-                t_eval=grid[k:],
                 rtol=rtol,
                 atol=atol,
                 events=degraded,
+                dense_output=True,
             )
         except np.linalg.LinAlgError as error:
             raise SolverError(f"{scenario.name}: singular augmented matrix after t={t:.6g}: {error}") from error
         evaluations += ode.evaluations
         if sol.status == -1:
             raise SolverError(f"{scenario.name}: the integrator failed after t={t:.6g}: {sol.message}")
-        for time, y in zip(sol.t, sol.y.T, strict=True):
-            states.append(ode.state(float(time), y))
+        end = float(sol.t_events[0][0]) if sol.status == 1 else float(grid[-1])
+        ode.restart(state.q)
+        outputs = grid[k:][grid[k:] <= end]
+        for time, y, output in _walk(sol, outputs):
+            if not output:
+                ode.positions(time, y[: ode.size])
+                continue
+            states.append(ode.state(time, y))
             works.append(y[2 * ode.size :].copy())
-        k += len(sol.t)
+        k += len(outputs)
         if sol.status == 1:
-            t = float(sol.t_events[0][0])
-            y = sol.y_events[0][0]
+            t, y = end, sol.y_events[0][0]
             state, work = ode.state(t, y), y[2 * ode.size :].copy()
     return _result(system, mass, grid, states, np.array(works), energy0, evaluations, partitions)
+
+
+def _walk(sol: object, outputs: np.ndarray) -> Iterator[tuple[float, np.ndarray, bool]]:
+    """The dense solution at each output time (flagged True), with the integrator's own steps in
+    between (flagged False): walking through them keeps Newton on the dependent coordinates near."""
+    steps = iter(zip(sol.t, sol.y.T, strict=True))  # type: ignore[attr-defined]
+    for time in outputs:
+        for step_time, y in steps:
+            if step_time >= time:
+                break
+            yield float(step_time), y, False
+        yield float(time), sol.sol(time), True  # type: ignore[attr-defined]
 
 
 def angle_columns(scenario: Scenario, layout: Layout, q: np.ndarray) -> dict[str, np.ndarray]:

@@ -20,6 +20,10 @@ from reference_solver.errors import ConvergenceError
 from reference_solver.system import ConstraintSystem
 
 NEWTON_STEPS = 12
+RESIDUAL = 1e-14
+STALLED = 1e-12
+"""Newton stops when every constraint holds to RESIDUAL, relative to the characteristic length, or
+when below STALLED an iteration no longer halves it (round-off of the constraint evaluation)."""
 
 
 @dataclass(frozen=True)
@@ -52,7 +56,14 @@ class Partitioned:
         self.independent = independent
         self.dependent = np.setdiff1d(np.arange(system.unknowns), independent)
         self.q = q.copy()
+        self.jac = np.zeros((system.size, system.unknowns))
+        self.c_t = np.zeros(system.size)
+        self.factors: tuple[np.ndarray, np.ndarray] | None = None
         self.evaluations = 0
+
+    def restart(self, q: np.ndarray) -> None:
+        """Newton's next start: q, without a tangent predictor."""
+        self.q, self.factors = q.copy(), None
 
     @property
     def size(self) -> int:
@@ -62,26 +73,31 @@ class Partitioned:
         return np.concatenate([state.q[self.independent], state.qd[self.independent], work])
 
     def positions(self, t: float, q_independent: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """q with the dependent coordinates solved from C(q, t) = 0 (Newton from the last q), and C_q."""
-        system, dep, cols = self.system, self.dependent, self.system.column_scales
+        """q with the dependent coordinates solved from C(q, t) = 0 (Newton from the last q), and C_q
+        there (the Jacobian of the last iterate, within round-off of the converged one's)."""
+        system, dep, ind = self.system, self.dependent, self.independent
         q = self.q.copy()
-        q[self.independent] = q_independent
+        if self.factors is not None:  # tangent predictor: C_D dq_D = -C_I dq_I (and -C_t dt)
+            move = self.jac[:, ind] @ (q_independent - q[ind]) + system.c_t(t) - self.c_t
+            q[dep] -= lu_solve(self.factors, move, check_finite=False)
+        q[ind] = q_independent
+        previous = np.inf
         for _ in range(NEWTON_STEPS):
             c, jac, _ = system.evaluate(q, t)
-            step = lu_solve(lu_factor(jac[:, dep], check_finite=False), -c, check_finite=False)
-            q[dep] += step
-            if np.max(np.abs(step / cols[dep]), initial=0.0) < 1e-15:
-                break
-        residual = np.max(np.abs(system.residual(q, t) / system.row_scales), initial=0.0)
-        if not residual < 1e-11:
-            raise ConvergenceError(
-                f"{system.scenario.name}: the dependent coordinates did not converge at t={t:.6g} "
-                f"(constraint residual {residual:.2g})",
-                time=t,
-                q=q,
-            )
-        self.q = q
-        return q, system.jacobian(q, t)
+            residual = np.max(np.abs(c / system.row_scales), initial=0.0)
+            factors = lu_factor(jac[:, dep], check_finite=False)
+            stalled = residual < STALLED and residual > 0.5 * previous  # round-off reached
+            previous = residual
+            if residual <= RESIDUAL or stalled:
+                self.q, self.jac, self.factors, self.c_t = q, jac, factors, system.c_t(t)
+                return q, jac
+            q[dep] -= lu_solve(factors, c, check_finite=False)
+        raise ConvergenceError(
+            f"{system.scenario.name}: the dependent coordinates did not converge at t={t:.6g} "
+            f"(constraint residual {residual:.2g})",
+            time=t,
+            q=q,
+        )
 
     def state(self, t: float, y: np.ndarray) -> State:
         k = self.size

@@ -1,0 +1,37 @@
+"""A kinematic family's mechanism set free for dynamics: the same bodies and joints, built by the
+catalogue from the kinematic family's own parameters, with its drivers removed and loads added."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Any
+
+from scenarios.registry import build
+from scenarios.scenario import ParameterValue, Scenario, require_positive
+
+
+def released(
+    kinematic: str,
+    overrides: dict[str, ParameterValue],
+    family: str,
+    variant: str,
+    p: dict[str, ParameterValue],
+    description: str,
+    **changes: Any,
+) -> Scenario:
+    """Scenario `family` made of `kinematic` built with `overrides`, without drivers, over
+    [0, p["t_end"]] in p["steps"] steps, with the dynamic fields in `changes` (gravity, forces...)."""
+    require_positive(family, t_end=float(p["t_end"]))
+    base = build(kinematic, overrides=overrides)
+    return replace(
+        base,
+        family=family,
+        variant=variant,
+        drivers=(),
+        t_end=float(p["t_end"]),
+        steps=int(p["steps"]),
+        parameters=tuple(p.items()),
+        description=description,
+        analysis="dynamic",
+        **changes,
+    )
