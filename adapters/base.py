@@ -121,6 +121,8 @@ class Adapter:
     """Base class of engine adapters; see the module docstring for what a subclass provides."""
 
     name: ClassVar[str] = ""
+    dynamics: ClassVar[bool] = False
+    """Whether the engine runs forward dynamics (scenarios whose `analysis` is "dynamic")."""
 
     def __init__(self) -> None:
         self._steps = 0
@@ -167,6 +169,8 @@ class Adapter:
         version = self._safe_version()
         base: Mapping[str, Any] = {"engine": self.name, "version": version, "setting": setting}
         reason = self.supports(scenario)
+        if reason is None and scenario.analysis == "dynamic" and not self.dynamics:
+            reason = f"{self.name} is not yet compared on forward dynamics"
         if reason is not None:
             return RunResult(**base, status="unsupported", message=reason)
         caught: list[warnings.WarningMessage] = []
