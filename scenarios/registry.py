@@ -43,6 +43,7 @@ def _families() -> dict[str, Family]:
         andrews_squeezer,
         compound_pendulum,
         four_bar_gravity,
+        n_four_bar,
         slider_crank_spring,
         stiff_spring,
     )
@@ -61,6 +62,7 @@ def _families() -> dict[str, Family]:
         four_bar_gravity,
         slider_crank_spring,
         andrews_squeezer,
+        n_four_bar,
         stiff_spring,
     )
     return {m.FAMILY.name: m.FAMILY for m in modules}
