@@ -1,9 +1,10 @@
 """The native textbook solver presented as one more engine, so the runner treats it like the others.
 
-Kinematic scenarios: its one knob is the Newton-Raphson tolerance (on both |dq| and |C|, relative to
-the scenario's characteristic length); its sweep traces the native solver's own work-precision
-curve. `inverse_dynamics=1` adds the drivers' forces, the joints' reactions and the energies as
-extra columns. Dynamic scenarios: modes DOP853 and Radau (coordinate partitioning), knob `rtol`.
+Kinematic scenarios (mode newton): its one knob is the Newton-Raphson tolerance (on both |dq| and
+|C|, relative to the scenario's characteristic length); its sweep traces the native solver's own
+work-precision curve. `inverse_dynamics=1` adds the drivers' forces, the joints' reactions and the
+energies as extra columns. Dynamic scenarios (modes DOP853 and Radau, coordinate partitioning):
+the knob is the integrator's relative tolerance `rtol`.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from importlib.metadata import version as package_version
 
 import numpy as np
 
-from adapters.base import Adapter, EngineFailure, Setting, Singular
+from adapters.base import Adapter, EngineFailure, Option, Setting, Singular
 from reference_solver import SingularConfigurationError, SolverError, analyse
 from reference_solver.dynamics import inverse_dynamics, simulate
 from reference_solver.dynamics.forward import METHODS
@@ -29,12 +30,18 @@ RTOLS = (1e-6, 1e-8, 1e-10, 1e-12)
 class ReferenceModel:
     scenario: Scenario
     tolerance: float
-    method: str = "newton"
+    mode: str = "newton"
     inverse: bool = False
 
 
 class ReferenceAdapter(Adapter):
     name = "reference"
+    modes = ("newton", *METHODS)
+    options = (
+        Option("tolerance", float, 0.0, 0.1, low_open=True, help="Newton tolerance, scaled units"),
+        Option("rtol", float, 0.0, 0.1, low_open=True, help="integrator relative tolerance (dynamics)"),
+        Option("inverse_dynamics", int, 0, 1, help="1: add driver forces, reactions and energies"),
+    )
     dynamics = True
 
     def version(self) -> str:
@@ -54,23 +61,17 @@ class ReferenceAdapter(Adapter):
         return [Setting.of("newton", tolerance=tol) for tol in TOLERANCES]
 
     def build(self, scenario: Scenario, setting: Setting) -> ReferenceModel:
-        modes = METHODS if scenario.analysis == "dynamic" else ("newton",)
-        if setting.mode not in modes:
-            raise EngineFailure(
-                f"unknown mode '{setting.mode}' for the reference solver on {scenario.name} "
-                f"(known: {', '.join(modes)})"
-            )
-        key = "rtol" if scenario.analysis == "dynamic" else "tolerance"
-        tolerance = float(setting.get(key, 1e-12))
-        if not tolerance > 0:
-            raise EngineFailure(f"{key} must be positive, got {tolerance}")
-        inverse = bool(int(setting.get("inverse_dynamics", 0)))
-        return ReferenceModel(scenario, tolerance, setting.mode, inverse)
+        dynamic = scenario.analysis == "dynamic"
+        if (setting.mode in METHODS) != dynamic:
+            known = ", ".join(METHODS) if dynamic else "newton"
+            raise EngineFailure(f"mode '{setting.mode}' does not apply to {scenario.name} (known: {known})")
+        tolerance = float(setting.get("rtol" if dynamic else "tolerance", 1e-12))
+        return ReferenceModel(scenario, tolerance, setting.mode, bool(setting.get("inverse_dynamics", 0)))
 
     def simulate(self, model: ReferenceModel, times: np.ndarray) -> Trajectory:
         try:
             if model.scenario.analysis == "dynamic":
-                dynamic = simulate(model.scenario, times, model.tolerance, model.method)
+                dynamic = simulate(model.scenario, times, model.tolerance, model.mode)
                 self.count_steps(dynamic.evaluations)
                 return dynamic.trajectory()
             analysis = analyse(model.scenario, times, model.tolerance)

@@ -10,69 +10,31 @@ Newton fails next to a singular configuration.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
 
 import numpy as np
 
+import reference_solver.fast as fast_path
 from reference_solver.diagnostics import rank_report
 from reference_solver.errors import AssemblyError, ConvergenceError, SingularConfigurationError
 from reference_solver.factorization import Factorization
-from reference_solver.layout import Layout
+from reference_solver.limits import (
+    ASSEMBLY_ITERATIONS,
+    JUMP_FLOOR,
+    JUMP_FRACTION,
+    NEAR_SINGULAR,
+    SINGULAR_RCOND,
+)
 from reference_solver.mobility import check_mobility
 from reference_solver.newton import NewtonResult, NewtonSettings, newton
+from reference_solver.solution import Analysis
 from reference_solver.system import ConstraintSystem
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
-SINGULAR_RCOND = 1e-9
-"""A scaled Jacobian with a reciprocal condition number below this is treated as singular."""
-NEAR_SINGULAR = 1e-4
-"""On a Newton failure, a smallest singular value ratio below this names the failure singular."""
-JUMP_FRACTION = 0.5
-JUMP_FLOOR = 1e-6
-"""A converged step whose correction to the predictor exceeds JUMP_FRACTION of the predictor's reach
-max_i (|h qd_i| + h^2 |qdd_i|) (and JUMP_FLOOR; scaled units) has left its branch: on a smooth path
-the correction is O(h^3) against a reach O(h) (at most 0.25 of it even at 8 steps per revolution
-over the catalogue), while a jump to another solution is a finite distance. Such a step is retaken
-in halved steps, which either follow the branch or stop where it ends."""
-
-
-@dataclass(frozen=True)
-class Analysis:
-    """The solution on the grid, with the diagnostics of every time point."""
-
-    layout: Layout
-    times: np.ndarray
-    q: np.ndarray
-    qd: np.ndarray
-    qdd: np.ndarray
-    iterations: np.ndarray
-    residual: np.ndarray
-    rcond: np.ndarray
-
-    def trajectory(self, bodies: Sequence[str] | None = None) -> Trajectory:
-        """The canonical trajectory of `bodies` (default: all), with each contact's phi as an extra."""
-        bodies = tuple(bodies or self.layout.bodies)
-        index = [
-            c
-            for b in bodies
-            for c in range(3 * self.layout.bodies.index(b), 3 * self.layout.bodies.index(b) + 3)
-        ]
-        shape = (len(self.times), len(bodies), 3)
-        extras = {f"{c}.phi": self.q[:, self.layout.phi_column(c)].copy() for c in self.layout.contacts}
-        return Trajectory(
-            self.times.copy(),
-            bodies,
-            position=self.q[:, index].reshape(shape),
-            velocity=self.qd[:, index].reshape(shape),
-            acceleration=self.qdd[:, index].reshape(shape),
-            extras=extras,
-        )
-
 
 def assemble(system: ConstraintSystem, q_guess: np.ndarray, t: float, tolerance: float) -> np.ndarray:
     """A configuration satisfying every constraint at t, by damped Newton from the rough guess."""
-    settings = NewtonSettings(tolerance, tolerance, max_iterations=100, damped=True)
+    settings = NewtonSettings(tolerance, tolerance, max_iterations=ASSEMBLY_ITERATIONS, damped=True)
     result = newton(system, q_guess, t, settings)
     if result.converged:
         return result.q
@@ -130,8 +92,6 @@ def analyse(
     """
     grid = np.asarray(scenario.times() if times is None else times, dtype=float)
     if fast:
-        from reference_solver import fast as fast_path
-
         done = fast_path.analyse(scenario, grid, tolerance, max_iterations)
         if done is not None:
             return done

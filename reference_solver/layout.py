@@ -56,7 +56,3 @@ class Layout:
         for cam in scenario.cams:
             q[self.phi_column(cam.name)] = cam.phi_guess
         return q
-
-    def column_labels(self) -> list[str]:
-        labels = [f"{b}.{c}" for b in self.bodies for c in ("x", "y", "theta")]
-        return labels + [f"{c}.phi" for c in self.contacts]

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from reference_solver.factorization import Factorization, factorize
+from reference_solver.limits import BACKTRACK_HALVINGS
 from reference_solver.system import ConstraintSystem
 
 
@@ -59,9 +60,9 @@ def newton(system: ConstraintSystem, q: np.ndarray, t: float, settings: NewtonSe
 def _backtrack(
     system: ConstraintSystem, q: np.ndarray, t: float, dx: np.ndarray, residual: float
 ) -> np.ndarray:
-    """Halve the scaled step until the scaled residual decreases (at most 30 halvings)."""
+    """Halve the scaled step until the scaled residual decreases (at most BACKTRACK_HALVINGS times)."""
     scale = 1.0
-    for _ in range(30):
+    for _ in range(BACKTRACK_HALVINGS):
         trial = q + scale * dx * system.column_scales
         value = np.max(np.abs(system.residual(trial, t) / system.row_scales))
         if np.isfinite(value) and value < residual:

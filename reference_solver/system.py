@@ -4,16 +4,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from reference_solver.cam_equations import FlatFaceEquation, KnifeEdgeEquation, RollerEquation
-from reference_solver.driver_equations import (
+from reference_solver.equation import Equation
+from reference_solver.equations.cams import FlatFaceEquation, KnifeEdgeEquation, RollerEquation
+from reference_solver.equations.drivers import (
     AbsoluteDriverEquation,
     PointPathDriverEquation,
     RelativeDisplacementDriverEquation,
     RelativeRotationDriverEquation,
 )
-from reference_solver.equation import Equation
-from reference_solver.gear_equations import GearPairEquation, RackPinionEquation
-from reference_solver.joint_equations import (
+from reference_solver.equations.gears import GearPairEquation, RackPinionEquation
+from reference_solver.equations.joints import (
     GroundEquation,
     PrismaticEquation,
     RevoluteEquation,
@@ -67,7 +67,6 @@ class ConstraintSystem:
         self.size = int(self.offsets[-1])
         self.unknowns = self.layout.size
         self.labels = [label for e in self.equations for label in e.labels]
-        self.constraint_of_row = [e.name for e in self.equations for _ in e.labels]
         length = self.layout.length_scale
         self.row_scales = np.array([length**p for e in self.equations for p in e.powers], dtype=float)
         self.column_scales = self.layout.column_scales()

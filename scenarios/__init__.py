@@ -12,7 +12,7 @@ from scenarios.drivers import (
 from scenarios.gears import GearPair, RackPinion
 from scenarios.joints import Ground, Prismatic, Revolute, RevoluteRevolute
 from scenarios.motions import Constant, ConstantSpeed, Harmonic
-from scenarios.registry import build, catalogue, families, family
+from scenarios.registry import all_families, build, catalogue, family
 from scenarios.scenario import LEVELS, Scenario, ScenarioError
 from scenarios.trajectory import Trajectory
 
@@ -43,8 +43,8 @@ __all__ = [
     "ScenarioError",
     "SplineProfile",
     "Trajectory",
+    "all_families",
     "build",
     "catalogue",
-    "families",
     "family",
 ]

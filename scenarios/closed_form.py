@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from scenarios import Scenario, Trajectory
-from scenarios.slider_crank import stroke_limits
+from scenarios.families.slider_crank import stroke_limits
 
 
 def _e(theta: np.ndarray) -> np.ndarray:
@@ -234,8 +234,10 @@ def four_bar_chain(scenario: Scenario, t: np.ndarray) -> Trajectory:
     parts = [body(0.0, length / 2, True)]
     for k in range(1, loops + 1):
         parts += [body((k - 0.5) * g, length, False), body(k * g, length / 2, True)]
-    levels = [np.stack([part[level] for part in parts], axis=1) for level in range(3)]
-    return Trajectory(t, scenario.body_names, *levels)
+    position, velocity, acceleration = (
+        np.stack([part[level] for part in parts], axis=1) for level in range(3)
+    )
+    return Trajectory(t, scenario.body_names, position, velocity, acceleration)
 
 
 FAMILIES = {

@@ -3,52 +3,31 @@
 from __future__ import annotations
 
 import difflib
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from collections.abc import Mapping
 
+from scenarios.families import (
+    andrews_squeezer,
+    cam_flat_face,
+    cam_knife_edge,
+    cam_roller,
+    compound_pendulum,
+    four_bar,
+    four_bar_chain,
+    four_bar_gravity,
+    n_four_bar,
+    planetary_gears,
+    rack_pinion,
+    slider_crank,
+    slider_crank_spring,
+    spur_gears,
+    stiff_spring,
+)
+from scenarios.family import Family
 from scenarios.scenario import ParameterValue, Scenario, ScenarioError
 
-
-@dataclass(frozen=True)
-class Family:
-    """A mechanism family: defaults for every parameter, named variants, and a builder.
-
-    `build(params, variant)` receives every parameter, already typed, and returns the scenario.
-    """
-
-    name: str
-    summary: str
-    defaults: Mapping[str, ParameterValue]
-    build: Callable[[dict[str, ParameterValue], str], Scenario]
-    variants: Mapping[str, Mapping[str, ParameterValue]]
-    dynamic: bool = False
-    """Forward dynamics (gravity, forces) rather than a driven kinematic analysis: left out of the
-    kinematic catalogue until the engines compare dynamics."""
-
-
-def _families() -> dict[str, Family]:
-    from scenarios import (
-        cam_flat_face,
-        cam_knife_edge,
-        cam_roller,
-        four_bar,
-        four_bar_chain,
-        planetary_gears,
-        rack_pinion,
-        slider_crank,
-        spur_gears,
-    )
-
-    from scenarios.families import (
-        andrews_squeezer,
-        compound_pendulum,
-        four_bar_gravity,
-        n_four_bar,
-        slider_crank_spring,
-        stiff_spring,
-    )
-
-    modules = (
+FAMILIES: tuple[Family, ...] = tuple(
+    module.FAMILY
+    for module in (
         slider_crank,
         four_bar,
         spur_gears,
@@ -65,12 +44,12 @@ def _families() -> dict[str, Family]:
         n_four_bar,
         stiff_spring,
     )
-    return {m.FAMILY.name: m.FAMILY for m in modules}
+)
 
 
-def families() -> dict[str, Family]:
+def all_families() -> dict[str, Family]:
     """Every family by name, in catalogue order."""
-    return _families()
+    return {f.name: f for f in FAMILIES}
 
 
 def _suggest(word: str, choices: list[str]) -> str:
@@ -80,27 +59,12 @@ def _suggest(word: str, choices: list[str]) -> str:
 
 def family(name: str) -> Family:
     """The family called `name`; ScenarioError naming the known ones otherwise."""
-    known = families()
+    known = all_families()
     if name not in known:
         raise ScenarioError(
             f"unknown scenario '{name}'{_suggest(name, list(known))}; known: {', '.join(known)}"
         )
     return known[name]
-
-
-def _typed(family_name: str, key: str, default: ParameterValue, value: ParameterValue) -> ParameterValue:
-    if isinstance(default, str):
-        return str(value)
-    try:
-        if isinstance(default, int) and not isinstance(default, bool):
-            number = float(value)
-            if number != int(number):
-                raise ValueError
-            return int(number)
-        return float(value)
-    except (TypeError, ValueError):
-        kind = "an integer" if isinstance(default, int) else "a number"
-        raise ScenarioError(f"{family_name}: parameter {key} must be {kind}, got {value!r}") from None
 
 
 def build(
@@ -115,15 +79,16 @@ def build(
             f"{name}: unknown variant '{variant}'{_suggest(variant, list(fam.variants))}; "
             f"known: {', '.join(['default', *fam.variants])}"
         )
-    params: dict[str, ParameterValue] = dict(fam.defaults)
-    params.update(fam.variants.get(variant, {}))
+    values: dict[str, ParameterValue] = fam.defaults
+    values.update(fam.variants.get(variant, {}))
     for key, value in (overrides or {}).items():
-        if key not in fam.defaults:
+        if key not in fam.parameters:
             raise ScenarioError(
-                f"{name}: unknown parameter '{key}'{_suggest(key, list(fam.defaults))}; "
-                f"known: {', '.join(fam.defaults)}"
+                f"{name}: unknown parameter '{key}'{_suggest(key, list(fam.parameters))}; "
+                f"known: {', '.join(fam.parameters)}"
             )
-        params[key] = _typed(name, key, fam.defaults[key], value)
+        values[key] = value
+    params = {key: fam.parameters[key].check(name, key, value) for key, value in values.items()}
     return fam.build(params, variant)
 
 
@@ -136,10 +101,11 @@ def catalogue(include_stress: bool = False, include_dynamic: bool = False) -> li
     """Every scenario name: each family's default and its named variants as `family/variant`.
 
     Stress variants are left out unless `include_stress`: they belong to the stress suite, not to
-    what runs or is checked for every scenario.
+    what runs or is checked for every scenario. Dynamic families are left out unless `include_dynamic`:
+    the kinematic suites and checks do not apply to them.
     """
     names = []
-    for fam in families().values():
+    for fam in all_families().values():
         if fam.dynamic and not include_dynamic:
             continue
         names.append(fam.name)

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import lstsq
 
-from reference_solver.analysis import Analysis
+from reference_solver.solution import Analysis
 from reference_solver.dynamics.augmented import constraint_outputs
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from reference_solver.analysis import Analysis
+    from reference_solver.solution import Analysis
     from scenarios.scenario import Scenario
 
 AVAILABLE = find_spec("numba") is not None

@@ -16,10 +16,10 @@ import math
 import numpy as np
 from numba import njit
 
-from reference_solver.analysis import JUMP_FLOOR, JUMP_FRACTION
 from reference_solver.fast.band import factor, norm1, norm_inf, rcond, solve
 from reference_solver.fast.evaluate import c_t, evaluate, profile_points
 from reference_solver.fast.program import S_BODIES, S_KL, S_KU, S_N, S_WIDTH, WIDTH
+from reference_solver.limits import JUMP_FLOOR, JUMP_FRACTION
 
 OK, ASSEMBLY_FAILED, NOT_CONVERGED, NEAR_SINGULAR, SIGN_CHANGE, UNVERIFIED, BRANCH_JUMP = range(7)
 EVENTS = (

@@ -15,7 +15,6 @@ from pathlib import Path
 
 import numpy as np
 
-from reference_solver.analysis import SINGULAR_RCOND, Analysis
 from reference_solver.diagnostics import RANK_TOLERANCE
 from reference_solver.fast.cache_guard import refresh
 from reference_solver.fast.loop import EVENTS, OK
@@ -23,17 +22,13 @@ from reference_solver.fast.loop import run as run_kernel
 from reference_solver.fast.program import Program, compile_program
 from reference_solver.fast.rows import NotCompiled
 from reference_solver.layout import Layout
+from reference_solver.limits import ASSEMBLY_ITERATIONS, BACKTRACK_HALVINGS, SINGULAR_RCOND
+from reference_solver.solution import Analysis
 from reference_solver.system import ConstraintSystem
 from scenarios.scenario import Scenario
 
-refresh(Path(__file__).parent)  # before the first call, when numba reads its cache
-
 HANDOVER = 100.0 * SINGULAR_RCOND
 """Below this reciprocal condition number the plain path decides (its estimate may differ a little)."""
-ASSEMBLY_ITERATIONS = 100
-"""analysis.assemble's iteration limit."""
-HALVINGS = 30
-"""newton._backtrack's limit of step halvings."""
 MOBILITY_MARGIN = 100.0 * RANK_TOLERANCE
 """Mobility counts as verified when C_q at the guess has sqrt(rcond_1 rcond_inf) above this: that
 bounds sigma_min / sigma_max from below (||A||_2^2 <= ||A||_1 ||A||_inf), and the plain check's rank
@@ -91,13 +86,20 @@ def run(scenario: Scenario, grid: np.ndarray, tolerance: float = 1e-12, max_iter
     iterations, residual, rcond = np.zeros(count, np.int64), np.zeros(count), np.zeros(count)
     if count == 0:
         return FastRun("empty grid", 0, None)
+    _drop_stale_cache()
     event, index = run_kernel(
         *c.program, grid, c.guess, float(tolerance), int(max_iterations), ASSEMBLY_ITERATIONS,
-        HALVINGS, HANDOVER, MOBILITY_MARGIN, q, qd, qdd, iterations, residual, rcond,
+        BACKTRACK_HALVINGS, HANDOVER, MOBILITY_MARGIN, q, qd, qdd, iterations, residual, rcond,
     )  # fmt: skip
     if event != OK:
         return FastRun(EVENTS[event], int(index), None)
     return FastRun(EVENTS[OK], count, Analysis(c.layout, grid, q, qd, qdd, iterations, residual, rcond))
+
+
+@lru_cache(maxsize=1)
+def _drop_stale_cache() -> None:
+    """Before the kernel's first call in a process, when numba reads its on-disk cache."""
+    refresh(Path(__file__).parent)
 
 
 def analyse(scenario: Scenario, grid: np.ndarray, tolerance: float, max_iterations: int) -> Analysis | None:

@@ -4,7 +4,7 @@
 
 where A and B are sums of signed terms (a point R + A u, a direction A u, a cam's profile point
 R + A u(phi) or its tangent A u'(phi)). Each function mirrors one equation class of the plain path
-(joint_equations, gear_equations, cam_equations, driver_equations) row for row.
+(reference_solver.equations: joints, gears, cams, drivers) row for row.
 """
 
 from __future__ import annotations

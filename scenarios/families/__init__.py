@@ -1,1 +1,1 @@
-"""Mechanism families, one module each."""
+"""The mechanism families, one module each; each declares itself as a `Family` (scenarios/family.py)."""

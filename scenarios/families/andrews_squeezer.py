@@ -27,7 +27,7 @@ from scenarios.forces import AppliedTorque, SpringDamper
 from scenarios.joints import Revolute
 from scenarios.motions import Constant
 from scenarios.outputs import AngleOutput
-from scenarios.registry import Family
+from scenarios.family import MAX_STEPS, Family, Parameter, count, positive
 from scenarios.scenario import ParameterValue, Scenario, require_positive
 
 # Test set parameters (andrews.f, R/ex_andrews.R), SI units.
@@ -133,7 +133,12 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
 FAMILY = Family(
     name="andrews_squeezer",
     summary="Andrews' squeezing mechanism, 7 bodies, the index-3 DAE benchmark (reference at t = 0.03 s)",
-    defaults={"spring_stiffness": C0, "torque": MOM, "t_end": REFERENCE_T, "steps": 30},
+    parameters={
+        "spring_stiffness": positive(C0, 1e15, "N/m"),
+        "torque": Parameter(MOM, "N m", low=-1e6, high=1e6),
+        "t_end": positive(REFERENCE_T, 1e3, "s"),
+        "steps": count(30, 1, MAX_STEPS),
+    },
     build=_build,
     variants={},
     dynamic=True,

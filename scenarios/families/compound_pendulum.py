@@ -11,7 +11,7 @@ import math
 
 from scenarios.bodies import GROUND, Body, Point
 from scenarios.joints import Revolute
-from scenarios.registry import Family
+from scenarios.family import MAX_STEPS, Family, Parameter, angle, count, length, positive
 from scenarios.scenario import ParameterValue, Scenario, ScenarioError, require_finite, require_positive
 
 
@@ -52,14 +52,14 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
 FAMILY = Family(
     name="compound_pendulum",
     summary="uniform links hanging in a chain under gravity (the compound double pendulum by default)",
-    defaults={
-        "links": 2,
-        "link_length": 0.5,
-        "link_mass": 1.0,
-        "theta0": 1.0,
-        "gravity": 9.81,
-        "t_end": 2.0,
-        "steps": 200,
+    parameters={
+        "links": count(2, 1, 1000),
+        "link_length": length(0.5),
+        "link_mass": positive(1.0, 1e9, "kg"),
+        "theta0": angle(1.0),
+        "gravity": Parameter(9.81, "m/s^2", low=-1e6, high=1e6),
+        "t_end": positive(2.0, 1e6, "s"),
+        "steps": count(200, 1, MAX_STEPS),
     },
     build=_build,
     variants={"small_oscillation": {"links": 1, "theta0": 1e-4}},

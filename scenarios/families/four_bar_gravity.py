@@ -3,8 +3,9 @@ rest under gravity: no driver, no friction, so T + V stays constant; the frictio
 
 from __future__ import annotations
 
+from scenarios.families import four_bar
 from scenarios.families.released import released
-from scenarios.registry import Family
+from scenarios.family import MAX_STEPS, Family, Parameter, angle, count, positive
 from scenarios.scenario import ParameterValue, Scenario, require_finite
 
 
@@ -12,7 +13,7 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     gravity = float(p["gravity"])
     require_finite("four_bar_gravity", gravity=gravity)
     return released(
-        "four_bar",
+        four_bar.FAMILY,
         {"theta0": p["theta0"], "branch": p["branch"]},
         "four_bar_gravity",
         variant,
@@ -25,7 +26,13 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
 FAMILY = Family(
     name="four_bar_gravity",
     summary="the four-bar released from rest under gravity (frictionless: T + V constant)",
-    defaults={"theta0": 0.3, "branch": 1, "gravity": 9.81, "t_end": 1.0, "steps": 200},
+    parameters={
+        "theta0": angle(0.3),
+        "branch": Parameter(1, low=-1, high=1, nonzero=True),
+        "gravity": Parameter(9.81, "m/s^2", low=-1e6, high=1e6),
+        "t_end": positive(1.0, 1e6, "s"),
+        "steps": count(200, 1, MAX_STEPS),
+    },
     build=_build,
     variants={},
     dynamic=True,

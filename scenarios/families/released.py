@@ -1,17 +1,17 @@
 """A kinematic family's mechanism set free for dynamics: the same bodies and joints, built by the
-catalogue from the kinematic family's own parameters, with its drivers removed and loads added."""
+kinematic family's own builder and parameters, with its drivers removed and loads added."""
 
 from __future__ import annotations
 
 from dataclasses import replace
 from typing import Any
 
-from scenarios.registry import build
-from scenarios.scenario import ParameterValue, Scenario, require_positive
+from scenarios.family import Family
+from scenarios.scenario import ParameterValue, Scenario
 
 
 def released(
-    kinematic: str,
+    kinematic: Family,
     overrides: dict[str, ParameterValue],
     family: str,
     variant: str,
@@ -21,8 +21,9 @@ def released(
 ) -> Scenario:
     """Scenario `family` made of `kinematic` built with `overrides`, without drivers, over
     [0, p["t_end"]] in p["steps"] steps, with the dynamic fields in `changes` (gravity, forces...)."""
-    require_positive(family, t_end=float(p["t_end"]))
-    base = build(kinematic, overrides=overrides)
+    values = {**kinematic.defaults, **overrides}
+    params = {key: kinematic.parameters[key].check(kinematic.name, key, v) for key, v in values.items()}
+    base = kinematic.build(params, "default")
     return replace(
         base,
         family=family,

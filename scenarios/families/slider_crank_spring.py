@@ -6,10 +6,11 @@ energy balance has all its terms: motor work, spring energy, damper loss."""
 from __future__ import annotations
 
 from scenarios.bodies import GROUND, Point
+from scenarios.families import slider_crank
 from scenarios.families.released import released
 from scenarios.forces import AppliedTorque, SpringDamper
 from scenarios.motions import Constant
-from scenarios.registry import Family
+from scenarios.family import MAX_STEPS, Family, Parameter, angle, count, length, positive
 from scenarios.scenario import ParameterValue, Scenario, require_finite, require_positive
 
 
@@ -25,7 +26,7 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     )
     motor = AppliedTorque("motor", "crank", Constant(torque))
     return released(
-        "slider_crank",
+        slider_crank.FAMILY,
         base,
         "slider_crank_spring",
         variant,
@@ -38,15 +39,15 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
 FAMILY = Family(
     name="slider_crank_spring",
     summary="slider-crank, constant motor torque against a spring-damper on the slider",
-    defaults={
-        "crank_length": 0.2,
-        "rod_length": 0.4,
-        "theta0": 0.3,
-        "torque": 2.0,
-        "stiffness": 1000.0,
-        "damping": 5.0,
-        "t_end": 1.0,
-        "steps": 200,
+    parameters={
+        "crank_length": length(0.2),
+        "rod_length": length(0.4),
+        "theta0": angle(0.3),
+        "torque": Parameter(2.0, "N m", low=-1e9, high=1e9),
+        "stiffness": positive(1000.0, 1e15, "N/m"),
+        "damping": Parameter(5.0, "N s/m", low=0.0, high=1e12),
+        "t_end": positive(1.0, 1e6, "s"),
+        "steps": count(200, 1, MAX_STEPS),
     },
     build=_build,
     variants={"undamped": {"damping": 0.0}},

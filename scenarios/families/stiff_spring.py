@@ -8,9 +8,10 @@ are the parameters a stress sweep turns."""
 from __future__ import annotations
 
 from scenarios.bodies import GROUND, Point
+from scenarios.families import compound_pendulum
 from scenarios.families.released import released
 from scenarios.forces import SpringDamper
-from scenarios.registry import Family
+from scenarios.family import Family, Parameter, angle, length, positive
 from scenarios.scenario import ParameterValue, Scenario, require_finite, require_positive
 
 
@@ -25,7 +26,7 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
         "spring", Point("link_1", (length / 2, 0.0)), Point(GROUND, (0.0, -2.0 * length)), k, c, length
     )
     return released(
-        "compound_pendulum",
+        compound_pendulum.FAMILY,
         rod,
         "stiff_spring",
         variant,
@@ -38,14 +39,14 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
 FAMILY = Family(
     name="stiff_spring",
     summary="a pendulum held by a stiff spring; stiffness and step size are parameters",
-    defaults={
-        "stiffness": 1e6,
-        "damping": 0.0,
-        "dt": 1e-4,
-        "link_length": 0.5,
-        "theta0": 0.05,
-        "gravity": 9.81,
-        "t_end": 0.1,
+    parameters={
+        "stiffness": positive(1e6, 1e15, "N/m"),
+        "damping": Parameter(0.0, "N s/m", low=0.0, high=1e12),
+        "dt": positive(1e-4, 1e3, "s"),
+        "link_length": length(0.5),
+        "theta0": angle(0.05),
+        "gravity": Parameter(9.81, "m/s^2", low=-1e6, high=1e6),
+        "t_end": positive(0.1, 1e6, "s"),
     },
     build=_build,
     variants={"damped": {"damping": 20.0}},

@@ -1,0 +1,96 @@
+"""Shared builder of the cam families: a disc cam pinned at the origin and driven at constant speed,
+and a follower translating along the y axis through the cam's centre.
+
+The profile is the eccentric disc (radius R, eccentricity e) or, with `profile=spline`, a periodic
+cubic spline through `knots` radii of that disc, or with `profile=lobed` the lobed cam
+d(phi) = R + e cos(lobes phi) (e is then the lobes' amplitude; an eccentric disc is nearly the
+one-lobe case), whose valleys are concave when e lobes^2 > R - e. Closed forms (disc) with cam angle th:
+knife edge y = e sin th + sqrt(R^2 - e^2 cos^2 th); roller y = e sin th + sqrt((R + r)^2 - e^2
+cos^2 th); flat face y = R + e sin th.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+from scenarios.bodies import GROUND, Body, Point
+from scenarios.cam_profiles import EccentricDisc, LobedProfile, Profile, SplineProfile
+from scenarios.cams import CamContact
+from scenarios.drivers import AbsoluteDriver
+from scenarios.family import MAX_LENGTH, Parameter, angle, choice, count, length, speed, time_grid
+from scenarios.joints import Prismatic, Revolute
+from scenarios.motions import ConstantSpeed
+from scenarios.scenario import ParameterValue, Scenario, ScenarioError, revolving
+
+MAX_KNOTS = 10_000
+MAX_LOBES = 100
+
+PARAMETERS: dict[str, Parameter] = {
+    "radius": length(0.05),
+    "eccentricity": Parameter(0.01, "m", low=0.0, high=MAX_LENGTH),
+    "omega": speed(10.0),
+    "theta0": angle(0.0),
+    "profile": choice("disc", "spline", "lobed"),
+    "knots": count(72, 4, MAX_KNOTS),
+    "lobes": count(3, 1, MAX_LOBES),
+    **time_grid(),
+}
+
+SPLINE_VARIANTS: dict[str, dict[str, ParameterValue]] = {"spline": {"profile": "spline"}}
+
+ContactFactory = Callable[[Profile, float], CamContact]
+
+
+def build_disc_cam(
+    family: str,
+    p: dict[str, ParameterValue],
+    variant: str,
+    follower_height: Callable[[float, float, float], float],
+    contact: ContactFactory,
+) -> Scenario:
+    """Build a disc-cam scenario; `follower_height(R, e, th)` gives a guess of the follower's y and
+    `contact(profile, phi_guess)` the cam contact."""
+    big_r, e = float(p["radius"]), float(p["eccentricity"])
+    omega, theta0 = float(p["omega"]), float(p["theta0"])
+    if not 0.0 <= e < big_r:
+        raise ScenarioError(f"{family}: eccentricity must be in [0, radius), got {e}")
+    disc = EccentricDisc(big_r, e)
+    kind = str(p["profile"])
+    profile: Profile
+    if kind == "disc":
+        profile = disc
+    elif kind == "spline":
+        profile = SplineProfile.sample(disc, int(p["knots"]))
+    else:  # lobed, the only other choice the declaration admits
+        profile = LobedProfile(big_r, e, int(p["lobes"]))
+    # The follower's guess: the disc's closed form, or for a lobed cam that of a centred disc of the
+    # profile's radius where the follower's axis meets it.
+    height = (
+        follower_height(profile.radii(math.pi / 2 - theta0)[0], 0.0, theta0)
+        if isinstance(profile, LobedProfile)
+        else follower_height(big_r, e, theta0)
+    )
+    mass = math.pi * big_r**2
+    bodies = (
+        Body("cam", (0.0, 0.0, theta0), mass=mass, inertia=mass * big_r**2 / 2),
+        Body("follower", (0.0, height, 0.0), mass=0.2, inertia=1e-4),
+    )
+    joints = (
+        Revolute("pivot", Point(GROUND, (0.0, 0.0)), Point("cam")),
+        Prismatic("guide", Point("follower"), Point(GROUND, (0.0, 0.0)), axis=(0.0, 1.0)),
+        contact(profile, math.pi / 2 - theta0),
+    )
+    driver = AbsoluteDriver("cam_drive", "cam", "theta", ConstantSpeed(theta0, omega))
+    follower = family.removeprefix("cam_").replace("_", "-")
+    description = f"{kind} cam with a translating {follower} follower"
+    return revolving(
+        family,
+        variant,
+        p,
+        bodies,
+        joints,
+        (driver,),
+        big_r,
+        description,
+    )

@@ -1,0 +1,138 @@
+"""A mechanism family as data: its parameters (each with a type, a range and a unit), variants and
+builder. The registry collects the families; a family never imports the registry.
+
+Every value that enters a family, a default, a variant's or a user's `--set`, is checked here against
+its declaration before anything is built, so a bad value gets one message naming the limit.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+
+from scenarios.scenario import ParameterValue, Scenario, ScenarioError
+
+MAX_LENGTH = 1e6  # m: a kilometre-sized mechanism is in range, a 1e308 m one is a typo
+MAX_RATE = 1e6  # rad/s
+MAX_ANGLE = 1e3  # rad, for initial angles
+MAX_STEPS = 10_000_000  # grid steps: 1e7 points of a few bodies is about 2 GB of trajectory
+MAX_REVOLUTIONS = 1e5
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One family parameter: its default (whose type is the parameter's type), unit and range.
+
+    Numbers lie in [low, high] (`low_open` excludes low itself), `nonzero` excludes 0, and a string
+    parameter takes one of `choices`.
+    """
+
+    default: ParameterValue
+    unit: str = ""
+    low: float = -math.inf
+    high: float = math.inf
+    low_open: bool = False
+    nonzero: bool = False
+    choices: tuple[str, ...] = ()
+
+    @property
+    def kind(self) -> str:
+        if isinstance(self.default, str):
+            return "text"
+        return "integer" if isinstance(self.default, int) else "number"
+
+    def describe(self) -> str:
+        """The declared range in words, as `mbxval list` and every message show it."""
+        if self.choices:
+            return "one of " + ", ".join(self.choices)
+        article = "an" if self.kind == "integer" else "a"
+        low = "(" if self.low_open else "["
+        unit = f" {self.unit}" if self.unit else ""
+        span = f"{article} {self.kind} in {low}{self.low:g}, {self.high:g}]{unit}"
+        return span + (", not 0" if self.nonzero else "")
+
+    def check(self, family: str, key: str, value: ParameterValue) -> ParameterValue:
+        """`value` converted to the parameter's type; ScenarioError naming the limit otherwise."""
+        if isinstance(self.default, str):
+            text = str(value)
+            if self.choices and text not in self.choices:
+                raise ScenarioError(f"{family}: {key} must be {self.describe()}, got {value!r}")
+            return text
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            raise ScenarioError(f"{family}: {key} must be {self.describe()}, got {value!r}") from None
+        below = number <= self.low if self.low_open else number < self.low
+        if not math.isfinite(number) or below or number > self.high or (self.nonzero and number == 0):
+            raise ScenarioError(f"{family}: {key} must be {self.describe()}, got {value!r}")
+        if self.kind == "integer":
+            if number != int(number):
+                raise ScenarioError(f"{family}: {key} must be an integer, got {value!r}")
+            return int(number)
+        return number
+
+
+def length(default: float) -> Parameter:
+    """A positive length."""
+    return Parameter(default, "m", low=0.0, high=MAX_LENGTH, low_open=True)
+
+
+def offset(default: float) -> Parameter:
+    """A signed length (an offset or a position)."""
+    return Parameter(default, "m", low=-MAX_LENGTH, high=MAX_LENGTH)
+
+
+def speed(default: float) -> Parameter:
+    """A drive speed: signed, never zero (the grid spans turns at this speed)."""
+    return Parameter(default, "rad/s", low=-MAX_RATE, high=MAX_RATE, nonzero=True)
+
+
+def angle(default: float) -> Parameter:
+    """An initial angle."""
+    return Parameter(default, "rad", low=-MAX_ANGLE, high=MAX_ANGLE)
+
+
+def positive(default: float, high: float, unit: str = "") -> Parameter:
+    """A positive number up to `high`."""
+    return Parameter(default, unit, low=0.0, high=high, low_open=True)
+
+
+def count(default: int, low: int, high: int, unit: str = "") -> Parameter:
+    """A whole number in [low, high]."""
+    return Parameter(default, unit, low=low, high=high)
+
+
+def choice(default: str, *others: str) -> Parameter:
+    """One word out of a few."""
+    return Parameter(default, choices=(default, *others))
+
+
+def time_grid(steps: int = 200) -> dict[str, Parameter]:
+    """The grid every revolving family takes: `revolutions` turns in `steps` steps."""
+    return {
+        "revolutions": positive(1.0, MAX_REVOLUTIONS, "turns"),
+        "steps": count(steps, 1, MAX_STEPS),
+    }
+
+
+@dataclass(frozen=True)
+class Family:
+    """A mechanism family: every parameter declared, named variants, and a builder.
+
+    `build(params, variant)` receives every parameter, already checked and typed, and returns the
+    scenario.
+    """
+
+    name: str
+    summary: str
+    parameters: Mapping[str, Parameter]
+    build: Callable[[dict[str, ParameterValue], str], Scenario]
+    variants: Mapping[str, Mapping[str, ParameterValue]]
+    dynamic: bool = False
+    """Forward dynamics (gravity, forces) rather than a driven kinematic analysis: left out of the
+    kinematic catalogue until the engines are compared on dynamics."""
+
+    @property
+    def defaults(self) -> dict[str, ParameterValue]:
+        return {key: p.default for key, p in self.parameters.items()}

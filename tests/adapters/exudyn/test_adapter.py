@@ -1,0 +1,213 @@
+"""Exudyn adapter: every scenario of the catalogue against its closed form (the reference solver for
+spline cams), masses that do not matter, the convergence orders of the step-size sweep, honest
+failures and unsupported scenarios, and runs that write no file and print nothing.
+
+Measured with Exudyn 1.13.6, errors relative to the largest value of the level over the run:
+- GA3 (generalized-alpha index 3, spectral radius 0.9, dt a tenth of the output interval):
+  positions 1e-16..1e-15; velocities 9e-9 (cams) .. 5.6e-6 (four-bar), O(dt^2); accelerations
+  1e-3..2e-2, dominated by the start-up transient of index-3 generalized-alpha (O(dt)).
+- STATIC (static solve per time point, velocity and acceleration solves on Exudyn's Jacobian):
+  positions 5e-15, velocities 6e-15, accelerations 1e-12 (2e-5 on spline cams, whose third
+  derivative jumps at the knots under the differences that give Q_d).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+from typing import Any
+
+import numpy as np
+import pytest
+
+import reference_solver
+import scenarios
+from adapters.base import Setting
+from adapters.exudyn import ExudynAdapter
+from scenarios import Point, RevoluteRevolute, Scenario, Trajectory
+from scenarios.closed_form import exact
+from scenarios.scenario import Level
+
+ADAPTER = ExudynAdapter()
+CATALOGUE = scenarios.catalogue()
+LEVELS: tuple[Level, ...] = ("position", "velocity", "acceleration")
+# mode: (position [m, rad], velocity / max|v|, acceleration / max|a|)
+BOUNDS = {"GA3": (1e-12, 2e-5, 6e-2), "STATIC": (1e-12, 1e-12, 1e-10)}
+SPLINE_STATIC_ACCELERATION = 1e-4
+
+
+def truth(scenario: Scenario, times: np.ndarray) -> Trajectory:
+    if scenario.family.startswith("cam_") and scenario.parameter("profile") != "disc":
+        return reference_solver.solve(scenario, times)
+    return exact(scenario, times)
+
+
+def run(scenario: Scenario, setting: Setting | None = None) -> Trajectory:
+    result = ADAPTER.run(scenario, setting)
+    assert result.status == "ok", result.message
+    assert result.trajectory is not None
+    return result.trajectory
+
+
+def errors(trajectory: Trajectory, reference: Trajectory) -> list[float]:
+    """Absolute position error, then velocity and acceleration errors relative to the largest
+    value of their level (with a floor for levels that are zero, like a gear's acceleration)."""
+    reference = reference.select(trajectory.bodies)
+    out = []
+    for level in LEVELS:
+        mine, exact_ = trajectory.level(level), reference.level(level)
+        assert mine is not None and exact_ is not None
+        error = float(np.max(np.abs(mine - exact_)))
+        out.append(error if level == "position" else error / max(float(np.max(np.abs(exact_))), 1.0))
+    return out
+
+
+@pytest.mark.parametrize("mode", BOUNDS)
+@pytest.mark.parametrize("name", CATALOGUE)
+def test_every_scenario_matches_its_truth(name: str, mode: str) -> None:
+    scenario = scenarios.build(name)
+    setting = ADAPTER.default_setting(scenario) if mode == "GA3" else Setting.of(mode)
+    trajectory = run(scenario, setting)
+    reference = truth(scenario, trajectory.times)
+    position, velocity, acceleration = errors(trajectory, reference)
+    bounds = list(BOUNDS[mode])
+    if mode == "STATIC" and name.endswith("/spline"):
+        bounds[2] = SPLINE_STATIC_ACCELERATION
+    assert position < bounds[0]
+    assert velocity < bounds[1]
+    assert acceleration < bounds[2]
+    for extra, values in reference.extras.items():
+        np.testing.assert_allclose(trajectory.extras[extra], values, rtol=0, atol=1e-12)
+
+
+def test_default_is_generalized_alpha_and_in_the_sweep() -> None:
+    scenario = scenarios.build("slider_crank")
+    default, sweep = ADAPTER.default_setting(scenario), ADAPTER.sweep(scenario)
+    assert default.mode == "GA3" and default in sweep
+    assert {s.mode for s in sweep} == {"GA3", "GA3-rho0.5", "TR2", "STATIC"}
+    interval = scenario.t_end / scenario.steps
+    for setting in sweep:
+        if setting.mode != "STATIC":
+            substeps = interval / setting["dt"]
+            assert abs(substeps - round(substeps)) < 1e-9
+
+
+def test_unknown_modes_and_options_fail_without_raising() -> None:
+    scenario = scenarios.build("slider_crank")
+    for setting in (Setting.of("RK4"), Setting.of("GA3", step=1e-4), Setting.of("GA3", cams="penalty")):
+        result = ADAPTER.run(scenario, setting)
+        assert result.status == "failed" and result.trajectory is None
+
+
+@pytest.mark.parametrize("name", ["cam_knife_edge", "cam_roller"])
+def test_disc_cams_through_user_functions_match_the_distance_connector(name: str) -> None:
+    """The same disc contact as a vector connector with constraint and Jacobian user functions,
+    phi a coordinate of its own, instead of Exudyn's distance connector."""
+    scenario = scenarios.build(name)
+    trajectory = run(scenario, ADAPTER.default_setting(scenario).replace(cams="user"))
+    reference = exact(scenario, trajectory.times)
+    position, velocity, acceleration = errors(trajectory, reference)
+    assert position < 1e-12 and velocity < 2e-5 and acceleration < 6e-2
+    np.testing.assert_allclose(trajectory.extras["contact.phi"], reference.extras["contact.phi"], atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("name", "mode"), [("slider_crank", "GA3"), ("four_bar", "TR2"), ("cam_flat_face/spline", "GA3")]
+)
+def test_masses_do_not_change_a_driven_result(name: str, mode: str) -> None:
+    """Zero mass and a hundred times the mass give the scenario's masses' result: only the
+    constraints decide. Accelerations carry Newton's round-off over dt^2."""
+    scenario = scenarios.build(name)
+    setting = Setting.of(mode, dt=scenario.t_end / scenario.steps / 3)
+    base = run(scenario, setting)
+    for scale in (0.0, 100.0):
+        other = run(scenario, setting.replace(mass_scale=scale))
+        for level, bound in zip(LEVELS, (1e-14, 1e-10, 1e-6), strict=True):
+            mine, theirs = other.level(level), base.level(level)
+            assert mine is not None and theirs is not None
+            assert np.max(np.abs(mine - theirs)) <= bound * np.max(np.abs(theirs))
+
+
+def _orders(mode: str, substeps: tuple[int, ...]) -> np.ndarray:
+    """Observed orders of the slider-crank's errors per level when the step halves."""
+    scenario = scenarios.build("slider_crank")
+    interval = scenario.t_end / scenario.steps
+    errs = []
+    for k in substeps:
+        trajectory = run(scenario, Setting.of(mode, dt=interval / k))
+        reference = exact(scenario, trajectory.times)
+        errs.append([float(np.max(np.abs(trajectory.level(lv) - reference.level(lv)))) for lv in LEVELS])  # type: ignore[operator]
+    e = np.array(errs)
+    return np.log2(e[:-1] / e[1:])
+
+
+def test_generalized_alpha_velocities_converge_at_second_order() -> None:
+    orders = _orders("GA3", (2, 4, 8))
+    np.testing.assert_allclose(orders[:, 1], 2.0, atol=0.1)  # velocities
+    np.testing.assert_allclose(orders[:, 2], 1.0, atol=0.15)  # accelerations: the start-up transient
+
+
+def test_trapezoidal_index_two_converges_at_second_order_with_position_drift() -> None:
+    orders = _orders("TR2", (1, 2, 4))
+    np.testing.assert_allclose(orders, 2.0, atol=0.1)  # positions drift, O(dt^2), as do the rates
+
+
+def test_a_path_beyond_the_dead_centre_fails_with_exudyns_message_and_time() -> None:
+    scenario = scenarios.build("slider_crank/slider_drive", overrides={"stroke_fraction": 1.3})
+    dead_centre = math.asin(1 / 1.3) / float(scenario.parameter("omega"))
+    interval = scenario.t_end / scenario.steps
+    for mode in ("GA3", "TR2", "STATIC"):
+        result = ADAPTER.run(scenario, Setting.of(mode))
+        assert result.status == "failed", mode
+        assert result.trajectory is None
+        assert result.message.startswith("Exudyn Solve") and "Newton" in result.message
+        assert result.failure_time is not None
+        assert dead_centre - 2 * interval < result.failure_time < dead_centre + 2 * interval
+
+
+def test_a_mechanism_that_cannot_assemble_fails_at_the_start() -> None:
+    scenario = scenarios.build("four_bar", overrides={"coupler_length": 0.2, "rocker_length": 0.05})
+    result = ADAPTER.run(scenario)
+    assert result.status == "failed"
+    assert "SolveStatic" in result.message or "did not assemble" in result.message
+    assert result.failure_time is not None and result.failure_time < 1e-9
+
+
+@dataclasses.dataclass(frozen=True)
+class Weld:
+    name: str
+    p_i: Point
+    p_j: Point
+
+
+def test_what_exudyn_cannot_represent_is_unsupported_with_its_reason() -> None:
+    base = scenarios.build("four_bar")
+    undriven = dataclasses.replace(base, drivers=())
+    reason = ADAPTER.supports(undriven)
+    assert reason is not None and "not kinematically driven" in reason
+    assert ADAPTER.run(undriven).status == "unsupported"
+
+    weld: Any = Weld("O4", Point("rocker"), Point("coupler"))  # a joint kind no engine knows
+    welded = dataclasses.replace(base, joints=(*base.joints[:-1], weld))
+    result = ADAPTER.run(welded)
+    assert result.status == "unsupported" and "Weld" in result.message
+
+    zero_link = RevoluteRevolute("link", Point("crank"), Point("rocker"), 0.0)
+    pointless = dataclasses.replace(base, joints=(*base.joints[:-1], zero_link))
+    result = ADAPTER.run(pointless)
+    assert result.status == "unsupported" and "positive length" in result.message
+
+
+def test_runs_write_no_file_and_print_nothing(
+    tmp_path: object, capfd: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(str(tmp_path))
+    for name, mode in (("slider_crank", "GA3"), ("cam_roller/spline", "TR2"), ("cam_flat_face", "STATIC")):
+        scenario = dataclasses.replace(scenarios.build(name), steps=20)
+        assert ADAPTER.run(scenario, Setting.of(mode)).status == "ok"
+    failing = scenarios.build("slider_crank/slider_drive", overrides={"stroke_fraction": 1.3})
+    assert ADAPTER.run(failing).status == "failed"
+    assert os.listdir(str(tmp_path)) == []
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""

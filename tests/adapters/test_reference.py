@@ -1,0 +1,46 @@
+"""The native solver seen through the adapter contract, as the runner sees every engine."""
+
+from __future__ import annotations
+
+import numpy as np
+
+import adapters
+import scenarios
+from adapters.base import Setting
+from scenarios.closed_form import exact
+
+
+def test_reference_runs_through_the_contract() -> None:
+    engine = adapters.load("reference")
+    scenario = scenarios.build("four_bar", overrides={"steps": 40})
+    result = engine.run(scenario)
+    assert result.status == "ok" and result.trajectory is not None
+    assert result.run_time > 0 and result.build_time >= 0 and result.steps > 0
+    np.testing.assert_allclose(result.trajectory.position, exact(scenario).position, atol=1e-12)  # type: ignore[arg-type]
+
+
+def test_tolerance_sweep_trades_accuracy_for_work() -> None:
+    engine = adapters.load("reference")
+    scenario = scenarios.build("slider_crank", overrides={"steps": 20})
+    truth = exact(scenario).position
+    errors, iterations = [], []
+    for setting in (Setting.of("newton", tolerance=1e-2), Setting.of("newton", tolerance=1e-12)):
+        result = engine.run(scenario, setting)
+        assert result.trajectory is not None
+        errors.append(float(np.abs(result.trajectory.position - truth).max()))  # type: ignore[operator]
+        iterations.append(result.steps)
+    assert errors[1] < 1e-14 < errors[0] and iterations[0] < iterations[1]
+
+
+def test_singular_drive_is_a_singular_status_with_its_time() -> None:
+    engine = adapters.load("reference")
+    scenario = scenarios.build("slider_crank/slider_drive", overrides={"stroke_fraction": 1.0})
+    result = engine.run(scenario)
+    assert result.status == "singular" and result.trajectory is None
+    assert result.failure_time is not None and abs(result.failure_time - np.pi / 100) < 1e-9
+    assert "dead" in result.message or "singular" in result.message
+
+
+def test_unknown_mode_fails_cleanly() -> None:
+    result = adapters.load("reference").run(scenarios.build("four_bar"), Setting.of("euler"))
+    assert result.status == "failed" and "unknown mode 'euler'" in result.message
