@@ -11,6 +11,8 @@ from scipy.linalg import LinAlgWarning, lu_factor, lu_solve
 
 from reference_solver.system import ConstraintSystem
 from scenarios.bodies import GROUND
+from scenarios.drivers import Driver
+from scenarios.joints import Prismatic, Revolute, RevoluteRevolute
 
 
 def accelerations(
@@ -41,25 +43,21 @@ def constraint_outputs(system: ConstraintSystem, jac: np.ndarray, lam: np.ndarra
     axes) and driving forces `<driver>.force` (minus the multiplier: the generalized force the driver
     applies along its coordinate; `<row>.force` for drivers of several rows)."""
     out: dict[str, float] = {}
-    drivers = {d.name for d in system.scenario.drivers}
-    for eq, start in zip(system.equations, system.offsets, strict=False):
+    constraints = (*system.scenario.joints, *system.scenario.drivers)
+    for constraint, eq, start in zip(constraints, system.equations, system.offsets, strict=False):
         rows = slice(int(start), int(start) + eq.size)
-        if eq.name in drivers:
+        if isinstance(constraint, Driver):
             if eq.size == 1:
                 out[f"{eq.name}.force"] = -float(lam[rows][0])
             else:
                 for label, value in zip(eq.labels, lam[rows], strict=True):
                     out[f"{label}.force"] = -float(value)
             continue
-        bodies = [b for b in _bodies_of(eq.joint) if b != GROUND] if hasattr(eq, "joint") else []
-        if not bodies or type(eq.joint).__name__ == "Ground":
+        if not isinstance(constraint, Revolute | Prismatic | RevoluteRevolute):
             continue
-        col = system.layout.body_column(bodies[0])
+        moving = [p.body for p in (constraint.p_i, constraint.p_j) if p.body != GROUND]
+        col = system.layout.body_column(moving[0])
         assert col is not None
         force = -(jac[rows, col : col + 2].T @ lam[rows])
         out[f"{eq.name}.fx"], out[f"{eq.name}.fy"] = float(force[0]), float(force[1])
     return out
-
-
-def _bodies_of(joint: object) -> list[str]:
-    return [p.body for p in (getattr(joint, "p_i", None), getattr(joint, "p_j", None)) if p is not None]

@@ -20,6 +20,7 @@ from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.partition import Partitioned, State, choose_independent
 from reference_solver.errors import AssemblyError, SolverError
 from reference_solver.layout import Layout
+from reference_solver.solution import Analysis
 from reference_solver.system import ConstraintSystem
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -32,31 +33,40 @@ METHODS = ("DOP853", "Radau")
 
 @dataclass(frozen=True)
 class DynamicAnalysis:
-    """The motion on the grid with the multipliers and the extras (reactions, driver forces, energy)."""
+    """The motion on the grid (as a kinematic Analysis: q, q', q'' and each point's constraint
+    residual), the multipliers, and the extras (reactions, driver forces, energy, angles)."""
 
-    layout: Layout
-    times: np.ndarray
-    q: np.ndarray
-    qd: np.ndarray
-    qdd: np.ndarray
+    motion: Analysis
     lam: np.ndarray
     extras: dict[str, np.ndarray] = field(default_factory=dict)
     evaluations: int = 0
     partitions: int = 1
 
+    @property
+    def layout(self) -> Layout:
+        return self.motion.layout
+
+    @property
+    def times(self) -> np.ndarray:
+        return self.motion.times
+
+    @property
+    def q(self) -> np.ndarray:
+        return self.motion.q
+
+    @property
+    def qd(self) -> np.ndarray:
+        return self.motion.qd
+
+    @property
+    def qdd(self) -> np.ndarray:
+        return self.motion.qdd
+
     def trajectory(self, bodies: Sequence[str] | None = None) -> Trajectory:
         """The canonical trajectory of `bodies` (default all), with every extra as a column."""
-        bodies = tuple(bodies or self.layout.bodies)
-        index = [3 * self.layout.bodies.index(b) + c for b in bodies for c in range(3)]
-        shape = (len(self.times), len(bodies), 3)
-        return Trajectory(
-            self.times.copy(),
-            bodies,
-            position=self.q[:, index].reshape(shape),
-            velocity=self.qd[:, index].reshape(shape),
-            acceleration=self.qdd[:, index].reshape(shape),
-            extras={k: v.copy() for k, v in self.extras.items()},
-        )
+        trajectory = self.motion.trajectory(bodies)
+        trajectory.extras.update({k: v.copy() for k, v in self.extras.items()})
+        return trajectory
 
 
 def assemble_free(system: ConstraintSystem, q: np.ndarray, t: float) -> np.ndarray:
@@ -146,7 +156,9 @@ def simulate(
                 dense_output=True,
             )
         except np.linalg.LinAlgError as error:
-            raise SolverError(f"{scenario.name}: singular augmented matrix after t={t:.6g}: {error}") from error
+            raise SolverError(
+                f"{scenario.name}: singular augmented matrix after t={t:.6g}: {error}"
+            ) from error
         evaluations += ode.evaluations
         if sol.status == -1:
             raise SolverError(f"{scenario.name}: the integrator failed after t={t:.6g}: {sol.message}")
@@ -215,14 +227,15 @@ def _result(
         }
     )
     extras.update(angle_columns(system.scenario, system.layout, q))
-    return DynamicAnalysis(
+    residual = np.array([np.max(np.abs(system.residual(s.q, s.t) / system.row_scales)) for s in states])
+    motion = Analysis(
         system.layout,
         grid.copy(),
         q,
         qd,
         np.array([s.qdd for s in states]),
-        np.array([s.lam for s in states]),
-        extras,
-        evaluations,
-        partitions,
+        np.zeros(len(states), dtype=int),
+        residual,
+        np.full(len(states), np.nan),
     )
+    return DynamicAnalysis(motion, np.array([s.lam for s in states]), extras, evaluations, partitions)

@@ -7,10 +7,10 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import lstsq
 
-from reference_solver.solution import Analysis
 from reference_solver.dynamics.augmented import constraint_outputs
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
+from reference_solver.solution import Analysis
 from reference_solver.system import ConstraintSystem
 from scenarios.scenario import Scenario
 

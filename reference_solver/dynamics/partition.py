@@ -15,7 +15,7 @@ import numpy as np
 from scipy.linalg import lu_factor, lu_solve, qr
 
 from reference_solver.dynamics.augmented import accelerations
-from reference_solver.dynamics.loads import LoadState, Loads
+from reference_solver.dynamics.loads import Loads, LoadState
 from reference_solver.errors import ConvergenceError
 from reference_solver.system import ConstraintSystem
 
@@ -123,7 +123,11 @@ class Partitioned:
         s = self.state(t, y)
         power = driver_power(self.system, s)
         return np.concatenate(
-            [s.qd[self.independent], s.qdd[self.independent], [s.loads.applied_power, s.loads.dissipation, power]]
+            [
+                s.qd[self.independent],
+                s.qdd[self.independent],
+                [s.loads.applied_power, s.loads.dissipation, power],
+            ]
         )
 
 

@@ -23,16 +23,16 @@ from __future__ import annotations
 import math
 
 from scenarios.bodies import GROUND, Body, Point
+from scenarios.family import MAX_STEPS, Family, Parameter, count, positive
 from scenarios.forces import AppliedTorque, SpringDamper
 from scenarios.joints import Revolute
 from scenarios.motions import Constant
 from scenarios.outputs import AngleOutput
-from scenarios.family import MAX_STEPS, Family, Parameter, count, positive
 from scenarios.scenario import ParameterValue, Scenario, require_positive
 
 # Test set parameters (andrews.f, R/ex_andrews.R), SI units.
 M = (0.04325, 0.00365, 0.02373, 0.00706, 0.07050, 0.00706, 0.05498)
-I = (2.194e-6, 4.410e-7, 5.255e-6, 5.667e-7, 1.169e-5, 5.667e-7, 1.912e-5)
+INERTIA = (2.194e-6, 4.410e-7, 5.255e-6, 5.667e-7, 1.169e-5, 5.667e-7, 1.912e-5)
 XA, YA, XB, YB, XC, YC = -0.06934, -0.00227, -0.03635, 0.03273, 0.014, 0.072
 C0, L0, MOM = 4530.0, 0.07785, 0.033
 D, DA, E, EA, RR, RA = 28e-3, 115e-4, 2e-2, 1421e-5, 7e-3, 92e-5
@@ -73,7 +73,7 @@ def _rot(angle: float, x: float, y: float) -> tuple[float, float]:
 def _body(name: str, k: int, origin: tuple[float, float], angle: float, com: tuple[float, float]) -> Body:
     """Body k + 1 with its centre of mass at `com` (local to the test set's frame at `origin`)."""
     dx, dy = _rot(angle, *com)
-    return Body(name, (origin[0] + dx, origin[1] + dy, angle), mass=M[k], inertia=I[k])
+    return Body(name, (origin[0] + dx, origin[1] + dy, angle), mass=M[k], inertia=INERTIA[k])
 
 
 def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
@@ -105,12 +105,16 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
         Revolute("F4", f2, Point("k4", (0.0, -EA))),
         Revolute("F6", f2, Point("k6", (FA, 0.0))),
     )
-    spring = SpringDamper("spring", Point("k3", (SD - SB, SA - SC)), Point(GROUND, (XC, YC)), stiffness, 0.0, L0)
+    spring = SpringDamper(
+        "spring", Point("k3", (SD - SB, SA - SC)), Point(GROUND, (XC, YC)), stiffness, 0.0, L0
+    )
     motor = AppliedTorque("motor", "k1", Constant(torque))
     relative = {"theta": ("k2", "k1"), "phi": ("k4", "k5"), "omega": ("k6", "k7")}
     absolute = {"beta": "k1", "gamma": "k3", "delta": "k5", "epsilon": "k7"}
     angles = tuple(
-        AngleOutput(f"andrews.{a}", *relative[a]) if a in relative else AngleOutput(f"andrews.{a}", absolute[a])
+        AngleOutput(f"andrews.{a}", *relative[a])
+        if a in relative
+        else AngleOutput(f"andrews.{a}", absolute[a])
         for a in ANGLES
     )
     return Scenario(

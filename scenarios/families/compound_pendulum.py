@@ -10,8 +10,8 @@ from __future__ import annotations
 import math
 
 from scenarios.bodies import GROUND, Body, Point
-from scenarios.joints import Revolute
 from scenarios.family import MAX_STEPS, Family, Parameter, angle, count, length, positive
+from scenarios.joints import Revolute
 from scenarios.scenario import ParameterValue, Scenario, ScenarioError, require_finite, require_positive
 
 

@@ -8,9 +8,9 @@ from __future__ import annotations
 from scenarios.bodies import GROUND, Point
 from scenarios.families import slider_crank
 from scenarios.families.released import released
+from scenarios.family import MAX_STEPS, Family, Parameter, angle, count, length, positive
 from scenarios.forces import AppliedTorque, SpringDamper
 from scenarios.motions import Constant
-from scenarios.family import MAX_STEPS, Family, Parameter, angle, count, length, positive
 from scenarios.scenario import ParameterValue, Scenario, require_finite, require_positive
 
 

@@ -10,8 +10,8 @@ from __future__ import annotations
 from scenarios.bodies import GROUND, Point
 from scenarios.families import compound_pendulum
 from scenarios.families.released import released
-from scenarios.forces import SpringDamper
 from scenarios.family import Family, Parameter, angle, length, positive
+from scenarios.forces import SpringDamper
 from scenarios.scenario import ParameterValue, Scenario, require_finite, require_positive
 
 

@@ -8,9 +8,36 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from scenarios.families.andrews_squeezer import (
-    C0, D, DA, E, EA, FA, INITIAL, L0, MOM, RA, RR, SA, SB, SC, SD, SS, TA, TB, U, UA, UB, XB, XC,
-    YB, YC, ZF, ZT, I, M,
-)  # fmt: skip
+    C0,
+    DA,
+    EA,
+    FA,
+    INERTIA,
+    INITIAL,
+    L0,
+    MOM,
+    RA,
+    RR,
+    SA,
+    SB,
+    SC,
+    SD,
+    SS,
+    TA,
+    TB,
+    UA,
+    UB,
+    XB,
+    XC,
+    YB,
+    YC,
+    ZF,
+    ZT,
+    D,
+    E,
+    M,
+    U,
+)
 
 
 def constraint_jacobian(y: np.ndarray) -> np.ndarray:
@@ -31,11 +58,11 @@ def constraint_jacobian(y: np.ndarray) -> np.ndarray:
 
 def rates(t: float, z: np.ndarray) -> np.ndarray:
     y, v = z[:7], z[7:]
-    be, th, ga, ph, de, om, ep = y
+    _, th, ga, ph, _, om, _ = y
     bep, thp, _, php, dep, omp, epp = v
     sin, cos = np.sin, np.cos
     m1, m2, m3, m4, m5, m6, m7 = M
-    i1, i2, i3, i4, i5, i6, i7 = I
+    i1, i2, i3, i4, i5, i6, i7 = INERTIA
     mm = np.zeros((7, 7))
     mm[0, 0] = m1 * RA**2 + m2 * (RR**2 - 2 * DA * RR * cos(th) + DA**2) + i1 + i2
     mm[1, 0] = m2 * (DA**2 - DA * RR * cos(th)) + i2

@@ -34,7 +34,9 @@ def test_solve_writes_reactions_and_energy_columns(capsys) -> None:  # type: ign
 
 def test_solve_andrews_writes_the_seven_angles(tmp_path: Path, capsys) -> None:  # type: ignore[no-untyped-def]
     target = tmp_path / "andrews.csv"
-    code, out, _ = run(capsys, "solve", "andrews_squeezer", "--t-end", "0.002", "--steps", "2", "--out", str(target))
+    code, out, _ = run(
+        capsys, "solve", "andrews_squeezer", "--t-end", "0.002", "--steps", "2", "--out", str(target)
+    )
     assert code == 0 and out == ""
     frame = pd.read_csv(target)
     angles = ["beta", "theta", "gamma", "phi", "delta", "omega", "epsilon"]
@@ -65,7 +67,9 @@ def test_solve_with_radau_and_inverse_dynamics_columns(capsys) -> None:  # type:
         (["four_bar_gravity", "--setting", "rtol=-1"], "option rtol must be a float in (0"),
     ],
 )
-def test_bad_input_is_one_line_exit_2_and_no_file(tmp_path: Path, capsys, argv: list[str], message: str) -> None:  # type: ignore[no-untyped-def]
+def test_bad_input_is_one_line_exit_2_and_no_file(
+    tmp_path: Path, capsys, argv: list[str], message: str
+) -> None:  # type: ignore[no-untyped-def]
     target = tmp_path / "out.csv"
     code, out, err = run(capsys, "solve", *argv, "--out", str(target))
     assert code == 2 and out == ""

@@ -12,10 +12,15 @@ from reference_solver.layout import Layout
 from scenarios import GROUND, Body, Constant, Harmonic, Point, Scenario
 from scenarios.forces import AppliedForce, AppliedTorque, Force, RotationalSpringDamper, SpringDamper
 
-BODIES = (Body("a", (0.1, 0.2, 0.3), mass=2.0, inertia=0.1), Body("b", (-0.2, 0.4, 1.1), mass=0.5, inertia=0.02))
+BODIES = (
+    Body("a", (0.1, 0.2, 0.3), mass=2.0, inertia=0.1),
+    Body("b", (-0.2, 0.4, 1.1), mass=0.5, inertia=0.02),
+)
 CASES: dict[str, tuple[Force, ...]] = {
     "spring": (SpringDamper("s", Point("a", (0.3, -0.1)), Point("b", (-0.2, 0.15)), 120.0, 0.0, 0.25),),
-    "spring_to_ground": (SpringDamper("s", Point(GROUND, (1.0, -0.5)), Point("b", (0.1, 0.2)), 80.0, 0.0, 0.4),),
+    "spring_to_ground": (
+        SpringDamper("s", Point(GROUND, (1.0, -0.5)), Point("b", (0.1, 0.2)), 80.0, 0.0, 0.4),
+    ),
     "damper": (SpringDamper("s", Point("a", (0.3, -0.1)), Point("b", (-0.2, 0.15)), 0.0, 3.0, 0.25),),
     "torsion": (RotationalSpringDamper("r", "a", "b", 7.0, 0.0, 0.3),),
     "torsion_damper": (RotationalSpringDamper("r", GROUND, "b", 0.0, 1.5, 0.0),),
@@ -71,7 +76,9 @@ def test_dampers_are_minus_the_velocity_gradient_of_half_their_dissipation(case:
 def point_position(q: np.ndarray, body: int, local: tuple[float, float]) -> np.ndarray:
     """R + A u, written out independently of the solver."""
     x, y, th = q[3 * body : 3 * body + 3]
-    return np.array([x + np.cos(th) * local[0] - np.sin(th) * local[1], y + np.sin(th) * local[0] + np.cos(th) * local[1]])
+    return np.array(
+        [x + np.cos(th) * local[0] - np.sin(th) * local[1], y + np.sin(th) * local[0] + np.cos(th) * local[1]]
+    )
 
 
 def test_applied_force_does_the_virtual_work_of_a_force_at_its_point() -> None:
