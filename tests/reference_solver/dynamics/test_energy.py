@@ -23,7 +23,7 @@ def mechanical_energy(name: str, **overrides: float) -> tuple[np.ndarray, float]
 
 @pytest.mark.parametrize(
     ("name", "overrides"),
-    [("four_bar_gravity", {"t_end": 0.5, "steps": 50}), ("compound_pendulum", {"t_end": 1.0, "steps": 50})],
+    [("four_bar_gravity", {"t_end": 0.25, "steps": 10}), ("compound_pendulum", {"t_end": 1.0, "steps": 50})],
 )
 def test_frictionless_mechanisms_conserve_energy(name: str, overrides: dict[str, float]) -> None:
     drift, exchanged = mechanical_energy(name, **overrides)
@@ -53,7 +53,7 @@ def point(q: np.ndarray, qd: np.ndarray, column: int | None, local: tuple[float,
 
 
 def test_the_damped_slider_crank_loses_what_its_damper_dissipates() -> None:
-    scenario = scenarios.build("slider_crank_spring", overrides={"t_end": 0.5, "steps": 1000})
+    scenario = scenarios.build("slider_crank_spring", overrides={"t_end": 0.25, "steps": 500})
     analysis = simulate(scenario)
     spring = next(f for f in scenario.forces if isinstance(f, SpringDamper))
     motor = next(f for f in scenario.forces if isinstance(f, AppliedTorque))
