@@ -8,11 +8,11 @@ import math
 from typing import Any
 
 import pandas as pd
+from reports.render.report_data import ReportData, number
 
 from reports.harness.agreement import pair_differences, widest
 from reports.harness.level_error import LEVEL_COLUMNS, characteristic_rate
 from reports.harness.truth import CLOSED_FORM
-from reports.render.report_data import ReportData, number
 from scenarios import ScenarioError
 from scenarios import build as build_scenario
 

@@ -10,9 +10,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
+from reports.render.plots import FLOOR, MARKERS, colour
 
 from reports.harness.level_error import LEVEL_COLUMNS, level_series
-from reports.render.plots import FLOOR, MARKERS, colour
 from scenarios.trajectory import Trajectory
 
 

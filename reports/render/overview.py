@@ -16,9 +16,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
+from reports.render.plots import FLOOR, MARKERS, colour
 
 from reports.harness.level_error import LEVEL_COLUMNS
-from reports.render.plots import FLOOR, MARKERS, colour
 
 SHIFT_TIME = 1e-3  # s
 SHIFT_ERROR = 1e-15  # dimensionless: double precision
