@@ -24,6 +24,8 @@ from scenarios.scenario import LEVELS, Level, Scenario
 from scenarios.trajectory import Trajectory
 
 LEVEL_COLUMNS: dict[Level, str] = {level: f"error_{level}" for level in LEVELS}
+TRUTH_COLUMNS = ("truth", "characteristic_rate", *LEVEL_COLUMNS.values())
+"""The columns this module's measurements add to every result row."""
 RATE_POWER: dict[Level, int] = {"position": 0, "velocity": 1, "acceleration": 2}
 SCALE_DEFINITION = (
     "Errors are dimensionless, the largest over the grid and the output bodies, per level: lengths "
@@ -81,6 +83,7 @@ def level_errors(
 ) -> dict[str, float]:
     """{error_position, error_velocity, error_acceleration}: NaN for a level not compared."""
     asked = scenario.levels if levels is None else levels
+    truth = truth.select(tuple(b for b in scenario.output_bodies if b in truth.bodies))
     length, rate = scenario.characteristic_length, characteristic_rate(scenario)
     out = dict.fromkeys(LEVEL_COLUMNS.values(), math.nan)
     for level in asked:

@@ -17,6 +17,7 @@ from typing import Any
 
 import pandas as pd
 
+from reports.harness.level_error import TRUTH_COLUMNS
 from reports.harness.metrics import METRIC_COLUMNS
 from scenarios.trajectory import Trajectory
 
@@ -40,6 +41,7 @@ COLUMNS: tuple[str, ...] = (
     "warnings",
     "levels",
     "error",
+    *TRUTH_COLUMNS,
     *METRIC_COLUMNS,
     "constraint_residual",
     "build_time",

@@ -7,6 +7,7 @@ import math
 from typing import Any
 
 from adapters.base import RunResult, Setting, Status
+from reports.harness.level_error import LEVEL_COLUMNS, characteristic_rate
 from reports.harness.metrics import METRIC_COLUMNS
 from reports.harness.provenance import now
 from scenarios.scenario import Scenario
@@ -34,6 +35,9 @@ def base_row(
         "warnings": "",
         "levels": "",
         "error": math.nan,
+        "truth": "",
+        "characteristic_rate": characteristic_rate(scenario),
+        **dict.fromkeys(LEVEL_COLUMNS.values(), math.nan),
         "constraint_residual": math.nan,
         "build_time": math.nan,
         "run_time": math.nan,
