@@ -26,6 +26,7 @@ import adapters
 from adapters.base import Adapter, RunResult, Setting
 from reports.harness import provenance
 from reports.harness.isolation import run_here, run_isolated
+from reports.harness.level_error import SCALE_DEFINITION, level_errors
 from reports.harness.metrics import (
     HEADLINE_DEFINITION,
     Residual,
@@ -33,7 +34,6 @@ from reports.harness.metrics import (
     error_metrics,
     residual_metric,
 )
-from reports.harness.level_error import SCALE_DEFINITION, level_errors
 from reports.harness.results_store import ResultsStore
 from reports.harness.rows import NOT_RUN, failure_row, result_row
 from reports.harness.truth import NamedTruth, independent_truth, named

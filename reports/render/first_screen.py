@@ -8,11 +8,11 @@ import math
 from typing import Any
 
 import pandas as pd
-from reports.render.report_data import ReportData, number
 
 from reports.harness.agreement import pair_differences, widest
 from reports.harness.level_error import LEVEL_COLUMNS, characteristic_rate
 from reports.harness.truth import CLOSED_FORM
+from reports.render.report_data import ReportData, number
 from scenarios import ScenarioError
 from scenarios import build as build_scenario
 
@@ -93,11 +93,15 @@ def _cells(row: pd.Series | None) -> list[str]:
 
 
 def _truth_of(data: ReportData, scenario: str) -> str:
-    rows = data.rows(scenario)
+    return truth_names(data.rows(scenario))
+
+
+def truth_names(rows: pd.DataFrame) -> str:
+    """The truths the rows were measured against, most used first ("unnamed" for old results)."""
     if "truth" not in rows:
-        return str(data.meta.get("truth", "?"))
-    names = sorted({str(t) for t in rows["truth"] if isinstance(t, str) and t})
-    return ", ".join(names) or "none"
+        return "unnamed"
+    counts = rows["truth"][rows["truth"].astype(str) != ""].astype(str).value_counts()
+    return " / ".join(counts.index) or "none"
 
 
 def agreement_frame(data: ReportData) -> pd.DataFrame:

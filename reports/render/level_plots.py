@@ -4,16 +4,22 @@ more than overlaid trajectories that lie on top of each other)."""
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
-from reports.render.plots import FLOOR, MARKERS, colour
+from matplotlib.ticker import LogLocator, NullLocator
 
 from reports.harness.level_error import LEVEL_COLUMNS, level_series
+from reports.render.plots import FLOOR, MARKERS, colour
 from scenarios.trajectory import Trajectory
+
+PEAK_POINTS = 400
+MARGINS = {"left": 0.06, "right": 0.84, "bottom": 0.17, "top": 0.84, "wspace": 0.18}
 
 
 def work_precision(rows: pd.DataFrame, truth: str) -> Figure | None:
@@ -54,9 +60,11 @@ def work_precision(rows: pd.DataFrame, truth: str) -> Figure | None:
             if label not in labels:
                 handles.append(handle)
                 labels.append(label)
-    figure.legend(handles, labels, fontsize=8, loc="center left", bbox_to_anchor=(1.0, 0.5))
+    figure.legend(handles, labels, fontsize=8, loc="center left", bbox_to_anchor=(0.85, 0.5))
     figure.suptitle(f"work-precision against the truth ({truth}); ringed: default setting", fontsize=10)
-    figure.tight_layout()
+    for axes in axes_row:
+        light_log_axes(axes)
+    figure.subplots_adjust(**MARGINS)
     return figure
 
 
@@ -75,7 +83,7 @@ def deviations(
             if series is None:
                 continue
             values = np.maximum(series, FLOOR)
-            axes.plot(truth.times, values, color=colour(engine), lw=1.1, label=engine)
+            axes.plot(*peaks(truth.times, values), color=colour(engine), lw=1.1, label=engine)
             if np.any(np.isfinite(values)):
                 lows.append(float(np.nanmin(values)))
             drawn = True
@@ -91,7 +99,32 @@ def deviations(
         for axes in axes_row:
             axes.set_ylim(bottom=bottom)
     axes_row[0].set_ylabel("dimensionless error")
-    axes_row[0].legend(fontsize=8)
+    handles, labels = axes_row[0].get_legend_handles_labels()
+    figure.legend(handles, labels, fontsize=8, loc="center left", bbox_to_anchor=(0.85, 0.5))
     figure.suptitle(f"deviation from the truth ({truth_name}) at the default setting", fontsize=10)
-    figure.tight_layout()
+    for axes in axes_row:
+        light_log_axes(axes)
+    figure.subplots_adjust(**MARGINS)
     return figure
+
+
+def light_log_axes(axes: Axes) -> None:
+    """Log-log axes with a few labelled decades only: many-decade ranges otherwise label (and
+    measure) dozens of ticks per panel, most of a report's render time."""
+    for axis in (axes.xaxis, axes.yaxis):
+        if axis.get_scale() == "log":
+            axis.set_major_locator(LogLocator(numticks=6))
+            axis.set_minor_locator(NullLocator())
+
+
+def peaks(times: np.ndarray, values: np.ndarray, points: int = PEAK_POINTS) -> tuple[np.ndarray, np.ndarray]:
+    """At most `points` samples keeping the largest value of each bin (a plot of an error must not
+    hide its peaks by decimation)."""
+    if values.size <= points:
+        return times, values
+    edges = np.linspace(0, values.size, points + 1).astype(int)
+    picks = [
+        start + int(np.nanargmax(values[start:end])) if np.isfinite(values[start:end]).any() else start
+        for start, end in itertools.pairwise(edges)
+    ]
+    return times[picks], values[picks]
