@@ -35,7 +35,7 @@ class Suite:
     repeats: int = 3
     warmup: int = 1
     timeout: float = 60.0
-    truth: Callable[[Scenario, Any], Trajectory] | None = None
+    truth: Callable[[Scenario, Any], Trajectory | NamedTruth] | None = None
     settings: Callable[[Scenario, Adapter], list[Setting] | None] | None = None
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import scenarios
@@ -15,7 +16,7 @@ from tests.support.fake_engine import GOOD, FakeAdapter, fake_truth
 
 def test_pairs_of_fake_runs_differ_by_their_known_offsets(tmp_path: Path) -> None:
     scenario = scenarios.build("slider_crank")
-    times = scenario.times()
+    times = np.asarray(scenario.times())
     adapter = FakeAdapter(tmp_path / "log")
     coarse, fine = (adapter.run(scenario, s, times).trajectory for s in GOOD)  # x off by dt
     assert coarse is not None and fine is not None
