@@ -29,6 +29,7 @@ td.failed, td.diverged, td.singular, td.timeout { background: #fbe3e3; }
 td.notrun { color: #999; }
 img { max-width: 100%; margin: 0.3em 0; } .muted { color: #666; font-size: 0.9em; }
 .wide { overflow-x: auto; }
+table.matrix td { min-width: 0; white-space: nowrap; padding: 0.15em 0.35em; }
 .plots { display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start; }
 """
 
