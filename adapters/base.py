@@ -2,6 +2,8 @@
 
 A subclass provides exactly:
     name: str                                  the engine's name on the command line
+    modes: tuple[str, ...]                     its modes (integrators, solvers), the first the default
+    options: tuple[Option, ...]                every option a setting may carry, typed and ranged
     version() -> str                           the installed engine's version
     supports(scenario) -> str | None           None, or why the engine cannot represent it faithfully
     default_setting(scenario) -> Setting       the setting used by `mbxval solve` and the status matrix
@@ -10,6 +12,10 @@ A subclass provides exactly:
     simulate(model, times) -> Trajectory       the timed part; must not depend on earlier calls.
 It may also provide export(scenario, setting, path) in the engine's own file format, and call
 `self.count_steps(n)` inside `simulate` to report the engine steps taken.
+
+Every setting is checked against `modes` and `options` where it enters (`check_setting`): an unknown
+mode or key, a value of the wrong type or outside its range is a SettingError naming the known ones or
+the limit, raised before anything is built.
 
 simulate raises an EngineFailure subclass (Diverged, Singular, Unsupported) or lets any other
 exception escape: the base's `run` turns every outcome into a RunResult with a status and a message,
@@ -20,7 +26,6 @@ raises out of `run`.
 from __future__ import annotations
 
 import math
-import time
 import traceback
 import warnings
 from collections.abc import Mapping, Sequence
@@ -29,6 +34,7 @@ from typing import Any, ClassVar, Literal
 
 import numpy as np
 
+from adapters.timing import fastest
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -65,6 +71,54 @@ class Unsupported(EngineFailure):
     status: ClassVar[Status] = "unsupported"
 
 
+class SettingError(ValueError):
+    """A setting the engine does not have: an unknown mode or option, or a value out of its range."""
+
+
+@dataclass(frozen=True)
+class Option:
+    """One engine option: its type (`kind`), range (`low`..`high`, `low_open` excluding `low`) or
+    `choices`, and unit. Its default is the engine's `default_setting` (it may depend on the scenario's
+    grid, such as a step size)."""
+
+    name: str
+    kind: type = float
+    low: float = -math.inf
+    high: float = math.inf
+    low_open: bool = False
+    choices: tuple[str, ...] = ()
+    unit: str = ""
+    help: str = ""
+
+    def describe(self) -> str:
+        if self.choices:
+            return "one of " + ", ".join(self.choices)
+        bracket = "(" if self.low_open else "["
+        unit = f" {self.unit}" if self.unit else ""
+        article = "an" if self.kind is int else "a"
+        return f"{article} {self.kind.__name__} in {bracket}{self.low:g}, {self.high:g}]{unit}"
+
+    def check(self, engine: str, value: OptionValue) -> OptionValue:
+        """`value` as the option's type; SettingError with the range otherwise."""
+        problem = SettingError(f"{engine}: option {self.name} must be {self.describe()}, got {value!r}")
+        if self.kind is str:
+            if str(value) not in self.choices:
+                raise problem
+            return str(value)
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            raise problem from None
+        below = number <= self.low if self.low_open else number < self.low
+        if not math.isfinite(number) or below or number > self.high:
+            raise problem
+        if self.kind is int:
+            if number != int(number):
+                raise problem
+            return int(number)
+        return number
+
+
 @dataclass(frozen=True)
 class Setting:
     """One point of an engine's accuracy-for-time trade-off. Settings with the same `mode` form one
@@ -92,9 +146,6 @@ class Setting:
         parts = [self.mode] + [f"{k}={_fmt(v)}" for k, v in self.options]
         return " ".join(parts)
 
-    def as_dict(self) -> dict[str, OptionValue]:
-        return {"mode": self.mode, **dict(self.options)}
-
 
 def _fmt(value: OptionValue) -> str:
     return f"{value:.6g}" if isinstance(value, float) else str(value)
@@ -121,6 +172,8 @@ class Adapter:
     """Base class of engine adapters; see the module docstring for what a subclass provides."""
 
     name: ClassVar[str] = ""
+    modes: ClassVar[tuple[str, ...]] = ()
+    options: ClassVar[tuple[Option, ...]] = ()
 
     def __init__(self) -> None:
         self._steps = 0
@@ -148,6 +201,19 @@ class Adapter:
         raise NotImplementedError(f"engine '{self.name}' has no model file format to export")
 
     # --- owned by the base ---------------------------------------------------------------------
+    def check_setting(self, setting: Setting) -> Setting:
+        """`setting` with every value typed, or SettingError naming what is unknown or out of range."""
+        if setting.mode not in self.modes:
+            raise SettingError(f"{self.name}: unknown mode '{setting.mode}'; known: {', '.join(self.modes)}")
+        declared = {option.name: option for option in self.options}
+        typed: dict[str, OptionValue] = {}
+        for key, value in setting.options:
+            if key not in declared:
+                known = ", ".join(declared) or "none"
+                raise SettingError(f"{self.name}: unknown option '{key}'; known: {known}")
+            typed[key] = declared[key].check(self.name, value)
+        return Setting.of(setting.mode, **typed)
+
     def count_steps(self, n: int) -> None:
         """Called by `simulate` to report engine steps taken."""
         self._steps += n
@@ -163,9 +229,12 @@ class Adapter:
         """Build and simulate, timing the build apart and the simulation as the minimum over
         `repeats` after `warmup` untimed runs. Never raises for an engine's failure."""
         setting = setting or self.default_setting(scenario)
+        base: Mapping[str, Any] = {"engine": self.name, "version": self._safe_version(), "setting": setting}
+        try:
+            setting = self.check_setting(setting)
+        except SettingError as error:
+            return RunResult(**base, status="failed", message=str(error))
         grid = np.asarray(scenario.times() if times is None else times, dtype=float)
-        version = self._safe_version()
-        base: Mapping[str, Any] = {"engine": self.name, "version": version, "setting": setting}
         reason = self.supports(scenario)
         if reason is not None:
             return RunResult(**base, status="unsupported", message=reason)
@@ -173,18 +242,13 @@ class Adapter:
         try:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
-                start = time.perf_counter()
-                model = self.build(scenario, setting)
-                build_time = time.perf_counter() - start
-                for _ in range(warmup):
-                    self.simulate(model, grid)
-                best = math.inf
-                trajectory = None
-                for _ in range(max(1, repeats)):
+                build_time, model = fastest(lambda: self.build(scenario, setting))
+
+                def simulate() -> Trajectory:
                     self._steps = 0
-                    start = time.perf_counter()
-                    trajectory = self.simulate(model, grid)
-                    best = min(best, time.perf_counter() - start)
+                    return self.simulate(model, grid)
+
+                best, trajectory = fastest(simulate, repeats, warmup)
         except EngineFailure as failure:
             return RunResult(
                 **base,
@@ -201,7 +265,6 @@ class Adapter:
                 message=_one_line(f"{type(error).__name__}: {error} (at {where.name}:{where.lineno})"),
                 warnings=_texts(caught),
             )
-        assert trajectory is not None
         if not trajectory.is_finite():
             return RunResult(
                 **base,

@@ -12,7 +12,7 @@ from importlib.metadata import version as package_version
 
 import numpy as np
 
-from adapters.base import Adapter, EngineFailure, Setting, Singular
+from adapters.base import Adapter, EngineFailure, Option, Setting, Singular
 from reference_solver import SingularConfigurationError, SolverError, analyse
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -28,6 +28,8 @@ class ReferenceModel:
 
 class ReferenceAdapter(Adapter):
     name = "reference"
+    modes = ("newton",)
+    options = (Option("tolerance", float, 0.0, 0.1, low_open=True, help="Newton tolerance, scaled units"),)
 
     def version(self) -> str:
         try:

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from adapters.base import Adapter, Diverged, Setting, Unsupported
+from adapters.base import Adapter, Diverged, Option, Setting, Unsupported
 from adapters.mujoco.assembly import assemble, clock_velocities, contact_slopes, settle
 from adapters.mujoco.cams import CamPair, cam_pairs
 from adapters.mujoco.laws import Law, laws
@@ -67,6 +67,14 @@ class MujocoAdapter(Adapter):
     """MuJoCo (generalized coordinates, soft constraints) driven by clock joints."""
 
     name = "mujoco"
+    modes = MODES
+    options = (
+        Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
+        Option("tc_steps", float, 1.0, 1e6, help="solref time constant of the equalities, in steps"),
+        Option("impedance", float, 0.0, 1.0, low_open=True, help="solimp of the equalities"),
+        Option("contact_impedance", float, 0.0, 1.0, low_open=True, help="solimp of cam contacts"),
+        Option("preload", float, 0.0, 1e9, low_open=True, unit="N", help="follower spring preload"),
+    )
 
     def version(self) -> str:
         return str(mujoco.__version__)
@@ -97,8 +105,6 @@ class MujocoAdapter(Adapter):
         reason = self.supports(scenario)
         if reason is not None:
             raise Unsupported(reason)
-        if setting.mode not in MODES:
-            raise ValueError(f"unknown MuJoCo mode '{setting.mode}'; known: {', '.join(MODES)}")
         dt = engine_step(float(setting["dt"]), _interval(np.asarray(scenario.times())))
         physics = Physics(
             setting.mode,

@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from adapters.base import Adapter, EngineFailure, Setting, Unsupported
+from adapters.base import Adapter, EngineFailure, Option, Setting, Unsupported
 from adapters.pinocchio.dynamics import DynamicSolver, dynamic_support
 from adapters.pinocchio.kinematics import KinematicSolver, body_motion
 from adapters.pinocchio.model import PinModel, build_model
@@ -79,6 +79,14 @@ class Built:
 
 class PinocchioAdapter(Adapter):
     name = "pinocchio"
+    modes = tuple(MODES)
+    options = (
+        Option("tol", float, 0.0, 1.0, low_open=True, help="Newton residual bound, in the rows' sizes"),
+        Option("gears", str, choices=("mimic", "row"), help="gears as mimic joints or coupling rows"),
+        Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
+        Option("kp", float, 0.0, 1e12, help="Baumgarte position gain"),
+        Option("kd", float, 0.0, 1e12, help="Baumgarte velocity gain"),
+    )
 
     def version(self) -> str:
         return str(pin.__version__)
@@ -135,8 +143,6 @@ class PinocchioAdapter(Adapter):
         if mode is None:
             raise EngineFailure(f"unknown Pinocchio mode '{setting.mode}'; known: {', '.join(MODES)}")
         gears = str(setting.get("gears", "mimic"))
-        if gears not in ("mimic", "row"):
-            raise EngineFailure(f"gears must be 'mimic' or 'row', got '{gears}'")
         tree, pm, rows = self._structure(scenario, mimic_gears=mode == KINEMATIC and gears == "mimic")
         tol = float(setting.get("tol", TOLERANCES[-1]))
         kinematics = KinematicSolver(

@@ -24,8 +24,6 @@ from scenarios.scenario import LEVELS, Level, Scenario
 from scenarios.trajectory import Trajectory
 
 LEVEL_COLUMNS: dict[Level, str] = {level: f"error_{level}" for level in LEVELS}
-TRUTH_COLUMNS = ("truth", "characteristic_rate", *LEVEL_COLUMNS.values())
-"""The columns this module's measurements add to every result row."""
 RATE_POWER: dict[Level, int] = {"position": 0, "velocity": 1, "acceleration": 2}
 SCALE_DEFINITION = (
     "Errors are dimensionless, the largest over the grid and the output bodies, per level: lengths "

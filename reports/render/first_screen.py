@@ -14,7 +14,7 @@ from reports.harness.level_error import LEVEL_COLUMNS, characteristic_rate
 from reports.harness.truth import CLOSED_FORM
 from reports.render.report_data import ReportData, number
 from scenarios import ScenarioError
-from scenarios import build as build_scenario
+from scenarios import load as build_scenario
 
 NATIVE = "reference"
 BEST, WORST = -14.0, -1.0  # log10 error drawn fully green, fully red
