@@ -10,6 +10,8 @@ at the three levels side by side, and the table of runs.
 from __future__ import annotations
 
 import html
+import multiprocessing
+import os
 from typing import Any
 
 from reports.harness.level_error import SCALE_DEFINITION
@@ -32,6 +34,9 @@ img { max-width: 100%; margin: 0.3em 0; } .muted { color: #666; font-size: 0.9em
 table.matrix td { min-width: 0; white-space: nowrap; padding: 0.15em 0.35em; }
 .plots { display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start; }
 """
+
+WORKERS = 2
+_FORKED: dict[str, ReportData] = {}
 
 # Lets a headless browser (scripts/check_report_in_browser.sh) confirm every plot decoded.
 CHECK = """
@@ -68,8 +73,7 @@ def render(data: ReportData) -> str:
         "<h2>Engines and machine</h2>",
         _key_values(_versions(meta)),
     ]
-    for scenario in data.scenarios():
-        parts.append(_scenario_section(data, scenario))
+    parts += _sections(data)
     parts.append("</body></html>")
     return "\n".join(parts)
 
@@ -134,6 +138,25 @@ def _image(figure: Any, alt: str) -> str:
         return f'<p class="muted">no {html.escape(alt)}: no successful run to draw</p>'
     encoded = plots.png(figure, tight=False)
     return f'<img class="plot" alt="{html.escape(alt)}" src="data:image/png;base64,{encoded}">'
+
+
+def _sections(data: ReportData) -> list[str]:
+    """Every scenario's section, drawn by up to WORKERS forked processes (the figures are most of a
+    report's render time, and each scenario's are independent of the others')."""
+    names = data.scenarios()
+    workers = min(WORKERS, os.cpu_count() or 1, len(names))
+    if workers <= 1 or "fork" not in multiprocessing.get_all_start_methods():
+        return [_scenario_section(data, name) for name in names]
+    _FORKED["data"] = data  # inherited by the forked workers, never pickled
+    try:
+        with multiprocessing.get_context("fork").Pool(workers) as pool:
+            return pool.map(_forked_section, names, chunksize=1)
+    finally:
+        _FORKED.clear()
+
+
+def _forked_section(scenario: str) -> str:
+    return _scenario_section(_FORKED["data"], scenario)
 
 
 def _scenario_section(data: ReportData, scenario: str) -> str:

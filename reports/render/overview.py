@@ -35,11 +35,11 @@ DEFINITION = (
 
 
 def shifted_geometric_mean(values: np.ndarray | list[float], shift: float) -> float:
-    values = np.asarray(values, dtype=float)
-    values = values[np.isfinite(values)]
-    if values.size == 0:
+    array = np.asarray(values, dtype=float)
+    array = array[np.isfinite(array)]
+    if array.size == 0:
         return math.nan
-    return float(np.exp(np.mean(np.log(np.maximum(values, 0.0) + shift))) - shift)
+    return float(np.exp(np.mean(np.log(np.maximum(array, 0.0) + shift))) - shift)
 
 
 def step_of(label: str) -> float:
