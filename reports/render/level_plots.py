@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Sequence
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -54,17 +55,7 @@ def work_precision(rows: pd.DataFrame, truth: str) -> Figure | None:
         plt.close(figure)
         return None
     axes_row[0].set_ylabel("run time [s]")
-    handles, labels = [], []
-    for axes in axes_row:
-        for handle, label in zip(*axes.get_legend_handles_labels(), strict=True):
-            if label not in labels:
-                handles.append(handle)
-                labels.append(label)
-    figure.legend(handles, labels, fontsize=8, loc="center left", bbox_to_anchor=(0.85, 0.5))
-    figure.suptitle(f"work-precision against the truth ({truth}); ringed: default setting", fontsize=10)
-    for axes in axes_row:
-        light_log_axes(axes)
-    figure.subplots_adjust(**MARGINS)
+    finish(figure, axes_row, f"work-precision against the truth ({truth}); ringed: default setting")
     return figure
 
 
@@ -99,13 +90,24 @@ def deviations(
         for axes in axes_row:
             axes.set_ylim(bottom=bottom)
     axes_row[0].set_ylabel("dimensionless error")
-    handles, labels = axes_row[0].get_legend_handles_labels()
+    finish(figure, axes_row, f"deviation from the truth ({truth_name}) at the default setting")
+    return figure
+
+
+def finish(figure: Figure, axes_row: Sequence[Axes], title: str) -> None:
+    """One legend of every line of the panels to the right, the title, light axes, fixed margins
+    (measuring every text for a tight layout costs more than drawing the figure)."""
+    handles, labels = [], []
+    for axes in axes_row:
+        for handle, label in zip(*axes.get_legend_handles_labels(), strict=True):
+            if label not in labels:
+                handles.append(handle)
+                labels.append(label)
     figure.legend(handles, labels, fontsize=8, loc="center left", bbox_to_anchor=(0.85, 0.5))
-    figure.suptitle(f"deviation from the truth ({truth_name}) at the default setting", fontsize=10)
+    figure.suptitle(title, fontsize=10)
     for axes in axes_row:
         light_log_axes(axes)
     figure.subplots_adjust(**MARGINS)
-    return figure
 
 
 def light_log_axes(axes: Axes) -> None:

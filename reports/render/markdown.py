@@ -2,23 +2,13 @@
 
 from __future__ import annotations
 
-from reports.harness.level_error import SCALE_DEFINITION
+from reports.harness.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.render import stability_render
 from reports.render.first_screen import native_line, scenario_rate, truth_names
 from reports.render.markdown_table import markdown_table
 from reports.render.report_data import HEADINGS, ReportData, number, table
 
-SHOWN = (
-    "engine",
-    "setting",
-    "status",
-    "error_position",
-    "error_velocity",
-    "error_acceleration",
-    "constraint_residual",
-    "run_time",
-    "message",
-)
+SHOWN = ("engine", "setting", "status", *LEVEL_COLUMNS.values(), "constraint_residual", "run_time", "message")
 SUMMARY_COLUMNS = tuple(HEADINGS.get(c, c) for c in SHOWN)
 
 

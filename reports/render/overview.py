@@ -19,7 +19,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from reports.harness.level_error import LEVEL_COLUMNS
-from reports.render.level_plots import MARGINS, light_log_axes
+from reports.render.level_plots import finish
 from reports.render.plots import FLOOR, MARKERS, colour
 
 SHIFT_TIME = 1e-3  # s
@@ -113,14 +113,10 @@ def overview_figure(table: pd.DataFrame, truth: str) -> Figure | None:
         axes.set_xlabel(f"{level} error (dimensionless)")
         axes.grid(True, which="major", alpha=0.3)
         axes.set_title(level, fontsize=10)
-        light_log_axes(axes)
     axes_row[0].set_ylabel("run time [s]")
-    handles, labels = axes_row[0].get_legend_handles_labels()
-    figure.legend(handles, labels, fontsize=8, loc="center left", bbox_to_anchor=(0.85, 0.5))
-    figure.suptitle(
+    title = (
         f"error against run time over the suite (shifted geometric mean; truth: {truth}; "
-        "ringed: the default on most scenarios; (n): scenarios)",
-        fontsize=10,
+        "ringed: the default on most scenarios; (n): scenarios)"
     )
-    figure.subplots_adjust(**MARGINS)
+    finish(figure, axes_row, title)
     return figure
