@@ -174,6 +174,8 @@ class Adapter:
     name: ClassVar[str] = ""
     modes: ClassVar[tuple[str, ...]] = ()
     options: ClassVar[tuple[Option, ...]] = ()
+    dynamics: ClassVar[bool] = False
+    """Whether the engine runs forward dynamics (scenarios whose `analysis` is "dynamic")."""
 
     def __init__(self) -> None:
         self._steps = 0
@@ -236,6 +238,8 @@ class Adapter:
             return RunResult(**base, status="failed", message=str(error))
         grid = np.asarray(scenario.times() if times is None else times, dtype=float)
         reason = self.supports(scenario)
+        if reason is None and scenario.analysis == "dynamic" and not self.dynamics:
+            reason = f"{self.name} is not yet compared on forward dynamics"
         if reason is not None:
             return RunResult(**base, status="unsupported", message=reason)
         caught: list[warnings.WarningMessage] = []
