@@ -9,7 +9,7 @@ import pytest
 import reference_solver
 import scenarios
 from reports.harness.level_error import level_errors
-from reports.harness.truth import CLOSED_FORM, NATIVE, independent_truth
+from reports.harness.truth import CLOSED_FORM, NATIVE, NATIVE_DYNAMIC, independent_truth
 
 FAMILY_DEFAULTS = sorted({scenarios.build(name).family for name in scenarios.catalogue()})
 
@@ -33,3 +33,11 @@ def test_spline_cam_takes_the_refined_native_truth() -> None:
     assert truth.name == NATIVE
     assert truth.trajectory.position is not None and np.isfinite(truth.trajectory.position).all()
     assert np.array_equal(truth.trajectory.times, times)
+
+
+def test_a_dynamic_scenario_takes_the_tight_native_dynamics() -> None:
+    scenario = scenarios.build("compound_pendulum")
+    times = np.asarray(scenario.times())[:50]
+    truth = independent_truth(scenario, times)
+    assert truth.name == NATIVE_DYNAMIC
+    assert truth.trajectory.position is not None and np.isfinite(truth.trajectory.position).all()
