@@ -66,7 +66,7 @@ def level_matrix(data: ReportData) -> str:
     for scenario in data.scenarios():
         cells = []
         for engine in engines:
-            cells += _cells(data.default_row(scenario, engine))
+            cells += matrix_cells(data.default_row(scenario, engine))
         truth = _truth_of(data, scenario)
         link = f'<a href="#s-{scenario.replace("/", "-")}">{html.escape(scenario)}</a>'
         body.append(f'<tr><th title="truth: {html.escape(truth)}">{link}</th>{"".join(cells)}</tr>')
@@ -74,7 +74,8 @@ def level_matrix(data: ReportData) -> str:
     return f'<table class="matrix">{head}{"".join(body)}</table>'
 
 
-def _cells(row: pd.Series | None) -> list[str]:
+def matrix_cells(row: pd.Series | None) -> list[str]:
+    """One engine's three cells of a matrix row (one spanning cell where it did not run ok)."""
     if row is None:
         return ['<td class="notrun" colspan="3">not run</td>']
     status = str(row["status"])
