@@ -13,13 +13,14 @@ import numpy as np
 import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
-from matplotlib.ticker import LogLocator, NullLocator
+from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator
 
 from reports.harness.level_error import LEVEL_COLUMNS, level_series
 from reports.render.plots import FLOOR, MARKERS, colour
 from scenarios.trajectory import Trajectory
 
 PEAK_POINTS = 400
+PLAIN_DECADE = FuncFormatter(lambda value, _: f"{value:.0e}")  # plain text: no mathtext to parse
 MARGINS = {"left": 0.06, "right": 0.84, "bottom": 0.17, "top": 0.84, "wspace": 0.18}
 
 
@@ -111,12 +112,13 @@ def finish(figure: Figure, axes_row: Sequence[Axes], title: str) -> None:
 
 
 def light_log_axes(axes: Axes) -> None:
-    """Log-log axes with a few labelled decades only: many-decade ranges otherwise label (and
-    measure) dozens of ticks per panel, most of a report's render time."""
+    """Log-log axes with a few decades labelled in plain text (1e-06): many-decade ranges otherwise
+    label, typeset and measure dozens of ticks per panel, most of a report's render time."""
     for axis in (axes.xaxis, axes.yaxis):
         if axis.get_scale() == "log":
             axis.set_major_locator(LogLocator(numticks=6))
             axis.set_minor_locator(NullLocator())
+            axis.set_major_formatter(PLAIN_DECADE)
 
 
 def peaks(times: np.ndarray, values: np.ndarray, points: int = PEAK_POINTS) -> tuple[np.ndarray, np.ndarray]:
