@@ -24,6 +24,7 @@ import numpy as np
 
 from adapters.base import Adapter, Diverged, Setting, Unsupported
 from adapters.mujoco_assembly import assemble, clock_velocities, contact_slopes, settle
+from adapters.mujoco_cam_load import check_contacts, knife_edge_reason, preload
 from adapters.mujoco_cams import CamPair, cam_pairs
 from adapters.mujoco_laws import Law, laws
 from adapters.mujoco_mjcf import Physics, mjcf
@@ -57,6 +58,8 @@ class Model:
     sites: list[int]
     theta: list[Affine]
     joint_ids: dict[str, int]
+    preload: float = 0.0
+    """The cam followers' preload (N); 0 without cams."""
 
 
 def _warn(message: str) -> None:
@@ -81,12 +84,12 @@ class MujocoAdapter(Adapter):
             cam_pairs(scenario.cams, tree)
         except TreeError as reason:
             return str(reason)
-        return None
+        return next(filter(None, map(knife_edge_reason, scenario.cams)), None)
 
     def default_setting(self, scenario: Scenario) -> Setting:
         options: dict[str, float] = {"dt": 1e-4, "tc_steps": 2.0, "impedance": 0.9999}
         if scenario.cams:
-            options.update(preload=100.0, contact_impedance=0.99)
+            options.update(preload=preload(scenario), contact_impedance=0.99)
         return Setting.of("RK4", **options)
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
@@ -114,10 +117,13 @@ class MujocoAdapter(Adapter):
         first = _compile(scenario, guessed, physics, 0, scale)
         poses = _poses(scenario, guessed, first)
         tree = plan_tree(scenario, poses)
-        springs = _springs(scenario, first, tree, float(setting.get("preload", 100.0)), scale)
+        load = float(setting.get("preload", preload(scenario)))
+        springs = _springs(scenario, first, tree, load, scale)
         armatures = _armatures(scenario, guessed, first, scale)
         sized = Physics(**{**physics.__dict__, "springs": springs, "clock_armature": armatures})
-        return _compile(scenario, tree, sized, RUN_IN, scale)
+        built = _compile(scenario, tree, sized, RUN_IN, scale)
+        built.preload = load
+        return built
 
     def simulate(self, model: Model, times: np.ndarray) -> Trajectory:
         m = model.model
@@ -140,6 +146,8 @@ class MujocoAdapter(Adapter):
                 _advance(m, d, substeps)
                 self.count_steps(substeps)
             _record(m, d, model, pos[i], vel[i], acc[i])
+            if m.npair:
+                check_contacts(m, d, model.preload)
         return Trajectory(grid, model.bodies, pos, vel, acc)
 
     def export(self, scenario: Scenario, setting: Setting, path: str) -> None:
