@@ -1,0 +1,337 @@
+"""Running an Exudyn model: assembly by Exudyn's static solver, velocity and acceleration solves on
+Exudyn's own constraint Jacobian, and the three ways to march: generalized-alpha (index 3),
+the trapezoidal rule with index-2 constraints, and a static solve per time point.
+
+Everything stays in memory and silent: no solution, sensor or solver files, no console output.
+An Exudyn solver error becomes an EngineFailure (Singular when its linear solver failed) carrying
+Exudyn's own message and the simulated time.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+from typing import Any
+
+import exudyn as exu
+import numpy as np
+
+from adapters.base import EngineFailure, Singular
+from adapters.exudyn.model import ExudynModel
+from scenarios.bodies import GROUND
+from scenarios.trajectory import Trajectory
+
+INITIAL = exu.ConfigurationType.Initial
+CURRENT = exu.ConfigurationType.Current
+DYNAMIC = {"GA": exu.DynamicSolverType.GeneralizedAlpha, "TR2": exu.DynamicSolverType.TrapezoidalIndex2}
+
+
+@dataclass(frozen=True)
+class Plan:
+    """How to march: `solver` GA, TR2 or STATIC; the requested step `dt`; GA's spectral radius;
+    Newton's tolerance on the increment of each step (or of each static solve)."""
+
+    solver: str
+    dt: float
+    rho: float
+    tolerance: float
+
+
+@dataclass
+class States:
+    """Coordinates, velocities and accelerations (n_times x n_ode2) at the grid times."""
+
+    q: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+
+
+@contextmanager
+def quiet() -> Iterator[None]:
+    """Exudyn's console output off for the duration (it is a process-wide switch)."""
+    before = exu.config.printToConsole
+    exu.config.printToConsole = False
+    try:
+        yield
+    finally:
+        exu.config.printToConsole = before
+
+
+ASSEMBLY_TOLERANCE = 1e-14
+
+
+def simulation_settings(tolerance: float) -> Any:
+    """Settings that write no file and print nothing, with full Newton at `tolerance`."""
+    s = exu.SimulationSettings()
+    s.solution.file.write = False
+    s.solution.sensors.active = False
+    s.solution.restart.write = False
+    s.show.computationTime = s.show.statistics = s.show.globalTimers = False
+    for solver in (s.staticSolver, s.timeIntegration):
+        solver.verboseMode = 0
+        solver.verboseModeFile = 0
+        solver.stepInformation = 0
+        solver.adaptiveStep = False
+        solver.newton.useModifiedNewton = False
+        solver.newton.adaptInitialResidual = False  # else a blown-up first iterate passes as converged
+        # converge on the Newton increment, not on the residual: the residual mixes forces with
+        # constraint gaps, so a tolerance on it depends on the masses
+        solver.newton.residualMode = 1
+        solver.newton.relativeTolerance = tolerance
+        solver.newton.absoluteTolerance = tolerance
+    s.timeIntegration.automaticStepSize = False
+    return s
+
+
+class ConstraintProbe:
+    """Exudyn's constraint Jacobian C_q and velocity-level constraints C_q v + C_t at any state,
+    through the interface of its static solver."""
+
+    def __init__(self, model: ExudynModel, settings: Any) -> None:
+        self.mbs = model.mbs
+        self.solver = _static_solver()
+        self.solver.InitializeSolver(self.mbs, settings)
+        self.n = self.solver.GetODE2size()
+        if self.solver.GetAEsize() != self.n:
+            rows = self.solver.GetAEsize()
+            raise EngineFailure(
+                f"not kinematically driven in Exudyn: {self.n} coordinates, {rows} constraints"
+            )
+
+    def _set(self, q: np.ndarray, v: np.ndarray, t: float) -> None:
+        data = self.mbs.systemData
+        data.SetODE2Coordinates(q.tolist(), CURRENT)
+        data.SetODE2Coordinates_t(v.tolist(), CURRENT)
+        data.SetTime(t)
+
+    def jacobian(self, q: np.ndarray, t: float) -> np.ndarray:
+        self._set(q, np.zeros_like(q), t)
+        self.solver.ComputeJacobianODE2RHS(
+            self.mbs, scalarFactor_ODE2=-1.0, scalarFactor_ODE2_t=0.0
+        )  # resets
+        self.solver.ComputeJacobianAE(self.mbs, scalarFactor_ODE2=1.0, scalarFactor_ODE2_t=0.0)
+        return np.array(self.solver.GetSystemJacobian())[self.n :, : self.n]
+
+    def residual(self, q: np.ndarray, t: float) -> np.ndarray:
+        """C(q, t), the constraints at position level."""
+        self._set(q, np.zeros_like(q), t)
+        self.solver.ComputeAlgebraicEquations(self.mbs, velocityLevel=False)
+        return np.array(self.solver.GetSystemResidual())[self.n :]
+
+    def rate_residual(self, q: np.ndarray, v: np.ndarray, t: float) -> np.ndarray:
+        """C_q v + C_t, the constraints at velocity level."""
+        self._set(q, v, t)
+        self.solver.ComputeAlgebraicEquations(self.mbs, velocityLevel=True)
+        return np.array(self.solver.GetSystemResidual())[self.n :]
+
+    def rates(
+        self, q: np.ndarray, t: float, scale: np.ndarray, frequency: float
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Velocities from C_q v = -C_t and accelerations from C_q a = Q_d, Q_d being minus the
+        derivative of C_q v + C_t along the motion at fixed v (fourth-order central differences
+        over a thousandth of the time a coordinate takes to move its own scale, or of 1/frequency)."""
+        jac = self.jacobian(q, t)
+        v = _solve(jac, -self.rate_residual(q, np.zeros_like(q), t), t)
+        h = 1e-3 / max(float(np.max(np.abs(v) / scale)), frequency)
+
+        def along(s: float) -> np.ndarray:
+            return self.rate_residual(q + s * h * v, v, t + s * h)
+
+        derivative = (8.0 * (along(1) - along(-1)) - (along(2) - along(-2))) / (12.0 * h)
+        return v, _solve(jac, -derivative, t)
+
+    def close(self, settings: Any) -> None:
+        self.solver.FinalizeSolver(self.mbs, settings)
+
+
+def _static_solver() -> Any:
+    """Exudyn's static solver interface, typed Any: Exudyn's stubs of its methods lack `self`."""
+    return exu.MainSolverStatic()
+
+
+def _solve(jac: np.ndarray, rhs: np.ndarray, t: float) -> np.ndarray:
+    if not np.all(np.isfinite(jac)) or np.linalg.cond(jac) > 1e14:
+        raise Singular("Exudyn's constraint Jacobian is singular", t)
+    return np.linalg.solve(jac, rhs)
+
+
+def _scales(model: ExudynModel) -> tuple[np.ndarray, float]:
+    """Per ODE2 coordinate the characteristic length for x and y, 1 for angles and phi; and the
+    scenario's characteristic frequency, 2 pi over its duration."""
+    scale = np.ones(len(model.guess))
+    for index in model.index.values():
+        scale[index : index + 2] = model.scenario.characteristic_length
+    return scale, 2.0 * math.pi / model.scenario.t_end
+
+
+def assemble(model: ExudynModel, t0: float, settings: Any) -> States:
+    """A consistent start found by Exudyn: its static solver from the guess at t0, then velocity
+    and acceleration solves; written into the system's initial state."""
+    if t0 < 0.0:
+        raise EngineFailure(f"Exudyn's static solver cannot start at negative time {t0}", t0)
+    data = model.mbs.systemData
+    data.SetODE2Coordinates(model.guess.tolist(), INITIAL)
+    data.SetODE2Coordinates_t(np.zeros_like(model.guess).tolist(), INITIAL)
+    static = settings.staticSolver
+    static.numberOfLoadSteps, static.loadStepStart, static.loadStepDuration = 1, t0, 1e-30
+    tolerance = ASSEMBLY_TOLERANCE * max(1.0, float(np.max(np.abs(model.guess))))
+    static.newton.relativeTolerance, static.newton.absoluteTolerance = tolerance, tolerance
+    _guarded(model, "staticSolver", lambda: model.mbs.SolveStatic(settings, updateInitialValues=True))
+    q0 = np.array(data.GetODE2Coordinates(INITIAL))
+    probe = ConstraintProbe(model, settings)
+    # Exudyn's static solve ends at t0 + 1e-30 (a load step must last); one Newton step on its
+    # equations lands the start exactly at t0
+    q0 = q0 - _solve(probe.jacobian(q0, t0), probe.residual(q0, t0), t0)
+    gap = float(np.max(np.abs(probe.residual(q0, t0)), initial=0.0))
+    if not gap <= 1e-9 * max(1.0, model.scenario.characteristic_length):
+        raise EngineFailure(
+            f"Exudyn's static solver did not assemble the mechanism: constraint residual {gap:.3g}", t0
+        )
+    q0 = _nearest_turns(model, probe, q0, t0, gap + 1e-12)
+    v0, a0 = probe.rates(q0, t0, *_scales(model))
+    probe.close(settings)
+    data.SetODE2Coordinates(q0.tolist(), INITIAL)
+    data.SetODE2Coordinates_t(v0.tolist(), INITIAL)
+    data.SetODE2Coordinates_tt(a0.tolist(), INITIAL)
+    return States(q0[None, :], v0[None, :], a0[None, :])
+
+
+def _nearest_turns(
+    model: ExudynModel, probe: ConstraintProbe, q: np.ndarray, t: float, gap: float
+) -> np.ndarray:
+    """Each angle (and cam parameter) that Newton threw whole turns from its guess, brought back
+    where no constraint minds (drivers and gears do fix absolute angles): the same configuration,
+    on the continuous angle the guess asks for."""
+    for k in [i + 2 for i in model.index.values()] + list(model.phi_index.values()):
+        turns = round((q[k] - model.guess[k]) / (2.0 * math.pi))
+        if turns:
+            trial = q.copy()
+            trial[k] -= 2.0 * math.pi * turns
+            if float(np.max(np.abs(probe.residual(trial, t)))) <= gap:
+                q = trial
+    return q
+
+
+def march(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any) -> tuple[States, int]:
+    """The states on `times` and the number of engine steps taken."""
+    start = assemble(model, float(times[0]), settings)
+    if len(times) == 1:
+        return start, 0
+    if plan.solver == "STATIC":
+        return _static_sweep(model, times, settings, plan.tolerance), len(times) - 1
+    return _integrate(model, plan, times, settings, start)
+
+
+def _recorder(model: ExudynModel, times: np.ndarray, states: States, tolerance: float) -> Callable[..., bool]:
+    interval = float(times[1] - times[0])
+    data = model.mbs.systemData
+
+    def record(mbs: Any, t: float) -> bool:
+        k = round((t - times[0]) / interval)
+        if 0 < k < len(times) and abs(t - times[k]) <= tolerance:
+            states.q[k] = data.GetODE2Coordinates()
+            states.v[k] = data.GetODE2Coordinates_t()
+            states.a[k] = data.GetODE2Coordinates_tt()
+        return True
+
+    return record
+
+
+def _empty(n_times: int, n: int) -> States:
+    return States(*(np.full((n_times, n), np.nan) for _ in range(3)))
+
+
+def _integrate(
+    model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any, start: States
+) -> tuple[States, int]:
+    interval = float(times[1] - times[0])
+    substeps = max(1, math.ceil(interval / plan.dt - 1e-9))
+    steps = substeps * (len(times) - 1)
+    ti = settings.timeIntegration
+    ti.startTime, ti.endTime, ti.numberOfSteps = float(times[0]), float(times[-1]), steps
+    ti.generalizedAlpha.spectralRadius = plan.rho
+    ti.generalizedAlpha.computeInitialAccelerations = False  # the assembled start has them
+    states = _empty(len(times), len(model.guess))
+    states.q[0], states.v[0], states.a[0] = start.q[0], start.v[0], start.a[0]
+    model.mbs.SetPostStepUserFunction(_recorder(model, times, states, 1e-6 * interval / substeps))
+    solver = DYNAMIC[plan.solver]
+    _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
+    _check_complete(states, times)
+    return states, steps
+
+
+def _static_sweep(model: ExudynModel, times: np.ndarray, settings: Any, tolerance: float) -> States:
+    static = settings.staticSolver
+    static.newton.relativeTolerance, static.newton.absoluteTolerance = tolerance, tolerance
+    static.numberOfLoadSteps = len(times) - 1
+    static.loadStepStart, static.loadStepDuration = float(times[0]), float(times[-1] - times[0])
+    states = _empty(len(times), len(model.guess))
+    states.q[0] = np.array(model.mbs.systemData.GetODE2Coordinates(INITIAL))
+    interval = float(times[1] - times[0])
+    model.mbs.SetPostStepUserFunction(_recorder(model, times, states, 1e-6 * interval))
+    _guarded(model, "staticSolver", lambda: model.mbs.SolveStatic(settings))
+    _check_complete(states, times)
+    probe = ConstraintProbe(model, settings)
+    scales = _scales(model)
+    for k, t in enumerate(times):
+        states.v[k], states.a[k] = probe.rates(states.q[k], float(t), *scales)
+    probe.close(settings)
+    return states
+
+
+def _check_complete(states: States, times: np.ndarray) -> None:
+    missing = np.flatnonzero(~np.isfinite(states.q).all(axis=1))
+    if missing.size:
+        raise EngineFailure(f"Exudyn reported no state at t = {times[missing[0]]}", float(times[missing[0]]))
+
+
+def _guarded(model: ExudynModel, key: str, solve: Callable[[], Any]) -> None:
+    """Run an Exudyn solve; its failure becomes an EngineFailure with Exudyn's message."""
+    try:
+        ok = solve()
+    except exu.SolverError as error:
+        raise _failure(model, key, str(error)) from error
+    except RuntimeError as error:  # Exudyn raises plain RuntimeErrors from inside its solvers too
+        raise _failure(model, key, f"{type(error).__name__}: {error}") from error
+    if ok is False:
+        raise _failure(model, key, "solver returned failure")
+
+
+def _failure(model: ExudynModel, key: str, text: str) -> EngineFailure:
+    t = float(model.mbs.systemData.GetTime())
+    solver = model.mbs.sys.get(key)
+    name = "SolveStatic" if key == "staticSolver" else "SolveDynamic"
+    if solver is None:
+        return EngineFailure(f"Exudyn {name}: {text}", t)
+    conv = solver.conv
+    reason = solver.GetErrorString() or text
+    detail = f"Newton residual {conv.residual:.3g}"
+    if conv.linearSolverFailed:
+        detail += f"; the linear solver failed (singular Jacobian, row {conv.linearSolverCausingRow})"
+    kind = Singular if conv.linearSolverFailed else EngineFailure
+    return kind(f"Exudyn {name}: {reason} ({detail})", t)
+
+
+def trajectory(model: ExudynModel, times: np.ndarray, states: States) -> Trajectory:
+    """The canonical trajectory of the output bodies, with each cam's `<contact>.phi`."""
+    bodies = model.scenario.output_bodies
+    cols = [np.arange(model.index[b], model.index[b] + 3) for b in bodies]
+    pick = [np.stack([level[:, c] for c in cols], axis=1) for level in (states.q, states.v, states.a)]
+    extras = {name: states.q[:, i].copy() for name, i in model.phi_index.items()}
+    for name, (cam, follower, phi_of, guess) in model.phi_from_poses.items():
+        extras[f"{name}.phi"] = _phi_series(model, states.q, cam, follower, phi_of, guess)
+    grid = np.asarray(times, dtype=float)
+    return Trajectory(grid, bodies, position=pick[0], velocity=pick[1], acceleration=pick[2], extras=extras)
+
+
+def _phi_series(
+    model: ExudynModel, q: np.ndarray, cam: str, follower: str, phi_of: Any, guess: float
+) -> np.ndarray:
+    def pose(body: str, row: np.ndarray) -> np.ndarray:
+        return np.zeros(3) if body == GROUND else row[model.index[body] : model.index[body] + 3]
+
+    raw = np.unwrap([phi_of(pose(cam, row), pose(follower, row)) for row in q])
+    turns = round((guess - raw[0]) / (2.0 * math.pi))
+    return np.asarray(raw + 2.0 * math.pi * turns)

@@ -1,0 +1,222 @@
+"""The MJCF writer: a planned tree, its laws and cam pairs as one self-contained MuJoCo model file.
+
+Bodies sit at the canonical body frames (a site named after each body marks it), hinges turn about
+z, slides move in the plane, loops close with site-based `connect`, laws become `joint` equalities
+(or a fixed tendon and a `tendon` equality when more than two joints take part), clocks are extra
+rotors, cams are contact pairs. Every number is written to full precision.
+"""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from adapters.mujoco.cams import CamPair, Geom
+from adapters.mujoco.laws import Law
+from adapters.mujoco.tree import Tree, rot
+from scenarios.bodies import GROUND, Point
+from scenarios.gears import GearPair, RackPinion
+from scenarios.scenario import Scenario
+
+MASSLESS = 1e-9
+"""A body without mass or inertia gets this fraction of the heaviest body's (MuJoCo needs both)."""
+CLOCK_ARMATURE = 1.0e9
+"""A clock's armature where the inertia it drives is not known (adapters.mujoco.scale sizes it)."""
+
+
+@dataclass(frozen=True)
+class Physics:
+    """MuJoCo options and constraint softness shared by every equality and contact."""
+
+    integrator: str
+    timestep: float
+    solref: tuple[float, float]
+    solimp: tuple[float, float, float, float, float]
+    contact_solimp: tuple[float, float, float, float, float]
+    tolerance: float = 1e-15
+    iterations: int = 50
+    springs: dict[str, tuple[float, float]] = field(default_factory=dict)
+    """Preload springs: joint name -> (stiffness, springref)."""
+    clock_armature: dict[str, float] = field(default_factory=dict)
+    """Clock joint name -> armature (CLOCK_ARMATURE for a clock not listed or with nothing to drive)."""
+
+
+def num(*values: float) -> str:
+    return " ".join(repr(float(v)) for v in values)
+
+
+def mjcf(
+    scenario: Scenario,
+    tree: Tree,
+    laws: list[Law],
+    cams: list[CamPair],
+    physics: Physics,
+    keyframe: tuple[np.ndarray, np.ndarray] | None = None,
+) -> str:
+    """The model as MJCF text; `keyframe` (qpos, qvel) is stored as the key named 'start'."""
+    root = ET.Element("mujoco", model=scenario.name.replace("/", "_"))
+    ET.SubElement(root, "compiler", angle="radian", autolimits="true")
+    option = ET.SubElement(
+        root,
+        "option",
+        timestep=num(physics.timestep),
+        integrator=physics.integrator,
+        gravity="0 0 0",
+        tolerance=num(physics.tolerance),
+        iterations=str(physics.iterations),
+        jacobian="dense",
+    )
+    # A scene carries only what it needs: without cams there is nothing to collide.
+    ET.SubElement(option, "flag", autoreset="disable", **({} if cams else {"contact": "disable"}))
+    default = ET.SubElement(root, "default")
+    ET.SubElement(default, "geom", contype="0", conaffinity="0", rgba="0.6 0.7 0.8 1")
+    ET.SubElement(default, "equality", solref=num(*physics.solref), solimp=num(*physics.solimp))
+    ET.SubElement(default, "site", size=num(0.01 * scenario.characteristic_length), rgba="0.9 0.2 0.2 1")
+    world = ET.SubElement(root, "worldbody")
+    ET.SubElement(world, "light", pos="0 0 2", dir="0 0 -1", directional="true")
+    elements = {GROUND: world}
+    for joint in tree.joints:
+        parent = elements[joint.parent]
+        elements[joint.child] = _body(parent, scenario, tree, joint.child, physics)
+        if joint.kind != "fixed":
+            attrs = {"name": joint.name, "type": joint.kind, "pos": num(*joint.anchor, 0.0)}
+            attrs["axis"] = "0 0 1" if joint.kind == "hinge" else num(*joint.axis, 0.0)
+            if joint.name in physics.springs:
+                k, ref = physics.springs[joint.name]
+                attrs.update(stiffness=num(k), springref=num(ref))
+            body = elements[joint.child]
+            body.insert(0, ET.Element("joint", attrs))
+    for law in laws:
+        if law.clock is not None:
+            armature = physics.clock_armature.get(law.clock.joint, 0.0) or CLOCK_ARMATURE
+            clock = ET.SubElement(world, "body", name=law.clock.joint)
+            ET.SubElement(clock, "inertial", pos="0 0 0", mass="1", diaginertia="1 1 1")
+            ET.SubElement(
+                clock,
+                "joint",
+                name=law.clock.joint,
+                type="hinge",
+                axis="0 0 1",
+                armature=num(armature),
+                stiffness=num(armature * law.clock.omega2),
+            )
+    for pair in cams:
+        for geom in (pair.cam, pair.follower):
+            _geom(elements[geom.body], geom, contact=True)
+    _equalities(root, elements, tree, laws)
+    if cams:
+        contact = ET.SubElement(root, "contact")
+        for pair in cams:
+            ET.SubElement(
+                contact,
+                "pair",
+                name=pair.name,
+                geom1=pair.cam.name,
+                geom2=pair.follower.name,
+                condim="1",
+                solref=num(*physics.solref),
+                solimp=num(*physics.contact_solimp),
+            )
+    if keyframe is not None:
+        key = ET.SubElement(ET.SubElement(root, "keyframe"), "key", name="start")
+        key.set("qpos", num(*keyframe[0]))
+        key.set("qvel", num(*keyframe[1]))
+    ET.indent(root)
+    return ET.tostring(root, encoding="unicode")
+
+
+def _body(parent: ET.Element, scenario: Scenario, tree: Tree, name: str, physics: Physics) -> ET.Element:
+    x, y, th = tree.poses[name]
+    px, py, pth = (0.0, 0.0, 0.0) if parent.tag == "worldbody" else tree.poses[parent.get("name", "")]
+    rel = rot(pth).T @ np.array([x - px, y - py])
+    half = (th - pth) / 2.0
+    element = ET.SubElement(
+        parent,
+        "body",
+        name=name,
+        pos=num(rel[0], rel[1], 0.0),
+        quat=num(math.cos(half), 0.0, 0.0, math.sin(half)),
+    )
+    spec = scenario.body(name)
+    inertia = spec.inertia or MASSLESS * max((b.inertia for b in scenario.bodies), default=0.0) or 1e-12
+    mass = spec.mass or MASSLESS * max((b.mass for b in scenario.bodies), default=0.0) or 1e-9
+    ET.SubElement(
+        element, "inertial", pos="0 0 0", mass=num(mass), diaginertia=num(inertia, inertia, inertia)
+    )
+    ET.SubElement(element, "site", name=name, pos="0 0 0")
+    _visual(element, scenario, name)
+    return element
+
+
+def _visual(body: ET.Element, scenario: Scenario, name: str) -> None:
+    """Geometry for the viewer only (it neither collides nor adds mass)."""
+    spec = scenario.body(name)
+    radius = _pitch_radius(scenario, name)
+    size = 0.05 * scenario.characteristic_length
+    if spec.length > 0.0:
+        half = spec.length / 2.0
+        ET.SubElement(body, "geom", type="capsule", fromto=num(-half, 0, 0, half, 0, 0), size=num(half / 10))
+    elif radius:
+        ET.SubElement(body, "geom", type="cylinder", size=num(radius, size / 2), rgba="0.8 0.7 0.3 0.6")
+    else:
+        ET.SubElement(body, "geom", type="box", size=num(size, size, size / 2), rgba="0.3 0.5 0.8 1")
+
+
+def _pitch_radius(scenario: Scenario, name: str) -> float:
+    for joint in scenario.joints:
+        if isinstance(joint, GearPair) and name in (joint.gear_i, joint.gear_j):
+            return joint.radius_i if name == joint.gear_i else joint.radius_j
+        if isinstance(joint, RackPinion) and joint.centre.body == name:
+            return joint.radius
+    return 0.0
+
+
+def _geom(body: ET.Element, geom: Geom, contact: bool) -> None:
+    half = geom.angle / 2.0
+    ET.SubElement(
+        body,
+        "geom",
+        name=geom.name,
+        type=geom.kind,
+        size=num(*geom.size),
+        pos=num(*geom.pos, 0.0),
+        quat=num(math.cos(half), 0.0, 0.0, math.sin(half)),
+        rgba="0.9 0.5 0.3 1" if contact else "0.6 0.7 0.8 1",
+    )
+
+
+def _site(elements: dict[str, ET.Element], tree: Tree, point: Point, name: str) -> str:
+    ET.SubElement(elements[point.body], "site", name=name, pos=num(*point.local, 0.0))
+    return name
+
+
+def _equalities(root: ET.Element, elements: dict[str, ET.Element], tree: Tree, laws: list[Law]) -> None:
+    equality = ET.SubElement(root, "equality")
+    tendons: ET.Element | None = None
+    for loop in tree.loops:
+        site1 = _site(elements, tree, loop.p_i, f"{loop.name}_i")
+        site2 = _site(elements, tree, loop.p_j, f"{loop.name}_j")
+        ET.SubElement(equality, "connect", name=loop.name, site1=site1, site2=site2)
+    for law in laws:
+        terms = law.terms()
+        const = law.form.const
+        if len(terms) <= 2:
+            (joint1, c1), *rest = terms
+            attrs = {"name": law.name, "joint1": joint1}
+            a1 = 0.0
+            if rest:
+                attrs["joint2"] = rest[0][0]
+                a1 = -rest[0][1] / c1
+            attrs["polycoef"] = num(-const / c1, a1, 0.0, 0.0, 0.0)
+            ET.SubElement(equality, "joint", attrs)
+            continue
+        if tendons is None:
+            tendons = ET.Element("tendon")
+            root.insert(list(root).index(equality), tendons)
+        fixed = ET.SubElement(tendons, "fixed", name=law.name)
+        for joint, coef in terms:
+            ET.SubElement(fixed, "joint", joint=joint, coef=num(coef))
+        ET.SubElement(equality, "tendon", name=law.name, tendon1=law.name, polycoef=num(-const, 0, 0, 0, 0))

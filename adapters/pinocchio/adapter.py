@@ -1,0 +1,185 @@
+"""Pinocchio adapter: the mechanism as a kinematic tree in relative joint coordinates.
+
+The tree spans the scenario's joints from the ground (revolute joints about z, prismatic joints in
+the plane); the remaining joints, gears and cam contacts close loops as rows built from Pinocchio's
+frame placements and Jacobians; gear pairs on a common carrier are mimic joints where Pinocchio can
+hold them. Three modes (Setting.mode):
+- `kinematic`: Newton on the loop and driver rows at every output time, velocities and accelerations
+  from the same Jacobian and Pinocchio's classical accelerations. Option `tol` (residual bound, in
+  each row's size: lengths relative to the characteristic length, angles in radians) and `gears`
+  (`mimic` or `row`).
+- `dynamic`: `constraintDynamics` with the loops as Pinocchio constraint models and the drive as a
+  constraint, integrated with RK4. Options `dt` (step, default 1/1000 of the drive period), `kp`
+  and `kd` (Baumgarte gains, default 0).
+- `baumgarte`: the dynamic mode with gains kp = w^2, kd = 2 w by default (w the drive frequency):
+  a critically damped correction of constraint and drive drift with a time constant of one radian.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+
+from adapters.base import Adapter, EngineFailure, Setting, Unsupported
+from adapters.pinocchio.dynamics import DynamicSolver, dynamic_support
+from adapters.pinocchio.kinematics import KinematicSolver, body_motion
+from adapters.pinocchio.model import PinModel, build_model
+from adapters.pinocchio.rows import Rows, motions_of
+from adapters.pinocchio.tree import Tree, TreeError, plan
+from scenarios.motions import ConstantSpeed, Harmonic
+from scenarios.scenario import Scenario
+from scenarios.trajectory import Trajectory
+
+KINEMATIC, DYNAMIC, BAUMGARTE = "kinematic", "dynamic", "baumgarte"
+MODES = {
+    "kinematic": KINEMATIC,
+    "kinematics": KINEMATIC,
+    "dynamic": DYNAMIC,
+    "dynamics": DYNAMIC,
+    "baumgarte": BAUMGARTE,
+}
+STEPS_PER_PERIOD = (100, 300, 1000)
+"""RK4 steps per drive period in the dynamic sweeps; the default is 1000."""
+TOLERANCES = (1e-5, 1e-9, 1e-15)
+"""Newton residual bounds in the kinematic sweep; the default is the last."""
+
+
+def drive_period(scenario: Scenario) -> float:
+    """The period of the fastest driver motion (constant speed: one turn), else the scenario's span."""
+    rates = []
+    for motion in (m for d in scenario.drivers for m in motions_of(d)):
+        if isinstance(motion, ConstantSpeed | Harmonic):
+            rates.append(abs(motion.rate if isinstance(motion, ConstantSpeed) else motion.omega))
+    rates = [r for r in rates if r > 0.0]
+    return 2.0 * math.pi / max(rates) if rates else scenario.t_end
+
+
+def _gains(scenario: Scenario, mode: str) -> tuple[float, float]:
+    """Default Baumgarte gains (kp, kd) of a mode: none, or critically damped at the drive frequency."""
+    if mode != BAUMGARTE:
+        return 0.0, 0.0
+    w = 2.0 * math.pi / drive_period(scenario)
+    return w * w, 2.0 * w
+
+
+@dataclass
+class Built:
+    """What `build` hands to `simulate`."""
+
+    scenario: Scenario
+    mode: str
+    pm: PinModel
+    kinematics: KinematicSolver
+    dynamics: DynamicSolver | None
+
+
+class PinocchioAdapter(Adapter):
+    name = "pinocchio"
+
+    def version(self) -> str:
+        return str(pin.__version__)
+
+    def supports(self, scenario: Scenario) -> str | None:
+        try:
+            self._structure(scenario, mimic_gears=False)
+        except Unsupported as reason:
+            return str(reason)
+        return None
+
+    def default_setting(self, scenario: Scenario) -> Setting:
+        return Setting.of(KINEMATIC, tol=TOLERANCES[-1], gears="mimic")
+
+    def dynamic_setting(
+        self, scenario: Scenario, steps_per_period: int = 1000, mode: str = DYNAMIC
+    ) -> Setting:
+        """A dynamic-mode setting with `steps_per_period` RK4 steps per drive period."""
+        kp, kd = _gains(scenario, mode)
+        return Setting.of(mode, dt=drive_period(scenario) / steps_per_period, kp=kp, kd=kd)
+
+    def sweep(self, scenario: Scenario) -> list[Setting]:
+        settings = [self.default_setting(scenario).replace(tol=tol) for tol in TOLERANCES]
+        if self.supports(scenario) is None and dynamic_support(scenario, plan(scenario, False)) is None:
+            for mode in (DYNAMIC, BAUMGARTE):
+                settings += [self.dynamic_setting(scenario, n, mode) for n in STEPS_PER_PERIOD]
+        return settings
+
+    def _structure(self, scenario: Scenario, mimic_gears: bool) -> tuple[Tree, PinModel, Rows]:
+        """The tree, the Pinocchio model and the rows; Unsupported if the rows do not make a square
+        system in the unknowns."""
+        try:
+            tree = plan(scenario, mimic_gears)
+        except TreeError as error:
+            raise Unsupported(str(error)) from None
+        pm = build_model(scenario, tree)
+        rows = Rows.of(scenario, pm)
+        solver = KinematicSolver(pm, rows, length=scenario.characteristic_length)
+        count = rows.evaluate(solver.snapshot(self._guess(scenario, pm))).val.size
+        unknowns = pm.model.nq + len(scenario.cams)
+        if count != unknowns:
+            raise Unsupported(
+                f"the loop-closure and driver rows ({count}) do not match the unknowns ({unknowns}): "
+                "not a kinematically driven mechanism"
+            )
+        return tree, pm, rows
+
+    @staticmethod
+    def _guess(scenario: Scenario, pm: PinModel) -> np.ndarray:
+        return np.concatenate([pm.q_guess(), [c.phi_guess for c in scenario.cams]])
+
+    def build(self, scenario: Scenario, setting: Setting) -> Built:
+        mode = MODES.get(setting.mode)
+        if mode is None:
+            raise EngineFailure(f"unknown Pinocchio mode '{setting.mode}'; known: {', '.join(MODES)}")
+        gears = str(setting.get("gears", "mimic"))
+        if gears not in ("mimic", "row"):
+            raise EngineFailure(f"gears must be 'mimic' or 'row', got '{gears}'")
+        tree, pm, rows = self._structure(scenario, mimic_gears=mode == KINEMATIC and gears == "mimic")
+        tol = float(setting.get("tol", TOLERANCES[-1]))
+        kinematics = KinematicSolver(
+            pm, rows, tol=tol if mode == KINEMATIC else TOLERANCES[-1], length=scenario.characteristic_length
+        )
+        dynamics = None
+        if mode != KINEMATIC:
+            reason = dynamic_support(scenario, tree)
+            if reason is not None:
+                raise Unsupported(reason)
+            dt = float(setting.get("dt", drive_period(scenario) / 1000))
+            kp, kd = _gains(scenario, mode)
+            gains = float(setting.get("kp", kp)), float(setting.get("kd", kd))
+            dynamics = DynamicSolver(pm, rows, dt, gains)
+        return Built(scenario, mode, pm, kinematics, dynamics)
+
+    def export(self, scenario: Scenario, setting: Setting, path: str) -> None:
+        """Pinocchio's own serialization of the kinematic tree, frames and mimic joints (Boost XML;
+        reload with `pinocchio.Model().loadFromXML(path, "model")`). Loop closures, coupling rows and
+        cam contacts are rows the adapter solves: they are not part of a Pinocchio model file."""
+        reason = self.supports(scenario)
+        if reason is not None:
+            raise Unsupported(reason)
+        self.build(scenario, setting).pm.model.saveToXML(str(path), "model")
+
+    def simulate(self, model: Any, times: np.ndarray) -> Trajectory:
+        built: Built = model
+        scenario, pm, kin = built.scenario, built.pm, built.kinematics
+        z0 = kin.assemble(self._guess(scenario, pm), float(times[0]))
+        nq = pm.model.nq
+        if built.dynamics is None:
+            z, z_rate, z_acc = kin.run(z0, times)
+            self.count_steps(len(times))
+            q, v, a = z[:, :nq], z_rate[:, :nq], z_acc[:, :nq]
+        else:
+            _, factor = kin.position(z0, float(times[0]))
+            v0, _ = kin.rates(z0, factor, float(times[0]))
+            q, v, a, steps = built.dynamics.run(z0[:nq], v0[:nq], times)
+            self.count_steps(steps)
+            z = q
+        bodies = scenario.output_bodies
+        data = pm.model.createData()
+        levels = np.stack([body_motion(pm, data, (q[k], v[k], a[k]), bodies) for k in range(len(times))])
+        extras = {f"{c.name}.phi": z[:, nq + k].copy() for k, c in enumerate(scenario.cams)}
+        grid = np.asarray(times, dtype=float)
+        return Trajectory(grid, bodies, levels[:, 0], levels[:, 1], levels[:, 2], extras)

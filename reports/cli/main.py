@@ -1,0 +1,192 @@
+"""The `mbxval` command line: list, solve and export here; run, report, check and bench in
+reports.cli.suite_commands.
+
+Every failure the user can cause ends with one line `mbxval: error: ...` on stderr, exit status 2,
+and no partial output file.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+import adapters
+import reports.cli.suite_commands as suite_commands
+from adapters.base import Adapter, OptionValue, Setting
+from reports.cli.usage import Parser, UsageError, pairs
+from reports.harness.atomic_write import atomic_output
+from scenarios import Scenario, ScenarioError, all_families, catalogue
+from scenarios import build as build_scenario
+
+
+def _option_value(text: str) -> OptionValue:
+    for kind in (int, float):
+        try:
+            return kind(text)  # type: ignore[no-any-return]
+        except ValueError:
+            pass
+    return text
+
+
+def load_engine(name: str) -> Adapter:
+    try:
+        return adapters.load(name)
+    except adapters.EngineUnavailable as error:
+        raise UsageError(str(error)) from error
+
+
+def time_grid(scenario: Scenario, t_end: float | None, steps: int | None, dt: float | None) -> np.ndarray:
+    """The output grid: `steps` equal steps over [0, t_end], or multiples of `dt` up to t_end."""
+    t_end = scenario.t_end if t_end is None else t_end
+    if not (math.isfinite(t_end) and t_end > 0):
+        raise UsageError(f"--t-end must be a positive number, got {t_end}")
+    if dt is not None:
+        if not (math.isfinite(dt) and 0 < dt <= t_end):
+            raise UsageError(f"--dt must be positive and at most --t-end, got {dt}")
+        steps = math.floor(t_end / dt + 1e-9)
+        return dt * np.arange(steps + 1)
+    steps = scenario.steps if steps is None else steps
+    if steps < 1:
+        raise UsageError(f"--steps must be at least 1, got {steps}")
+    return np.linspace(0.0, t_end, steps + 1)
+
+
+def engine_setting(adapter: Adapter, scenario: Scenario, mode: str | None, options: list[str]) -> Setting:
+    """The engine's default setting for the scenario, with a mode and options overridden."""
+    setting = adapter.default_setting(scenario)
+    if mode is not None:
+        setting = Setting(mode, setting.options)
+    overrides = {k: _option_value(v) for k, v in pairs(options, "--setting").items()}
+    return setting.replace(**overrides) if overrides else setting
+
+
+def cmd_list(args: argparse.Namespace) -> int:
+    """A scenario x engine table of what each engine supports, the reasons below it, then each
+    family's parameters with their defaults."""
+    engines = {}
+    for name in adapters.names():
+        try:
+            engines[name] = adapters.load(name)
+        except adapters.EngineUnavailable as error:
+            print(f"engine {name}: unavailable ({error})")
+    print("engines: " + ", ".join(f"{n} {a._safe_version()}" for n, a in engines.items()))
+    names = catalogue(include_stress=args.stress)
+    width = max(len(n) for n in names) + 2
+    print("\n" + "scenario".ljust(width) + "".join(e.ljust(12) for e in engines))
+    reasons: list[str] = []
+    for name in names:
+        scenario = build_scenario(name)
+        cells = []
+        for engine, adapter in engines.items():
+            reason = adapter.supports(scenario)
+            if reason is None:
+                cells.append("yes")
+            else:
+                reasons.append(f"[{len(reasons) + 1}] {engine} on {name}: {reason}")
+                cells.append(f"no [{len(reasons)}]")
+        print(name.ljust(width) + "".join(c.ljust(12) for c in cells))
+    if reasons:
+        print("\n" + "\n".join(reasons))
+    print("\nparameters: default and range; set them with --set NAME=VALUE:")
+    for fam in all_families().values():
+        print(f"  {fam.name}:")
+        for key, parameter in fam.parameters.items():
+            print(f"    {key}={parameter.default}  ({parameter.describe()})")
+    return 0
+
+
+def cmd_solve(args: argparse.Namespace) -> int:
+    scenario = build_scenario(args.scenario, overrides=pairs(args.set, "--set"))
+    grid = time_grid(scenario, args.t_end, args.steps, args.dt)
+    adapter = load_engine(args.engine)
+    setting = engine_setting(adapter, scenario, args.mode, args.setting)
+    result = adapter.run(scenario, setting, grid)
+    if result.status != "ok" or result.trajectory is None:
+        when = "" if result.failure_time is None else f" at t={result.failure_time:.6g}"
+        raise UsageError(f"{args.engine} {result.status}{when}: {result.message}")
+    trajectory = result.trajectory.select(scenario.output_bodies)
+    if args.out is None:
+        trajectory.write_csv(sys.stdout)
+    else:
+        with atomic_output(args.out) as stream:
+            trajectory.write_csv(stream)
+    return 0
+
+
+def cmd_export(args: argparse.Namespace) -> int:
+    scenario = build_scenario(args.scenario, overrides=pairs(args.set, "--set"))
+    adapter = load_engine(args.engine)
+    setting = engine_setting(adapter, scenario, args.mode, args.setting)
+    reason = adapter.supports(scenario)
+    if reason is not None:
+        raise UsageError(f"{args.engine} cannot represent {scenario.name}: {reason}")
+    try:
+        adapter.export(scenario, setting, args.out)
+    except NotImplementedError as error:
+        raise UsageError(str(error)) from error
+    print(f"wrote {args.out}")
+    return 0
+
+
+def _scenario_arguments(parser: argparse.ArgumentParser, engine_default: str) -> None:
+    parser.add_argument("scenario", help="scenario name, or family/variant (see `mbxval list`)")
+    parser.add_argument("--engine", default=engine_default, help=f"engine (default {engine_default})")
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="scenario parameter")
+    parser.add_argument("--mode", help="engine mode (for example RK4, implicitfast, kinematic)")
+    parser.add_argument(
+        "--setting",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="engine setting, such as dt=1e-4",
+    )
+
+
+def parser() -> argparse.ArgumentParser:
+    top = Parser(
+        prog="mbxval",
+        description="Cross-validate planar multibody kinematics: solve the same mechanism with a "
+        "reference solver and several engines, and compare their errors.",
+        epilog="example: mbxval list; mbxval solve four_bar --out four_bar.csv; "
+        "mbxval run --out results; mbxval report results",
+    )
+    sub = top.add_subparsers(dest="command", required=True, parser_class=Parser)
+
+    listing = sub.add_parser("list", help="scenarios, variants, engines and what each supports")
+    listing.add_argument("--stress", action="store_true", help="include the stress variants")
+
+    solve = sub.add_parser("solve", help="one trajectory as CSV")
+    _scenario_arguments(solve, "reference")
+    solve.add_argument("--t-end", type=float, help="end time (default: the scenario's)")
+    grid = solve.add_mutually_exclusive_group()
+    grid.add_argument("--steps", type=int, help="number of equal steps (rows = steps + 1)")
+    grid.add_argument("--dt", type=float, help="output step")
+    solve.add_argument("--out", help="CSV file (default: stdout)")
+
+    export = sub.add_parser("export", help="write the engine's own model file")
+    _scenario_arguments(export, "mujoco")
+    export.add_argument("--out", required=True, help="model file to write")
+
+    suite_commands.add_parsers(sub)
+    return top
+
+
+COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
+    "list": cmd_list,
+    "solve": cmd_solve,
+    "export": cmd_export,
+    **suite_commands.COMMANDS,
+}
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        return COMMANDS[args.command](args)
+    except (UsageError, ScenarioError, OSError) as error:
+        print(f"mbxval: error: {error}", file=sys.stderr)
+        return 2

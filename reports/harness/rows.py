@@ -1,0 +1,92 @@
+"""Building the tidy result rows (see results_store.COLUMNS) from what became of a run."""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Any
+
+from adapters.base import RunResult, Setting, Status
+from reports.harness.metrics import METRIC_COLUMNS
+from reports.harness.provenance import now
+from scenarios.scenario import Scenario
+
+NOT_RUN = "-"  # the setting of a row that stands for an engine that never ran on the scenario
+
+
+def base_row(
+    scenario: Scenario, engine: str, version: str, setting: Setting | None, is_default: bool
+) -> dict[str, Any]:
+    """A row with the identity filled in and every measurement empty."""
+    row: dict[str, Any] = {
+        "scenario": scenario.name,
+        "family": scenario.family,
+        "variant": scenario.variant,
+        "engine": engine,
+        "engine_version": version,
+        "mode": setting.mode if setting else "",
+        "setting": setting.label if setting else NOT_RUN,
+        "options": json.dumps(dict(setting.options) if setting else {}, sort_keys=True),
+        "is_default": is_default,
+        "status": "failed",
+        "message": "",
+        "failure_time": math.nan,
+        "warnings": "",
+        "levels": "",
+        "error": math.nan,
+        "constraint_residual": math.nan,
+        "build_time": math.nan,
+        "run_time": math.nan,
+        "steps": 0,
+        "repeats": 0,
+        "warmup": 0,
+        "grid_points": scenario.steps + 1,
+        "t_end": scenario.t_end,
+        "characteristic_length": scenario.characteristic_length,
+        "recorded_at": now(),
+    }
+    row.update(dict.fromkeys(METRIC_COLUMNS, math.nan))
+    return row
+
+
+def failure_row(
+    scenario: Scenario,
+    engine: str,
+    version: str,
+    setting: Setting | None,
+    is_default: bool,
+    status: Status,
+    message: str,
+) -> dict[str, Any]:
+    """A row for a run that produced nothing to compare."""
+    row = base_row(scenario, engine, version, setting, is_default)
+    row.update(status=status, message=message)
+    return row
+
+
+def result_row(
+    scenario: Scenario,
+    result: RunResult,
+    is_default: bool,
+    repeats: int,
+    warmup: int,
+    metrics: dict[str, float],
+    levels: tuple[str, ...],
+    note: str = "",
+) -> dict[str, Any]:
+    """A row for a run that reached the adapter: its status, timings and (when ok) its errors."""
+    row = base_row(scenario, result.engine, result.version, result.setting, is_default)
+    row.update(
+        status=result.status,
+        message="; ".join(m for m in (result.message, note) if m),
+        failure_time=math.nan if result.failure_time is None else result.failure_time,
+        warnings=" | ".join(result.warnings),
+        build_time=result.build_time,
+        run_time=result.run_time,
+        steps=result.steps,
+        repeats=repeats if result.status == "ok" else 0,
+        warmup=warmup if result.status == "ok" else 0,
+        levels=",".join(levels),
+    )
+    row.update(metrics)
+    return row

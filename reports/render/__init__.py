@@ -1,0 +1,1 @@
+"""Reports rendered from stored results alone: HTML, Markdown and figures."""

@@ -1,0 +1,47 @@
+"""The Markdown summary: provenance, the status matrix and each scenario's table of runs."""
+
+from __future__ import annotations
+
+from reports.render import stability_render
+from reports.render.markdown_table import markdown_table
+from reports.render.report_data import HEADINGS, ReportData, number, table
+
+SHOWN = ("engine", "setting", "status", "error", "constraint_residual", "run_time", "message")
+SUMMARY_COLUMNS = tuple(HEADINGS.get(c, c) for c in SHOWN)
+
+
+def render(data: ReportData) -> str:
+    meta = data.meta
+    engines = ", ".join(f"{k} {v}" for k, v in meta.get("engines", {}).items())
+    machine = meta.get("machine", {})
+    revision = str(meta.get("git_revision", "?"))[:12]
+    lines = [
+        "# mbxval report",
+        "",
+        f"Suite `{meta.get('suite', '?')}`, {meta.get('date', '?')}, git `{revision}`.",
+        f"Engines: {engines}. Python {meta.get('python', '?')}; "
+        f"{machine.get('processor', '?')}, {machine.get('cpus', '?')} CPUs.",
+        f"Timing: minimum of {meta.get('repeats', '?')} repeats after {meta.get('warmup', '?')} warm-up.",
+        "",
+        f"{meta.get('headline', '')}",
+        "",
+        "## Status and error at each engine's default setting",
+        "",
+        markdown_table(data.matrix(), "scenario"),
+        "",
+        "Runs by status: " + ", ".join(f"{s} {n}" for s, n in data.status_counts().items()) + ".",
+    ]
+    stability = stability_render.markdown_section(data)  # "" unless the results hold stress cases
+    if stability:
+        lines += ["", stability.rstrip("\n")]
+    for scenario in data.scenarios():
+        rows = table(data.rows(scenario))[list(SUMMARY_COLUMNS)]
+        lines += [
+            "",
+            f"## {scenario}",
+            "",
+            f"Characteristic length {number(data.characteristic_length(scenario))} m.",
+            "",
+            markdown_table(rows),
+        ]
+    return "\n".join(lines) + "\n"

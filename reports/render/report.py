@@ -1,0 +1,30 @@
+"""Render the reports of a results directory from its stored files alone."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from reports.harness.atomic_write import atomic_output
+from reports.render import html as html_report
+from reports.render import markdown as markdown_report
+from reports.render.report_data import ReportData
+
+HTML, MARKDOWN = "index.html", "summary.md"
+
+
+def render_reports(results: str | os.PathLike[str], out: str | os.PathLike[str] | None = None) -> Path:
+    """Write index.html and summary.md for the results in `results` into `out` (default: the same
+    directory); returns the HTML file's path."""
+    data = ReportData.load(results)
+    target = Path(out) if out is not None else Path(results)
+    if target.is_file():
+        target = target.parent
+    target.mkdir(parents=True, exist_ok=True)
+    with atomic_output(target / HTML) as stream:
+        stream.write(html_report.render(data))
+    with atomic_output(target / MARKDOWN) as stream:
+        stream.write(markdown_report.render(data))
+    for name in (HTML, MARKDOWN):
+        (target / name).chmod(0o644)
+    return target / HTML

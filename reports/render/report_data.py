@@ -1,0 +1,128 @@
+"""What a report reads: the stored rows, sidecar and trajectories of one results directory, and the
+views the HTML and Markdown reports share (ordering, the status matrix, number formats)."""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+from typing import Any
+
+import pandas as pd
+
+import adapters
+from reports.harness.results_store import TRUTH, Key, read_results, read_trajectories
+from scenarios import catalogue
+from scenarios.trajectory import Trajectory
+
+TABLE_COLUMNS = (
+    "engine",
+    "setting",
+    "status",
+    "error",
+    "position_length_max",
+    "position_angle_max",
+    "velocity_length_max",
+    "velocity_angle_max",
+    "acceleration_length_max",
+    "acceleration_angle_max",
+    "constraint_residual",
+    "build_time",
+    "run_time",
+    "steps",
+    "message",
+)
+HEADINGS = {
+    "position_length_max": "pos max [m]",
+    "position_angle_max": "pos max [rad]",
+    "velocity_length_max": "vel max [m/s]",
+    "velocity_angle_max": "vel max [rad/s]",
+    "acceleration_length_max": "acc max [m/s²]",
+    "acceleration_angle_max": "acc max [rad/s²]",
+    "constraint_residual": "residual",
+    "build_time": "build [s]",
+    "run_time": "run [s]",
+}
+
+
+@dataclass(frozen=True)
+class ReportData:
+    frame: pd.DataFrame
+    meta: dict[str, Any]
+    trajectories: dict[Key, Trajectory]
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> ReportData:
+        frame, meta = read_results(path)
+        return cls(frame, meta, read_trajectories(path))
+
+    def scenarios(self) -> list[str]:
+        """Scenarios in catalogue order, unknown ones after them."""
+        return _ordered(self.frame["scenario"].unique(), catalogue())
+
+    def engines(self) -> list[str]:
+        return _ordered(self.frame["engine"].unique(), adapters.names())
+
+    def rows(self, scenario: str) -> pd.DataFrame:
+        return self.frame[self.frame["scenario"] == scenario]
+
+    def default_row(self, scenario: str, engine: str) -> pd.Series | None:
+        rows = self.frame[
+            (self.frame["scenario"] == scenario) & (self.frame["engine"] == engine) & self.frame["is_default"]
+        ]
+        return None if rows.empty else rows.iloc[0]
+
+    def truth(self, scenario: str) -> Trajectory | None:
+        found = [t for (s, e, _), t in self.trajectories.items() if s == scenario and e == TRUTH]
+        return found[0] if found else None
+
+    def default_trajectories(self, scenario: str) -> dict[str, Trajectory]:
+        """Each engine's default-setting trajectory of the scenario, by engine."""
+        stored = {(s, e): t for (s, e, _), t in self.trajectories.items() if s == scenario and e != TRUTH}
+        return {e: stored[(scenario, e)] for e in self.engines() if (scenario, e) in stored}
+
+    def characteristic_length(self, scenario: str) -> float:
+        return float(self.rows(scenario)["characteristic_length"].iloc[0])
+
+    def matrix(self) -> pd.DataFrame:
+        """scenario x engine: the default setting's status and headline error, as text."""
+        cells = {
+            engine: [cell_text(self.default_row(s, engine)) for s in self.scenarios()]
+            for engine in self.engines()
+        }
+        return pd.DataFrame(cells, index=self.scenarios())
+
+    def status_counts(self) -> dict[str, int]:
+        return {str(k): int(v) for k, v in self.frame["status"].value_counts().items()}
+
+
+def cell_text(row: pd.Series | None) -> str:
+    if row is None:
+        return "not run"
+    if row["status"] != "ok":
+        return str(row["status"])
+    return f"ok {number(row['error'])}"
+
+
+def number(value: Any) -> str:
+    """Compact scientific text; an en dash for a value left out."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "–"
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return "0" if value == 0 else f"{value:.2e}"
+    return str(value)
+
+
+def table(rows: pd.DataFrame) -> pd.DataFrame:
+    """The per-scenario table: TABLE_COLUMNS, numbers as compact text, sorted by engine and setting."""
+    shown = rows.sort_values(["engine", "mode", "error"], kind="stable")[list(TABLE_COLUMNS)].copy()
+    for column in TABLE_COLUMNS:
+        if column not in ("engine", "setting", "status", "message", "steps"):
+            shown[column] = [number(v) for v in shown[column]]
+    shown["message"] = [str(m)[:160] for m in shown["message"]]
+    return shown.reset_index(drop=True).rename(columns=HEADINGS)
+
+
+def _ordered(values: Any, preferred: list[str]) -> list[str]:
+    present = [str(v) for v in values]
+    return [v for v in preferred if v in present] + sorted(v for v in present if v not in preferred)

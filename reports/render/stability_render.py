@@ -1,0 +1,274 @@
+"""The stability map as a report section: an HTML fragment and a Markdown section.
+
+Tables, from the verdicts of reports.stress.stability_map (stored results alone):
+- the map: one row per stress case, one column per engine, each cell the verdict of the engine's
+  default setting there, with when it happened, the error reached and the worst residual;
+- the settings grids of the cases run at several settings (constraint stiffness against the step,
+  mass ratios): one cell per setting;
+- the scale and speed cases against their nominal scenario: error and its growth factor;
+- the long-horizon drift: error and residual over the first and the last revolution.
+Both renderings return "" when the results hold no stress case.
+"""
+
+from __future__ import annotations
+
+import html
+import math
+import re
+from collections import Counter
+
+import numpy as np
+import pandas as pd
+
+from reference_solver import constraint_residual
+from reports.harness.metrics import headline_series
+from reports.render.markdown_table import markdown_table
+from reports.render.report_data import ReportData
+from reports.stress.branch_check import LOST
+from reports.stress.cases import CASES
+from reports.stress.stability_map import Verdict, verdicts
+from scenarios import build
+from scenarios.trajectory import Trajectory
+
+GROWTH = 10.0
+"""An engine whose error at a scale or speed is more than this times its nominal error (both
+floored at FLOOR) loses accuracy there."""
+FLOOR = 1e-13
+ROUGH = 1e-3
+"""An ok result with a larger error is shaded apart in the HTML map."""
+LEGEND = (
+    "Verdicts: ok (on the truth's branch; the error says how close); picked a branch (went on past "
+    "a singular configuration, where no truth exists, on the same or the mirrored closure); wrong "
+    "branch (on another closure than the truth's); drifted (farther than "
+    f"{LOST:g} from the truth and every closure); diverged, singular detected, failed to converge, "
+    "failed, timeout, unsupported (the engine's own outcome). @ is when it happened, err the largest "
+    "headline error where a truth exists, res the worst constraint residual (relative)."
+)
+CSS = {
+    "ok": "ok",
+    "picked a branch": "branch",
+    "wrong branch": "bad",
+    "drifted": "bad",
+    "diverged": "failed",
+    "singular detected": "singular",
+    "failed to converge": "failed",
+    "failed": "failed",
+    "timeout": "failed",
+    "unsupported": "unsupported",
+}
+STYLE = (
+    "<style>td.sm-ok{background:#e6f4e6}td.sm-rough{background:#f1f4d8}td.sm-branch{background:#e3eefb}td.sm-bad{background:#fde7c8}"
+    "td.sm-failed{background:#fbe3e3}td.sm-singular{background:#fbf5cf}td.sm-unsupported{background:#eee;"
+    "color:#666}</style>"
+)
+
+
+def _num(value: float) -> str:
+    return "–" if not math.isfinite(value) else "0" if value == 0 else f"{value:.1e}"
+
+
+def cell(v: Verdict) -> str:
+    """`verdict @time · err · res`, leaving out what the run does not have."""
+    parts = [v.verdict + (f" @{v.time:.4g} s" if math.isfinite(v.time) else "")]
+    if "mirrored branch" in v.detail or "same branch" in v.detail:
+        parts[0] += " (mirrored)" if "mirrored" in v.detail else " (same)"
+    if "truth goes on regular" in v.detail:
+        parts[0] += " (truth regular there)"
+    parts += [f"err {_num(v.error)}"] if math.isfinite(v.error) else []
+    parts += [f"res {_num(v.residual)}"] if math.isfinite(v.residual) else []
+    return " · ".join(parts)
+
+
+def map_frame(found: list[Verdict], engines: list[str]) -> pd.DataFrame:
+    """case x engine: the default setting's verdict, with the case's probe and expectation."""
+    rows = []
+    for name in dict.fromkeys(v.scenario for v in found):
+        declared = CASES[name]
+        expected = declared.singular_time()
+        row = {"case": name, "probes": declared.probes, "closed form": "–"}
+        if expected is not None:
+            row["closed form"] = f"singular @{expected:.4g} s"
+        for engine in engines:
+            hit = [v for v in found if v.scenario == name and v.engine == engine and v.is_default]
+            row[engine] = cell(hit[0]) if hit else "not run"
+        rows.append(row)
+    return pd.DataFrame(rows).set_index("case")
+
+
+GRID = 3
+"""A mode run at this many settings or more gets a grid: rows by step, columns by the other options."""
+
+
+def settings_frames(found: list[Verdict]) -> dict[str, pd.DataFrame]:
+    """The settings of each case, engine and mode run at GRID or more settings, as a grid; the
+    other settings of an engine run at several, with its default, as one list."""
+    groups: dict[tuple[str, str, str], list[Verdict]] = {}
+    for v in found:
+        groups.setdefault((v.scenario, v.engine, v.setting.split(" ")[0]), []).append(v)
+    pairs = Counter((v.scenario, v.engine) for v in found)
+    gridded = {(name, engine) for (name, engine, _), g in groups.items() if len(g) >= GRID}
+    frames, others = {}, []
+    for (name, engine, mode), group in groups.items():
+        if len(group) >= GRID:
+            frames[f"{name} · {engine} {mode}"] = _grid(group)
+            continue
+        for v in group:
+            if pairs[(name, engine)] > 1 and not (v.is_default and (name, engine) in gridded):
+                others.append({"case": name, "engine": engine, "setting": v.setting, "verdict": cell(v)})
+    if others:
+        frames["other settings, each engine's default among them"] = pd.DataFrame(others).set_index("case")
+    return frames
+
+
+def _grid(group: list[Verdict]) -> pd.DataFrame:
+    """Rows by dt (largest first), columns by the other options that vary; cells verdict and error."""
+    options = [_options(v.setting) for v in group]
+    keys = dict.fromkeys(k for o in options for k in o if k not in ("mode", "dt"))
+    columns = [k for k in keys if len({o.get(k) for o in options}) > 1]
+    table: dict[str, dict[float, str]] = {}
+    for v, o in zip(group, options, strict=True):
+        column = " ".join(f"{k}={o[k]}" for k in columns) or "run"
+        short = v.verdict + (f" @{v.time:.3g} s" if math.isfinite(v.time) else "")
+        table.setdefault(column, {})[float(o.get("dt", "nan"))] = f"{short} {_num(v.error)}".replace(" –", "")
+    frame = pd.DataFrame(table).fillna("").sort_index(ascending=False)
+    frame.index = [f"dt={dt:.3g}" for dt in frame.index]
+    return frame[sorted(frame.columns, key=_numeric_key)]
+
+
+def _numeric_key(column: str) -> list[float]:
+    """Option values of a column label, as numbers where they are."""
+    values = []
+    for part in column.split(" "):
+        try:
+            values.append(float(part.split("=", 1)[-1]))
+        except ValueError:
+            values.append(0.0)
+    return values
+
+
+def _options(label: str) -> dict[str, str]:
+    """A setting label `MODE k=v ...` as {'mode': MODE, k: v, ...}."""
+    mode, *pairs = label.split(" ")
+    return {"mode": mode, **dict(p.split("=", 1) for p in pairs if "=" in p)}
+
+
+def similarity_frame(found: list[Verdict], engines: list[str]) -> pd.DataFrame:
+    """The scale and speed cases: each engine's error and its growth over the nominal case's."""
+    defaults = {(v.scenario, v.engine): v for v in found if v.is_default}
+    rows = []
+    for name, declared in CASES.items():
+        if declared.similar is None or not any(s == name for s, _ in defaults):
+            continue
+        row = {"case": name}
+        for engine in engines:
+            v, nominal = defaults.get((name, engine)), defaults.get((declared.similar.nominal, engine))
+            row[engine] = "–" if v is None else _growth(v, nominal)
+        rows.append(row)
+    return pd.DataFrame(rows).set_index("case") if rows else pd.DataFrame()
+
+
+def _growth(v: Verdict, nominal: Verdict | None) -> str:
+    if not math.isfinite(v.error):
+        return v.verdict
+    if nominal is None or not math.isfinite(nominal.error):
+        return _num(v.error)
+    factor = max(v.error, FLOOR) / max(nominal.error, FLOOR)
+    note = " loses accuracy" if factor > GROWTH else ""
+    return f"{_num(v.error)} (×{factor:.3g}){note}"
+
+
+def drift_frames(data: ReportData) -> dict[str, pd.DataFrame]:
+    """Long cases: each engine's headline error and residual over the first and last revolution."""
+    frames = {}
+    for name in (n for n, c in CASES.items() if c.drift):
+        truth = data.truth(name)
+        runs = data.default_trajectories(name)
+        if truth is None or not runs:
+            continue
+        scenario = build(name)
+        per_turn = round(scenario.steps / float(scenario.parameter("revolutions")))
+        rows = []
+        for engine, run in runs.items():
+            first, last = slice(0, per_turn + 1), slice(len(run.times) - per_turn - 1, None)
+            errors = headline_series(run, truth, scenario.characteristic_length)
+            row = {"engine": engine}
+            for label, part in (("first", first), ("last", last)):
+                row[f"err {label} rev"] = _num(float(np.nanmax(errors[part])))
+                row[f"res {label} rev"] = _num(float(np.max(constraint_residual(scenario, _cut(run, part)))))
+            row["angle err at the end [rad]"] = _num(_final_angle_error(run, truth))
+            rows.append(row)
+        frames[name] = pd.DataFrame(rows).set_index("engine")
+    return frames
+
+
+def _final_angle_error(run: Trajectory, truth: Trajectory) -> float:
+    """The largest angle error over the bodies at the last time: the phase the run has drifted."""
+    mine, ref = run.select(truth.bodies).position, truth.position
+    return math.nan if mine is None or ref is None else float(np.max(np.abs(mine[-1, :, 2] - ref[-1, :, 2])))
+
+
+def _cut(run: Trajectory, part: slice) -> Trajectory:
+    levels = {lv: None if (a := run.level(lv)) is None else a[part] for lv in run.levels}
+    extras = {k: v[part] for k, v in run.extras.items()}
+    return Trajectory(run.times[part], run.bodies, extras=extras, **levels)  # type: ignore[arg-type]
+
+
+def _tables(data: ReportData) -> list[tuple[str, pd.DataFrame]]:
+    found = verdicts(data)
+    if not found:
+        return []
+    engines = data.engines()
+    tables = [("Stability map (each engine's default setting)", map_frame(found, engines))]
+    similar = similarity_frame(found, engines)
+    if not similar.empty:
+        tables.append(("Scale and speed against the nominal case (error, ×growth)", similar))
+    tables += [
+        (f"Long horizon, {name}: the first and the last revolution", frame)
+        for name, frame in drift_frames(data).items()
+    ]
+    tables += [(f"Settings: {key}", frame) for key, frame in settings_frames(found).items()]
+    return tables
+
+
+def markdown_section(data: ReportData) -> str:
+    """The stability map in Markdown ("" without stress results)."""
+    tables = _tables(data)
+    if not tables:
+        return ""
+    lines = ["## Stability map", "", LEGEND]
+    for title, frame in tables:
+        lines += ["", f"### {title}", "", markdown_table(frame, str(frame.index.name or " "))]
+    return "\n".join(lines) + "\n"
+
+
+def html_fragment(data: ReportData) -> str:
+    """The stability map as HTML ("" without stress results)."""
+    tables = _tables(data)
+    if not tables:
+        return ""
+    parts = [STYLE, '<h2 id="stability-map">Stability map</h2>', f"<p>{html.escape(LEGEND)}</p>"]
+    for title, frame in tables:
+        parts += [f"<h3>{html.escape(title)}</h3>", _html_table(frame)]
+    return "\n".join(parts)
+
+
+def _html_table(frame: pd.DataFrame) -> str:
+    head = "".join(f"<th>{html.escape(str(n))}</th>" for n in [frame.index.name or "", *frame.columns])
+    body = []
+    for index, row in frame.iterrows():
+        cells = f"<th>{html.escape(str(index))}</th>" + "".join(_html_cell(str(v)) for v in row)
+        body.append(f"<tr>{cells}</tr>")
+    return f'<div style="overflow-x:auto"><table><tr>{head}</tr>{"".join(body)}</table></div>'
+
+
+def _html_cell(text: str) -> str:
+    """Coloured by verdict; an ok with an error above ROUGH, and a singular verdict where the truth
+    is regular (a false alarm or a jump), stand out."""
+    verdict = next((v for v in sorted(CSS, key=len, reverse=True) if text.startswith(v)), None)
+    css = CSS[verdict] if verdict else ""
+    error = re.search(r"err ([0-9.e+-]+)", text)
+    if css == "ok" and error and float(error.group(1)) > ROUGH:
+        css = "rough"
+    if "truth regular there" in text:
+        css = "bad"
+    return f'<td class="sm-{css}">{html.escape(text)}</td>' if css else f"<td>{html.escape(text)}</td>"

@@ -1,0 +1,101 @@
+"""The report, rendered from stored results alone: a self-contained HTML page with its plots, and a
+Markdown summary; plus the same page opened in a real headless Chromium when one is installed."""
+
+from __future__ import annotations
+
+import base64
+import html
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from reports.cli.main import main
+from reports.harness.results_store import read_results
+
+SCENARIOS = ("slider_crank", "cam_roller/spline")
+CHROMIUM = Path("/usr/bin/chromium")
+
+
+@pytest.fixture(scope="module")
+def results(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A real small run: MuJoCo over its sweep (it does not support spline cams), timed once."""
+    out = tmp_path_factory.mktemp("run")
+    args = ["run", "--out", str(out), "--quiet", "--engine", "mujoco"]
+    args += ["--repeats", "1", "--warmup", "0"]
+    for name in SCENARIOS:
+        args += ["--scenario", name]
+    assert main(args) == 0
+    return out
+
+
+def test_run_writes_the_documented_files(results: Path) -> None:
+    for name in ("index.html", "summary.md", "results.parquet", "results.json", "trajectories.parquet"):
+        assert (results / name).is_file(), name
+
+
+def test_html_is_self_contained_with_its_plots(results: Path) -> None:
+    page = (results / "index.html").read_text()
+    assert not re.search(r'(src|href)="(https?:|//)', page), "the page must not load anything from outside"
+    images = re.findall(r'<img class="plot" alt="([^"]+)" src="data:image/png;base64,([^"]+)"', page)
+    kinds = [alt for alt, _ in images]
+    # slider_crank: work-precision, error over time, overlay; cam_roller/spline: nothing ran
+    assert kinds == ["work-precision plot", "error over time", "trajectory overlay"]
+    assert "no work-precision plot: no successful run to draw" in page
+    assert "no stored truth trajectory: no overlays" in page
+    for _, data in images:
+        assert base64.b64decode(data).startswith(b"\x89PNG\r\n\x1a\n")
+    _, meta = read_results(results)
+    assert f"<th>engine mujoco</th><td>{meta['engines']['mujoco']}</td>" in page
+    assert 'class="unsupported"' in page  # MuJoCo and the spline cam, in the matrix
+    assert html.escape(meta["headline"]) in page
+
+
+def test_markdown_summary_has_the_matrix_and_each_scenario(results: Path) -> None:
+    text = (results / "summary.md").read_text()
+    assert "| scenario | mujoco |" in text
+    frame, _ = read_results(results)
+    for name in SCENARIOS:
+        assert f"\n## {name}\n" in text
+    unsupported = frame[frame["status"] == "unsupported"]
+    assert len(unsupported) == 1 and unsupported["scenario"].item() == "cam_roller/spline"
+    assert "| cam_roller/spline | unsupported |" in text and "| slider_crank | ok " in text
+
+
+def test_report_rerenders_from_stored_files_alone(results: Path, tmp_path: Path) -> None:
+    copy = tmp_path / "stored"
+    copy.mkdir()
+    for name in ("results.parquet", "results.json", "trajectories.parquet"):
+        shutil.copy(results / name, copy / name)
+    assert main(["report", str(copy / "results.parquet")]) == 0
+    assert (copy / "index.html").read_text().count('<img class="plot"') == 3
+    assert (copy / "summary.md").read_text() == (results / "summary.md").read_text()
+
+
+def test_report_of_nothing_is_a_one_line_error(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["report", str(tmp_path)]) == 2
+    error = capsys.readouterr().err
+    assert error.startswith("mbxval: error: no results.parquet in") and error.count("\n") == 1
+
+
+@pytest.mark.skipif(not CHROMIUM.exists(), reason="Chromium is not installed (apt-get install chromium)")
+def test_the_page_loads_in_a_real_browser(results: Path) -> None:
+    """Headless Chromium opens the page; the page's own script counts the plots that decoded."""
+    done = subprocess.run(
+        [
+            str(CHROMIUM),
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--dump-dom",
+            (results / "index.html").as_uri(),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    loaded = re.search(r'data-plots-loaded="(\d+)/(\d+)"', done.stdout)
+    assert loaded, done.stderr[-2000:]
+    assert loaded.group(1) == loaded.group(2) == "3"
