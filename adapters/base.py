@@ -29,6 +29,7 @@ from typing import Any, ClassVar, Literal
 
 import numpy as np
 
+from adapters.modes import Mode, measures_of
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -115,12 +116,16 @@ class RunResult:
     steps: int = 0
     failure_time: float | None = None
     warnings: tuple[str, ...] = field(default=())
+    measures: str = ""
+    """What the setting's mode measures (adapters.modes)."""
 
 
 class Adapter:
     """Base class of engine adapters; see the module docstring for what a subclass provides."""
 
     name: ClassVar[str] = ""
+    modes: ClassVar[tuple[Mode, ...]] = ()
+    """Every mode with what it measures (adapters.modes)."""
 
     def __init__(self) -> None:
         self._steps = 0
@@ -165,7 +170,12 @@ class Adapter:
         setting = setting or self.default_setting(scenario)
         grid = np.asarray(scenario.times() if times is None else times, dtype=float)
         version = self._safe_version()
-        base: Mapping[str, Any] = {"engine": self.name, "version": version, "setting": setting}
+        base: Mapping[str, Any] = {
+            "engine": self.name,
+            "version": version,
+            "setting": setting,
+            "measures": measures_of(self.modes, setting.mode),
+        }
         reason = self.supports(scenario)
         if reason is not None:
             return RunResult(**base, status="unsupported", message=reason)

@@ -13,6 +13,7 @@ from importlib.metadata import version as package_version
 import numpy as np
 
 from adapters.base import Adapter, EngineFailure, Setting, Singular
+from adapters.modes import ENGINE, Mode
 from reference_solver import SingularConfigurationError, SolverError, analyse
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -28,6 +29,14 @@ class ReferenceModel:
 
 class ReferenceAdapter(Adapter):
     name = "reference"
+    modes = (
+        Mode(
+            "newton",
+            ENGINE,
+            "the native textbook Newton loop at each grid time, velocities and accelerations from "
+            "its own linear solves",
+        ),
+    )
 
     def version(self) -> str:
         try:

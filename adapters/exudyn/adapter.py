@@ -29,6 +29,7 @@ import numpy as np
 from adapters.base import Adapter, Setting, Unsupported
 from adapters.exudyn.model import ExudynModel, ModelError, build_model
 from adapters.exudyn.simulation import Plan, march, quiet, simulation_settings, trajectory
+from adapters.modes import ENGINE, Mode
 from scenarios.cams import FlatFaceCam, KnifeEdgeCam, RollerCam
 from scenarios.drivers import (
     AbsoluteDriver,
@@ -75,6 +76,28 @@ class ExudynRun:
 
 class ExudynAdapter(Adapter):
     name = "exudyn"
+    modes = (
+        Mode(
+            "GA3",
+            ENGINE,
+            "Exudyn's generalized-alpha (index 3, spectral radius 0.9), all levels from its state",
+        ),
+        Mode(
+            "GA3-rho0.5",
+            ENGINE,
+            "Exudyn's generalized-alpha (index 3, spectral radius 0.5), all levels from its state",
+        ),
+        Mode("TR2", ENGINE, "Exudyn's trapezoidal rule (index 2), all levels from its state"),
+        Mode(
+            "STATIC",
+            ENGINE,
+            "Exudyn's static solver at each grid time (positions)",
+            (
+                ("velocity", "adapter solve on Exudyn's constraint Jacobian"),
+                ("acceleration", "adapter solve with finite differences of Exudyn's constraints"),
+            ),
+        ),
+    )
 
     def version(self) -> str:
         import exudyn

@@ -23,18 +23,21 @@ import mujoco
 import numpy as np
 
 from adapters.base import Adapter, Diverged, Setting, Unsupported
+from adapters.modes import ADAPTER, ENGINE, Mode
 from adapters.mujoco.assembly import assemble, clock_velocities, contact_slopes, settle
 from adapters.mujoco.cam_load import check_contacts, knife_edge_reason, preload
 from adapters.mujoco.cams import CamPair, cam_pairs
-from adapters.mujoco.laws import Law, laws
+from adapters.mujoco.kinematic import KinematicSolver
+from adapters.mujoco.laws import Clock, Law, laws
 from adapters.mujoco.mjcf import Physics, mjcf
-from adapters.mujoco.scale import Scale, clock_armature, scale_of
+from adapters.mujoco.scale import Scale, clock_armature, dof_sizes, scale_of
 from adapters.mujoco.tree import Affine, Tree, TreeError, angle, plan_tree
 from scenarios.bodies import Pose
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
-MODES = ("RK4", "implicitfast", "Euler")
+MODES = ("RK4", "implicitfast", "Euler", "kinematic")
+KINEMATIC = "kinematic"
 SWEEP_DT = (1e-3, 1e-4, 1e-5)
 BAD = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL)
 STATE = mujoco.mjtState.mjSTATE_INTEGRATION
@@ -58,8 +61,11 @@ class Model:
     sites: list[int]
     theta: list[Affine]
     joint_ids: dict[str, int]
+    clocks: dict[int, Clock]
     preload: float = 0.0
     """The cam followers' preload (N); 0 without cams."""
+    kinematic: KinematicSolver | None = None
+    """The solver of the kinematic mode (None: MuJoCo's integrator)."""
 
 
 def _warn(message: str) -> None:
@@ -70,6 +76,26 @@ class MujocoAdapter(Adapter):
     """MuJoCo (generalized coordinates, soft constraints) driven by clock joints."""
 
     name = "mujoco"
+    modes = (
+        *(
+            Mode(
+                name,
+                ENGINE,
+                f"MuJoCo's {name} integrator on soft constraints, poses, velocities and "
+                "accelerations read from MuJoCo's state",
+            )
+            for name in ("RK4", "implicitfast", "Euler")
+        ),
+        Mode(
+            "kinematic",
+            ADAPTER,
+            "Newton on MuJoCo's own constraint rows (efc_pos, efc_J) at each grid time",
+            (
+                ("velocity", "solve on MuJoCo's efc_J"),
+                ("acceleration", "solve on efc_J with MuJoCo's bias accelerations"),
+            ),
+        ),
+    )
 
     def version(self) -> str:
         return str(mujoco.__version__)
@@ -102,12 +128,13 @@ class MujocoAdapter(Adapter):
             raise Unsupported(reason)
         if setting.mode not in MODES:
             raise ValueError(f"unknown MuJoCo mode '{setting.mode}'; known: {', '.join(MODES)}")
-        dt = engine_step(float(setting["dt"]), _interval(np.asarray(scenario.times())))
+        kinematic = setting.mode == KINEMATIC
+        dt = engine_step(float(setting.get("dt", 1e-4)), _interval(np.asarray(scenario.times())))
         physics = Physics(
-            setting.mode,
+            "RK4" if kinematic else setting.mode,
             dt,
-            (float(setting["tc_steps"]) * dt, 1.0),
-            _solimp(float(setting["impedance"]), scenario.characteristic_length),
+            (float(setting.get("tc_steps", 2.0)) * dt, 1.0),
+            _solimp(float(setting.get("impedance", 0.9999)), scenario.characteristic_length),
             _solimp(float(setting.get("contact_impedance", 0.99)), scenario.characteristic_length),
         )
         scale = scale_of(scenario)
@@ -119,13 +146,17 @@ class MujocoAdapter(Adapter):
         springs = _springs(scenario, first, tree, load, scale)
         armatures = _armatures(scenario, guessed, first, scale)
         sized = Physics(**{**physics.__dict__, "springs": springs, "clock_armature": armatures})
-        built = _compile(scenario, tree, sized, RUN_IN, scale)
+        built = _compile(scenario, tree, sized, 0 if kinematic else RUN_IN, scale)
         built.preload = load
+        if kinematic:
+            built.kinematic = KinematicSolver(built.model, built.clocks, dof_sizes(built.model, scale))
         return built
 
     def simulate(self, model: Model, times: np.ndarray) -> Trajectory:
         m = model.model
         grid = np.asarray(times, dtype=float)
+        if model.kinematic is not None:
+            return self._kinematic(model, grid)
         interval = _interval(grid)
         dt = engine_step(model.dt, interval) if interval else model.dt
         substeps = max(1, round(interval / dt)) if interval else 1
@@ -146,6 +177,20 @@ class MujocoAdapter(Adapter):
             _record(m, d, model, pos[i], vel[i], acc[i])
             if m.npair:
                 check_contacts(m, d, model.preload)
+        return Trajectory(grid, model.bodies, pos, vel, acc)
+
+    def _kinematic(self, model: Model, grid: np.ndarray) -> Trajectory:
+        """MuJoCo's rows solved at each grid time (adapters.mujoco.kinematic)."""
+        assert model.kinematic is not None
+        m = model.model
+        d = mujoco.MjData(m)
+        d.qpos[:] = model.qpos0
+        n, k = len(grid), len(model.bodies)
+        pos, vel, acc = np.empty((n, k, 3)), np.empty((n, k, 3)), np.empty((n, k, 3))
+        for i, t in enumerate(grid):
+            model.kinematic.solve(d, float(t))
+            _read(m, d, model, pos[i], vel[i], acc[i])
+        self.count_steps(n)
         return Trajectory(grid, model.bodies, pos, vel, acc)
 
     def export(self, scenario: Scenario, setting: Setting, path: str) -> None:
@@ -209,6 +254,7 @@ def _compile(scenario: Scenario, tree: Tree, physics: Physics, run_in: int, scal
         sites=[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE, b) for b in outputs],
         theta=[angle(tree, b) for b in outputs],
         joint_ids={m.joint(j).name: m.jnt_dofadr[j] for j in range(m.njnt)},
+        clocks={int(m.jnt_dofadr[m.joint(law.clock.joint).id]): law.clock for law in found if law.clock},
     )
 
 
@@ -306,6 +352,13 @@ def _record(
     """Pose, velocity and acceleration of each output body's frame at the current state."""
     mujoco.mj_forward(m, d)
     mujoco.mj_rnePostConstraint(m, d)
+    _read(m, d, model, pos, vel, acc)
+
+
+def _read(
+    m: mujoco.MjModel, d: mujoco.MjData, model: Model, pos: np.ndarray, vel: np.ndarray, acc: np.ndarray
+) -> None:
+    """The outputs from d's computed kinematics, velocities and accelerations (cacc)."""
     six = np.empty(6)
     for k, site in enumerate(model.sites):
         pos[k, :2] = d.site_xpos[site][:2]

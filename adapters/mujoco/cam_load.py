@@ -115,9 +115,7 @@ def follower_of(contact: CamContact) -> str:
 def preload(scenario: Scenario) -> float:
     """The follower preload (N): PRELOAD_MARGIN times the largest inertial force over the cams,
     at least PRELOAD_FLOOR."""
-    forces = [
-        scenario.body(follower_of(c)).mass * largest_acceleration(scenario, c) for c in scenario.cams
-    ]
+    forces = [scenario.body(follower_of(c)).mass * largest_acceleration(scenario, c) for c in scenario.cams]
     return max(PRELOAD_FLOOR, PRELOAD_MARGIN * max(forces, default=0.0))
 
 

@@ -25,6 +25,7 @@ import numpy as np
 import pinocchio as pin
 
 from adapters.base import Adapter, EngineFailure, Setting, Unsupported
+from adapters.modes import ADAPTER, ENGINE, Mode
 from adapters.pinocchio.dynamics import DynamicSolver, dynamic_support
 from adapters.pinocchio.kinematics import KinematicSolver, body_motion
 from adapters.pinocchio.model import PinModel, build_model
@@ -79,6 +80,19 @@ class Built:
 
 class PinocchioAdapter(Adapter):
     name = "pinocchio"
+    modes = (
+        Mode(
+            "kinematic",
+            ADAPTER,
+            "Newton on loop and driver rows from Pinocchio's frame placements and Jacobians",
+            (
+                ("velocity", "adapter solve on Pinocchio's Jacobians"),
+                ("acceleration", "adapter solve with Pinocchio's classical accelerations"),
+            ),
+        ),
+        Mode("dynamic", ENGINE, "Pinocchio's constraintDynamics, integrated by RK4 in the adapter"),
+        Mode("baumgarte", ENGINE, "Pinocchio's constraintDynamics with Baumgarte gains, RK4 in the adapter"),
+    )
 
     def version(self) -> str:
         return str(pin.__version__)

@@ -65,8 +65,8 @@ def engine_setting(adapter: Adapter, scenario: Scenario, mode: str | None, optio
 
 
 def cmd_list(args: argparse.Namespace) -> int:
-    """A scenario x engine table of what each engine supports, the reasons below it, then each
-    family's parameters with their defaults."""
+    """A scenario x engine table of what each engine supports, the reasons below it, what each
+    engine mode measures, then each family's parameters with their defaults."""
     engines = {}
     for name in adapters.names():
         try:
@@ -91,6 +91,10 @@ def cmd_list(args: argparse.Namespace) -> int:
         print(name.ljust(width) + "".join(c.ljust(12) for c in cells))
     if reasons:
         print("\n" + "\n".join(reasons))
+    print("\nmodes: what each measures (derived levels named):")
+    for engine, adapter in engines.items():
+        for mode in adapter.modes:
+            print(f"  {engine} {mode.name}: {mode.measures}")
     print("\nparameters: default and range; set them with --set NAME=VALUE:")
     for fam in all_families().values():
         print(f"  {fam.name}:")

@@ -31,6 +31,7 @@ COLUMNS: tuple[str, ...] = (
     "engine",
     "engine_version",
     "mode",
+    "measures",
     "setting",
     "options",
     "is_default",

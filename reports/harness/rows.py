@@ -25,6 +25,7 @@ def base_row(
         "engine": engine,
         "engine_version": version,
         "mode": setting.mode if setting else "",
+        "measures": "",
         "setting": setting.label if setting else NOT_RUN,
         "options": json.dumps(dict(setting.options) if setting else {}, sort_keys=True),
         "is_default": is_default,
@@ -78,6 +79,7 @@ def result_row(
     row = base_row(scenario, result.engine, result.version, result.setting, is_default)
     row.update(
         status=result.status,
+        measures=result.measures,
         message="; ".join(m for m in (result.message, note) if m),
         failure_time=math.nan if result.failure_time is None else result.failure_time,
         warnings=" | ".join(result.warnings),
