@@ -23,12 +23,13 @@ scripts), so there is no export.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from adapters.base import Adapter, Setting, Unsupported
 from adapters.exudyn.model import ExudynModel, ModelError, build_model
-from adapters.exudyn.simulation import Plan, march, quiet, simulation_settings, trajectory
+from adapters.exudyn.simulation import Plan, States, assemble, march, quiet, simulation_settings, trajectory
 from adapters.modes import ENGINE, Mode
 from scenarios.cams import FlatFaceCam, KnifeEdgeCam, RollerCam
 from scenarios.drivers import (
@@ -72,6 +73,8 @@ SWEEP_SUBSTEPS = {"GA3": (1, 3, 10), "GA3-rho0.5": (1, 3), "TR2": (1, 3)}
 class ExudynRun:
     model: ExudynModel
     plan: Plan
+    start: tuple[float, States] | None = None
+    """(t0, state): the consistent start found at build time, outside the timed run."""
 
 
 class ExudynAdapter(Adapter):
@@ -153,18 +156,24 @@ class ExudynAdapter(Adapter):
                 model = build_model(scenario, float(setting.get("mass_scale", 1.0)), cams == "native")
         except ModelError as error:
             raise Unsupported(str(error)) from error
-        return ExudynRun(model, plan)
+        t0 = float(scenario.times()[0])
+        with quiet():
+            start = assemble(model, t0, _settings(model, plan))
+        return ExudynRun(model, plan, (t0, start))
 
     def simulate(self, model: ExudynRun, times: np.ndarray) -> Trajectory:
         grid = np.asarray(times, dtype=float)
-        # Newton's tolerance is on increments: relative to the size of the coordinates
-        size = max(1.0, float(np.max(np.abs(model.model.guess), initial=0.0)))
+        start = model.start[1] if model.start and model.start[0] == float(grid[0]) else None
         with quiet():
-            states, steps = march(
-                model.model, model.plan, grid, simulation_settings(model.plan.tolerance * size)
-            )
+            states, steps = march(model.model, model.plan, grid, _settings(model.model, model.plan), start)
         self.count_steps(steps)
         return trajectory(model.model, grid, states)
+
+
+def _settings(model: ExudynModel, plan: Plan) -> Any:
+    """Exudyn's settings; Newton's tolerance is on increments: relative to the coordinates' size."""
+    size = max(1.0, float(np.max(np.abs(model.guess), initial=0.0)))
+    return simulation_settings(plan.tolerance * size)
 
 
 def _interval(scenario: Scenario) -> float:

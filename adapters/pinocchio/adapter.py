@@ -76,6 +76,8 @@ class Built:
     pm: PinModel
     kinematics: KinematicSolver
     dynamics: DynamicSolver | None
+    start: tuple[float, np.ndarray, np.ndarray] | None = None
+    """(t0, z0, v0): the consistent start found at build time, outside the timed run."""
 
 
 class PinocchioAdapter(Adapter):
@@ -165,7 +167,17 @@ class PinocchioAdapter(Adapter):
             kp, kd = _gains(scenario, mode)
             gains = float(setting.get("kp", kp)), float(setting.get("kd", kd))
             dynamics = DynamicSolver(pm, rows, dt, gains)
-        return Built(scenario, mode, pm, kinematics, dynamics)
+        built = Built(scenario, mode, pm, kinematics, dynamics)
+        built.start = self._start(built, float(scenario.times()[0]))
+        return built
+
+    def _start(self, built: Built, t0: float) -> tuple[float, np.ndarray, np.ndarray]:
+        """The consistent start at t0 on Pinocchio's rows (positions, and velocities for dynamics)."""
+        z0 = built.kinematics.assemble(self._guess(built.scenario, built.pm), t0)
+        if built.dynamics is None:
+            return t0, z0, np.zeros(0)
+        _, factor = built.kinematics.position(z0, t0)
+        return t0, z0, built.kinematics.rates(z0, factor, t0)[0]
 
     def export(self, scenario: Scenario, setting: Setting, path: str) -> None:
         """Pinocchio's own serialization of the kinematic tree, frames and mimic joints (Boost XML;
@@ -179,15 +191,16 @@ class PinocchioAdapter(Adapter):
     def simulate(self, model: Any, times: np.ndarray) -> Trajectory:
         built: Built = model
         scenario, pm, kin = built.scenario, built.pm, built.kinematics
-        z0 = kin.assemble(self._guess(scenario, pm), float(times[0]))
+        start = built.start
+        if start is None or start[0] != float(times[0]):
+            start = self._start(built, float(times[0]))
+        _, z0, v0 = start
         nq = pm.model.nq
         if built.dynamics is None:
             z, z_rate, z_acc = kin.run(z0, times)
             self.count_steps(len(times))
             q, v, a = z[:, :nq], z_rate[:, :nq], z_acc[:, :nq]
         else:
-            _, factor = kin.position(z0, float(times[0]))
-            v0, _ = kin.rates(z0, factor, float(times[0]))
             q, v, a, steps = built.dynamics.run(z0[:nq], v0[:nq], times)
             self.count_steps(steps)
             z = q
