@@ -2,6 +2,9 @@
 
 A subclass provides exactly:
     name: str                                  the engine's name on the command line
+    modes: tuple[str, ...]                     its modes (integrators, solvers), the first the default
+    measured: tuple[Mode, ...]                 what each mode measures (adapters.modes)
+    options: tuple[Option, ...]                every option a setting may carry, typed and ranged
     version() -> str                           the installed engine's version
     supports(scenario) -> str | None           None, or why the engine cannot represent it faithfully
     default_setting(scenario) -> Setting       the setting used by `mbxval solve` and the status matrix
@@ -10,6 +13,10 @@ A subclass provides exactly:
     simulate(model, times) -> Trajectory       the timed part; must not depend on earlier calls.
 It may also provide export(scenario, setting, path) in the engine's own file format, and call
 `self.count_steps(n)` inside `simulate` to report the engine steps taken.
+
+Every setting is checked against `modes` and `options` where it enters (`check_setting`): an unknown
+mode or key, a value of the wrong type or outside its range is a SettingError naming the known ones or
+the limit, raised before anything is built.
 
 simulate raises an EngineFailure subclass (Diverged, Singular, Unsupported) or lets any other
 exception escape: the base's `run` turns every outcome into a RunResult with a status and a message,
@@ -66,6 +73,54 @@ class Unsupported(EngineFailure):
     status: ClassVar[Status] = "unsupported"
 
 
+class SettingError(ValueError):
+    """A setting the engine does not have: an unknown mode or option, or a value out of its range."""
+
+
+@dataclass(frozen=True)
+class Option:
+    """One engine option: its type (`kind`), range (`low`..`high`, `low_open` excluding `low`) or
+    `choices`, and unit. Its default is the engine's `default_setting` (it may depend on the scenario's
+    grid, such as a step size)."""
+
+    name: str
+    kind: type = float
+    low: float = -math.inf
+    high: float = math.inf
+    low_open: bool = False
+    choices: tuple[str, ...] = ()
+    unit: str = ""
+    help: str = ""
+
+    def describe(self) -> str:
+        if self.choices:
+            return "one of " + ", ".join(self.choices)
+        bracket = "(" if self.low_open else "["
+        unit = f" {self.unit}" if self.unit else ""
+        article = "an" if self.kind is int else "a"
+        return f"{article} {self.kind.__name__} in {bracket}{self.low:g}, {self.high:g}]{unit}"
+
+    def check(self, engine: str, value: OptionValue) -> OptionValue:
+        """`value` as the option's type; SettingError with the range otherwise."""
+        problem = SettingError(f"{engine}: option {self.name} must be {self.describe()}, got {value!r}")
+        if self.kind is str:
+            if str(value) not in self.choices:
+                raise problem
+            return str(value)
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            raise problem from None
+        below = number <= self.low if self.low_open else number < self.low
+        if not math.isfinite(number) or below or number > self.high:
+            raise problem
+        if self.kind is int:
+            if number != int(number):
+                raise problem
+            return int(number)
+        return number
+
+
 @dataclass(frozen=True)
 class Setting:
     """One point of an engine's accuracy-for-time trade-off. Settings with the same `mode` form one
@@ -92,9 +147,6 @@ class Setting:
         """Short, stable text such as `RK4 dt=0.0001 solref=0.0002`."""
         parts = [self.mode] + [f"{k}={_fmt(v)}" for k, v in self.options]
         return " ".join(parts)
-
-    def as_dict(self) -> dict[str, OptionValue]:
-        return {"mode": self.mode, **dict(self.options)}
 
 
 def _fmt(value: OptionValue) -> str:
@@ -124,8 +176,10 @@ class Adapter:
     """Base class of engine adapters; see the module docstring for what a subclass provides."""
 
     name: ClassVar[str] = ""
-    modes: ClassVar[tuple[Mode, ...]] = ()
-    """Every mode with what it measures (adapters.modes)."""
+    modes: ClassVar[tuple[str, ...]] = ()
+    options: ClassVar[tuple[Option, ...]] = ()
+    measured: ClassVar[tuple[Mode, ...]] = ()
+    """What each mode measures (adapters.modes), one declaration per name in `modes`."""
 
     def __init__(self) -> None:
         self._steps = 0
@@ -153,6 +207,19 @@ class Adapter:
         raise NotImplementedError(f"engine '{self.name}' has no model file format to export")
 
     # --- owned by the base ---------------------------------------------------------------------
+    def check_setting(self, setting: Setting) -> Setting:
+        """`setting` with every value typed, or SettingError naming what is unknown or out of range."""
+        if setting.mode not in self.modes:
+            raise SettingError(f"{self.name}: unknown mode '{setting.mode}'; known: {', '.join(self.modes)}")
+        declared = {option.name: option for option in self.options}
+        typed: dict[str, OptionValue] = {}
+        for key, value in setting.options:
+            if key not in declared:
+                known = ", ".join(declared) or "none"
+                raise SettingError(f"{self.name}: unknown option '{key}'; known: {known}")
+            typed[key] = declared[key].check(self.name, value)
+        return Setting.of(setting.mode, **typed)
+
     def count_steps(self, n: int) -> None:
         """Called by `simulate` to report engine steps taken."""
         self._steps += n
@@ -168,14 +235,17 @@ class Adapter:
         """Build and simulate, timing the build apart and the simulation as the minimum over
         `repeats` after `warmup` untimed runs. Never raises for an engine's failure."""
         setting = setting or self.default_setting(scenario)
-        grid = np.asarray(scenario.times() if times is None else times, dtype=float)
-        version = self._safe_version()
         base: Mapping[str, Any] = {
             "engine": self.name,
-            "version": version,
+            "version": self._safe_version(),
             "setting": setting,
-            "measures": measures_of(self.modes, setting.mode),
+            "measures": measures_of(self.measured, setting.mode),
         }
+        try:
+            setting = self.check_setting(setting)
+        except SettingError as error:
+            return RunResult(**base, status="failed", message=str(error))
+        grid = np.asarray(scenario.times() if times is None else times, dtype=float)
         reason = self.supports(scenario)
         if reason is not None:
             return RunResult(**base, status="unsupported", message=reason)

@@ -12,7 +12,7 @@ from importlib.metadata import version as package_version
 
 import numpy as np
 
-from adapters.base import Adapter, EngineFailure, Setting, Singular
+from adapters.base import Adapter, EngineFailure, Option, Setting, Singular
 from adapters.modes import ENGINE, Mode
 from reference_solver import SingularConfigurationError, SolverError, analyse
 from scenarios.scenario import Scenario
@@ -29,7 +29,7 @@ class ReferenceModel:
 
 class ReferenceAdapter(Adapter):
     name = "reference"
-    modes = (
+    measured = (
         Mode(
             "newton",
             ENGINE,
@@ -37,6 +37,8 @@ class ReferenceAdapter(Adapter):
             "its own linear solves",
         ),
     )
+    modes = ("newton",)
+    options = (Option("tolerance", float, 0.0, 0.1, low_open=True, help="Newton tolerance, scaled units"),)
 
     def version(self) -> str:
         try:

@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from adapters.base import Adapter, Setting, Unsupported
+from adapters.base import Adapter, Option, Setting, Unsupported
 from adapters.exudyn.model import ExudynModel, ModelError, build_model
 from adapters.exudyn.simulation import Plan, States, assemble, march, quiet, simulation_settings, trajectory
 from adapters.modes import ENGINE, Mode
@@ -79,7 +79,7 @@ class ExudynRun:
 
 class ExudynAdapter(Adapter):
     name = "exudyn"
-    modes = (
+    measured = (
         Mode(
             "GA3",
             ENGINE,
@@ -100,6 +100,14 @@ class ExudynAdapter(Adapter):
                 ("acceleration", "adapter solve with finite differences of Exudyn's constraints"),
             ),
         ),
+    )
+    modes = tuple(MODES)
+    options = (
+        Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
+        Option("rho", float, 0.0, 1.0, help="spectral radius of generalized-alpha"),
+        Option("tol", float, 0.0, 1.0, low_open=True, help="Newton tolerance"),
+        Option("cams", str, choices=("native", "user"), help="cam rows by native elements or user functions"),
+        Option("mass_scale", float, 0.0, 1e12, help="masses multiplied by this (0: massless)"),
     )
 
     def version(self) -> str:
@@ -147,8 +155,6 @@ class ExudynAdapter(Adapter):
             tolerance=float(setting.get("tol", tolerance)),
         )
         cams = str(setting.get("cams", "native"))
-        if cams not in ("native", "user"):
-            raise ValueError(f"cams must be 'native' or 'user', got '{cams}'")
         if not (plan.dt > 0.0 and plan.tolerance > 0.0 and 0.0 <= plan.rho <= 1.0):
             raise ValueError(f"invalid Exudyn setting {setting.label}")
         try:

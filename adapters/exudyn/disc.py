@@ -14,6 +14,7 @@ import numpy as np
 from scenarios.bodies import GROUND, Point
 from scenarios.cam_profiles import EccentricDisc
 from scenarios.cams import KnifeEdgeCam, RollerCam
+from scenarios.geometry import world_point
 from scenarios.scenario import Scenario
 
 PhiFromPoses = Callable[[np.ndarray, np.ndarray], float]
@@ -51,10 +52,7 @@ def _guessed(scenario: Scenario, point: Point) -> np.ndarray:
     """A point's global position at the bodies' guessed poses."""
     if point.body == GROUND:
         return np.array(point.local, dtype=float)
-    x, y, theta = scenario.body(point.body).guess
-    c, s = math.cos(theta), math.sin(theta)
-    lx, ly = point.local
-    return np.array([x + c * lx - s * ly, y + s * lx + c * ly])
+    return np.array(world_point(scenario.body(point.body).guess, point.local))
 
 
 def _contact_phi(disc: EccentricDisc, local: tuple[float, float], side: float) -> PhiFromPoses:
@@ -63,8 +61,7 @@ def _contact_phi(disc: EccentricDisc, local: tuple[float, float], side: float) -
     centre = np.array([disc.eccentricity, 0.0])
 
     def phi(cam: np.ndarray, follower: np.ndarray) -> float:
-        c, s = math.cos(follower[2]), math.sin(follower[2])
-        point = follower[:2] + np.array([c * local[0] - s * local[1], s * local[0] + c * local[1]])
+        point = np.array(world_point((follower[0], follower[1], follower[2]), local))
         c, s = math.cos(cam[2]), math.sin(cam[2])
         rel = point - cam[:2]
         in_cam = np.array([c * rel[0] + s * rel[1], -s * rel[0] + c * rel[1]])

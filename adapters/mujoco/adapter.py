@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from adapters.base import Adapter, Diverged, Setting, Unsupported
+from adapters.base import Adapter, Diverged, Option, Setting, Unsupported
 from adapters.modes import ADAPTER, ENGINE, Mode
 from adapters.mujoco.assembly import assemble, clock_velocities, contact_slopes, settle
 from adapters.mujoco.cam_load import check_contacts, knife_edge_reason, preload
@@ -76,7 +76,7 @@ class MujocoAdapter(Adapter):
     """MuJoCo (generalized coordinates, soft constraints) driven by clock joints."""
 
     name = "mujoco"
-    modes = (
+    measured = (
         *(
             Mode(
                 name,
@@ -95,6 +95,14 @@ class MujocoAdapter(Adapter):
                 ("acceleration", "solve on efc_J with MuJoCo's bias accelerations"),
             ),
         ),
+    )
+    modes = MODES
+    options = (
+        Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
+        Option("tc_steps", float, 1.0, 1e6, help="solref time constant of the equalities, in steps"),
+        Option("impedance", float, 0.0, 1.0, low_open=True, help="solimp of the equalities"),
+        Option("contact_impedance", float, 0.0, 1.0, low_open=True, help="solimp of cam contacts"),
+        Option("preload", float, 0.0, 1e9, low_open=True, unit="N", help="follower spring preload"),
     )
 
     def version(self) -> str:
@@ -126,8 +134,6 @@ class MujocoAdapter(Adapter):
         reason = self.supports(scenario)
         if reason is not None:
             raise Unsupported(reason)
-        if setting.mode not in MODES:
-            raise ValueError(f"unknown MuJoCo mode '{setting.mode}'; known: {', '.join(MODES)}")
         kinematic = setting.mode == KINEMATIC
         dt = engine_step(float(setting.get("dt", 1e-4)), _interval(np.asarray(scenario.times())))
         physics = Physics(

@@ -1,10 +1,11 @@
 """The kinematic tree MuJoCo needs, planned from a scenario's joints (no MuJoCo here).
 
-A spanning tree of prismatic and revolute joints grows from the ground (prismatic joints first, so
-that loops close at pins); every other revolute becomes a loop closure. Each body is authored at a
-pose that satisfies its tree joint exactly, so qpos = 0 is a valid tree configuration and only the
-loop closures carry the authoring gap. Angles and, where the tree allows, points are affine in
-qpos: that is what lets gears, racks and drivers become MuJoCo's linear joint and tendon equalities.
+The mechanism's spanning tree (scenarios.topology) becomes MuJoCo's body tree; every revolute left
+over becomes a loop closure (a `connect`), and any other joint left over cannot be closed. Each body
+is authored at a pose that satisfies its tree joint exactly, so qpos = 0 is a valid tree
+configuration and only the loop closures carry the authoring gap. Angles and, where the tree allows,
+points are affine in qpos: that is what lets gears, racks and drivers become MuJoCo's linear joint
+and tendon equalities.
 """
 
 from __future__ import annotations
@@ -16,8 +17,10 @@ from typing import Literal
 import numpy as np
 
 from scenarios.bodies import GROUND, Point, Pose, Vec2
+from scenarios.geometry import world_point
 from scenarios.joints import Ground, Prismatic, Revolute
 from scenarios.scenario import Scenario
+from scenarios.topology import GROWTH_ORDER, TopologyError, ends, spanning_tree
 
 
 class TreeError(ValueError):
@@ -60,10 +63,7 @@ class Tree:
 
     def point(self, p: Point) -> np.ndarray:
         """World position of `p` at qpos = 0."""
-        if p.body == GROUND:
-            return np.array(p.local, dtype=float)
-        x, y, th = self.poses[p.body]
-        return np.array([x, y]) + rot(th) @ np.array(p.local, dtype=float)
+        return _world(p, self.poses)
 
 
 @dataclass(frozen=True)
@@ -91,28 +91,21 @@ def rot(theta: float) -> np.ndarray:
 def plan_tree(scenario: Scenario, poses: dict[str, Pose] | None = None) -> Tree:
     """Spanning tree of `scenario`, authored near `poses` (the bodies' guesses by default)."""
     guess = poses or {b.name: b.guess for b in scenario.bodies}
-    edges: list[Ground | Prismatic | Revolute] = []
-    for joint in scenario.joints:
-        if isinstance(joint, Ground | Prismatic | Revolute):
-            edges.append(joint)
-    rank = {Ground: 0, Prismatic: 1, Revolute: 2}
-    edges.sort(key=lambda j: rank[type(j)])
-    group = {name: name for name in (GROUND, *scenario.body_names)}
-
-    def root(name: str) -> str:
-        while group[name] != name:
-            name = group[name]
-        return name
-
-    chosen, loops = [], []
-    for joint in edges:
-        a, b = _ends(joint)
-        if root(a) != root(b):
-            group[root(a)] = root(b)
-            chosen.append(joint)
-        elif isinstance(joint, Revolute):
+    try:
+        spanning = spanning_tree(scenario)
+    except TopologyError as error:
+        raise TreeError(str(error)) from None
+    by_name = {joint.name: joint for joint in scenario.joints}
+    order = list(by_name)
+    chosen = sorted(
+        (e.joint for e in spanning.edges), key=lambda j: (GROWTH_ORDER.index(type(j)), order.index(j.name))
+    )
+    loops = []
+    for name in spanning.closures:
+        joint = by_name[name]
+        if isinstance(joint, Revolute):
             loops.append(joint)
-        else:
+        elif isinstance(joint, Ground | Prismatic):
             raise TreeError(f"joint '{joint.name}' closes a loop, and MuJoCo closes loops only at pins")
     placed: dict[str, Pose] = {GROUND: (0.0, 0.0, 0.0)}
     ordered: list[TreeJoint] = []
@@ -120,31 +113,21 @@ def plan_tree(scenario: Scenario, poses: dict[str, Pose] | None = None) -> Tree:
     while frontier:
         parent = frontier.pop(0)
         for joint in chosen:
-            a, b = _ends(joint)
+            a, b = ends(joint)
             if parent in (a, b) and (b if parent == a else a) not in placed:
                 child = b if parent == a else a
                 tree_joint, pose = _attach(joint, parent, child, placed, guess)
                 placed[child] = pose
                 ordered.append(tree_joint)
                 frontier.append(child)
-    unplaced = [b for b in scenario.body_names if b not in placed]
-    if unplaced:
-        raise TreeError(f"bodies {', '.join(unplaced)} are not joined to the ground by pins or slides")
     del placed[GROUND]
     return Tree(tuple(ordered), tuple(loops), placed)
-
-
-def _ends(joint: Ground | Prismatic | Revolute) -> tuple[str, str]:
-    if isinstance(joint, Ground):
-        return GROUND, joint.body
-    return joint.p_i.body, joint.p_j.body
 
 
 def _world(p: Point, placed: dict[str, Pose]) -> np.ndarray:
     if p.body == GROUND:
         return np.array(p.local, dtype=float)
-    x, y, th = placed[p.body]
-    return np.array([x, y]) + rot(th) @ np.array(p.local, dtype=float)
+    return np.array(world_point(placed[p.body], p.local))
 
 
 def _attach(

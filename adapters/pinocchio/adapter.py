@@ -18,13 +18,13 @@ hold them. Three modes (Setting.mode):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 import pinocchio as pin
 
-from adapters.base import Adapter, EngineFailure, Setting, Unsupported
+from adapters.base import Adapter, EngineFailure, Option, Setting, Unsupported
 from adapters.modes import ADAPTER, ENGINE, Mode
 from adapters.pinocchio.dynamics import DynamicSolver, dynamic_support
 from adapters.pinocchio.kinematics import KinematicSolver, body_motion
@@ -43,6 +43,21 @@ MODES = {
     "dynamics": DYNAMIC,
     "baumgarte": BAUMGARTE,
 }
+_DECLARED = (
+    Mode(
+        "kinematic",
+        ADAPTER,
+        "Newton on loop and driver rows from Pinocchio's frame placements and Jacobians",
+        (
+            ("velocity", "adapter solve on Pinocchio's Jacobians"),
+            ("acceleration", "adapter solve with Pinocchio's classical accelerations"),
+        ),
+    ),
+    Mode("dynamic", ENGINE, "Pinocchio's constraintDynamics, integrated by RK4 in the adapter"),
+    Mode("baumgarte", ENGINE, "Pinocchio's constraintDynamics with Baumgarte gains, RK4 in the adapter"),
+)
+MEASURED = tuple(replace(m, name=alias) for alias, mode in MODES.items() for m in _DECLARED if m.name == mode)
+"""What each mode measures, the aliases (kinematics, dynamics) declared like their modes."""
 STEPS_PER_PERIOD = (100, 300, 1000)
 """RK4 steps per drive period in the dynamic sweeps; the default is 1000."""
 TOLERANCES = (1e-5, 1e-9, 1e-15)
@@ -82,18 +97,14 @@ class Built:
 
 class PinocchioAdapter(Adapter):
     name = "pinocchio"
-    modes = (
-        Mode(
-            "kinematic",
-            ADAPTER,
-            "Newton on loop and driver rows from Pinocchio's frame placements and Jacobians",
-            (
-                ("velocity", "adapter solve on Pinocchio's Jacobians"),
-                ("acceleration", "adapter solve with Pinocchio's classical accelerations"),
-            ),
-        ),
-        Mode("dynamic", ENGINE, "Pinocchio's constraintDynamics, integrated by RK4 in the adapter"),
-        Mode("baumgarte", ENGINE, "Pinocchio's constraintDynamics with Baumgarte gains, RK4 in the adapter"),
+    measured = MEASURED
+    modes = tuple(MODES)
+    options = (
+        Option("tol", float, 0.0, 1.0, low_open=True, help="Newton residual bound, in the rows' sizes"),
+        Option("gears", str, choices=("mimic", "row"), help="gears as mimic joints or coupling rows"),
+        Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
+        Option("kp", float, 0.0, 1e12, help="Baumgarte position gain"),
+        Option("kd", float, 0.0, 1e12, help="Baumgarte velocity gain"),
     )
 
     def version(self) -> str:
@@ -151,8 +162,6 @@ class PinocchioAdapter(Adapter):
         if mode is None:
             raise EngineFailure(f"unknown Pinocchio mode '{setting.mode}'; known: {', '.join(MODES)}")
         gears = str(setting.get("gears", "mimic"))
-        if gears not in ("mimic", "row"):
-            raise EngineFailure(f"gears must be 'mimic' or 'row', got '{gears}'")
         tree, pm, rows = self._structure(scenario, mimic_gears=mode == KINEMATIC and gears == "mimic")
         tol = float(setting.get("tol", TOLERANCES[-1]))
         kinematics = KinematicSolver(

@@ -1,9 +1,7 @@
 """The kinematic tree Pinocchio needs, planned from a scenario's joints (pure Python, no Pinocchio).
 
-Joints that reach a body not yet placed span the tree from the ground, preferring ground (fixed),
-then prismatic, then revolute joints, each in the scenario's order, so that the joints left over to
-close loops are revolutes where possible. Every other joint, gear and cam contact stays a
-loop-closure row, except gear pairs that can be Pinocchio mimic joints.
+The tree is the mechanism's spanning tree (scenarios.topology). Every other joint, gear and cam
+contact stays a loop-closure row, except gear pairs that can be Pinocchio mimic joints.
 
 Every joint frame is aligned with its child's body frame, so a revolute coordinate is exactly the
 relative angle theta_child - theta_parent, as the gear law needs for a mimic joint.
@@ -17,25 +15,16 @@ from typing import Literal
 
 from scenarios.bodies import GROUND, Point, Pose, Vec2
 from scenarios.gears import GearPair
+from scenarios.geometry import compose, rotate
 from scenarios.joints import Ground, Prismatic, Revolute
 from scenarios.scenario import Scenario
+from scenarios.topology import TopologyError, spanning_tree
 
 EdgeKind = Literal["revolute", "prismatic", "fixed"]
 
 
 class TreeError(ValueError):
     """The scenario's joints do not make a tree Pinocchio can hold; the message says why."""
-
-
-def compose(a: Pose, b: Pose) -> Pose:
-    """Pose b (given in frame a) expressed in a's parent frame."""
-    c, s = math.cos(a[2]), math.sin(a[2])
-    return (a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], a[2] + b[2])
-
-
-def rotate(angle: float, v: Vec2) -> Vec2:
-    c, s = math.cos(angle), math.sin(angle)
-    return (c * v[0] - s * v[1], s * v[0] + c * v[1])
 
 
 @dataclass(frozen=True)
@@ -118,42 +107,15 @@ def _edge(scenario: Scenario, joint: Ground | Prismatic | Revolute, parent: str)
     return Edge(joint.name, "prismatic", parent, p_child.body, (*p_parent.local, turn), axis, offset, q0)
 
 
-def _bodies_of(joint: Ground | Prismatic | Revolute) -> tuple[str, str]:
-    return (GROUND, joint.body) if isinstance(joint, Ground) else (joint.p_i.body, joint.p_j.body)
-
-
 def plan(scenario: Scenario, mimic_gears: bool = True) -> Tree:
-    """Span the tree from the ground; raise TreeError if a body cannot be reached by a tree joint."""
-    placed = {GROUND}
-    edges: list[Edge] = []
-    used: set[str] = set()
-    while True:
-        for kind in (Ground, Prismatic, Revolute):
-            joint = next(
-                (
-                    j
-                    for j in scenario.joints
-                    if isinstance(j, kind)
-                    and j.name not in used
-                    and sum(b in placed for b in _bodies_of(j)) == 1  # type: ignore[arg-type]
-                ),
-                None,
-            )
-            if joint is not None:
-                a, b = _bodies_of(joint)  # type: ignore[arg-type]
-                edges.append(_edge(scenario, joint, a if a in placed else b))  # type: ignore[arg-type]
-                placed.add(edges[-1].child)
-                used.add(joint.name)
-                break
-        else:
-            break
-    missing = [b for b in scenario.body_names if b not in placed]
-    if missing:
-        raise TreeError(
-            f"bodies {', '.join(missing)} are not reached from the ground by revolute, prismatic or "
-            "ground joints, so they have no place in Pinocchio's kinematic tree"
-        )
-    tree = Tree(tuple(edges), tuple(j.name for j in scenario.joints if j.name not in used))
+    """Pinocchio's tree on the mechanism's spanning tree (scenarios.topology); TreeError if a body
+    cannot be reached by a tree joint."""
+    try:
+        spanning = spanning_tree(scenario)
+    except TopologyError as error:
+        raise TreeError(f"{error}, so they have no place in Pinocchio's kinematic tree") from None
+    edges = tuple(_edge(scenario, e.joint, e.parent) for e in spanning.edges)
+    tree = Tree(edges, spanning.closures)
     return _with_mimics(scenario, tree) if mimic_gears else tree
 
 

@@ -16,7 +16,7 @@ import numpy as np
 
 import adapters
 import reports.cli.suite_commands as suite_commands
-from adapters.base import Adapter, OptionValue, Setting
+from adapters.base import Adapter, OptionValue, Setting, SettingError
 from reports.cli.usage import Parser, UsageError, pairs
 from reports.harness.atomic_write import atomic_output
 from scenarios import Scenario, ScenarioError, all_families, catalogue
@@ -61,7 +61,12 @@ def engine_setting(adapter: Adapter, scenario: Scenario, mode: str | None, optio
     if mode is not None:
         setting = Setting(mode, setting.options)
     overrides = {k: _option_value(v) for k, v in pairs(options, "--setting").items()}
-    return setting.replace(**overrides) if overrides else setting
+    setting = setting.replace(**overrides) if overrides else setting
+    try:
+        adapter.check_setting(setting)
+    except SettingError as error:
+        raise UsageError(str(error)) from None
+    return setting
 
 
 def cmd_list(args: argparse.Namespace) -> int:
@@ -93,7 +98,7 @@ def cmd_list(args: argparse.Namespace) -> int:
         print("\n" + "\n".join(reasons))
     print("\nmodes: what each measures (derived levels named):")
     for engine, adapter in engines.items():
-        for mode in adapter.modes:
+        for mode in adapter.measured:
             print(f"  {engine} {mode.name}: {mode.measures}")
     print("\nparameters: default and range; set them with --set NAME=VALUE:")
     for fam in all_families().values():

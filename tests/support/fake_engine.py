@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from adapters.base import Adapter, Diverged, Setting
+from adapters.base import Adapter, Diverged, Option, Setting
 from scenarios import Scenario, Trajectory
 
 GOOD = (Setting.of("good", dt=0.01), Setting.of("good", dt=0.001))
@@ -35,6 +35,8 @@ class FakeAdapter(Adapter):
     """Writes one line to `log` per simulate call, so tests can count runs made in child processes."""
 
     name = "fake"
+    modes = ("good", "crash", "hang", "diverge", "nan", "raise")
+    options = (Option("dt", float, 0.0, 1.0, low_open=True),)
 
     def __init__(self, log: Path) -> None:
         super().__init__()

@@ -132,7 +132,9 @@ def test_list_is_a_table_of_what_each_engine_supports(capsys) -> None:  # type: 
     # every mode says what it measures: the engine's own solver, or an adapter loop with derived levels
     assert "  mujoco RK4: engine's own solver: MuJoCo's RK4 integrator" in out
     assert "  mujoco kinematic: adapter loop on the engine's kinematics: " in out
-    assert "  exudyn STATIC: engine's own solver: " in out and "acceleration (adapter solve with finite" in out
+    assert (
+        "  exudyn STATIC: engine's own solver: " in out and "acceleration (adapter solve with finite" in out
+    )
 
 
 def test_list_stress_adds_the_stress_variants(capsys) -> None:  # type: ignore[no-untyped-def]
