@@ -31,6 +31,7 @@ from adapters.base import Adapter, Option, Setting, Unsupported
 from adapters.exudyn.model import ExudynModel, ModelError, build_model
 from adapters.exudyn.simulation import Plan, States, assemble, march, quiet, simulation_settings, trajectory
 from adapters.modes import ENGINE, Mode
+from scenarios.cam_linkage import CAM_MODELS, default_cam_model, linkage_reason
 from scenarios.cams import FlatFaceCam, KnifeEdgeCam, RollerCam
 from scenarios.drivers import (
     AbsoluteDriver,
@@ -64,7 +65,7 @@ ROWS: dict[type, int] = {
     PointPathDriver: 2,
     RelativeDisplacementDriver: 2,
 }
-OPTIONS = ("dt", "rho", "tol", "mass_scale", "cams")
+OPTIONS = ("dt", "rho", "tol", "mass_scale", "cams", "cam_model")
 DEFAULT_SUBSTEPS = 10
 SWEEP_SUBSTEPS = {"GA3": (1, 3, 10), "GA3-rho0.5": (1, 3), "TR2": (1, 3)}
 
@@ -107,6 +108,9 @@ class ExudynAdapter(Adapter):
         Option("rho", float, 0.0, 1.0, help="spectral radius of generalized-alpha"),
         Option("tol", float, 0.0, 1.0, low_open=True, help="Newton tolerance"),
         Option("cams", str, choices=("native", "user"), help="cam rows by native elements or user functions"),
+        Option(
+            "cam_model", str, choices=CAM_MODELS, help="disc cams as their equivalent linkage, or as contacts"
+        ),
         Option("mass_scale", float, 0.0, 1e12, help="masses multiplied by this (0: massless)"),
     )
 
@@ -131,7 +135,8 @@ class ExudynAdapter(Adapter):
         return None
 
     def default_setting(self, scenario: Scenario) -> Setting:
-        return Setting.of("GA3", dt=_interval(scenario) / DEFAULT_SUBSTEPS)
+        setting = Setting.of("GA3", dt=_interval(scenario) / DEFAULT_SUBSTEPS)
+        return setting.replace(cam_model=default_cam_model(scenario)) if scenario.cams else setting
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
         """Engine steps of 1, 1/3 (and 1/10 for GA3, the default) of the scenario's output interval,
@@ -154,7 +159,12 @@ class ExudynAdapter(Adapter):
             rho=float(setting.get("rho", rho)),
             tolerance=float(setting.get("tol", tolerance)),
         )
-        cams = str(setting.get("cams", "native"))
+        # the equivalent linkage is Exudyn's native distance connector (knife edge, roller) and its
+        # exact native flat-face element; the contact is the user-function connector on the profile
+        model_choice = str(setting.get("cam_model", default_cam_model(scenario)))
+        if model_choice == "linkage" and linkage_reason(scenario):
+            raise Unsupported(str(linkage_reason(scenario)))
+        cams = str(setting.get("cams", "native" if model_choice == "linkage" else "user"))
         if not (plan.dt > 0.0 and plan.tolerance > 0.0 and 0.0 <= plan.rho <= 1.0):
             raise ValueError(f"invalid Exudyn setting {setting.label}")
         try:

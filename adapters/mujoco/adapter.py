@@ -33,6 +33,7 @@ from adapters.mujoco.mjcf import Physics, mjcf
 from adapters.mujoco.scale import Scale, clock_armature, dof_sizes, scale_of
 from adapters.mujoco.tree import Affine, Tree, TreeError, angle, plan_tree
 from scenarios.bodies import Pose
+from scenarios.cam_linkage import CAM_MODELS, cam_model_scenario, default_cam_model
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -103,6 +104,9 @@ class MujocoAdapter(Adapter):
         Option("impedance", float, 0.0, 1.0, low_open=True, help="solimp of the equalities"),
         Option("contact_impedance", float, 0.0, 1.0, low_open=True, help="solimp of cam contacts"),
         Option("preload", float, 0.0, 1e9, low_open=True, unit="N", help="follower spring preload"),
+        Option(
+            "cam_model", str, choices=CAM_MODELS, help="disc cams as their equivalent linkage, or as contacts"
+        ),
     )
 
     def version(self) -> str:
@@ -115,18 +119,29 @@ class MujocoAdapter(Adapter):
             cam_pairs(scenario.cams, tree)
         except TreeError as reason:
             return str(reason)
-        return next(filter(None, map(knife_edge_reason, scenario.cams)), None)
+        if default_cam_model(scenario) == "contact":
+            return next(filter(None, map(knife_edge_reason, scenario.cams)), None)
+        return None
 
     def default_setting(self, scenario: Scenario) -> Setting:
         options: dict[str, float] = {"dt": 1e-4, "tc_steps": 2.0, "impedance": 0.9999}
+        setting = Setting.of("RK4", **options)
         if scenario.cams:
-            options.update(preload=preload(scenario), contact_impedance=0.99)
-        return Setting.of("RK4", **options)
+            setting = setting.replace(cam_model=default_cam_model(scenario))
+            if setting["cam_model"] == "contact":
+                setting = setting.replace(preload=preload(scenario), contact_impedance=0.99)
+        return setting
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
         base = self.default_setting(scenario)
+        bases = [base]
+        if base.get("cam_model") == "linkage":  # MuJoCo's own cam contact as curves of their own
+            bases.append(base.replace(cam_model="contact", preload=preload(scenario), contact_impedance=0.99))
         return [
-            Setting(mode, base.options).replace(dt=dt) for mode in ("RK4", "implicitfast") for dt in SWEEP_DT
+            Setting(mode, b.options).replace(dt=dt)
+            for b in bases
+            for mode in ("RK4", "implicitfast")
+            for dt in SWEEP_DT
         ]
 
     def build(self, scenario: Scenario, setting: Setting) -> Model:
@@ -135,6 +150,15 @@ class MujocoAdapter(Adapter):
         if reason is not None:
             raise Unsupported(reason)
         kinematic = setting.mode == KINEMATIC
+        try:
+            scenario = cam_model_scenario(
+                scenario, str(setting.get("cam_model", default_cam_model(scenario)))
+            )
+        except ValueError as error:
+            raise Unsupported(str(error)) from error
+        reason = next(filter(None, map(knife_edge_reason, scenario.cams)), None)
+        if reason is not None:
+            raise Unsupported(reason)
         dt = engine_step(float(setting.get("dt", 1e-4)), _interval(np.asarray(scenario.times())))
         physics = Physics(
             "RK4" if kinematic else setting.mode,

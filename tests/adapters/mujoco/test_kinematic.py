@@ -22,7 +22,11 @@ FAMILIES = (
     "spur_gears/internal",
     "planetary_gears",
     "rack_pinion",
+    "cam_knife_edge",
+    "cam_roller",
+    "cam_flat_face",
 )
+"""The cams as their equivalent linkage (the default cam model)."""
 
 
 @pytest.mark.parametrize("name", FAMILIES)
@@ -42,7 +46,7 @@ def test_kinematic_mode_is_exact_at_every_level(name: str) -> None:
         assert diff[..., 2].max() / rate < 1e-12, level
 
 
-def test_kinematic_mode_refuses_cams_with_the_reason() -> None:
-    result = MujocoAdapter().run(build("cam_roller"), Setting.of("kinematic"))
+def test_kinematic_mode_refuses_cam_contacts_with_the_reason() -> None:
+    result = MujocoAdapter().run(build("cam_roller"), Setting.of("kinematic", cam_model="contact"))
     assert result.status == "unsupported"
     assert "contact" in result.message
