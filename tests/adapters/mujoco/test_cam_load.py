@@ -10,8 +10,8 @@ import mujoco
 import numpy as np
 import pytest
 
-from adapters.mujoco.adapter import MujocoAdapter
 from adapters.base import Setting
+from adapters.mujoco.adapter import MujocoAdapter
 from adapters.mujoco.cam_load import PRELOAD_MARGIN, preload, pressure_angle
 from scenarios.cams import KnifeEdgeCam
 from scenarios.closed_form import exact
