@@ -90,7 +90,8 @@ class MujocoAdapter(Adapter):
         Mode(
             "kinematic",
             ADAPTER,
-            "Newton on MuJoCo's own constraint rows (efc_pos, efc_J) at each grid time",
+            "Newton on MuJoCo's own constraint rows (efc_pos, efc_J) at each grid time (timing "
+            "adapter-dominated: a Python Newton loop with least-squares solves)",
             (
                 ("velocity", "solve on MuJoCo's efc_J"),
                 ("acceleration", "solve on efc_J with MuJoCo's bias accelerations"),

@@ -48,7 +48,8 @@ _DECLARED = (
     Mode(
         "kinematic",
         ADAPTER,
-        "Newton on loop and driver rows from Pinocchio's frame placements and Jacobians",
+        "Newton on loop and driver rows from Pinocchio's frame placements and Jacobians (timing "
+        "adapter-dominated: Pinocchio's own calls are 10 % of the run on the slider-crank, 3 % on a cam)",
         (
             ("velocity", "adapter solve on Pinocchio's Jacobians"),
             ("acceleration", "adapter solve with Pinocchio's classical accelerations"),
