@@ -19,6 +19,7 @@ import numpy as np
 from scenarios.bodies import Body, Point
 from scenarios.cam_profiles import EccentricDisc
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
+from scenarios.gears import GearPair, RackPinion
 from scenarios.joints import Joint, Prismatic, Revolute
 from scenarios.scenario import Scenario
 
@@ -43,7 +44,7 @@ def equivalent_linkage(scenario: Scenario) -> Scenario:
     if reason:
         raise ValueError(reason)
     bodies: list[Body] = list(scenario.bodies)
-    joints: list[Joint] = []
+    joints: list[Joint | GearPair | RackPinion | CamContact] = []
     for joint in scenario.joints:
         if isinstance(joint, KnifeEdgeCam | RollerCam | FlatFaceCam):
             link, rows = _link(scenario, joint)

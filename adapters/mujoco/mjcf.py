@@ -70,7 +70,8 @@ def mjcf(
         jacobian="dense",
     )
     # A scene carries only what it needs: without cams there is nothing to collide.
-    ET.SubElement(option, "flag", autoreset="disable", **({} if cams else {"contact": "disable"}))
+    flags = {"autoreset": "disable"} if cams else {"autoreset": "disable", "contact": "disable"}
+    ET.SubElement(option, "flag", flags)
     default = ET.SubElement(root, "default")
     ET.SubElement(default, "geom", contype="0", conaffinity="0", rgba="0.6 0.7 0.8 1")
     ET.SubElement(default, "equality", solref=num(*physics.solref), solimp=num(*physics.solimp))
