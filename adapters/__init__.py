@@ -1,4 +1,5 @@
-"""Engine adapters, one module per engine, each imported only when that engine is asked for.
+"""Engine adapters, one subpackage per engine, each imported only when that engine is asked for;
+engines from other packages arrive through the `mbxval.engines` entry-point group.
 
 `load(name)` returns an adapter instance, or raises EngineUnavailable with the reason (the engine is
 not installed, or its module failed to import), so a missing engine costs only its own rows.
@@ -7,6 +8,7 @@ not installed, or its module failed to import), so a missing engine costs only i
 from __future__ import annotations
 
 import importlib
+from importlib.metadata import entry_points
 
 from adapters.base import Adapter
 
@@ -18,22 +20,43 @@ ENGINES: dict[str, tuple[str, str]] = {
 }
 
 
+GROUP = "mbxval.engines"
+"""The entry-point group an installed package adds its engine to: `name = "module:AdapterClass"`."""
+
+
 class EngineUnavailable(RuntimeError):
     """The engine cannot be used here; the message says why."""
 
 
+def installed() -> dict[str, tuple[str, str]]:
+    """Engines other packages add through the entry-point group, by name (a built-in name wins)."""
+    found = {}
+    for point in entry_points(group=GROUP):
+        module_name, _, class_name = point.value.partition(":")
+        if point.name not in ENGINES and class_name:
+            found[point.name] = (module_name.strip(), class_name.strip())
+    return dict(sorted(found.items()))
+
+
 def names() -> list[str]:
-    return list(ENGINES)
+    """The built-in engines, then the installed ones."""
+    return [*ENGINES, *installed()]
 
 
 def load(name: str) -> Adapter:
     """An instance of engine `name`'s adapter."""
-    if name not in ENGINES:
-        raise EngineUnavailable(f"unknown engine '{name}'; known: {', '.join(ENGINES)}")
-    module_name, class_name = ENGINES[name]
+    known = {**ENGINES, **installed()}
+    if name not in known:
+        raise EngineUnavailable(f"unknown engine '{name}'; known: {', '.join(known)}")
+    module_name, class_name = known[name]
     try:
         module = importlib.import_module(module_name)
-    except ImportError as error:
+        kind = getattr(module, class_name)
+    except (ImportError, AttributeError) as error:
         raise EngineUnavailable(f"engine '{name}' is not available: {error}") from error
-    adapter: Adapter = getattr(module, class_name)()
+    if not (isinstance(kind, type) and issubclass(kind, Adapter)):
+        raise EngineUnavailable(f"engine {name!r}: {module_name}:{class_name} is not an Adapter subclass")
+    adapter: Adapter = kind()
+    if adapter.name != name:
+        raise EngineUnavailable(f"engine '{name}': its adapter calls itself '{adapter.name}'")
     return adapter

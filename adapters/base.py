@@ -27,7 +27,6 @@ raises out of `run`.
 from __future__ import annotations
 
 import math
-import time
 import traceback
 import warnings
 from collections.abc import Mapping, Sequence
@@ -37,6 +36,7 @@ from typing import Any, ClassVar, Literal
 import numpy as np
 
 from adapters.modes import Mode, measures_of
+from adapters.timing import fastest
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -180,6 +180,8 @@ class Adapter:
     options: ClassVar[tuple[Option, ...]] = ()
     measured: ClassVar[tuple[Mode, ...]] = ()
     """What each mode measures (adapters.modes), one declaration per name in `modes`."""
+    dynamics: ClassVar[bool] = False
+    """Whether the engine runs forward dynamics (scenarios whose `analysis` is "dynamic")."""
 
     def __init__(self) -> None:
         self._steps = 0
@@ -247,24 +249,21 @@ class Adapter:
             return RunResult(**base, status="failed", message=str(error))
         grid = np.asarray(scenario.times() if times is None else times, dtype=float)
         reason = self.supports(scenario)
+        if reason is None and scenario.analysis == "dynamic" and not self.dynamics:
+            reason = f"{self.name} is not yet compared on forward dynamics"
         if reason is not None:
             return RunResult(**base, status="unsupported", message=reason)
         caught: list[warnings.WarningMessage] = []
         try:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
-                start = time.perf_counter()
-                model = self.build(scenario, setting)
-                build_time = time.perf_counter() - start
-                for _ in range(warmup):
-                    self.simulate(model, grid)
-                best = math.inf
-                trajectory = None
-                for _ in range(max(1, repeats)):
+                build_time, model = fastest(lambda: self.build(scenario, setting))
+
+                def simulate() -> Trajectory:
                     self._steps = 0
-                    start = time.perf_counter()
-                    trajectory = self.simulate(model, grid)
-                    best = min(best, time.perf_counter() - start)
+                    return self.simulate(model, grid)
+
+                best, trajectory = fastest(simulate, repeats, warmup)
         except EngineFailure as failure:
             return RunResult(
                 **base,
@@ -281,7 +280,6 @@ class Adapter:
                 message=_one_line(f"{type(error).__name__}: {error} (at {where.name}:{where.lineno})"),
                 warnings=_texts(caught),
             )
-        assert trajectory is not None
         if not trajectory.is_finite():
             return RunResult(
                 **base,

@@ -1,7 +1,10 @@
 """The native textbook solver presented as one more engine, so the runner treats it like the others.
 
-Its one knob is the Newton-Raphson tolerance (on both |dq| and |C|, relative to the scenario's
-characteristic length); its sweep traces the native solver's own work-precision curve.
+Kinematic scenarios (mode newton): its one knob is the Newton-Raphson tolerance (on both |dq| and
+|C|, relative to the scenario's characteristic length); its sweep traces the native solver's own
+work-precision curve. `inverse_dynamics=1` adds the drivers' forces, the joints' reactions and the
+energies as extra columns. Dynamic scenarios (modes DOP853 and Radau, coordinate partitioning):
+the knob is the integrator's relative tolerance `rtol`.
 """
 
 from __future__ import annotations
@@ -15,16 +18,21 @@ import numpy as np
 from adapters.base import Adapter, EngineFailure, Option, Setting, Singular
 from adapters.modes import ENGINE, Mode
 from reference_solver import SingularConfigurationError, SolverError, analyse
+from reference_solver.dynamics import inverse_dynamics, simulate
+from reference_solver.dynamics.forward import METHODS
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
 TOLERANCES = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
+RTOLS = (1e-6, 1e-8, 1e-10, 1e-12)
 
 
 @dataclass(frozen=True)
 class ReferenceModel:
     scenario: Scenario
     tolerance: float
+    mode: str = "newton"
+    inverse: bool = False
 
 
 class ReferenceAdapter(Adapter):
@@ -36,9 +44,18 @@ class ReferenceAdapter(Adapter):
             "the native textbook Newton loop at each grid time, velocities and accelerations from "
             "its own linear solves",
         ),
+        *(
+            Mode(method, ENGINE, f"the native forward dynamics (index-1 ODE) integrated by SciPy's {method}")
+            for method in METHODS
+        ),
     )
-    modes = ("newton",)
-    options = (Option("tolerance", float, 0.0, 0.1, low_open=True, help="Newton tolerance, scaled units"),)
+    modes = ("newton", *METHODS)
+    options = (
+        Option("tolerance", float, 0.0, 0.1, low_open=True, help="Newton tolerance, scaled units"),
+        Option("rtol", float, 0.0, 0.1, low_open=True, help="integrator relative tolerance (dynamics)"),
+        Option("inverse_dynamics", int, 0, 1, help="1: add driver forces, reactions and energies"),
+    )
+    dynamics = True
 
     def version(self) -> str:
         try:
@@ -47,25 +64,36 @@ class ReferenceAdapter(Adapter):
             return "unknown"
 
     def default_setting(self, scenario: Scenario) -> Setting:
+        if scenario.analysis == "dynamic":
+            return Setting.of("DOP853", rtol=1e-12)
         return Setting.of("newton", tolerance=1e-12)
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
+        if scenario.analysis == "dynamic":
+            return [Setting.of("DOP853", rtol=tol) for tol in RTOLS]
         return [Setting.of("newton", tolerance=tol) for tol in TOLERANCES]
 
     def build(self, scenario: Scenario, setting: Setting) -> ReferenceModel:
-        if setting.mode != "newton":
-            raise EngineFailure(f"unknown mode '{setting.mode}' for the reference solver (known: newton)")
-        tolerance = float(setting.get("tolerance", 1e-12))
-        if not tolerance > 0:
-            raise EngineFailure(f"tolerance must be positive, got {tolerance}")
-        return ReferenceModel(scenario, tolerance)
+        dynamic = scenario.analysis == "dynamic"
+        if (setting.mode in METHODS) != dynamic:
+            known = ", ".join(METHODS) if dynamic else "newton"
+            raise EngineFailure(f"mode '{setting.mode}' does not apply to {scenario.name} (known: {known})")
+        tolerance = float(setting.get("rtol" if dynamic else "tolerance", 1e-12))
+        return ReferenceModel(scenario, tolerance, setting.mode, bool(setting.get("inverse_dynamics", 0)))
 
     def simulate(self, model: ReferenceModel, times: np.ndarray) -> Trajectory:
         try:
+            if model.scenario.analysis == "dynamic":
+                dynamic = simulate(model.scenario, times, model.tolerance, model.mode)
+                self.count_steps(dynamic.evaluations)
+                return dynamic.trajectory()
             analysis = analyse(model.scenario, times, model.tolerance)
+            trajectory = analysis.trajectory()
+            if model.inverse:
+                trajectory.extras.update(inverse_dynamics(model.scenario, analysis))
         except SingularConfigurationError as error:
             raise Singular(str(error), error.time) from error
         except SolverError as error:
             raise EngineFailure(str(error), error.time) from error
         self.count_steps(int(analysis.iterations.sum()))
-        return analysis.trajectory()
+        return trajectory

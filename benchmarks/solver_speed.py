@@ -43,7 +43,8 @@ def first_call_seconds() -> float:
 def main(argv: list[str] | None = None) -> float | None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
-    parser.add_argument("--families", default=",".join(scenarios.all_families()))
+    kinematic = [n for n, f in scenarios.all_families().items() if not f.dynamic]
+    parser.add_argument("--families", default=",".join(kinematic))
     args = parser.parse_args(argv)
     print(f"numba first call (compile or cache load): {first_call_seconds():.2f} s")
     print("microseconds per time point (native) or per step (engines); best of", args.repeats, "repeats")

@@ -3,7 +3,6 @@ on the same mechanism in the same process."""
 
 from __future__ import annotations
 
-import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -11,20 +10,15 @@ import numpy as np
 
 import adapters
 from adapters.base import Setting
+from adapters.timing import fastest
 from reference_solver import analyse
 from scenarios.scenario import Scenario
 
 
 def best(action: Callable[[], object], repeats: int = 5, number: int = 1) -> float:
-    """The minimum over `repeats` of the time of `number` calls, per call, in seconds."""
-    action()  # warm-up: compilation, caches
-    fastest = float("inf")
-    for _ in range(repeats):
-        start = time.perf_counter()
-        for _ in range(number):
-            action()
-        fastest = min(fastest, (time.perf_counter() - start) / number)
-    return fastest
+    """The minimum over `repeats` of the time of `number` calls, per call, in seconds, after one
+    warm-up call (compilation, caches)."""
+    return fastest(action, repeats, warmup=1, number=number)[0]
 
 
 @dataclass(frozen=True)

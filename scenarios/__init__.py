@@ -11,6 +11,8 @@ from scenarios.drivers import (
 )
 from scenarios.gears import GearPair, RackPinion
 from scenarios.joints import Ground, Prismatic, Revolute, RevoluteRevolute
+from scenarios.loading import load
+from scenarios.motion_laws import Polynomial, TabulatedLaw
 from scenarios.motions import Constant, ConstantSpeed, Harmonic
 from scenarios.registry import all_families, build, catalogue, family
 from scenarios.scenario import LEVELS, Scenario, ScenarioError
@@ -32,6 +34,7 @@ __all__ = [
     "LobedProfile",
     "Point",
     "PointPathDriver",
+    "Polynomial",
     "Prismatic",
     "RackPinion",
     "RelativeDisplacementDriver",
@@ -42,9 +45,11 @@ __all__ = [
     "Scenario",
     "ScenarioError",
     "SplineProfile",
+    "TabulatedLaw",
     "Trajectory",
     "all_families",
     "build",
     "catalogue",
     "family",
+    "load",
 ]

@@ -28,6 +28,9 @@ class Body:
     length: float = 0.0
     """Distance between the body's two joints for a link (0 for gears, cams, sliders): used for
     drawing and default inertia only."""
+    rate: Pose = (0.0, 0.0, 0.0)
+    """Initial (vx, vy, omega) for forward dynamics; the solver projects it onto the velocity
+    constraints (the nearest consistent rates in the kinetic-energy norm)."""
 
 
 @dataclass(frozen=True)

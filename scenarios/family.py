@@ -129,6 +129,9 @@ class Family:
     parameters: Mapping[str, Parameter]
     build: Callable[[dict[str, ParameterValue], str], Scenario]
     variants: Mapping[str, Mapping[str, ParameterValue]]
+    dynamic: bool = False
+    """Forward dynamics (gravity, forces) rather than a driven kinematic analysis: left out of the
+    kinematic catalogue until the engines are compared on dynamics."""
 
     @property
     def defaults(self) -> dict[str, ParameterValue]:

@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from scenarios.motion_laws import Polynomial, TabulatedLaw
+
 
 @dataclass(frozen=True)
 class ConstantSpeed:
@@ -58,4 +60,4 @@ class Constant:
         return 0.0
 
 
-Motion = ConstantSpeed | Harmonic | Constant
+Motion = ConstantSpeed | Harmonic | Constant | Polynomial | TabulatedLaw

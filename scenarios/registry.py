@@ -6,15 +6,21 @@ import difflib
 from collections.abc import Mapping
 
 from scenarios.families import (
+    andrews_squeezer,
     cam_flat_face,
     cam_knife_edge,
     cam_roller,
+    compound_pendulum,
     four_bar,
     four_bar_chain,
+    four_bar_gravity,
+    n_four_bar,
     planetary_gears,
     rack_pinion,
     slider_crank,
+    slider_crank_spring,
     spur_gears,
+    stiff_spring,
 )
 from scenarios.family import Family
 from scenarios.scenario import ParameterValue, Scenario, ScenarioError
@@ -31,6 +37,12 @@ FAMILIES: tuple[Family, ...] = tuple(
         cam_roller,
         cam_flat_face,
         four_bar_chain,
+        compound_pendulum,
+        four_bar_gravity,
+        slider_crank_spring,
+        andrews_squeezer,
+        n_four_bar,
+        stiff_spring,
     )
 )
 
@@ -85,14 +97,17 @@ def is_stress_variant(variant: str) -> bool:
     return variant.startswith("stress")
 
 
-def catalogue(include_stress: bool = False) -> list[str]:
+def catalogue(include_stress: bool = False, include_dynamic: bool = False) -> list[str]:
     """Every scenario name: each family's default and its named variants as `family/variant`.
 
     Stress variants are left out unless `include_stress`: they belong to the stress suite, not to
-    what runs or is checked for every scenario.
+    what runs or is checked for every scenario. Dynamic families are left out unless `include_dynamic`:
+    the kinematic suites and checks do not apply to them.
     """
     names = []
     for fam in all_families().values():
+        if fam.dynamic and not include_dynamic:
+            continue
         names.append(fam.name)
         names.extend(f"{fam.name}/{v}" for v in fam.variants if include_stress or not is_stress_variant(v))
     return names

@@ -9,10 +9,13 @@ from typing import Literal
 from scenarios.bodies import Body
 from scenarios.cams import CamContact
 from scenarios.drivers import Driver
+from scenarios.forces import Force
 from scenarios.gears import GearPair, RackPinion
 from scenarios.joints import Joint
+from scenarios.outputs import AngleOutput
 
 Level = Literal["position", "velocity", "acceleration"]
+Analysis = Literal["kinematic", "dynamic"]
 LEVELS: tuple[Level, ...] = ("position", "velocity", "acceleration")
 
 Constraint = Joint | GearPair | RackPinion | CamContact | Driver
@@ -30,6 +33,12 @@ class Scenario:
     `joints` hold every time-independent constraint (joints, gears, cam contacts); `drivers` the
     prescribed motions. `outputs` names the bodies compared; `levels` the analysis levels that make
     sense for the scene. Lengths in errors are divided by `characteristic_length`.
+
+    Dynamics: `gravity` (m/s^2, global axes) acts on every body's centre of mass, which is its
+    frame origin; `forces` are the applied loads and spring-dampers. `analysis` "dynamic" asks for
+    forward dynamics (the drivers leave degrees of freedom the forces move); "kinematic" scenes
+    are fully driven, and their loads give the drivers' forces by inverse dynamics.
+    `angle_outputs` are extra columns of absolute or joint angles.
     """
 
     family: str
@@ -44,6 +53,10 @@ class Scenario:
     levels: tuple[Level, ...] = LEVELS
     parameters: tuple[tuple[str, ParameterValue], ...] = field(default=())
     description: str = ""
+    gravity: tuple[float, float] = (0.0, 0.0)
+    forces: tuple[Force, ...] = ()
+    analysis: Analysis = "kinematic"
+    angle_outputs: tuple[AngleOutput, ...] = ()
 
     @property
     def name(self) -> str:

@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+import textwrap
 from collections.abc import Callable, Sequence
 
 import numpy as np
@@ -19,8 +20,8 @@ import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
 from reports.cli.usage import Parser, UsageError, pairs
 from reports.harness.atomic_write import atomic_output
-from scenarios import Scenario, ScenarioError, all_families, catalogue
-from scenarios import build as build_scenario
+from scenarios import Scenario, ScenarioError, all_families, catalogue, load
+from scenarios.files import scenario_toml
 
 
 def _option_value(text: str) -> OptionValue:
@@ -79,12 +80,12 @@ def cmd_list(args: argparse.Namespace) -> int:
         except adapters.EngineUnavailable as error:
             print(f"engine {name}: unavailable ({error})")
     print("engines: " + ", ".join(f"{n} {a._safe_version()}" for n, a in engines.items()))
-    names = catalogue(include_stress=args.stress)
+    names = args.scenarios or catalogue(include_stress=args.stress)
     width = max(len(n) for n in names) + 2
     print("\n" + "scenario".ljust(width) + "".join(e.ljust(12) for e in engines))
     reasons: list[str] = []
     for name in names:
-        scenario = build_scenario(name)
+        scenario = load(name)
         cells = []
         for engine, adapter in engines.items():
             reason = adapter.supports(scenario)
@@ -96,6 +97,8 @@ def cmd_list(args: argparse.Namespace) -> int:
         print(name.ljust(width) + "".join(c.ljust(12) for c in cells))
     if reasons:
         print("\n" + "\n".join(reasons))
+    if args.scenarios:
+        return 0
     print("\nmodes: what each measures (derived levels named):")
     for engine, adapter in engines.items():
         for mode in adapter.measured:
@@ -109,7 +112,7 @@ def cmd_list(args: argparse.Namespace) -> int:
 
 
 def cmd_solve(args: argparse.Namespace) -> int:
-    scenario = build_scenario(args.scenario, overrides=pairs(args.set, "--set"))
+    scenario = load(args.scenario, pairs(args.set, "--set"))
     grid = time_grid(scenario, args.t_end, args.steps, args.dt)
     adapter = load_engine(args.engine)
     setting = engine_setting(adapter, scenario, args.mode, args.setting)
@@ -127,7 +130,12 @@ def cmd_solve(args: argparse.Namespace) -> int:
 
 
 def cmd_export(args: argparse.Namespace) -> int:
-    scenario = build_scenario(args.scenario, overrides=pairs(args.set, "--set"))
+    scenario = load(args.scenario, pairs(args.set, "--set"))
+    if args.format == "toml":
+        with atomic_output(args.out) as stream:
+            stream.write(scenario_toml(scenario))
+        print(f"wrote {args.out}")
+        return 0
     adapter = load_engine(args.engine)
     setting = engine_setting(adapter, scenario, args.mode, args.setting)
     reason = adapter.supports(scenario)
@@ -142,9 +150,17 @@ def cmd_export(args: argparse.Namespace) -> int:
 
 
 def _scenario_arguments(parser: argparse.ArgumentParser, engine_default: str) -> None:
-    parser.add_argument("scenario", help="scenario name, or family/variant (see `mbxval list`)")
+    parser.add_argument(
+        "scenario", help="scenario name, family/variant (see `mbxval list`), or a scenario file (.toml)"
+    )
     parser.add_argument("--engine", default=engine_default, help=f"engine (default {engine_default})")
-    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="scenario parameter")
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="family parameter, or a scenario file's value by dotted key path",
+    )
     parser.add_argument("--mode", help="engine mode (for example RK4, implicitfast, kinematic)")
     parser.add_argument(
         "--setting",
@@ -167,6 +183,7 @@ def parser() -> argparse.ArgumentParser:
 
     listing = sub.add_parser("list", help="scenarios, variants, engines and what each supports")
     listing.add_argument("--stress", action="store_true", help="include the stress variants")
+    listing.add_argument("scenarios", nargs="*", help="only these scenarios or scenario files (.toml)")
 
     solve = sub.add_parser("solve", help="one trajectory as CSV")
     _scenario_arguments(solve, "reference")
@@ -179,9 +196,56 @@ def parser() -> argparse.ArgumentParser:
     export = sub.add_parser("export", help="write the engine's own model file")
     _scenario_arguments(export, "mujoco")
     export.add_argument("--out", required=True, help="model file to write")
+    export.add_argument(
+        "--format",
+        choices=("engine", "toml"),
+        default="engine",
+        help="engine: the engine's own model file; toml: an mbxval scenario file",
+    )
 
     suite_commands.add_parsers(sub)
+    for name, subparser in sub.choices.items():
+        what, example = GUIDE[name]
+        subparser.description, subparser.epilog = textwrap.fill(what, 90), "example:\n  " + example
+        subparser.formatter_class = argparse.RawDescriptionHelpFormatter
     return top
+
+
+GUIDE: dict[str, tuple[str, str]] = {
+    "list": (
+        "Which scenarios exist, which engine can represent each (and why not), and every scenario "
+        "parameter with its default and allowed range.",
+        "mbxval list --stress",
+    ),
+    "solve": (
+        "Solve one scenario with one engine and write its trajectory as CSV: t, then x, y, theta and "
+        "their first and second derivatives for every moving body.",
+        "mbxval solve slider_crank --engine mujoco --set offset=0.05 --steps 100 --out sc.csv",
+    ),
+    "export": (
+        "Write the engine's own model of a scenario, to open in that engine's tools.",
+        "mbxval export four_bar --engine mujoco --out four_bar.xml\n"
+        "  python -m mujoco.viewer --mjcf four_bar.xml",
+    ),
+    "run": (
+        "The main job: run a suite of scenarios on every engine over its settings, store one row per "
+        "run, and write an HTML and a Markdown report. Runs already stored are skipped.",
+        "mbxval run --out mbxval-report --scenario four_bar --engine exudyn",
+    ),
+    "report": (
+        "Render the report again from stored results alone, without running anything.",
+        "mbxval report mbxval-report",
+    ),
+    "check": (
+        "Regression gate for CI: compare results with a committed baseline; exit 1 with one line per "
+        "cell whose status got worse or whose error grew past the factor.",
+        "mbxval check --baseline baselines/default.json",
+    ),
+    "bench": (
+        "Measure the native solver's speed beside the engines (benchmarks, run on demand).",
+        "mbxval bench speed",
+    ),
+}
 
 
 COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {

@@ -15,7 +15,7 @@ from reports.harness import gate, suites
 from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import Runner, RunOptions
 from reports.harness.suites import Suite
-from scenarios import build as build_scenario
+from scenarios import load as build_scenario
 
 DEFAULT_OUT = "mbxval-report"
 
@@ -109,11 +109,11 @@ def _check(args: argparse.Namespace, directory: Path) -> int:
             gate.write_baseline(args.baseline, frame, meta)
             print(f"wrote baseline {args.baseline} from {directory} ({len(frame)} cells)")
             return 0
-        verdict = gate.compare(gate.read_baseline(args.baseline), frame, args.factor)
+        result = gate.compare(gate.read_baseline(args.baseline), frame, args.factor)
     except (FileNotFoundError, ValueError, KeyError) as error:
         raise UsageError(f"{type(error).__name__}: {error}") from error
-    print(gate.describe(verdict, args.baseline, args.factor))
-    return 0 if verdict.passed else 1
+    print(gate.describe(result, args.baseline, args.factor))
+    return 0 if result.passed else 1
 
 
 def _selection_arguments(parser: argparse.ArgumentParser, suite: str) -> None:

@@ -41,7 +41,7 @@ class Regression:
 
 
 @dataclass(frozen=True)
-class Verdict:
+class GateResult:
     compared: int
     regressions: tuple[Regression, ...]
 
@@ -77,7 +77,9 @@ def read_baseline(path: str | os.PathLike[str]) -> list[dict[str, Any]]:
     return cells
 
 
-def compare(baseline: list[dict[str, Any]], current: pd.DataFrame, factor: float = DEFAULT_FACTOR) -> Verdict:
+def compare(
+    baseline: list[dict[str, Any]], current: pd.DataFrame, factor: float = DEFAULT_FACTOR
+) -> GateResult:
     """Every regression of `current` (a results table) against the `baseline` cells."""
     index = {_key(c): c for c in baseline_cells(current)}
     covered = set(zip(current["scenario"], current["engine"], strict=True))
@@ -94,7 +96,7 @@ def compare(baseline: list[dict[str, Any]], current: pd.DataFrame, factor: float
         what = _worse(old, new, factor)
         if what:
             regressions.append(Regression(old["scenario"], old["engine"], label, what))
-    return Verdict(compared, tuple(regressions))
+    return GateResult(compared, tuple(regressions))
 
 
 def _worse(old: dict[str, Any], new: dict[str, Any], factor: float) -> str:
@@ -122,11 +124,11 @@ def _nan(value: Any) -> bool:
     return value is None or (isinstance(value, float) and math.isnan(value))
 
 
-def describe(verdict: Verdict, baseline: str, factor: float) -> str:
-    """The readable verdict: one line, or a header and one line per regression."""
-    head = f"check against {baseline} (error factor {factor:g}): {verdict.compared} cells compared"
-    if verdict.passed:
+def describe(result: GateResult, baseline: str, factor: float) -> str:
+    """The readable result: one line, or a header and one line per regression."""
+    head = f"check against {baseline} (error factor {factor:g}): {result.compared} cells compared"
+    if result.passed:
         return f"{head}, no regressions"
-    lines = [f"{head}, {len(verdict.regressions)} regressions:"]
-    lines += [f"  - {r}" for r in verdict.regressions]
+    lines = [f"{head}, {len(result.regressions)} regressions:"]
+    lines += [f"  - {r}" for r in result.regressions]
     return "\n".join(lines)

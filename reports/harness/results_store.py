@@ -17,42 +17,13 @@ from typing import Any
 
 import pandas as pd
 
-from reports.harness.metrics import METRIC_COLUMNS
+from reports.harness.columns import COLUMNS
 from scenarios.trajectory import Trajectory
 
 SCHEMA_VERSION = 1
 RESULTS, SIDECAR, TRAJECTORIES = "results.parquet", "results.json", "trajectories.parquet"
 KEY = ("scenario", "engine", "setting")
 TRUTH = "truth"
-COLUMNS: tuple[str, ...] = (
-    "scenario",
-    "family",
-    "variant",
-    "engine",
-    "engine_version",
-    "mode",
-    "measures",
-    "setting",
-    "options",
-    "is_default",
-    "status",
-    "message",
-    "failure_time",
-    "warnings",
-    "levels",
-    "error",
-    *METRIC_COLUMNS,
-    "constraint_residual",
-    "build_time",
-    "run_time",
-    "steps",
-    "repeats",
-    "warmup",
-    "grid_points",
-    "t_end",
-    "characteristic_length",
-    "recorded_at",
-)
 Key = tuple[str, str, str]
 
 

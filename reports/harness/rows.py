@@ -1,4 +1,4 @@
-"""Building the tidy result rows (see results_store.COLUMNS) from what became of a run."""
+"""Building the tidy result rows (columns declared in columns.py) from what became of a run."""
 
 from __future__ import annotations
 
@@ -7,46 +7,31 @@ import math
 from typing import Any
 
 from adapters.base import RunResult, Setting, Status
-from reports.harness.metrics import METRIC_COLUMNS
+from reports.harness.columns import NOT_RUN, empty_row
 from reports.harness.provenance import now
 from scenarios.scenario import Scenario
-
-NOT_RUN = "-"  # the setting of a row that stands for an engine that never ran on the scenario
 
 
 def base_row(
     scenario: Scenario, engine: str, version: str, setting: Setting | None, is_default: bool
 ) -> dict[str, Any]:
     """A row with the identity filled in and every measurement empty."""
-    row: dict[str, Any] = {
-        "scenario": scenario.name,
-        "family": scenario.family,
-        "variant": scenario.variant,
-        "engine": engine,
-        "engine_version": version,
-        "mode": setting.mode if setting else "",
-        "measures": "",
-        "setting": setting.label if setting else NOT_RUN,
-        "options": json.dumps(dict(setting.options) if setting else {}, sort_keys=True),
-        "is_default": is_default,
-        "status": "failed",
-        "message": "",
-        "failure_time": math.nan,
-        "warnings": "",
-        "levels": "",
-        "error": math.nan,
-        "constraint_residual": math.nan,
-        "build_time": math.nan,
-        "run_time": math.nan,
-        "steps": 0,
-        "repeats": 0,
-        "warmup": 0,
-        "grid_points": scenario.steps + 1,
-        "t_end": scenario.t_end,
-        "characteristic_length": scenario.characteristic_length,
-        "recorded_at": now(),
-    }
-    row.update(dict.fromkeys(METRIC_COLUMNS, math.nan))
+    row = empty_row()
+    row.update(
+        scenario=scenario.name,
+        family=scenario.family,
+        variant=scenario.variant,
+        engine=engine,
+        engine_version=version,
+        mode=setting.mode if setting else "",
+        setting=setting.label if setting else NOT_RUN,
+        options=json.dumps(dict(setting.options) if setting else {}, sort_keys=True),
+        is_default=is_default,
+        grid_points=scenario.steps + 1,
+        t_end=scenario.t_end,
+        characteristic_length=scenario.characteristic_length,
+        recorded_at=now(),
+    )
     return row
 
 

@@ -24,6 +24,7 @@ import tqdm
 import adapters
 from adapters.base import Adapter, RunResult, Setting
 from reports.harness import provenance
+from reports.harness.columns import NOT_RUN
 from reports.harness.isolation import run_here, run_isolated
 from reports.harness.metrics import (
     HEADLINE_DEFINITION,
@@ -33,9 +34,9 @@ from reports.harness.metrics import (
     residual_metric,
 )
 from reports.harness.results_store import ResultsStore
-from reports.harness.rows import NOT_RUN, failure_row, result_row
+from reports.harness.rows import failure_row, result_row
 from scenarios import Scenario, ScenarioError
-from scenarios import build as build_scenario
+from scenarios import load as build_scenario
 from scenarios.trajectory import Trajectory
 
 TRUTH_TOLERANCE = 1e-12
@@ -67,7 +68,7 @@ class Group:
     adapter: Adapter | None
     version: str
     jobs: list[tuple[Setting, bool]] = field(default_factory=list)
-    verdict: dict[str, Any] | None = None
+    reason_row: dict[str, Any] | None = None
 
 
 def reference_truth(scenario: Scenario, times: np.ndarray) -> Trajectory:
@@ -128,8 +129,8 @@ class Runner:
                 for group in groups:
                     name = group.scenario.name
                     self._reconcile(group)
-                    if group.verdict is not None:
-                        self.store.add(group.verdict)
+                    if group.reason_row is not None:
+                        self.store.add(group.reason_row)
                         continue
                     if pending[id(group)] and name not in truths:
                         bar.set_description(f"{name} truth", refresh=False)
@@ -151,14 +152,14 @@ class Runner:
     def _plan_engine(self, scenario: Scenario, engine: str) -> Group:
         adapter = self.adapters[engine]
         if isinstance(adapter, str):
-            verdict = failure_row(scenario, engine, "unavailable", None, True, "failed", adapter)
-            return Group(scenario, engine, None, "unavailable", verdict=verdict)
+            row = failure_row(scenario, engine, "unavailable", None, True, "failed", adapter)
+            return Group(scenario, engine, None, "unavailable", reason_row=row)
         version = adapter._safe_version()
         group = Group(scenario, engine, adapter, version)
         try:
             reason = adapter.supports(scenario)
             if reason is not None:
-                group.verdict = failure_row(scenario, engine, version, None, True, "unsupported", reason)
+                group.reason_row = failure_row(scenario, engine, version, None, True, "unsupported", reason)
                 return group
             default = adapter.default_setting(scenario)
             settings = adapter.sweep(scenario) if self.options.sweep else []
@@ -167,7 +168,7 @@ class Runner:
                 default, settings = chosen[0], chosen
         except Exception as error:  # a broken adapter costs its own rows only
             message = f"cannot plan the runs: {type(error).__name__}: {error}"
-            group.verdict = failure_row(scenario, engine, version, None, True, "failed", message)
+            group.reason_row = failure_row(scenario, engine, version, None, True, "failed", message)
             return group
         group.jobs = [(s, s == default) for s in dict.fromkeys([*settings, default])]
         return group
@@ -177,14 +178,14 @@ class Runner:
 
     def _reconcile(self, group: Group) -> None:
         """Make the stored rows of this scenario-engine pair agree with the plan: a pair that no
-        longer runs keeps only its verdict row; one that runs loses its old verdict row; stored
+        longer runs keeps only its reason row; one that runs loses its old reason row; stored
         settings outside the plan (another suite's sweep) stay, but are no longer the default."""
         planned = {s.label for s, _ in group.jobs}
         for key in [k for k in self.store.rows if k[:2] == (group.scenario.name, group.engine)]:
-            if (group.verdict is None) == (key[2] == NOT_RUN):
+            if (group.reason_row is None) == (key[2] == NOT_RUN):
                 del self.store.rows[key]
                 self.store.trajectories.pop(key, None)
-            elif group.verdict is None and key[2] not in planned:
+            elif group.reason_row is None and key[2] not in planned:
                 self.store.rows[key]["is_default"] = False
                 self.store.trajectories.pop(key, None)
 

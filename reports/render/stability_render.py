@@ -26,7 +26,7 @@ from reports.render.markdown_table import markdown_table
 from reports.render.report_data import ReportData
 from reports.stress.branch_check import LOST
 from reports.stress.cases import CASES
-from reports.stress.stability_map import Verdict, verdicts
+from reports.stress.stability_map import Judgement, judge_all
 from scenarios import build
 from scenarios.trajectory import Trajectory
 
@@ -67,7 +67,7 @@ def _num(value: float) -> str:
     return "–" if not math.isfinite(value) else "0" if value == 0 else f"{value:.1e}"
 
 
-def cell(v: Verdict) -> str:
+def cell(v: Judgement) -> str:
     """`verdict @time · err · res`, leaving out what the run does not have."""
     parts = [v.verdict + (f" @{v.time:.4g} s" if math.isfinite(v.time) else "")]
     if "mirrored branch" in v.detail or "same branch" in v.detail:
@@ -79,7 +79,7 @@ def cell(v: Verdict) -> str:
     return " · ".join(parts)
 
 
-def map_frame(found: list[Verdict], engines: list[str]) -> pd.DataFrame:
+def map_frame(found: list[Judgement], engines: list[str]) -> pd.DataFrame:
     """case x engine: the default setting's verdict, with the case's probe and expectation."""
     rows = []
     for name in dict.fromkeys(v.scenario for v in found):
@@ -99,10 +99,10 @@ GRID = 3
 """A mode run at this many settings or more gets a grid: rows by step, columns by the other options."""
 
 
-def settings_frames(found: list[Verdict]) -> dict[str, pd.DataFrame]:
+def settings_frames(found: list[Judgement]) -> dict[str, pd.DataFrame]:
     """The settings of each case, engine and mode run at GRID or more settings, as a grid; the
     other settings of an engine run at several, with its default, as one list."""
-    groups: dict[tuple[str, str, str], list[Verdict]] = {}
+    groups: dict[tuple[str, str, str], list[Judgement]] = {}
     for v in found:
         groups.setdefault((v.scenario, v.engine, v.setting.split(" ")[0]), []).append(v)
     pairs = Counter((v.scenario, v.engine) for v in found)
@@ -120,7 +120,7 @@ def settings_frames(found: list[Verdict]) -> dict[str, pd.DataFrame]:
     return frames
 
 
-def _grid(group: list[Verdict]) -> pd.DataFrame:
+def _grid(group: list[Judgement]) -> pd.DataFrame:
     """Rows by dt (largest first), columns by the other options that vary; cells verdict and error."""
     options = [_options(v.setting) for v in group]
     keys = dict.fromkeys(k for o in options for k in o if k not in ("mode", "dt"))
@@ -152,7 +152,7 @@ def _options(label: str) -> dict[str, str]:
     return {"mode": mode, **dict(p.split("=", 1) for p in pairs if "=" in p)}
 
 
-def similarity_frame(found: list[Verdict], engines: list[str]) -> pd.DataFrame:
+def similarity_frame(found: list[Judgement], engines: list[str]) -> pd.DataFrame:
     """The scale and speed cases: each engine's error and its growth over the nominal case's."""
     defaults = {(v.scenario, v.engine): v for v in found if v.is_default}
     rows = []
@@ -167,7 +167,7 @@ def similarity_frame(found: list[Verdict], engines: list[str]) -> pd.DataFrame:
     return pd.DataFrame(rows).set_index("case") if rows else pd.DataFrame()
 
 
-def _growth(v: Verdict, nominal: Verdict | None) -> str:
+def _growth(v: Judgement, nominal: Judgement | None) -> str:
     if not math.isfinite(v.error):
         return v.verdict
     if nominal is None or not math.isfinite(nominal.error):
@@ -214,7 +214,7 @@ def _cut(run: Trajectory, part: slice) -> Trajectory:
 
 
 def _tables(data: ReportData) -> list[tuple[str, pd.DataFrame]]:
-    found = verdicts(data)
+    found = judge_all(data)
     if not found:
         return []
     engines = data.engines()

@@ -41,7 +41,7 @@ FAILURES = {"diverged": "diverged", "singular": "singular detected", "timeout": 
 
 
 @dataclass(frozen=True)
-class Verdict:
+class Judgement:
     scenario: str
     engine: str
     setting: str
@@ -60,7 +60,7 @@ def stress_rows(frame: pd.DataFrame) -> pd.DataFrame:
     return rows.assign(_order=rows["scenario"].map(order)).sort_values(["_order", "engine"], kind="stable")
 
 
-def verdicts(data: ReportData) -> list[Verdict]:
+def judge_all(data: ReportData) -> list[Judgement]:
     """The verdict of every stored row of a stress case."""
     scenarios: dict[str, Scenario | None] = {}
     out = []
@@ -86,10 +86,10 @@ Outcome = tuple[str, float, float, str]
 
 def judge(
     row: pd.Series, result: Trajectory | None, truth: Trajectory | None, scenario: Scenario | None
-) -> Verdict:
+) -> Judgement:
     """The verdict of one row; the branch check needs the row's trajectory, the truth and the scenario."""
     name, time, error, detail = _outcome(row, result, truth, scenario)
-    return Verdict(
+    return Judgement(
         str(row["scenario"]),
         str(row["engine"]),
         str(row["setting"]),

@@ -13,7 +13,7 @@ from reports.cli.main import main
 from reports.harness.results_store import read_results
 from reports.render.report_data import ReportData
 from reports.stress.cases import CASES
-from reports.stress.stability_map import verdicts
+from reports.stress.stability_map import judge_all
 
 FEW = (
     "slider_crank/stress_dead_centre",
@@ -44,7 +44,7 @@ def test_the_native_solver_through_the_stress_suite(tmp_path: Path) -> None:
     for name in FEW:
         args += ["--scenario", name]
     _run(tmp_path, *args)
-    found = {v.scenario: v for v in verdicts(ReportData.load(tmp_path))}
+    found = {v.scenario: v for v in judge_all(ReportData.load(tmp_path))}
     dead = found["slider_crank/stress_dead_centre"]
     assert dead.verdict == "singular detected" and dead.time == pytest.approx(math.pi / 100, abs=1e-12)
     jump = found["four_bar/stress_near_change_point"]
@@ -64,7 +64,7 @@ def test_the_whole_stress_suite_on_every_engine(tmp_path: Path) -> None:
     _run(tmp_path)
     frame, meta = read_results(tmp_path)
     assert meta["suite"] == "stress" and set(frame["scenario"]) == set(CASES)
-    found = verdicts(ReportData.load(tmp_path))
+    found = judge_all(ReportData.load(tmp_path))
     assert {v.verdict for v in found} <= VERDICTS
     native = {v.scenario: v for v in found if v.engine == "reference"}
     for name, case in CASES.items():

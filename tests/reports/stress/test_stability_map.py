@@ -17,7 +17,7 @@ from reports.harness.rows import failure_row, result_row
 from reports.harness.runner import compare
 from reports.render.report_data import ReportData
 from reports.render.stability_render import html_fragment, markdown_section
-from reports.stress.stability_map import Verdict, verdicts
+from reports.stress.stability_map import Judgement, judge_all
 from reports.stress.truth import stress_truth
 from scenarios.trajectory import Trajectory
 
@@ -83,8 +83,8 @@ def stored(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 @pytest.fixture(scope="module")
-def found(stored: Path) -> dict[tuple[str, str], Verdict]:
-    return {(v.scenario, v.engine): v for v in verdicts(ReportData.load(stored))}
+def found(stored: Path) -> dict[tuple[str, str], Judgement]:
+    return {(v.scenario, v.engine): v for v in judge_all(ReportData.load(stored))}
 
 
 def test_a_run_on_the_truth_is_ok(found) -> None:  # type: ignore[no-untyped-def]

@@ -1,0 +1,26 @@
+"""Run time as the minimum over repeats after untimed warm-ups: the one way mbxval times anything
+(engine runs, benchmarks), because the minimum is the least disturbed by a shared, noisy machine."""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from typing import TypeVar
+
+T = TypeVar("T")
+
+
+def fastest(action: Callable[[], T], repeats: int = 1, warmup: int = 0, number: int = 1) -> tuple[float, T]:
+    """(seconds per call, the last call's result): `warmup` untimed calls, then the minimum over
+    `repeats` (at least one) of the time of `number` calls, divided by `number`."""
+    for _ in range(warmup):
+        action()
+    best = math.inf
+    result: T
+    for _ in range(max(1, repeats)):
+        start = time.perf_counter()
+        for _ in range(max(1, number)):
+            result = action()
+        best = min(best, (time.perf_counter() - start) / max(1, number))
+    return best, result

@@ -1,0 +1,69 @@
+"""The native forward dynamics' cost per output time point, beside the kinematic analysis of the
+same mechanism (the kinematic family it was released from) on the same grid.
+
+    python -m benchmarks.dynamics_speed [--repeats N]
+
+Forward dynamics: coordinate partitioning with DOP853 at rtol 1e-12 (truth quality); its cost per
+point depends on how many integrator steps fall between output points, so the right-hand-side
+evaluations per point are printed too. Kinematic: the plain (uncompiled) Newton loop at tolerance
+1e-12, and the compiled fast path where it applies. Every time is the best of the repeats.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from collections.abc import Callable
+
+import scenarios
+from reference_solver import analyse
+from reference_solver.dynamics import simulate
+
+PAIRS = (
+    ("compound_pendulum", None),
+    ("four_bar_gravity", "four_bar"),
+    ("slider_crank_spring", "slider_crank"),
+    ("andrews_squeezer", None),
+    ("n_four_bar", "four_bar_chain"),
+    ("stiff_spring", None),
+)
+POINTS = 50
+
+
+def best(run: Callable[[], object], repeats: int) -> float:
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        run()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args(argv)
+    print(f"microseconds per output point ({POINTS} points over each horizon); best of {args.repeats}")
+    header = f"{'scenario':<22}{'n':>4}{'dynamics':>12}{'evals/pt':>10}{'kinematic':>12}{'fast':>10}"
+    print(header + "  (kinematic family)")
+    for name, kinematic in PAIRS:
+        scenario = scenarios.build(name, overrides={"steps": POINTS} if name != "stiff_spring" else {})
+        grid = scenario.times(steps=POINTS)
+        evaluations = simulate(scenario, grid).evaluations
+        dynamic = best(lambda s=scenario, g=grid: simulate(s, g), args.repeats) / (POINTS + 1)
+        plain = fast = "-"
+        if kinematic is not None:
+            driven = scenarios.build(kinematic)
+            kgrid = driven.times(steps=POINTS)
+            slow = best(lambda d=driven, g=kgrid: analyse(d, g, fast=False), args.repeats)
+            quick = best(lambda d=driven, g=kgrid: analyse(d, g), args.repeats)
+            plain, fast = f"{1e6 * slow / (POINTS + 1):12.0f}", f"{1e6 * quick / (POINTS + 1):10.0f}"
+        size = 3 * len(scenario.bodies)
+        print(
+            f"{name:<22}{size:>4}{1e6 * dynamic:12.0f}{evaluations / (POINTS + 1):10.1f}"
+            f"{plain:>12}{fast:>10}  ({kinematic or '-'})"
+        )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,59 @@
+"""The result table's columns, declared once: name, the value a row holds before a run fills it, and
+what the column means. The store orders its table by them and the row builder starts from them."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from reports.harness.metrics import METRIC_COLUMNS
+
+NOT_RUN = "-"
+"""The setting label of a row that stands for an engine that never ran on the scenario."""
+
+
+@dataclass(frozen=True)
+class Column:
+    name: str
+    empty: Any
+    meaning: str
+
+
+DECLARED: tuple[Column, ...] = (
+    Column("scenario", "", "scenario name, family/variant"),
+    Column("family", "", "mechanism family"),
+    Column("variant", "", "variant of the family"),
+    Column("engine", "", "engine name"),
+    Column("engine_version", "", "installed engine version"),
+    Column("mode", "", "engine mode (integrator, solver)"),
+    Column(
+        "measures", "", "what the mode measures: the engine's own solver or an adapter loop, derived levels"
+    ),
+    Column("setting", NOT_RUN, "setting label: mode and options"),
+    Column("options", "{}", "setting options as JSON"),
+    Column("is_default", False, "the engine's default setting for the scenario"),
+    Column("status", "failed", "ok, failed, diverged, singular, timeout or unsupported"),
+    Column("message", "", "why the run is not ok"),
+    Column("failure_time", math.nan, "simulated time of the failure"),
+    Column("warnings", "", "engine and Python warnings"),
+    Column("levels", "", "levels compared"),
+    Column("error", math.nan, "headline error (metrics.HEADLINE_DEFINITION)"),
+    *(Column(name, math.nan, "error statistic: level_quantity_statistic") for name in METRIC_COLUMNS),
+    Column("constraint_residual", math.nan, "largest scaled constraint residual"),
+    Column("build_time", math.nan, "seconds to build the engine's model"),
+    Column("run_time", math.nan, "seconds to simulate, minimum of repeats after a warm-up"),
+    Column("steps", 0, "engine steps taken"),
+    Column("repeats", 0, "timed repeats"),
+    Column("warmup", 0, "untimed warm-up runs"),
+    Column("grid_points", 0, "time points compared"),
+    Column("t_end", math.nan, "end of the time grid, s"),
+    Column("characteristic_length", math.nan, "the scenario's length scale, m"),
+    Column("recorded_at", "", "when the row was made (UTC)"),
+)
+COLUMNS: tuple[str, ...] = tuple(c.name for c in DECLARED)
+
+
+def empty_row() -> dict[str, Any]:
+    """A row with every declared column at its empty value."""
+    return {c.name: c.empty for c in DECLARED}

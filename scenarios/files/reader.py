@@ -1,0 +1,305 @@
+"""Scenario file (TOML) -> Scenario, checking every key against the schema.
+
+Every problem is one ScenarioFileError whose message names the file, the key path (such as
+`joints[2].p_i.body`) and what is wrong; nothing is built from a file with a problem.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import tomllib
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any, NoReturn
+
+from scenarios.bodies import GROUND, Body, Point
+from scenarios.files.overrides import apply_overrides
+from scenarios.files.profile_csv import read_radii
+from scenarios.files.schema import (
+    BODY_KEYS,
+    FORMAT,
+    MOTIONS,
+    POINT_KEYS,
+    PROFILES,
+    SECTIONS,
+    SPLINE_CSV_KEY,
+    TOP_LEVEL,
+    TOP_LEVEL_REQUIRED,
+    Key,
+    Kind,
+    in_range,
+    suggestion,
+)
+from scenarios.scenario import LEVELS, Scenario, ScenarioError
+
+
+class ScenarioFileError(ScenarioError):
+    """A scenario file that cannot be read: the message is `FILE: KEY.PATH: what is wrong`."""
+
+
+def toml_type(value: object) -> str:
+    """The TOML name of a parsed value's type, for messages."""
+    names = {bool: "boolean", int: "integer", float: "float", str: "string", list: "array", dict: "table"}
+    return names.get(type(value), type(value).__name__)
+
+
+def required_keys(cls: type) -> tuple[str, ...]:
+    """The fields of a vocabulary class without a default: the keys a table must give."""
+    return tuple(
+        f.name
+        for f in dataclasses.fields(cls)
+        if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+    )
+
+
+class Reader:
+    """Reads one file's tables; `source` names the file in messages, `directory` anchors CSV paths."""
+
+    def __init__(self, source: str, directory: Path) -> None:
+        self.source = source
+        self.directory = directory
+        self.bodies: tuple[str, ...] = ()
+
+    def fail(self, path: str, message: str) -> NoReturn:
+        raise ScenarioFileError(f"{self.source}: {path}: {message}" if path else f"{self.source}: {message}")
+
+    def keys(
+        self, raw: object, keys: Mapping[str, Key], required: tuple[str, ...], path: str
+    ) -> dict[str, Any]:
+        """A table's values, converted; unknown and missing keys are errors."""
+        if not isinstance(raw, dict):
+            self.fail(path, f"expected a table, got {toml_type(raw)}")
+        for name in raw:
+            if name not in keys:
+                known = list(keys)
+                self.fail(
+                    join(path, name), f"unknown key{suggestion(name, known)}; known keys: {', '.join(known)}"
+                )
+        for name in required:
+            if name not in raw:
+                self.fail(join(path, name), "missing")
+        return {name: self.value(value, keys[name], join(path, name)) for name, value in raw.items()}
+
+    def value(self, raw: object, key: Key, path: str) -> Any:
+        """One value of a declared type, converted to what the vocabulary holds."""
+        kind = key.type
+        if kind == "number":
+            return self.number(raw, key.range, path)
+        if kind == "integer":
+            if type(raw) is not int:
+                self.fail(path, f"expected an integer, got {toml_type(raw)} {raw!r}")
+            if not in_range(raw, key.range):
+                self.fail(path, f"must be {key.range}, got {raw!r}")
+            return raw
+        if kind in ("string", "choice", "body", "moving_body"):
+            return self.text(raw, key, path)
+        if kind == "boolean":
+            if type(raw) is not bool:
+                self.fail(path, f"expected true or false, got {toml_type(raw)} {raw!r}")
+            return raw
+        if kind in ("vec2", "pose", "numbers"):
+            return self.numbers(raw, key, path)
+        if kind in ("strings", "levels"):
+            return self.strings(raw, kind, path)
+        if kind == "point":
+            values = self.keys(raw, POINT_KEYS, ("body",), path)
+            return Point(**values)
+        if kind == "motion":
+            return self.kind(raw, MOTIONS, path)
+        if kind == "profile":
+            return self.kind(raw, PROFILES, path)
+        if kind == "parameters":
+            return self.parameters(raw, path)
+        raise AssertionError(kind)
+
+    def number(self, raw: object, range_: str, path: str) -> float:
+        if type(raw) not in (int, float):
+            self.fail(path, f"expected a number, got {toml_type(raw)} {raw!r}")
+        value = float(raw)  # type: ignore[arg-type]
+        if not in_range(value, range_):
+            self.fail(
+                path,
+                f"must be a {range_} number, got {raw!r}"
+                if range_ != "finite"
+                else f"must be finite, got {raw!r}",
+            )
+        return value
+
+    def text(self, raw: object, key: Key, path: str) -> str:
+        if not isinstance(raw, str):
+            self.fail(path, f"expected a string, got {toml_type(raw)} {raw!r}")
+        choices: tuple[str, ...] = key.choices
+        if key.type in ("body", "moving_body"):
+            choices = self.bodies + ((GROUND,) if key.type == "body" else ())
+            what = "body" if key.type == "body" or raw != GROUND else "moving body (not the ground)"
+            if raw not in choices:
+                self.fail(
+                    path,
+                    f"unknown {what} '{raw}'{suggestion(raw, list(choices))}; "
+                    f"bodies: {', '.join(self.bodies)}",
+                )
+        elif choices and raw not in choices:
+            self.fail(
+                path,
+                f"unknown value '{raw}'{suggestion(raw, list(choices))}; "
+                f"expected one of {', '.join(choices)}",
+            )
+        return raw
+
+    def numbers(self, raw: object, key: Key, path: str) -> tuple[float, ...]:
+        size = {"vec2": 2, "pose": 3}.get(key.type)
+        if not isinstance(raw, list):
+            self.fail(path, f"expected an array of numbers, got {toml_type(raw)} {raw!r}")
+        if size is not None and len(raw) != size:
+            self.fail(path, f"expected {size} numbers, got {len(raw)}")
+        if len(raw) < key.minimum_length:
+            self.fail(path, f"expected at least {key.minimum_length} numbers, got {len(raw)}")
+        values = tuple(self.number(v, "finite", f"{path}[{k}]") for k, v in enumerate(raw))
+        if key.range == "nonzero" and not any(values):
+            self.fail(path, "must not be the zero vector")
+        return values
+
+    def strings(self, raw: object, kind: str, path: str) -> tuple[str, ...]:
+        if not isinstance(raw, list) or not all(isinstance(v, str) for v in raw):
+            self.fail(path, f"expected an array of strings, got {raw!r}")
+        choices = LEVELS if kind == "levels" else self.bodies
+        what = "level" if kind == "levels" else "body"
+        for k, name in enumerate(raw):
+            if name not in choices:
+                self.fail(
+                    f"{path}[{k}]",
+                    f"unknown {what} '{name}'{suggestion(name, list(choices))}; known: {', '.join(choices)}",
+                )
+        if len(set(raw)) != len(raw):
+            self.fail(path, "lists a name twice")
+        if kind == "levels" and not raw:
+            self.fail(path, "must name at least one level")
+        return tuple(raw)
+
+    def parameters(self, raw: object, path: str) -> tuple[tuple[str, float | int | str], ...]:
+        if not isinstance(raw, dict):
+            self.fail(path, f"expected a table, got {toml_type(raw)}")
+        for name, value in raw.items():
+            if type(value) not in (int, float, str):
+                self.fail(join(path, name), f"expected a number or a string, got {toml_type(value)}")
+        return tuple(raw.items())
+
+    def kind(self, raw: object, kinds: Mapping[str, Kind], path: str) -> Any:
+        """A table whose `kind` key selects the vocabulary class it describes."""
+        if not isinstance(raw, dict):
+            self.fail(path, f"expected a table, got {toml_type(raw)}")
+        name = raw.get("kind")
+        if name is None:
+            self.fail(join(path, "kind"), f"missing; one of {', '.join(kinds)}")
+        if name not in kinds:
+            self.fail(
+                join(path, "kind"),
+                f"unknown kind {name!r}{suggestion(str(name), list(kinds))}; known: {', '.join(kinds)}",
+            )
+        spec = kinds[name]
+        body = {k: v for k, v in raw.items() if k != "kind"}
+        if name == "spline" and SPLINE_CSV_KEY in body:
+            body["table"] = self.csv_table(body.pop(SPLINE_CSV_KEY), join(path, SPLINE_CSV_KEY))
+        values = self.keys(body, spec.keys, required_keys(spec.cls), path)
+        problem = spec.check(values) if spec.check else None
+        if problem is not None:
+            self.fail(join(path, problem[0]), problem[1])
+        return spec.cls(**values)
+
+    def csv_table(self, raw: object, path: str) -> list[float]:
+        """A spline profile's radii from a CSV file named relative to the scenario file."""
+        if not isinstance(raw, str):
+            self.fail(path, f"expected a file path, got {toml_type(raw)}")
+        try:
+            return read_radii(self.directory / raw)
+        except OSError as error:
+            self.fail(path, f"cannot read {self.directory / raw}: {error.strerror or error}")
+        except ValueError as error:
+            self.fail(path, str(error))
+
+
+def join(path: str, key: str) -> str:
+    return f"{path}.{key}" if path else key
+
+
+def _named_tables(reader: Reader, raw: object, path: str) -> list[dict[str, Any]]:
+    if not isinstance(raw, list) or not all(isinstance(t, dict) for t in raw):
+        reader.fail(path, f"expected an array of tables ([[{path}]]), got {toml_type(raw)}")
+    return raw
+
+
+def _bodies(reader: Reader, raw: object) -> tuple[Body, ...]:
+    bodies: list[Body] = []
+    for k, table in enumerate(_named_tables(reader, raw, "bodies")):
+        values = reader.keys(table, BODY_KEYS, required_keys(Body), f"bodies[{k}]")
+        if values["name"] == GROUND or values["name"] in (b.name for b in bodies):
+            reader.fail(f"bodies[{k}].name", f"'{values['name']}' is already taken")
+        bodies.append(Body(**values))
+    return tuple(bodies)
+
+
+def _constraints(reader: Reader, doc: dict[str, Any], section: str, taken: set[str]) -> tuple[Any, ...]:
+    built = []
+    for k, table in enumerate(_named_tables(reader, doc.get(section, []), section)):
+        item = reader.kind(table, SECTIONS[section], f"{section}[{k}]")
+        if item.name in taken:
+            reader.fail(f"{section}[{k}].name", f"'{item.name}' names another constraint already")
+        taken.add(item.name)
+        built.append(item)
+    return tuple(built)
+
+
+def parse_scenario(
+    text: str,
+    source: str = "<string>",
+    directory: Path = Path("."),
+    overrides: Mapping[str, object] | None = None,
+) -> Scenario:
+    """The scenario a file's text describes, with `overrides` (dotted key path -> value) applied."""
+    reader = Reader(source, directory)
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        reader.fail("", f"not valid TOML: {error}")
+    apply_overrides(doc, overrides or {}, reader.fail)
+    version = doc.get("format")
+    if type(version) is int and version > FORMAT:
+        reader.fail("format", f"format {version} is newer than this mbxval reads (format {FORMAT})")
+    if "format" in doc and version != FORMAT:
+        reader.fail("format", f"expected format = {FORMAT}, got {version!r}")
+    structure = {
+        k: v for k, v in doc.items() if k not in ("bodies", "joints", "drivers", "outputs", "levels")
+    }
+    top = reader.keys(structure, TOP_LEVEL, (), "")
+    for name in TOP_LEVEL_REQUIRED:
+        if name not in doc:
+            reader.fail(name, "missing")
+    bodies = _bodies(reader, doc["bodies"])
+    reader.bodies = tuple(b.name for b in bodies)
+    taken: set[str] = set()
+    joints = _constraints(reader, doc, "joints", taken)
+    drivers = _constraints(reader, doc, "drivers", taken)
+    return Scenario(
+        family=top["name"],
+        variant=top.get("variant", "default"),
+        bodies=bodies,
+        joints=joints,
+        drivers=drivers,
+        t_end=top["t_end"],
+        steps=top["steps"],
+        characteristic_length=top["characteristic_length"],
+        outputs=reader.value(doc.get("outputs", []), TOP_LEVEL["outputs"], "outputs"),
+        levels=reader.value(doc.get("levels", list(LEVELS)), TOP_LEVEL["levels"], "levels"),
+        parameters=top.get("parameters", ()),
+        description=top.get("description", ""),
+    )
+
+
+def read_scenario(path: str | Path, overrides: Mapping[str, object] | None = None) -> Scenario:
+    """The scenario in the file at `path`; ScenarioFileError naming the file and key otherwise."""
+    file = Path(path)
+    try:
+        text = file.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        raise ScenarioFileError(f"{file}: cannot read: {getattr(error, 'strerror', None) or error}") from None
+    return parse_scenario(text, str(file), file.parent, overrides)
