@@ -28,6 +28,9 @@ DECLARED: tuple[Column, ...] = (
     Column("engine", "", "engine name"),
     Column("engine_version", "", "installed engine version"),
     Column("mode", "", "engine mode (integrator, solver)"),
+    Column(
+        "measures", "", "what the mode measures: the engine's own solver or an adapter loop, derived levels"
+    ),
     Column("setting", NOT_RUN, "setting label: mode and options"),
     Column("options", "{}", "setting options as JSON"),
     Column("is_default", False, "the engine's default setting for the scenario"),

@@ -66,6 +66,7 @@ def result_row(
     row = base_row(scenario, result.engine, result.version, result.setting, is_default)
     row.update(
         status=result.status,
+        measures=result.measures,
         message="; ".join(m for m in (result.message, note) if m),
         failure_time=math.nan if result.failure_time is None else result.failure_time,
         warnings=" | ".join(result.warnings),
