@@ -44,7 +44,7 @@ def closed_form(scenario: Scenario, times: np.ndarray) -> Trajectory | None:
 def native_refined(scenario: Scenario, times: np.ndarray) -> Trajectory:
     """The native solver on a grid REFINE times finer at TOLERANCE, sampled on `times` (NaN from
     where it finds no configuration)."""
-    from reports.stress.truth import partial_truth  # the refined, stop-aware native solve
+    from reports.stress.truth import partial_truth  # on first use: the native solver is slow to import
 
     return partial_truth(scenario, np.asarray(times, dtype=float), REFINE)
 
@@ -54,7 +54,7 @@ def independent_truth(scenario: Scenario, times: np.ndarray) -> NamedTruth:
     otherwise."""
     grid = np.asarray(times, dtype=float)
     if scenario.analysis == "dynamic":
-        from reference_solver.dynamics import simulate
+        from reference_solver.dynamics import simulate  # on first use, as above
 
         return NamedTruth(simulate(scenario, grid, DYNAMIC_RTOL).trajectory(), NATIVE_DYNAMIC)
     found = closed_form(scenario, grid)
