@@ -3,6 +3,7 @@
 A subclass provides exactly:
     name: str                                  the engine's name on the command line
     modes: tuple[str, ...]                     its modes (integrators, solvers), the first the default
+    measured: tuple[Mode, ...]                 what each mode measures (adapters.modes)
     options: tuple[Option, ...]                every option a setting may carry, typed and ranged
     version() -> str                           the installed engine's version
     supports(scenario) -> str | None           None, or why the engine cannot represent it faithfully
@@ -34,6 +35,7 @@ from typing import Any, ClassVar, Literal
 
 import numpy as np
 
+from adapters.modes import Mode, measures_of
 from adapters.timing import fastest
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -166,6 +168,8 @@ class RunResult:
     steps: int = 0
     failure_time: float | None = None
     warnings: tuple[str, ...] = field(default=())
+    measures: str = ""
+    """What the setting's mode measures (adapters.modes)."""
 
 
 class Adapter:
@@ -174,6 +178,8 @@ class Adapter:
     name: ClassVar[str] = ""
     modes: ClassVar[tuple[str, ...]] = ()
     options: ClassVar[tuple[Option, ...]] = ()
+    measured: ClassVar[tuple[Mode, ...]] = ()
+    """What each mode measures (adapters.modes), one declaration per name in `modes`."""
     dynamics: ClassVar[bool] = False
     """Whether the engine runs forward dynamics (scenarios whose `analysis` is "dynamic")."""
 
@@ -231,7 +237,12 @@ class Adapter:
         """Build and simulate, timing the build apart and the simulation as the minimum over
         `repeats` after `warmup` untimed runs. Never raises for an engine's failure."""
         setting = setting or self.default_setting(scenario)
-        base: Mapping[str, Any] = {"engine": self.name, "version": self._safe_version(), "setting": setting}
+        base: Mapping[str, Any] = {
+            "engine": self.name,
+            "version": self._safe_version(),
+            "setting": setting,
+            "measures": measures_of(self.measured, setting.mode),
+        }
         try:
             setting = self.check_setting(setting)
         except SettingError as error:

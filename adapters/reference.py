@@ -16,6 +16,7 @@ from importlib.metadata import version as package_version
 import numpy as np
 
 from adapters.base import Adapter, EngineFailure, Option, Setting, Singular
+from adapters.modes import ENGINE, Mode
 from reference_solver import SingularConfigurationError, SolverError, analyse
 from reference_solver.dynamics import inverse_dynamics, simulate
 from reference_solver.dynamics.forward import METHODS
@@ -36,6 +37,18 @@ class ReferenceModel:
 
 class ReferenceAdapter(Adapter):
     name = "reference"
+    measured = (
+        Mode(
+            "newton",
+            ENGINE,
+            "the native textbook Newton loop at each grid time, velocities and accelerations from "
+            "its own linear solves",
+        ),
+        *(
+            Mode(method, ENGINE, f"the native forward dynamics (index-1 ODE) integrated by SciPy's {method}")
+            for method in METHODS
+        ),
+    )
     modes = ("newton", *METHODS)
     options = (
         Option("tolerance", float, 0.0, 0.1, low_open=True, help="Newton tolerance, scaled units"),

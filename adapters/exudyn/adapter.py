@@ -23,12 +23,15 @@ scripts), so there is no export.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from adapters.base import Adapter, Option, Setting, Unsupported
 from adapters.exudyn.model import ExudynModel, ModelError, build_model
-from adapters.exudyn.simulation import Plan, march, quiet, simulation_settings, trajectory
+from adapters.exudyn.simulation import Plan, States, assemble, march, quiet, simulation_settings, trajectory
+from adapters.modes import ENGINE, Mode
+from scenarios.cam_linkage import CAM_MODELS, default_cam_model, linkage_reason
 from scenarios.cams import FlatFaceCam, KnifeEdgeCam, RollerCam
 from scenarios.drivers import (
     AbsoluteDriver,
@@ -62,7 +65,7 @@ ROWS: dict[type, int] = {
     PointPathDriver: 2,
     RelativeDisplacementDriver: 2,
 }
-OPTIONS = ("dt", "rho", "tol", "mass_scale", "cams")
+OPTIONS = ("dt", "rho", "tol", "mass_scale", "cams", "cam_model")
 DEFAULT_SUBSTEPS = 10
 SWEEP_SUBSTEPS = {"GA3": (1, 3, 10), "GA3-rho0.5": (1, 3), "TR2": (1, 3)}
 
@@ -71,16 +74,43 @@ SWEEP_SUBSTEPS = {"GA3": (1, 3, 10), "GA3-rho0.5": (1, 3), "TR2": (1, 3)}
 class ExudynRun:
     model: ExudynModel
     plan: Plan
+    start: tuple[float, States] | None = None
+    """(t0, state): the consistent start found at build time, outside the timed run."""
 
 
 class ExudynAdapter(Adapter):
     name = "exudyn"
+    measured = (
+        Mode(
+            "GA3",
+            ENGINE,
+            "Exudyn's generalized-alpha (index 3, spectral radius 0.9), all levels from its state",
+        ),
+        Mode(
+            "GA3-rho0.5",
+            ENGINE,
+            "Exudyn's generalized-alpha (index 3, spectral radius 0.5), all levels from its state",
+        ),
+        Mode("TR2", ENGINE, "Exudyn's trapezoidal rule (index 2), all levels from its state"),
+        Mode(
+            "STATIC",
+            ENGINE,
+            "Exudyn's static solver at each grid time (positions)",
+            (
+                ("velocity", "adapter solve on Exudyn's constraint Jacobian"),
+                ("acceleration", "adapter solve with finite differences of Exudyn's constraints"),
+            ),
+        ),
+    )
     modes = tuple(MODES)
     options = (
         Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
         Option("rho", float, 0.0, 1.0, help="spectral radius of generalized-alpha"),
         Option("tol", float, 0.0, 1.0, low_open=True, help="Newton tolerance"),
         Option("cams", str, choices=("native", "user"), help="cam rows by native elements or user functions"),
+        Option(
+            "cam_model", str, choices=CAM_MODELS, help="disc cams as their equivalent linkage, or as contacts"
+        ),
         Option("mass_scale", float, 0.0, 1e12, help="masses multiplied by this (0: massless)"),
     )
 
@@ -105,7 +135,8 @@ class ExudynAdapter(Adapter):
         return None
 
     def default_setting(self, scenario: Scenario) -> Setting:
-        return Setting.of("GA3", dt=_interval(scenario) / DEFAULT_SUBSTEPS)
+        setting = Setting.of("GA3", dt=_interval(scenario) / DEFAULT_SUBSTEPS)
+        return setting.replace(cam_model=default_cam_model(scenario)) if scenario.cams else setting
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
         """Engine steps of 1, 1/3 (and 1/10 for GA3, the default) of the scenario's output interval,
@@ -128,7 +159,12 @@ class ExudynAdapter(Adapter):
             rho=float(setting.get("rho", rho)),
             tolerance=float(setting.get("tol", tolerance)),
         )
-        cams = str(setting.get("cams", "native"))
+        # the equivalent linkage is Exudyn's native distance connector (knife edge, roller) and its
+        # exact native flat-face element; the contact is the user-function connector on the profile
+        model_choice = str(setting.get("cam_model", default_cam_model(scenario)))
+        if model_choice == "linkage" and linkage_reason(scenario):
+            raise Unsupported(str(linkage_reason(scenario)))
+        cams = str(setting.get("cams", "native" if model_choice == "linkage" else "user"))
         if not (plan.dt > 0.0 and plan.tolerance > 0.0 and 0.0 <= plan.rho <= 1.0):
             raise ValueError(f"invalid Exudyn setting {setting.label}")
         try:
@@ -136,18 +172,24 @@ class ExudynAdapter(Adapter):
                 model = build_model(scenario, float(setting.get("mass_scale", 1.0)), cams == "native")
         except ModelError as error:
             raise Unsupported(str(error)) from error
-        return ExudynRun(model, plan)
+        t0 = float(scenario.times()[0])
+        with quiet():
+            start = assemble(model, t0, _settings(model, plan))
+        return ExudynRun(model, plan, (t0, start))
 
     def simulate(self, model: ExudynRun, times: np.ndarray) -> Trajectory:
         grid = np.asarray(times, dtype=float)
-        # Newton's tolerance is on increments: relative to the size of the coordinates
-        size = max(1.0, float(np.max(np.abs(model.model.guess), initial=0.0)))
+        start = model.start[1] if model.start and model.start[0] == float(grid[0]) else None
         with quiet():
-            states, steps = march(
-                model.model, model.plan, grid, simulation_settings(model.plan.tolerance * size)
-            )
+            states, steps = march(model.model, model.plan, grid, _settings(model.model, model.plan), start)
         self.count_steps(steps)
         return trajectory(model.model, grid, states)
+
+
+def _settings(model: ExudynModel, plan: Plan) -> Any:
+    """Exudyn's settings; Newton's tolerance is on increments: relative to the coordinates' size."""
+    size = max(1.0, float(np.max(np.abs(model.guess), initial=0.0)))
+    return simulation_settings(plan.tolerance * size)
 
 
 def _interval(scenario: Scenario) -> float:

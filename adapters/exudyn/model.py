@@ -46,7 +46,7 @@ from scenarios.bodies import GROUND, Point
 from scenarios.cam_profiles import EccentricDisc
 from scenarios.cams import KnifeEdgeCam, RollerCam
 from scenarios.drivers import AbsoluteDriver, RelativeRotationDriver
-from scenarios.gears import GearPair
+from scenarios.gears import GearPair, RackPinion
 from scenarios.joints import Ground, Prismatic, Revolute, RevoluteRevolute
 from scenarios.motions import Motion
 from scenarios.scenario import Scenario
@@ -125,6 +125,8 @@ class _Builder:
             self.linear([(item.body, COORDINATE[item.coordinate], 1.0)], 0.0, item.motion)
         elif isinstance(item, RelativeRotationDriver):
             self.linear([(item.body_i, 2, 1.0), (item.body_j, 2, -1.0)], 0.0, item.motion)
+        elif isinstance(item, RackPinion) and self.rack_angle(item) is not None:
+            self.rack(item)
         elif isinstance(item, KnifeEdgeCam | RollerCam) and self.disc(item) is not None:
             self.disc_contact(item)
         else:
@@ -235,6 +237,34 @@ class _Builder:
                 markerNumbers=markers, scalingMarker0=rows[0], scalingMarker1=-rows[1], offset=[-constant]
             )
         )
+
+    # --- rack and pinion on a guided rack ------------------------------------------------------------
+    def rack_angle(self, item: RackPinion) -> float | None:
+        """The rack's constant angle when a prismatic guide on the ground holds it and the pinion's
+        centre is its frame origin: then the mesh row is linear in the coordinates (else None)."""
+        if item.centre.local != (0.0, 0.0):
+            return None
+        rack = item.rack.body
+        for joint in self.model.scenario.joints:
+            if isinstance(joint, Prismatic) and {joint.p_i.body, joint.p_j.body} == {rack, GROUND}:
+                return joint.angle if joint.p_i.body == rack else -joint.angle
+        return None
+
+    def rack(self, item: RackPinion) -> None:
+        """u.(x_rack + R(th_r) p - x_pinion) - radius (th_pinion - th_rack) = offset with th_r fixed:
+        one linear coordinate-vector connector, no user function."""
+        angle = self.rack_angle(item)
+        assert angle is not None
+        c, s = math.cos(angle), math.sin(angle)
+        ax, ay = item.axis
+        norm = math.hypot(ax, ay)
+        u = ((c * ax - s * ay) / norm, (s * ax + c * ay) / norm)
+        px, py = item.rack.local
+        pitch = u[0] * (c * px - s * py) + u[1] * (s * px + c * py)
+        rack, pinion = item.rack.body, item.centre.body
+        terms = [(rack, 0, u[0]), (rack, 1, u[1]), (rack, 2, item.radius)]
+        terms += [(pinion, 0, -u[0]), (pinion, 1, -u[1]), (pinion, 2, -item.radius)]
+        self.linear(terms, item.offset - pitch)
 
     # --- cams on a circular disc -------------------------------------------------------------------
     def disc(self, cam: KnifeEdgeCam | RollerCam) -> EccentricDisc | None:

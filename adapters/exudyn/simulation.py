@@ -192,10 +192,17 @@ def assemble(model: ExudynModel, t0: float, settings: Any) -> States:
     q0 = _nearest_turns(model, probe, q0, t0, gap + 1e-12)
     v0, a0 = probe.rates(q0, t0, *_scales(model))
     probe.close(settings)
-    data.SetODE2Coordinates(q0.tolist(), INITIAL)
-    data.SetODE2Coordinates_t(v0.tolist(), INITIAL)
-    data.SetODE2Coordinates_tt(a0.tolist(), INITIAL)
-    return States(q0[None, :], v0[None, :], a0[None, :])
+    start = States(q0[None, :], v0[None, :], a0[None, :])
+    _write_initial(model, start)
+    return start
+
+
+def _write_initial(model: ExudynModel, start: States) -> None:
+    """`start` as the system's initial state."""
+    data = model.mbs.systemData
+    data.SetODE2Coordinates(start.q[0].tolist(), INITIAL)
+    data.SetODE2Coordinates_t(start.v[0].tolist(), INITIAL)
+    data.SetODE2Coordinates_tt(start.a[0].tolist(), INITIAL)
 
 
 def _nearest_turns(
@@ -214,9 +221,15 @@ def _nearest_turns(
     return q
 
 
-def march(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any) -> tuple[States, int]:
-    """The states on `times` and the number of engine steps taken."""
-    start = assemble(model, float(times[0]), settings)
+def march(
+    model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any, start: States | None = None
+) -> tuple[States, int]:
+    """The states on `times` and the number of engine steps taken, from `start` (found by
+    `assemble` before), or from a start assembled here."""
+    if start is None:
+        start = assemble(model, float(times[0]), settings)
+    else:
+        _write_initial(model, start)
     if len(times) == 1:
         return start, 0
     if plan.solver == "STATIC":

@@ -23,17 +23,22 @@ import mujoco
 import numpy as np
 
 from adapters.base import Adapter, Diverged, Option, Setting, Unsupported
+from adapters.modes import ADAPTER, ENGINE, Mode
 from adapters.mujoco.assembly import assemble, clock_velocities, contact_slopes, settle
+from adapters.mujoco.cam_load import check_contacts, knife_edge_reason, preload
 from adapters.mujoco.cams import CamPair, cam_pairs
-from adapters.mujoco.laws import Law, laws
+from adapters.mujoco.kinematic import KinematicSolver
+from adapters.mujoco.laws import Clock, Law, laws
 from adapters.mujoco.mjcf import Physics, mjcf
-from adapters.mujoco.scale import Scale, clock_armature, scale_of
+from adapters.mujoco.scale import Scale, clock_armature, dof_sizes, scale_of
 from adapters.mujoco.tree import Affine, Tree, TreeError, angle, plan_tree
 from scenarios.bodies import Pose
+from scenarios.cam_linkage import CAM_MODELS, cam_model_scenario, default_cam_model
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
-MODES = ("RK4", "implicitfast", "Euler")
+MODES = ("RK4", "implicitfast", "Euler", "kinematic")
+KINEMATIC = "kinematic"
 SWEEP_DT = (1e-3, 1e-4, 1e-5)
 BAD = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL)
 STATE = mujoco.mjtState.mjSTATE_INTEGRATION
@@ -57,6 +62,11 @@ class Model:
     sites: list[int]
     theta: list[Affine]
     joint_ids: dict[str, int]
+    clocks: dict[int, Clock]
+    preload: float = 0.0
+    """The cam followers' preload (N); 0 without cams."""
+    kinematic: KinematicSolver | None = None
+    """The solver of the kinematic mode (None: MuJoCo's integrator)."""
 
 
 def _warn(message: str) -> None:
@@ -67,6 +77,27 @@ class MujocoAdapter(Adapter):
     """MuJoCo (generalized coordinates, soft constraints) driven by clock joints."""
 
     name = "mujoco"
+    measured = (
+        *(
+            Mode(
+                name,
+                ENGINE,
+                f"MuJoCo's {name} integrator on soft constraints, poses, velocities and "
+                "accelerations read from MuJoCo's state",
+            )
+            for name in ("RK4", "implicitfast", "Euler")
+        ),
+        Mode(
+            "kinematic",
+            ADAPTER,
+            "Newton on MuJoCo's own constraint rows (efc_pos, efc_J) at each grid time (timing "
+            "adapter-dominated: a Python Newton loop with least-squares solves)",
+            (
+                ("velocity", "solve on MuJoCo's efc_J"),
+                ("acceleration", "solve on efc_J with MuJoCo's bias accelerations"),
+            ),
+        ),
+    )
     modes = MODES
     options = (
         Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
@@ -74,6 +105,9 @@ class MujocoAdapter(Adapter):
         Option("impedance", float, 0.0, 1.0, low_open=True, help="solimp of the equalities"),
         Option("contact_impedance", float, 0.0, 1.0, low_open=True, help="solimp of cam contacts"),
         Option("preload", float, 0.0, 1e9, low_open=True, unit="N", help="follower spring preload"),
+        Option(
+            "cam_model", str, choices=CAM_MODELS, help="disc cams as their equivalent linkage, or as contacts"
+        ),
     )
 
     def version(self) -> str:
@@ -86,18 +120,29 @@ class MujocoAdapter(Adapter):
             cam_pairs(scenario.cams, tree)
         except TreeError as reason:
             return str(reason)
+        if default_cam_model(scenario) == "contact":
+            return next(filter(None, map(knife_edge_reason, scenario.cams)), None)
         return None
 
     def default_setting(self, scenario: Scenario) -> Setting:
         options: dict[str, float] = {"dt": 1e-4, "tc_steps": 2.0, "impedance": 0.9999}
+        setting = Setting.of("RK4", **options)
         if scenario.cams:
-            options.update(preload=100.0, contact_impedance=0.99)
-        return Setting.of("RK4", **options)
+            setting = setting.replace(cam_model=default_cam_model(scenario))
+            if setting["cam_model"] == "contact":
+                setting = setting.replace(preload=preload(scenario), contact_impedance=0.99)
+        return setting
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
         base = self.default_setting(scenario)
+        bases = [base]
+        if base.get("cam_model") == "linkage":  # MuJoCo's own cam contact as curves of their own
+            bases.append(base.replace(cam_model="contact", preload=preload(scenario), contact_impedance=0.99))
         return [
-            Setting(mode, base.options).replace(dt=dt) for mode in ("RK4", "implicitfast") for dt in SWEEP_DT
+            Setting(mode, b.options).replace(dt=dt)
+            for b in bases
+            for mode in ("RK4", "implicitfast")
+            for dt in SWEEP_DT
         ]
 
     def build(self, scenario: Scenario, setting: Setting) -> Model:
@@ -105,12 +150,22 @@ class MujocoAdapter(Adapter):
         reason = self.supports(scenario)
         if reason is not None:
             raise Unsupported(reason)
-        dt = engine_step(float(setting["dt"]), _interval(np.asarray(scenario.times())))
+        kinematic = setting.mode == KINEMATIC
+        try:
+            scenario = cam_model_scenario(
+                scenario, str(setting.get("cam_model", default_cam_model(scenario)))
+            )
+        except ValueError as error:
+            raise Unsupported(str(error)) from error
+        reason = next(filter(None, map(knife_edge_reason, scenario.cams)), None)
+        if reason is not None:
+            raise Unsupported(reason)
+        dt = engine_step(float(setting.get("dt", 1e-4)), _interval(np.asarray(scenario.times())))
         physics = Physics(
-            setting.mode,
+            "RK4" if kinematic else setting.mode,
             dt,
-            (float(setting["tc_steps"]) * dt, 1.0),
-            _solimp(float(setting["impedance"]), scenario.characteristic_length),
+            (float(setting.get("tc_steps", 2.0)) * dt, 1.0),
+            _solimp(float(setting.get("impedance", 0.9999)), scenario.characteristic_length),
             _solimp(float(setting.get("contact_impedance", 0.99)), scenario.characteristic_length),
         )
         scale = scale_of(scenario)
@@ -118,14 +173,21 @@ class MujocoAdapter(Adapter):
         first = _compile(scenario, guessed, physics, 0, scale)
         poses = _poses(scenario, guessed, first)
         tree = plan_tree(scenario, poses)
-        springs = _springs(scenario, first, tree, float(setting.get("preload", 100.0)), scale)
+        load = float(setting.get("preload", preload(scenario)))
+        springs = _springs(scenario, first, tree, load, scale)
         armatures = _armatures(scenario, guessed, first, scale)
         sized = Physics(**{**physics.__dict__, "springs": springs, "clock_armature": armatures})
-        return _compile(scenario, tree, sized, RUN_IN, scale)
+        built = _compile(scenario, tree, sized, 0 if kinematic else RUN_IN, scale)
+        built.preload = load
+        if kinematic:
+            built.kinematic = KinematicSolver(built.model, built.clocks, dof_sizes(built.model, scale))
+        return built
 
     def simulate(self, model: Model, times: np.ndarray) -> Trajectory:
         m = model.model
         grid = np.asarray(times, dtype=float)
+        if model.kinematic is not None:
+            return self._kinematic(model, grid)
         interval = _interval(grid)
         dt = engine_step(model.dt, interval) if interval else model.dt
         substeps = max(1, round(interval / dt)) if interval else 1
@@ -144,6 +206,22 @@ class MujocoAdapter(Adapter):
                 _advance(m, d, substeps)
                 self.count_steps(substeps)
             _record(m, d, model, pos[i], vel[i], acc[i])
+            if m.npair:
+                check_contacts(m, d, model.preload)
+        return Trajectory(grid, model.bodies, pos, vel, acc)
+
+    def _kinematic(self, model: Model, grid: np.ndarray) -> Trajectory:
+        """MuJoCo's rows solved at each grid time (adapters.mujoco.kinematic)."""
+        assert model.kinematic is not None
+        m = model.model
+        d = mujoco.MjData(m)
+        d.qpos[:] = model.qpos0
+        n, k = len(grid), len(model.bodies)
+        pos, vel, acc = np.empty((n, k, 3)), np.empty((n, k, 3)), np.empty((n, k, 3))
+        for i, t in enumerate(grid):
+            model.kinematic.solve(d, float(t))
+            _read(m, d, model, pos[i], vel[i], acc[i])
+        self.count_steps(n)
         return Trajectory(grid, model.bodies, pos, vel, acc)
 
     def export(self, scenario: Scenario, setting: Setting, path: str) -> None:
@@ -207,6 +285,7 @@ def _compile(scenario: Scenario, tree: Tree, physics: Physics, run_in: int, scal
         sites=[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE, b) for b in outputs],
         theta=[angle(tree, b) for b in outputs],
         joint_ids={m.joint(j).name: m.jnt_dofadr[j] for j in range(m.njnt)},
+        clocks={int(m.jnt_dofadr[m.joint(law.clock.joint).id]): law.clock for law in found if law.clock},
     )
 
 
@@ -304,6 +383,13 @@ def _record(
     """Pose, velocity and acceleration of each output body's frame at the current state."""
     mujoco.mj_forward(m, d)
     mujoco.mj_rnePostConstraint(m, d)
+    _read(m, d, model, pos, vel, acc)
+
+
+def _read(
+    m: mujoco.MjModel, d: mujoco.MjData, model: Model, pos: np.ndarray, vel: np.ndarray, acc: np.ndarray
+) -> None:
+    """The outputs from d's computed kinematics, velocities and accelerations (cacc)."""
     six = np.empty(6)
     for k, site in enumerate(model.sites):
         pos[k, :2] = d.site_xpos[site][:2]

@@ -69,7 +69,9 @@ def mjcf(
         iterations=str(physics.iterations),
         jacobian="dense",
     )
-    ET.SubElement(option, "flag", autoreset="disable")
+    # A scene carries only what it needs: without cams there is nothing to collide.
+    flags = {"autoreset": "disable"} if cams else {"autoreset": "disable", "contact": "disable"}
+    ET.SubElement(option, "flag", flags)
     default = ET.SubElement(root, "default")
     ET.SubElement(default, "geom", contype="0", conaffinity="0", rgba="0.6 0.7 0.8 1")
     ET.SubElement(default, "equality", solref=num(*physics.solref), solimp=num(*physics.solimp))

@@ -97,6 +97,7 @@ class PinModel:
 def build_model(scenario: Scenario, tree: Tree) -> PinModel:
     """Joints, inertias and frames from the tree; gear mimics applied last."""
     model = pin.Model()
+    model.gravity = pin.Motion.Zero()  # a kinematically driven scene carries no gravity (default -9.81 z)
     model.name = scenario.name
     joint_id: dict[str, int] = {GROUND: 0}
     for edge in tree.edges:

@@ -78,8 +78,8 @@ def engine_setting(adapter: Adapter, scenario: Scenario, mode: str | None, optio
 
 
 def cmd_list(args: argparse.Namespace) -> int:
-    """A scenario x engine table of what each engine supports, the reasons below it, then each
-    family's parameters with their defaults."""
+    """A scenario x engine table of what each engine supports, the reasons below it, what each
+    engine mode measures, then each family's parameters with their defaults."""
     engines = {}
     for name in adapters.names():
         try:
@@ -106,6 +106,10 @@ def cmd_list(args: argparse.Namespace) -> int:
         print("\n" + "\n".join(reasons))
     if args.scenarios:
         return 0
+    print("\nmodes: what each measures (derived levels named):")
+    for engine, adapter in engines.items():
+        for mode in adapter.measured:
+            print(f"  {engine} {mode.name}: {mode.measures}")
     print("\nparameters: default and range; set them with --set NAME=VALUE:")
     for fam in all_families().values():
         print(f"  {fam.name}:")

@@ -7,6 +7,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from reports.harness.level_error import LEVEL_COLUMNS
 from reports.harness.metrics import METRIC_COLUMNS
 
 NOT_RUN = "-"
@@ -27,6 +28,9 @@ DECLARED: tuple[Column, ...] = (
     Column("engine", "", "engine name"),
     Column("engine_version", "", "installed engine version"),
     Column("mode", "", "engine mode (integrator, solver)"),
+    Column(
+        "measures", "", "what the mode measures: the engine's own solver or an adapter loop, derived levels"
+    ),
     Column("setting", NOT_RUN, "setting label: mode and options"),
     Column("options", "{}", "setting options as JSON"),
     Column("is_default", False, "the engine's default setting for the scenario"),
@@ -35,7 +39,12 @@ DECLARED: tuple[Column, ...] = (
     Column("failure_time", math.nan, "simulated time of the failure"),
     Column("warnings", "", "engine and Python warnings"),
     Column("levels", "", "levels compared"),
-    Column("error", math.nan, "headline error (metrics.HEADLINE_DEFINITION)"),
+    Column("error", math.nan, "headline error (metrics.HEADLINE_DEFINITION), = error_position"),
+    Column("truth", "", "which truth the row was measured against (harness.truth)"),
+    *(
+        Column(name, math.nan, f"dimensionless {level} error, NaN where not produced (harness.level_error)")
+        for level, name in LEVEL_COLUMNS.items()
+    ),
     *(Column(name, math.nan, "error statistic: level_quantity_statistic") for name in METRIC_COLUMNS),
     Column("constraint_residual", math.nan, "largest scaled constraint residual"),
     Column("build_time", math.nan, "seconds to build the engine's model"),
@@ -46,6 +55,7 @@ DECLARED: tuple[Column, ...] = (
     Column("grid_points", 0, "time points compared"),
     Column("t_end", math.nan, "end of the time grid, s"),
     Column("characteristic_length", math.nan, "the scenario's length scale, m"),
+    Column("characteristic_rate", math.nan, "the scenario's rate scale |omega|, rad/s (harness.level_error)"),
     Column("recorded_at", "", "when the row was made (UTC)"),
     Column("revision", "", "git revision the row was made under (harness.resume)"),
     Column("stale", False, "kept by a resume under another revision or engine version (--keep-stale)"),

@@ -8,6 +8,7 @@ from typing import Any
 
 from adapters.base import RunResult, Setting, Status
 from reports.harness.columns import NOT_RUN, empty_row
+from reports.harness.level_error import characteristic_rate
 from reports.harness.provenance import now
 from scenarios.scenario import Scenario
 
@@ -30,6 +31,7 @@ def base_row(
         grid_points=scenario.steps + 1,
         t_end=scenario.t_end,
         characteristic_length=scenario.characteristic_length,
+        characteristic_rate=characteristic_rate(scenario),
         recorded_at=now(),
     )
     return row
@@ -64,6 +66,7 @@ def result_row(
     row = base_row(scenario, result.engine, result.version, result.setting, is_default)
     row.update(
         status=result.status,
+        measures=result.measures,
         message="; ".join(m for m in (result.message, note) if m),
         failure_time=math.nan if result.failure_time is None else result.failure_time,
         warnings=" | ".join(result.warnings),

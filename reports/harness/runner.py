@@ -1,6 +1,7 @@
 """The runner: scenario x engine x setting, each run isolated, every outcome stored as a row.
 
-For each scenario the reference truth is solved once at a tight tolerance on the scenario's grid, in
+For each scenario the truth (reports.harness.truth: the closed form where there is one, else the
+native solver refined; or the suite's own hook) is computed once on the scenario's grid, in
 this process (with a time limit), so that the solver's JIT-compiled kernels are compiled once and
 inherited by the forked runs;
 each engine run (build timed apart, simulation timed as the minimum of repeats after a warm-up, by
@@ -26,6 +27,7 @@ from adapters.base import Adapter, RunResult, Setting
 from reports.harness import provenance
 from reports.harness.columns import NOT_RUN
 from reports.harness.isolation import run_here, run_isolated
+from reports.harness.level_error import SCALE_DEFINITION, level_errors
 from reports.harness.metrics import (
     HEADLINE_DEFINITION,
     Residual,
@@ -36,13 +38,16 @@ from reports.harness.metrics import (
 from reports.harness.results_store import ResultsStore
 from reports.harness.resume import STALE, ResumeLog, ResumePolicy, rerun_reason, staleness
 from reports.harness.rows import failure_row, result_row
+from reports.harness.truth import NamedTruth, independent_truth, named
 from scenarios import Scenario, ScenarioError
 from scenarios import load as build_scenario
 from scenarios.trajectory import Trajectory
 
 TRUTH_TOLERANCE = 1e-12
 LONG_RUN = 0.25  # seconds: a simulation this long is timed once after the warm-up
-Truth = Callable[[Scenario, np.ndarray], Trajectory]
+Truth = Callable[[Scenario, np.ndarray], Trajectory | NamedTruth]
+"""A truth hook: the truth of a scenario on a grid; a bare trajectory is named HOOK_TRUTH."""
+HOOK_TRUTH = f"native, tolerance {TRUTH_TOLERANCE:g}"
 Loader = Callable[[str], Adapter]
 SettingsHook = Callable[[Scenario, Adapter], list[Setting] | None]
 """A suite's own settings for a scenario and engine (the first is the default), or None: the engine's."""
@@ -74,13 +79,6 @@ class Group:
     reason_row: dict[str, Any] | None = None
 
 
-def reference_truth(scenario: Scenario, times: np.ndarray) -> Trajectory:
-    import reference_solver
-
-    trajectory: Trajectory = reference_solver.solve(scenario, times, tolerance=TRUTH_TOLERANCE)
-    return trajectory
-
-
 def reference_residual() -> Residual | None:
     """The lead's `reference_solver.constraint_residual`, when it exists."""
     import reference_solver
@@ -97,14 +95,14 @@ class Runner:
         engines: Sequence[str],
         options: RunOptions,
         loader: Loader = adapters.load,
-        truth: Truth | None = None,  # None: reference_truth
+        truth: Truth | None = None,  # None: independent_truth (closed form, else refined native)
         residual: Residual | None = None,  # None: reference_solver.constraint_residual
         progress: bool = True,
         suite: str = "",
         settings: SettingsHook | None = None,
     ) -> None:
         self.store, self.engines, self.options = store, list(engines), options
-        self.truth, self.progress, self.suite = truth or reference_truth, progress, suite
+        self.truth, self.progress, self.suite = truth or independent_truth, progress, suite
         self.settings = settings
         self.residual = residual if residual is not None else reference_residual()
         self.adapters: dict[str, Adapter | str] = {}
@@ -127,7 +125,7 @@ class Runner:
         truths_needed = {g.scenario.name for g in groups if pending[id(g)]}
         total = sum(len(p) for p in pending.values()) + len(truths_needed)
         tqdm.tqdm.monitor_interval = 0  # no monitor thread: the runs are forked
-        truths: dict[str, Trajectory | str] = {}
+        truths: dict[str, NamedTruth | str] = {}
         # In a log rather than a terminal (a CI job), a line every 10 s instead of one per update.
         interval = 0.1 if sys.stderr.isatty() else 10.0
         with tqdm.tqdm(
@@ -224,17 +222,17 @@ class Runner:
                 self.store.trajectories.pop(key, None)
 
     # --- running ----------------------------------------------------------------------------
-    def _solve_truth(self, scenario: Scenario) -> Trajectory | str:
+    def _solve_truth(self, scenario: Scenario) -> NamedTruth | str:
         times = np.asarray(scenario.times())
         outcome = run_here(lambda: self.truth(scenario, times), self.options.truth_timeout)
         if outcome.kind != "ok" or outcome.value is None:
             return f"no reference truth ({outcome.kind}: {outcome.message})"
-        truth = outcome.value.select(scenario.output_bodies)
-        self.store.put_truth(scenario.name, f"tolerance={TRUTH_TOLERANCE:g}", truth)
-        return outcome.value
+        found = named(outcome.value, HOOK_TRUTH)
+        self.store.put_truth(scenario.name, found.name, found.trajectory.select(scenario.output_bodies))
+        return found
 
     def _run_group(
-        self, group: Group, jobs: list[tuple[Setting, bool]], truth: Trajectory | str, bar: tqdm.tqdm
+        self, group: Group, jobs: list[tuple[Setting, bool]], truth: NamedTruth | str, bar: tqdm.tqdm
     ) -> None:
         timed_out: set[str] = set()
         for setting, is_default in jobs:
@@ -247,7 +245,7 @@ class Runner:
             bar.update()
 
     def _run_one(
-        self, group: Group, setting: Setting, is_default: bool, truth: Trajectory | str, timed_out: set[str]
+        self, group: Group, setting: Setting, is_default: bool, truth: NamedTruth | str, timed_out: set[str]
     ) -> None:
         scenario, adapter, opts = group.scenario, group.adapter, self.options
         assert adapter is not None
@@ -256,7 +254,8 @@ class Runner:
 
         def execute() -> tuple[RunResult, int, dict[str, float], tuple[str, ...], str]:
             result, repeats = timed_run(adapter, scenario, setting, times, opts)
-            return (result, repeats, *compare(scenario, result, truth, residual))
+            against = truth.trajectory if isinstance(truth, NamedTruth) else truth
+            return (result, repeats, *compare(scenario, result, against, residual))
 
         outcome = run_isolated(execute, opts.timeout)
         if outcome.kind == "timeout":
@@ -268,6 +267,7 @@ class Runner:
             result, repeats, metrics, levels, note = outcome.value
             row = result_row(scenario, result, is_default, repeats, opts.warmup, metrics, levels, note)
             row["engine"] = group.engine  # the name it was asked by, whatever the adapter calls itself
+            row["truth"] = truth.name if isinstance(truth, NamedTruth) else ""
             keep = result.trajectory if is_default and result.status == "ok" else None
             keep = keep.select(scenario.output_bodies) if keep is not None else None
             self._add(row, keep)
@@ -294,8 +294,12 @@ class Runner:
             "timeout": self.options.timeout,
             "revisions": sorted({str(r.get("revision") or "unknown") for r in self.store.rows.values()}),
             "resume": self.resume_log.lines(),
-            "truth": f"reference_solver.solve at tolerance {TRUTH_TOLERANCE:g} on each scenario's grid",
+            "truth": (
+                "each row's `truth` column: the closed form where the scenario has one, else the "
+                "native solver on a refined grid at tight tolerance"
+            ),
             "headline": HEADLINE_DEFINITION,
+            "scales": SCALE_DEFINITION,
         }
         self.store.save(meta)
 
@@ -333,6 +337,8 @@ def compare(
     notes = []
     try:
         metrics = error_metrics(scenario, result.trajectory, truth)
+        metrics.update(level_errors(scenario, result.trajectory, truth))
+        metrics["error"] = metrics["error_position"]  # one headline: the position level
         levels = compared_levels(scenario, result.trajectory, truth)
     except (ValueError, KeyError) as error:  # the engine's trajectory is not what it should be
         raise ComparisonError(f"cannot compare with the truth: {error}") from error

@@ -14,6 +14,7 @@ from scenarios import catalogue
 
 if TYPE_CHECKING:
     from adapters.base import Adapter, Setting
+    from reports.harness.truth import NamedTruth
     from scenarios.scenario import Scenario
     from scenarios.trajectory import Trajectory
 
@@ -34,7 +35,7 @@ class Suite:
     repeats: int = 3
     warmup: int = 1
     timeout: float = 60.0
-    truth: Callable[[Scenario, Any], Trajectory] | None = None
+    truth: Callable[[Scenario, Any], Trajectory | NamedTruth] | None = None
     settings: Callable[[Scenario, Adapter], list[Setting] | None] | None = None
 
 
@@ -89,10 +90,11 @@ def stress_scenarios() -> list[str]:
     return scenario_names()
 
 
-def _stress_truth(scenario: Scenario, times: Any) -> Trajectory:
-    from reports.stress.truth import stress_truth
+def _stress_truth(scenario: Scenario, times: Any) -> NamedTruth:
+    from reports.harness.truth import NamedTruth
+    from reports.stress.truth import stress_truth, stress_truth_name
 
-    return stress_truth(scenario, times)
+    return NamedTruth(stress_truth(scenario, times), stress_truth_name(scenario))
 
 
 def _stress_settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:

@@ -1,18 +1,23 @@
 """The self-contained HTML report: everything inline (CSS, base64 PNG plots), no network needed.
 
-Up front: provenance, engine versions, the headline definition and the scenario x engine matrix of
-status and error at the default setting. Then one section per scenario: work-precision plot,
-trajectory overlays, error over time and the table of runs.
+Up front (reports.render.first_screen): the native solver's agreement with the closed forms in one
+line, the scenario x engine matrix at every level, the error against run time over the whole suite
+per engine and mode, and the engines' agreement with each other. Then the stability map (stress suite
+only), engines and machine, and one section per scenario: work-precision and deviation from the truth
+at the three levels side by side, and the table of runs.
 """
 
 from __future__ import annotations
 
 import html
+import multiprocessing
+import os
 from typing import Any
 
+from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.provenance import revision_label
-from reports.render import plots, stability_render
-from reports.render.report_data import ReportData, cell_text, number, table
+from reports.render import first_screen, level_plots, overview, plots, stability_render
+from reports.render.report_data import ReportData, number, table
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 1.5em auto; max-width: 1200px; color: #222; }
@@ -27,8 +32,12 @@ td.failed, td.diverged, td.singular, td.timeout { background: #fbe3e3; }
 td.notrun { color: #999; }
 img { max-width: 100%; margin: 0.3em 0; } .muted { color: #666; font-size: 0.9em; }
 .wide { overflow-x: auto; }
+table.matrix td { min-width: 0; white-space: nowrap; padding: 0.15em 0.35em; }
 .plots { display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start; }
 """
+
+WORKERS = 2
+_FORKED: dict[str, ReportData] = {}
 
 # Lets a headless browser (scripts/check_report_in_browser.sh) confirm every plot decoded.
 CHECK = """
@@ -50,22 +59,29 @@ def render(data: ReportData) -> str:
         f"<style>{STYLE}</style><script>{CHECK}</script></head><body>",
         "<h1>mbxval: planar multibody kinematics across engines</h1>",
         f'<p class="muted">{html.escape(_provenance(meta))}</p>',
-        "<h2>Status and error at each engine's default setting</h2>",
-        f"<p>{html.escape(_definitions(meta))}</p>",
-        _matrix(data),
-        f'<p class="muted">Runs by status: {html.escape(_counts(data))}.</p>',
-        stability_render.html_fragment(data),  # "" unless the results hold stress cases
+        f"<p><strong>{html.escape(first_screen.native_line(data.frame))}</strong></p>",
+        "<h2>Error at each level, each engine's default setting</h2>",
+        f'<p class="muted">{html.escape(_definitions(meta))}</p>',
+        first_screen.level_matrix(data),
+        f'<p class="muted">Runs by status: {html.escape(_counts(data))}. Colour: log10 error from '
+        f"1e{first_screen.BEST:.0f} (green) to 1e{first_screen.WORST:.0f} (red); hover a scenario for "
+        "its truth.</p>",
+        "<h2>Error against run time over the suite</h2>",
+        _overview(data),
+        "<h2>Engines against each other (default settings)</h2>",
+        _agreement(data),
+        stability_render.html_fragment(data),  # "" unless these are the stress suite's results
         "<h2>Engines and machine</h2>",
         _key_values(_versions(meta)),
     ]
-    for scenario in data.scenarios():
-        parts.append(_scenario_section(data, scenario))
+    parts += _sections(data)
     parts.append("</body></html>")
     return "\n".join(parts)
 
 
 def _definitions(meta: dict[str, Any]) -> str:
-    return f"{meta.get('headline', '')} The truth: {meta.get('truth', '')}."
+    scales = meta.get("scales", SCALE_DEFINITION)
+    return f"{scales} The truth: {meta.get('truth', '')}."
 
 
 def _provenance(meta: dict[str, Any]) -> str:
@@ -95,19 +111,22 @@ def _counts(data: ReportData) -> str:
     return ", ".join(f"{status} {count}" for status, count in data.status_counts().items())
 
 
-def _matrix(data: ReportData) -> str:
-    head = "".join(f"<th>{html.escape(e)}</th>" for e in data.engines())
-    body = []
-    for scenario in data.scenarios():
-        cells = []
-        for engine in data.engines():
-            row = data.default_row(scenario, engine)
-            css = "notrun" if row is None else str(row["status"])
-            tip = "" if row is None else f"{row['setting']}: {row['message']}".strip(": ")
-            cells.append(f'<td class="{css}" title="{html.escape(tip)}">{html.escape(cell_text(row))}</td>')
-        link = f'<a href="#{_anchor(scenario)}">{html.escape(scenario)}</a>'
-        body.append(f"<tr><th>{link}</th>{''.join(cells)}</tr>")
-    return f"<table><tr><th>scenario</th>{head}</tr>{''.join(body)}</table>"
+def _overview(data: ReportData) -> str:
+    summary = overview.summary(data.frame, float(data.meta.get("timeout", float("nan"))))
+    truths = first_screen.truth_names(data.frame)
+    figure = overview.overview_figure(summary, truths) if not summary.empty else None
+    return f'{_image(figure, "overview of error against run time")}<p class="muted">{overview.DEFINITION}</p>'
+
+
+def _agreement(data: ReportData) -> str:
+    frame = first_screen.agreement_frame(data)
+    if frame.empty:
+        return '<p class="muted">no scenario has default runs of two engines to compare</p>'
+    note = (
+        "Per scenario and level, the pair of engines whose default runs differ most and by how much "
+        "(dimensionless, as above; no truth involved)."
+    )
+    return f'<p class="muted">{note}</p><div class="wide">{frame.to_html(index=False, border=0)}</div>'
 
 
 def _anchor(scenario: str) -> str:
@@ -115,30 +134,50 @@ def _anchor(scenario: str) -> str:
 
 
 def _image(figure: Any, alt: str) -> str:
+    """The figure inline (drawn with its own fixed margins), or why there is none."""
     if figure is None:
         return f'<p class="muted">no {html.escape(alt)}: no successful run to draw</p>'
-    return f'<img class="plot" alt="{html.escape(alt)}" src="data:image/png;base64,{plots.png(figure)}">'
+    encoded = plots.png(figure, tight=False)
+    return f'<img class="plot" alt="{html.escape(alt)}" src="data:image/png;base64,{encoded}">'
+
+
+def _sections(data: ReportData) -> list[str]:
+    """Every scenario's section, drawn by up to WORKERS forked processes (the figures are most of a
+    report's render time, and each scenario's are independent of the others')."""
+    names = data.scenarios()
+    workers = min(WORKERS, os.cpu_count() or 1, len(names))
+    if workers <= 1 or "fork" not in multiprocessing.get_all_start_methods():
+        return [_scenario_section(data, name) for name in names]
+    _FORKED["data"] = data  # inherited by the forked workers, never pickled
+    try:
+        with multiprocessing.get_context("fork").Pool(workers) as pool:
+            return pool.map(_forked_section, names, chunksize=1)
+    finally:
+        _FORKED.clear()
+
+
+def _forked_section(scenario: str) -> str:
+    return _scenario_section(_FORKED["data"], scenario)
 
 
 def _scenario_section(data: ReportData, scenario: str) -> str:
     rows = data.rows(scenario)
-    length = data.characteristic_length(scenario)
-    truth = data.truth(scenario)
-    runs = data.default_trajectories(scenario)
-    figures = [_image(plots.work_precision(rows), "work-precision plot")]
+    length, rate = data.characteristic_length(scenario), first_screen.scenario_rate(data, scenario)
+    truth, truth_name = data.truth(scenario), first_screen.truth_names(rows)
+    figures = [_image(level_plots.work_precision(rows, truth_name), "work-precision plot")]
     if truth is not None:
-        figures.append(_image(plots.error_over_time(truth, runs, length), "error over time"))
-        overlay = _image(plots.overlays(truth, runs, length), "trajectory overlay")
+        runs = data.default_trajectories(scenario)
+        figures.append(_image(level_plots.deviations(truth, runs, length, rate, truth_name), "deviations"))
     else:
-        overlay = '<p class="muted">no stored truth trajectory: no overlays</p>'
+        figures.append('<p class="muted">no stored truth trajectory: no deviations</p>')
     shown = table(rows)
     return "\n".join(
         [
             f'<h2 id="{_anchor(scenario)}">{html.escape(scenario)}</h2>',
-            f'<p class="muted">characteristic length {number(length)} m; '
+            f'<p class="muted">truth: {html.escape(truth_name)}; characteristic length {number(length)} m, '
+            f"characteristic rate {number(rate)} rad/s; "
             f"{int(rows['grid_points'].iloc[0])} grid points over {number(rows['t_end'].iloc[0])} s</p>",
             f'<div class="plots">{"".join(figures)}</div>',
-            overlay,
             f'<div class="wide">{shown.to_html(index=False, escape=True, border=0)}</div>',
         ]
     )

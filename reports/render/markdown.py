@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+from reports.harness.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.harness.provenance import revision_label
 from reports.render import stability_render
+from reports.render.first_screen import native_line, scenario_rate, truth_names
 from reports.render.markdown_table import markdown_table
 from reports.render.report_data import HEADINGS, ReportData, number, table
 
-SHOWN = ("engine", "setting", "status", "error", "constraint_residual", "run_time", "message")
+SHOWN = ("engine", "setting", "status", *LEVEL_COLUMNS.values(), "constraint_residual", "run_time", "message")
 SUMMARY_COLUMNS = tuple(HEADINGS.get(c, c) for c in SHOWN)
 
 
@@ -24,9 +26,11 @@ def render(data: ReportData) -> str:
         f"{machine.get('processor', '?')}, {machine.get('cpus', '?')} CPUs.",
         f"Timing: minimum of {meta.get('repeats', '?')} repeats after {meta.get('warmup', '?')} warm-up.",
         "",
-        f"{meta.get('headline', '')}",
+        f"**{native_line(data.frame)}**",
         "",
-        "## Status and error at each engine's default setting",
+        f"{meta.get('scales', SCALE_DEFINITION)} The truth: {meta.get('truth', '')}.",
+        "",
+        "## Status and error (position / velocity / acceleration) at each engine's default setting",
         "",
         markdown_table(data.matrix(), "scenario"),
         "",
@@ -41,7 +45,9 @@ def render(data: ReportData) -> str:
             "",
             f"## {scenario}",
             "",
-            f"Characteristic length {number(data.characteristic_length(scenario))} m.",
+            f"Truth: {truth_names(data.rows(scenario))}. "
+            f"Characteristic length {number(data.characteristic_length(scenario))} m, "
+            f"rate {number(scenario_rate(data, scenario))} rad/s.",
             "",
             markdown_table(rows),
         ]

@@ -19,7 +19,9 @@ TABLE_COLUMNS = (
     "engine",
     "setting",
     "status",
-    "error",
+    "error_position",
+    "error_velocity",
+    "error_acceleration",
     "position_length_max",
     "position_angle_max",
     "velocity_length_max",
@@ -33,6 +35,9 @@ TABLE_COLUMNS = (
     "message",
 )
 HEADINGS = {
+    "error_position": "error pos",
+    "error_velocity": "error vel",
+    "error_acceleration": "error acc",
     "position_length_max": "pos max [m]",
     "position_angle_max": "pos max [rad]",
     "velocity_length_max": "vel max [m/s]",
@@ -105,7 +110,10 @@ def cell_text(row: pd.Series | None) -> str:
         return "not run"
     if row["status"] != "ok":
         return str(row["status"])
-    return f"ok {number(row['error'])}"
+    levels = [row.get(c, math.nan) for c in ("error_position", "error_velocity", "error_acceleration")]
+    if all(isinstance(v, float) and math.isnan(v) for v in levels):  # results from before the levels
+        return f"ok {number(row['error'])}"
+    return "ok " + " / ".join(number(v) for v in levels)
 
 
 def number(value: Any) -> str:
@@ -119,6 +127,9 @@ def number(value: Any) -> str:
 
 def table(rows: pd.DataFrame) -> pd.DataFrame:
     """The per-scenario table: TABLE_COLUMNS, numbers as compact text, sorted by engine and setting."""
+    for column in TABLE_COLUMNS:  # results written before a column existed
+        if column not in rows:
+            rows = rows.assign(**{column: math.nan})
     shown = rows.sort_values(["engine", "mode", "error"], kind="stable")[list(TABLE_COLUMNS)].copy()
     for column in TABLE_COLUMNS:
         if column not in ("engine", "setting", "status", "message", "steps"):

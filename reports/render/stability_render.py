@@ -30,6 +30,7 @@ from reports.stress.stability_map import Judgement, judge_all
 from scenarios import build
 from scenarios.trajectory import Trajectory
 
+STRESS_SUITE = "stress"
 GROWTH = 10.0
 """An engine whose error at a scale or speed is more than this times its nominal error (both
 floored at FLOOR) loses accuracy there."""
@@ -121,18 +122,30 @@ def settings_frames(found: list[Judgement]) -> dict[str, pd.DataFrame]:
 
 
 def _grid(group: list[Judgement]) -> pd.DataFrame:
-    """Rows by dt (largest first), columns by the other options that vary; cells verdict and error."""
+    """Rows by step size dt (largest first), or by the option that varies where the mode has no step
+    (a tolerance); columns by the other options that vary; cells verdict and error."""
     options = [_options(v.setting) for v in group]
-    keys = dict.fromkeys(k for o in options for k in o if k not in ("mode", "dt"))
-    columns = [k for k in keys if len({o.get(k) for o in options}) > 1]
+    keys = [k for k in dict.fromkeys(k for o in options for k in o) if k != "mode"]
+    varying = [k for k in keys if len({o.get(k) for o in options}) > 1]
+    row_key = "dt" if "dt" in keys else (varying[0] if varying else "")
+    columns = [k for k in varying if k != row_key]
     table: dict[str, dict[float, str]] = {}
     for v, o in zip(group, options, strict=True):
         column = " ".join(f"{k}={o[k]}" for k in columns) or "run"
         short = v.verdict + (f" @{v.time:.3g} s" if math.isfinite(v.time) else "")
-        table.setdefault(column, {})[float(o.get("dt", "nan"))] = f"{short} {_num(v.error)}".replace(" –", "")
+        table.setdefault(column, {})[_as_number(o.get(row_key, "0"))] = f"{short} {_num(v.error)}".replace(
+            " –", ""
+        )
     frame = pd.DataFrame(table).fillna("").sort_index(ascending=False)
-    frame.index = [f"dt={dt:.3g}" for dt in frame.index]
+    frame.index = [f"{row_key or 'run'}={value:.3g}" for value in frame.index]
     return frame[sorted(frame.columns, key=_numeric_key)]
+
+
+def _as_number(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        return 0.0
 
 
 def _numeric_key(column: str) -> list[float]:
@@ -214,6 +227,8 @@ def _cut(run: Trajectory, part: slice) -> Trajectory:
 
 
 def _tables(data: ReportData) -> list[tuple[str, pd.DataFrame]]:
+    if str(data.meta.get("suite", "")) != STRESS_SUITE:  # a default run's near-singular variants
+        return []
     found = judge_all(data)
     if not found:
         return []

@@ -36,6 +36,15 @@ def stress_truth(scenario: Scenario, times: np.ndarray) -> Trajectory:
     return partial_truth(scenario, grid, declared.refine)
 
 
+def stress_truth_name(scenario: Scenario) -> str:
+    """What the stress truth of `scenario` is, for the rows measured against it."""
+    declared = case(scenario.name)
+    native = f"native, tolerance {TOLERANCE:g}"
+    if declared.similar is not None:
+        return f"{native} on {declared.similar.nominal}, scaled"
+    return native + (f", grid refined {declared.refine}x" if declared.refine > 1 else "")
+
+
 def similar_truth(similar: Similar, times: np.ndarray) -> Trajectory:
     """The nominal scenario's truth at speed * t, lengths times `length`, rates scaled to match."""
     nominal = partial_truth(build(similar.nominal), similar.speed * times, 1)

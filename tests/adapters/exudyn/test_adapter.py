@@ -25,6 +25,7 @@ import reference_solver
 import scenarios
 from adapters.base import Setting
 from adapters.exudyn import ExudynAdapter
+from adapters.exudyn.model import build_model
 from scenarios import Point, RevoluteRevolute, Scenario, Trajectory
 from scenarios.closed_form import exact
 from scenarios.scenario import Level
@@ -211,3 +212,12 @@ def test_runs_write_no_file_and_print_nothing(
     assert os.listdir(str(tmp_path)) == []
     out, err = capfd.readouterr()
     assert out == "" and err == ""
+
+
+def test_rack_and_pinion_is_a_native_linear_connector() -> None:
+    """A guided rack keeps its angle, so the mesh row is linear: Exudyn's coordinate-vector
+    connector with constant scaling, no Python constraint or Jacobian function."""
+    model = build_model(scenarios.build("rack_pinion"))
+    objects = [model.mbs.GetObject(i) for i in range(model.mbs.systemData.NumberOfObjects())]
+    vectors = [o for o in objects if o["objectType"] == "ConnectorCoordinateVector"]
+    assert vectors and all(str(o["constraintUserFunction"]) == "0" for o in vectors)

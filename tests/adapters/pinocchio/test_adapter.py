@@ -14,6 +14,7 @@ import pytest
 
 import scenarios
 from adapters import load
+from adapters.base import Setting
 from adapters.pinocchio import PinocchioAdapter
 from reference_solver import solve
 from scenarios.closed_form import exact
@@ -120,3 +121,9 @@ def test_export_writes_a_model_pinocchio_reloads(tmp_path: Path) -> None:
     model.loadFromXML(str(target), "model")
     assert model.nq == 1  # the planet mimics the arm
     assert {"arm", "planet"} <= {frame.name for frame in model.frames}
+
+
+def test_scenes_carry_no_gravity() -> None:
+    for mode in ("kinematic", "dynamic"):
+        built = PinocchioAdapter().build(scenarios.build("slider_crank"), Setting.of(mode))
+        assert np.all(built.pm.model.gravity.vector == 0.0)

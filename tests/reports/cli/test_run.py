@@ -44,6 +44,8 @@ def test_run_then_resume(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> 
     assert "report: " in capsys.readouterr().out
     assert set(first["engine"]) == {"pinocchio"} and (first["status"] == "ok").all()
     assert meta["suite"] == "quick" and meta["engines"]["pinocchio"]
+    kinematic = first[first["mode"] == "kinematic"]["measures"]
+    assert len(kinematic) and kinematic.str.startswith("adapter loop on the engine's kinematics").all()
     assert main(args) == 0
     again, _ = read_results(tmp_path)
     assert list(again["recorded_at"]) == list(first["recorded_at"])  # nothing was run again

@@ -129,6 +129,12 @@ def test_list_is_a_table_of_what_each_engine_supports(capsys) -> None:  # type: 
     assert mujoco_spline[0] == "no" and f"{mujoco_spline[1]} mujoco on cam_roller/spline: " in out
     assert "    crank_length=0.2  (a number in (0, 1e+06] m)" in out
     assert "stress_" not in out
+    # every mode says what it measures: the engine's own solver, or an adapter loop with derived levels
+    assert "  mujoco RK4: engine's own solver: MuJoCo's RK4 integrator" in out
+    assert "  mujoco kinematic: adapter loop on the engine's kinematics: " in out
+    assert (
+        "  exudyn STATIC: engine's own solver: " in out and "acceleration (adapter solve with finite" in out
+    )
 
 
 def test_list_stress_adds_the_stress_variants(capsys) -> None:  # type: ignore[no-untyped-def]

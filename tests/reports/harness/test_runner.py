@@ -11,7 +11,7 @@ import pandas as pd
 import pytest
 
 from reports.harness.results_store import TRUTH, ResultsStore, read_results, read_trajectories
-from reports.harness.runner import Runner, RunOptions
+from reports.harness.runner import HOOK_TRUTH, Runner, RunOptions
 from tests.support.fake_engine import BAD, GOOD, fake_loader, fake_truth
 
 SCENARIO = "slider_crank"
@@ -79,6 +79,9 @@ def test_good_runs_survive_with_their_known_errors(first_run) -> None:
         assert row["error"] == pytest.approx(dt / row["characteristic_length"], rel=1e-9)
         assert math.isnan(row["acceleration_length_max"])  # the fake gives no accelerations
         assert row["levels"] == "position,velocity"
+        assert row["error_position"] == row["error"] and row["error_velocity"] == 0.0
+        assert math.isnan(row["error_acceleration"])  # a level not produced is NaN, never zero
+        assert row["truth"] == HOOK_TRUTH  # the fake hook returns a bare trajectory
         assert row["run_time"] > 0 and row["build_time"] >= 0
         assert row["steps"] == 200 and row["repeats"] == 2
     assert list(rows.index[rows["is_default"]]) == ["good dt=0.001"]
@@ -94,7 +97,7 @@ def test_an_absent_engine_costs_its_own_row_only(first_run) -> None:
 
 def test_default_trajectory_and_truth_are_stored(first_run) -> None:
     stored = read_trajectories(first_run[0])
-    assert set(stored) == {(SCENARIO, "fake", "good dt=0.001"), (SCENARIO, TRUTH, "tolerance=1e-12")}
+    assert set(stored) == {(SCENARIO, "fake", "good dt=0.001"), (SCENARIO, TRUTH, HOOK_TRUTH)}
     assert stored[(SCENARIO, "fake", "good dt=0.001")].levels == ("position", "velocity")
 
 

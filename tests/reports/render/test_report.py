@@ -41,16 +41,18 @@ def test_html_is_self_contained_with_its_plots(results: Path) -> None:
     assert not re.search(r'(src|href)="(https?:|//)', page), "the page must not load anything from outside"
     images = re.findall(r'<img class="plot" alt="([^"]+)" src="data:image/png;base64,([^"]+)"', page)
     kinds = [alt for alt, _ in images]
-    # slider_crank: work-precision, error over time, overlay; cam_roller/spline: nothing ran
-    assert kinds == ["work-precision plot", "error over time", "trajectory overlay"]
+    # the suite overview; slider_crank: work-precision and deviations; cam_roller/spline: nothing ran
+    assert kinds == ["overview of error against run time", "work-precision plot", "deviations"]
     assert "no work-precision plot: no successful run to draw" in page
-    assert "no stored truth trajectory: no overlays" in page
+    assert "no stored truth trajectory: no deviations" in page
+    assert 'title="truth: closed form"' in page  # the slider-crank's truth, named in the matrix
+    assert "Stability map" not in page  # the stress suite's, never the default report's
     for _, data in images:
         assert base64.b64decode(data).startswith(b"\x89PNG\r\n\x1a\n")
     _, meta = read_results(results)
     assert f"<th>engine mujoco</th><td>{meta['engines']['mujoco']}</td>" in page
     assert 'class="unsupported"' in page  # MuJoCo and the spline cam, in the matrix
-    assert html.escape(meta["headline"]) in page
+    assert html.escape(meta["scales"]) in page
 
 
 def test_markdown_summary_has_the_matrix_and_each_scenario(results: Path) -> None:

@@ -1,0 +1,142 @@
+"""What keeps MuJoCo's cam contact honest: a sharp enough knife edge, a preload sized by the load,
+and a run that stops when the contact opens.
+
+MuJoCo holds a follower on its cam with a spring through a soft, one-sided contact. Three ways for
+that model to stop being the cam while still producing a smooth trajectory:
+- the knife edge is the 90 degree corner of a box: past a 45 degree pressure angle the disc touches
+  the box's side and the follower silently becomes flat-faced. The largest pressure angle is
+  computed from the profile and the scenario refused past MAX_EDGE_PRESSURE_ANGLE;
+- a fixed preload is overcome by the follower's inertia at speed: the preload is PRELOAD_MARGIN
+  times the follower's largest inertial force (its mass times the profile's largest acceleration at
+  the drive's speed), never below PRELOAD_FLOOR (a light preload chatters on the soft contact);
+- the contact can still open (a preload set by hand, a transient): `check_contacts` ends the run as
+  `failed` at the first grid time whose contact row is missing or carries no force.
+"""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import numpy as np
+
+from adapters.base import EngineFailure
+from scenarios.cam_profiles import EccentricDisc
+from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
+from scenarios.drivers import AbsoluteDriver
+from scenarios.scenario import Scenario
+
+EDGE_CORNER = math.pi / 2
+"""The knife edge's included angle: the corner of a box."""
+EDGE_MARGIN = math.radians(5.0)
+MAX_EDGE_PRESSURE_ANGLE = (math.pi - EDGE_CORNER) / 2 - EDGE_MARGIN
+"""Past (pi - corner) / 2 = 45 degrees the disc's normal leaves the corner's normal cone and the
+contact moves onto a side; 5 degrees are kept in hand (40 degrees)."""
+PRELOAD_MARGIN = 3.0
+"""The preload is this many times the follower's largest inertial force."""
+PRELOAD_FLOOR = 100.0
+"""N. Below about 10 N the soft contact chatters (velocity error 1e-4, acceleration 0.5 relative at
+0.6 N on cam_roller); 100 N is the measured quiet preload at moderate speed."""
+SAMPLES = 2048
+"""Profile angles sampled over one turn for the largest pressure angle and acceleration."""
+FORCE_FLOOR = 1e-9
+"""A contact force at or below this fraction of the preload counts as zero."""
+
+
+def pressure_angle(contact: KnifeEdgeCam) -> float:
+    """The largest angle between the profile's normal at the tip and the line from the cam's centre
+    to the tip, atan(|d'| / d) over one turn: the angle the wedge must accept for a follower whose
+    line of motion passes through the cam's centre (the MuJoCo wedge points along that line)."""
+    phis = np.linspace(0.0, 2.0 * math.pi, SAMPLES, endpoint=False)
+    radii = np.array([contact.profile.radii(float(p))[:2] for p in phis])
+    return float(np.max(np.arctan2(np.abs(radii[:, 1]), radii[:, 0])))
+
+
+def knife_edge_reason(contact: CamContact) -> str | None:
+    """Why the box-corner knife edge would not stay a knife edge on this profile, if it would not."""
+    if not isinstance(contact, KnifeEdgeCam) or not isinstance(contact.profile, EccentricDisc):
+        return None
+    psi = pressure_angle(contact)
+    if psi <= MAX_EDGE_PRESSURE_ANGLE:
+        return None
+    return (
+        f"cam '{contact.name}': the pressure angle reaches {math.degrees(psi):.1f} deg, past the "
+        f"{math.degrees(MAX_EDGE_PRESSURE_ANGLE):.0f} deg a knife edge made of a box corner takes "
+        f"(a {math.degrees(EDGE_CORNER):.0f} deg corner touches with its side past "
+        f"{math.degrees((math.pi - EDGE_CORNER) / 2):.0f} deg and the follower becomes flat-faced)"
+    )
+
+
+def _lift_radius(contact: CamContact, disc: EccentricDisc) -> EccentricDisc | None:
+    """The circle whose polar radius is the follower's lift: the disc itself for a knife edge, the
+    disc grown by the roller for a roller; None for a flat face (its lift is e cos, below)."""
+    if isinstance(contact, RollerCam):
+        return EccentricDisc(disc.radius + contact.roller_radius, disc.eccentricity)
+    if isinstance(contact, FlatFaceCam):
+        return None
+    return disc
+
+
+def largest_acceleration(scenario: Scenario, contact: CamContact) -> float:
+    """The follower's largest acceleration along its line over the scenario's grid: d'' w^2 + d' a
+    with w, a the cam's driven rate and angular acceleration (0 when the cam is not driven alone)."""
+    disc = contact.profile
+    if not isinstance(disc, EccentricDisc):
+        return 0.0
+    rate, spin = _cam_rates(scenario, contact.cam)
+    lift = _lift_radius(contact, disc)
+    phis = np.linspace(0.0, 2.0 * math.pi, SAMPLES, endpoint=False)
+    if lift is None:
+        first, second = disc.eccentricity * np.ones_like(phis), disc.eccentricity * np.ones_like(phis)
+    else:
+        derivatives = np.array([lift.radii(float(p))[1:3] for p in phis])
+        first, second = np.abs(derivatives[:, 0]), np.abs(derivatives[:, 1])
+    return float(np.max(second) * rate**2 + np.max(first) * spin)
+
+
+def _cam_rates(scenario: Scenario, cam: str) -> tuple[float, float]:
+    """The cam's largest |rate| and |angular acceleration| over the grid from its own driver."""
+    times = scenario.times()
+    for driver in scenario.drivers:
+        if isinstance(driver, AbsoluteDriver) and driver.body == cam and driver.coordinate == "theta":
+            rate = max(abs(driver.motion.df(t)) for t in times)
+            return rate, max(abs(driver.motion.ddf(t)) for t in times)
+    return 0.0, 0.0
+
+
+def follower_of(contact: CamContact) -> str:
+    if isinstance(contact, RollerCam):
+        return contact.centre.body
+    if isinstance(contact, FlatFaceCam):
+        return contact.face.body
+    return contact.tip.body
+
+
+def preload(scenario: Scenario) -> float:
+    """The follower preload (N): PRELOAD_MARGIN times the largest inertial force over the cams,
+    at least PRELOAD_FLOOR."""
+    forces = [scenario.body(follower_of(c)).mass * largest_acceleration(scenario, c) for c in scenario.cams]
+    return max(PRELOAD_FLOOR, PRELOAD_MARGIN * max(forces, default=0.0))
+
+
+def check_contacts(m: mujoco.MjModel, d: mujoco.MjData, load: float) -> None:
+    """Raise a `failed` EngineFailure if some cam pair has no contact row or no force now (after a
+    forward pass at the current state)."""
+    forces = np.zeros(m.npair)
+    found = np.zeros(m.npair, dtype=bool)
+    pairs = {frozenset((int(m.pair_geom1[k]), int(m.pair_geom2[k]))): k for k in range(m.npair)}
+    for i in range(d.ncon):
+        contact = d.contact[i]
+        k = pairs.get(frozenset((int(contact.geom1), int(contact.geom2))))
+        if k is not None and contact.efc_address >= 0:
+            found[k] = True
+            forces[k] += d.efc_force[contact.efc_address]
+    for k in range(m.npair):
+        if not found[k] or forces[k] <= FORCE_FLOOR * load:
+            name = mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_PAIR, k) or str(k)
+            what = "no contact row" if not found[k] else f"force {forces[k]:.3g} N"
+            raise EngineFailure(
+                f"contact lost: cam '{name}' at t = {d.time:.6g} s ({what}; the follower left the "
+                f"cam, preload {load:.3g} N)",
+                float(d.time),
+            )

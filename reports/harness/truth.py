@@ -1,0 +1,68 @@
+"""The truth each run is measured against, independent of every engine where it can be.
+
+Where the scenario has a closed form (scenarios.closed_form.exact: every family, eccentric disc cams
+among the cams) the closed form is the truth, and the native solver is measured against it like any
+other engine. Elsewhere (spline and lobed cam profiles) the truth is the native solver solved on a
+grid REFINE times finer at tolerance TOLERANCE, sampled on the scenario's grid. A dynamic scenario
+(no closed form) takes the native forward dynamics at DYNAMIC_RTOL, tighter than any setting the
+native engine is measured at. Each truth carries its name, stored with every row measured against it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from scenarios import Scenario, Trajectory
+from scenarios.closed_form import exact
+
+TOLERANCE = 1e-12
+REFINE = 4
+CLOSED_FORM = "closed form"
+NATIVE = f"native, tolerance {TOLERANCE:g}, grid refined {REFINE}x"
+DYNAMIC_RTOL = 1e-13
+NATIVE_DYNAMIC = f"native dynamics, DOP853 rtol {DYNAMIC_RTOL:g}"
+
+
+@dataclass(frozen=True)
+class NamedTruth:
+    """A truth trajectory and the name that says what it is."""
+
+    trajectory: Trajectory
+    name: str
+
+
+def closed_form(scenario: Scenario, times: np.ndarray) -> Trajectory | None:
+    """The closed-form trajectory, or None where the family has none for this scenario."""
+    try:
+        return exact(scenario, times)
+    except (KeyError, ValueError):
+        return None
+
+
+def native_refined(scenario: Scenario, times: np.ndarray) -> Trajectory:
+    """The native solver on a grid REFINE times finer at TOLERANCE, sampled on `times` (NaN from
+    where it finds no configuration)."""
+    from reports.stress.truth import partial_truth  # on first use: the native solver is slow to import
+
+    return partial_truth(scenario, np.asarray(times, dtype=float), REFINE)
+
+
+def independent_truth(scenario: Scenario, times: np.ndarray) -> NamedTruth:
+    """The runner's default truth: the closed form where there is one, the refined native solve
+    otherwise."""
+    grid = np.asarray(times, dtype=float)
+    if scenario.analysis == "dynamic":
+        from reference_solver.dynamics import simulate  # on first use, as above
+
+        return NamedTruth(simulate(scenario, grid, DYNAMIC_RTOL).trajectory(), NATIVE_DYNAMIC)
+    found = closed_form(scenario, grid)
+    if found is not None:
+        return NamedTruth(found, CLOSED_FORM)
+    return NamedTruth(native_refined(scenario, grid), NATIVE)
+
+
+def named(value: Trajectory | NamedTruth, fallback: str) -> NamedTruth:
+    """A truth hook's answer as a NamedTruth (a hook that returns a bare trajectory gets `fallback`)."""
+    return value if isinstance(value, NamedTruth) else NamedTruth(value, fallback)

@@ -1,0 +1,132 @@
+"""The report's first screen: what the native solver's agreement with the closed forms is, the
+scenario x engine matrix at every level, and how far the engines' default runs lie from each other."""
+
+from __future__ import annotations
+
+import html
+import math
+from typing import Any
+
+import pandas as pd
+
+from reports.harness.agreement import pair_differences, widest
+from reports.harness.level_error import LEVEL_COLUMNS, characteristic_rate
+from reports.harness.truth import CLOSED_FORM
+from reports.render.report_data import ReportData, number
+from scenarios import ScenarioError
+from scenarios import load as build_scenario
+
+NATIVE = "reference"
+BEST, WORST = -14.0, -1.0  # log10 error drawn fully green, fully red
+LEVEL_LETTERS = {"position": "pos", "velocity": "vel", "acceleration": "acc"}
+
+
+def native_line(frame: pd.DataFrame) -> str:
+    """One sentence: the native solver's worst error against the closed forms, per level."""
+    if "truth" not in frame:
+        return "The native solver was not measured against closed forms (results without a truth column)."
+    native = frame[(frame["engine"] == NATIVE) & frame["is_default"].astype(bool)]
+    closed = native[native["truth"] == CLOSED_FORM]
+    if closed.empty:
+        return "The native solver has no run against a closed form in these results."
+    bad = closed[closed["status"] != "ok"]
+    worst = []
+    for level, column in LEVEL_COLUMNS.items():
+        values = closed.loc[closed["status"] == "ok", column].astype(float)
+        if values.notna().any():
+            where = str(closed.loc[values.idxmax(), "scenario"])
+            worst.append(f"{level} {number(float(values.max()))} ({where})")
+    others = int(native["scenario"].nunique() - closed["scenario"].nunique())
+    line = (
+        f"Native solver against the closed forms, at its default setting on "
+        f"{closed['scenario'].nunique()} scenarios: worst error {', '.join(worst)}"
+    )
+    if not bad.empty:
+        line += f"; not ok on {', '.join(sorted(bad['scenario']))}"
+    if others:
+        line += f". {others} scenario(s) have no closed form: there the truth is the native solver refined"
+    return line + "."
+
+
+def cell_colour(error: float) -> str:
+    """Green (small) to red (large) by log10 error."""
+    share = (math.log10(max(error, 1e-300)) - BEST) / (WORST - BEST)
+    share = min(max(share, 0.0), 1.0)
+    hue = 120.0 * (1.0 - share)
+    return f"hsl({hue:.0f}, 65%, 82%)"
+
+
+def level_matrix(data: ReportData) -> str:
+    """scenario x (engine, level) at each engine's default setting: the error coloured by its log,
+    the status where the run was not ok, a dash for a level the engine does not produce."""
+    engines = data.engines()
+    top = "".join(f'<th colspan="3">{html.escape(e)}</th>' for e in engines)
+    sub = "".join(f"<th>{LEVEL_LETTERS[lv]}</th>" for _ in engines for lv in LEVEL_COLUMNS)
+    body = []
+    for scenario in data.scenarios():
+        cells = []
+        for engine in engines:
+            cells += matrix_cells(data.default_row(scenario, engine))
+        truth = _truth_of(data, scenario)
+        link = f'<a href="#s-{scenario.replace("/", "-")}">{html.escape(scenario)}</a>'
+        body.append(f'<tr><th title="truth: {html.escape(truth)}">{link}</th>{"".join(cells)}</tr>')
+    head = f'<tr><th rowspan="2">scenario</th>{top}</tr><tr>{sub}</tr>'
+    return f'<table class="matrix">{head}{"".join(body)}</table>'
+
+
+def matrix_cells(row: pd.Series | None) -> list[str]:
+    """One engine's three cells of a matrix row (one spanning cell where it did not run ok)."""
+    if row is None:
+        return ['<td class="notrun" colspan="3">not run</td>']
+    status = str(row["status"])
+    if status != "ok":
+        tip = html.escape(f"{row['setting']}: {row['message']}")
+        return [f'<td class="{html.escape(status)}" colspan="3" title="{tip}">{html.escape(status)}</td>']
+    cells = []
+    for column in LEVEL_COLUMNS.values():
+        value = float(row[column]) if column in row and row[column] is not None else math.nan
+        if math.isnan(value):
+            cells.append('<td class="notrun" title="level not produced">–</td>')
+        else:
+            style = f'style="background:{cell_colour(value)}"'
+            cells.append(f'<td {style} title="{html.escape(str(row["setting"]))}">{value:.0e}</td>')
+    return cells
+
+
+def _truth_of(data: ReportData, scenario: str) -> str:
+    return truth_names(data.rows(scenario))
+
+
+def truth_names(rows: pd.DataFrame) -> str:
+    """The truths the rows were measured against, most used first ("unnamed" for old results)."""
+    if "truth" not in rows:
+        return "unnamed"
+    counts = rows["truth"][rows["truth"].astype(str) != ""].astype(str).value_counts()
+    return " / ".join(counts.index) or "none"
+
+
+def agreement_frame(data: ReportData) -> pd.DataFrame:
+    """Per scenario and level: the pair of engines whose default runs differ most, and by how much."""
+    records: list[dict[str, Any]] = []
+    for scenario in data.scenarios():
+        runs = data.default_trajectories(scenario)
+        if len(runs) < 2:
+            continue
+        pairs = pair_differences(runs, data.characteristic_length(scenario), scenario_rate(data, scenario))
+        record: dict[str, Any] = {"scenario": scenario, "engines": len(runs)}
+        for level in LEVEL_COLUMNS:
+            pair, value = widest(pairs, level)
+            record[level] = "–" if pair is None else f"{number(value)} ({pair[0]}–{pair[1]})"
+        records.append(record)
+    return pd.DataFrame(records)
+
+
+def scenario_rate(data: ReportData, scenario: str) -> float:
+    """The characteristic rate stored with the rows, else the scenario's own."""
+    rows = data.rows(scenario)
+    if "characteristic_rate" in rows and pd.notna(rows["characteristic_rate"].iloc[0]):
+        return float(rows["characteristic_rate"].iloc[0])
+    try:
+        return characteristic_rate(build_scenario(scenario))
+    except (ScenarioError, KeyError):
+        return math.nan

@@ -1,0 +1,122 @@
+"""Error against run time across the whole suite, per engine and mode, summarised over scenarios.
+
+Each engine's sweep point (its k-th step size dt from the coarsest, or its k-th tolerance where it has
+no step; the steps scale with each scenario's period) is summarised over the scenarios it ran
+with a shifted geometric mean, as qpbenchmark does: exp(mean(log(x + s))) - s,
+so that neither an error of exactly zero nor a few very fast runs dominate. A run that did not end
+`ok` counts with error FAILED_ERROR (off by the whole characteristic scale) and run time the time
+limit, so that a setting cannot look good by failing on the hard scenarios.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+
+from reports.harness.level_error import LEVEL_COLUMNS
+from reports.render.level_plots import finish
+from reports.render.plots import FLOOR, MARKERS, colour
+
+SHIFT_TIME = 1e-3  # s
+SHIFT_ERROR = 1e-15  # dimensionless: double precision
+FAILED_ERROR = 1.0
+STEP_KEYS = ("dt", "tol", "tolerance")
+DEFINITION = (
+    "Each point is one engine-mode at its k-th step size (or tolerance) from the coarsest, over "
+    f"the scenarios it ran with a shifted geometric mean (shift {SHIFT_ERROR:g} on errors, "
+    f"{SHIFT_TIME:g} s on run times); a run that did not end ok counts with error {FAILED_ERROR:g} "
+    "and the time limit."
+)
+
+
+def shifted_geometric_mean(values: np.ndarray | list[float], shift: float) -> float:
+    array = np.asarray(values, dtype=float)
+    array = array[np.isfinite(array)]
+    if array.size == 0:
+        return math.nan
+    return float(np.exp(np.mean(np.log(np.maximum(array, 0.0) + shift))) - shift)
+
+
+def step_of(label: str) -> float:
+    """The step size of a setting label (`dt=...`, else its tolerance); NaN without either."""
+    options = dict(part.split("=", 1) for part in label.split(" ")[1:] if "=" in part)
+    for key in STEP_KEYS:
+        if key in options:
+            try:
+                return float(options[key])
+            except ValueError:
+                return math.nan
+    return math.nan
+
+
+def sweep_points(runs: pd.DataFrame) -> pd.Series:
+    """Each run's place in its engine-mode's sweep on its scenario, 1 for the coarsest step: step
+    sizes scale with each scenario's period, so the same place, not the same dt, is summarised."""
+    steps = pd.Series([step_of(str(s)) for s in runs["setting"]], index=runs.index).fillna(0.0)
+    keys = [runs["scenario"], runs["engine"], runs["mode"]]
+    return steps.groupby(keys).rank(method="dense", ascending=False).astype(int)
+
+
+def summary(frame: pd.DataFrame, timeout: float) -> pd.DataFrame:
+    """One row per engine, mode and sweep point: its shifted geometric mean run time and error per
+    level, how many scenarios it ran and how many did not end ok."""
+    runs = frame[frame["mode"].astype(str) != ""].copy()
+    runs["point"] = sweep_points(runs)
+    records: list[dict[str, Any]] = []
+    for (engine, mode, point), group in runs.groupby(["engine", "mode", "point"], sort=True):
+        ok = group["status"] == "ok"
+        times = np.where(ok & group["run_time"].notna(), group["run_time"], timeout)
+        record: dict[str, Any] = {
+            "engine": engine,
+            "mode": mode,
+            "point": point,
+            "scenarios": int(group["scenario"].nunique()),
+            "not_ok": int((~ok).sum()),
+            "default": bool(group["is_default"].mean() >= 0.5),
+            "run_time": shifted_geometric_mean(times, SHIFT_TIME),
+        }
+        for column in LEVEL_COLUMNS.values():
+            values = group[column].to_numpy(float) if column in group else np.full(len(group), np.nan)
+            produced = ok.to_numpy() & np.isfinite(values)
+            if not produced.any():  # the engine-mode does not produce this level
+                record[column] = math.nan
+                continue
+            scored = np.where(ok.to_numpy(), values, FAILED_ERROR)
+            record[column] = shifted_geometric_mean(scored, SHIFT_ERROR)
+        records.append(record)
+    return pd.DataFrame(records)
+
+
+def overview_figure(table: pd.DataFrame, truth: str) -> Figure | None:
+    """Error (x) against run time (y), one panel per level, one line per engine-mode."""
+    if table.empty:
+        return None
+    figure, axes_row = plt.subplots(1, 3, figsize=(13.5, 3.9), sharey=True)
+    for axes, (level, column) in zip(axes_row, LEVEL_COLUMNS.items(), strict=True):
+        for k, ((engine, mode), curve) in enumerate(table.groupby(["engine", "mode"], sort=True)):
+            curve = curve[np.isfinite(curve[column].to_numpy(float))].sort_values("run_time")
+            if curve.empty:
+                continue
+            errors = np.maximum(curve[column].to_numpy(float), FLOOR)
+            times = curve["run_time"].to_numpy(float)
+            label = f"{engine} {mode} ({int(curve['scenarios'].max())})"
+            axes.plot(errors, times, marker=MARKERS[k % len(MARKERS)], color=colour(engine), label=label)
+            default = curve["default"].to_numpy(bool)
+            axes.scatter(errors[default], times[default], s=150, facecolors="none", edgecolors=colour(engine))
+        axes.set_xscale("log")
+        axes.set_yscale("log")
+        axes.set_xlabel(f"{level} error (dimensionless)")
+        axes.grid(True, which="major", alpha=0.3)
+        axes.set_title(level, fontsize=10)
+    axes_row[0].set_ylabel("run time [s]")
+    title = (
+        f"error against run time over the suite (shifted geometric mean; truth: {truth}; "
+        "ringed: the default on most scenarios; (n): scenarios)"
+    )
+    finish(figure, axes_row, title)
+    return figure
