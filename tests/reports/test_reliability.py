@@ -306,7 +306,7 @@ def test_every_level_is_compared_keyed_per_level() -> None:
 def test_update_says_what_it_adds_drops_and_changes(stored: Path, tmp_path: Path, capsys) -> None:
     frame = read_results(stored)[0]
     old = pd.concat([frame.iloc[1:], frame.iloc[:1].assign(scenario="four_bar")])
-    old.loc[old.index[0], "error"] = 0.5
+    old.loc[old.index[0], ["error", "error_position"]] = 0.5
     baseline = tmp_path / "b.json"
     gate.write_baseline(baseline, old, {})
     assert main(["check", "--baseline", str(baseline), "--results", str(stored), "--update"]) == 0

@@ -59,11 +59,11 @@ def run_check(capsys: pytest.CaptureFixture[str], *args: str) -> tuple[int, str]
 def test_check_fails_readably_on_a_doctored_copy(checked, tmp_path: Path, capsys) -> None:
     out, _, _ = checked
     original, _ = read_results(out)
-    ok = original[(original["status"] == "ok") & original["is_default"]].sort_values("error")
+    ok = original[(original["status"] == "ok") & original["is_default"]].sort_values("error_position")
     worse, broken = ok.index[-1], ok.index[0]  # errors well above the gate's floor, and any
 
     def edit(frame: pd.DataFrame) -> None:
-        frame.loc[worse, "error"] = frame.loc[worse, "error"] * 1000
+        frame.loc[worse, ["error", "error_position"]] = frame.loc[worse, "error_position"] * 1000
         frame.loc[broken, "status"] = "diverged"
         frame.loc[broken, "message"] = "doctored: state exploded"
 
