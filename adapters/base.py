@@ -37,6 +37,7 @@ import numpy as np
 
 from adapters.modes import Mode, measures_of
 from adapters.timing import fastest
+from scenarios.family import in_range, range_text
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -95,10 +96,10 @@ class Option:
     def describe(self) -> str:
         if self.choices:
             return "one of " + ", ".join(self.choices)
-        bracket = "(" if self.low_open else "["
-        unit = f" {self.unit}" if self.unit else ""
         article = "an" if self.kind is int else "a"
-        return f"{article} {self.kind.__name__} in {bracket}{self.low:g}, {self.high:g}]{unit}"
+        return (
+            f"{article} {self.kind.__name__} in {range_text(self.low, self.high, self.low_open, self.unit)}"
+        )
 
     def check(self, engine: str, value: OptionValue) -> OptionValue:
         """`value` as the option's type; SettingError with the range otherwise."""
@@ -111,8 +112,7 @@ class Option:
             number = float(value)
         except (TypeError, ValueError):
             raise problem from None
-        below = number <= self.low if self.low_open else number < self.low
-        if not math.isfinite(number) or below or number > self.high:
+        if not in_range(number, self.low, self.high, self.low_open):
             raise problem
         if self.kind is int:
             if number != int(number):

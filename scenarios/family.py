@@ -20,6 +20,17 @@ MAX_STEPS = 10_000_000  # grid steps: 1e7 points of a few bodies is about 2 GB o
 MAX_REVOLUTIONS = 1e5
 
 
+def range_text(low: float, high: float, low_open: bool, unit: str) -> str:
+    """`(0, 1e+06] m`: a range as every message and listing writes it."""
+    return f"{'(' if low_open else '['}{low:g}, {high:g}]" + (f" {unit}" if unit else "")
+
+
+def in_range(number: float, low: float, high: float, low_open: bool) -> bool:
+    """Whether `number` is finite and lies in the range (NaN and infinities never do)."""
+    above_low = number > low if low_open else number >= low
+    return math.isfinite(number) and above_low and number <= high
+
+
 @dataclass(frozen=True)
 class Parameter:
     """One family parameter: its default (whose type is the parameter's type), unit and range.
@@ -47,9 +58,7 @@ class Parameter:
         if self.choices:
             return "one of " + ", ".join(self.choices)
         article = "an" if self.kind == "integer" else "a"
-        low = "(" if self.low_open else "["
-        unit = f" {self.unit}" if self.unit else ""
-        span = f"{article} {self.kind} in {low}{self.low:g}, {self.high:g}]{unit}"
+        span = f"{article} {self.kind} in {range_text(self.low, self.high, self.low_open, self.unit)}"
         return span + (", not 0" if self.nonzero else "")
 
     def check(self, family: str, key: str, value: ParameterValue) -> ParameterValue:
@@ -63,8 +72,7 @@ class Parameter:
             number = float(value)
         except (TypeError, ValueError):
             raise ScenarioError(f"{family}: {key} must be {self.describe()}, got {value!r}") from None
-        below = number <= self.low if self.low_open else number < self.low
-        if not math.isfinite(number) or below or number > self.high or (self.nonzero and number == 0):
+        if not in_range(number, self.low, self.high, self.low_open) or (self.nonzero and number == 0):
             raise ScenarioError(f"{family}: {key} must be {self.describe()}, got {value!r}")
         if self.kind == "integer":
             if number != int(number):

@@ -96,9 +96,9 @@ def plan_tree(scenario: Scenario, poses: dict[str, Pose] | None = None) -> Tree:
     except TopologyError as error:
         raise TreeError(str(error)) from None
     by_name = {joint.name: joint for joint in scenario.joints}
-    order = list(by_name)
+    order = {name: k for k, name in enumerate(by_name)}
     chosen = sorted(
-        (e.joint for e in spanning.edges), key=lambda j: (GROWTH_ORDER.index(type(j)), order.index(j.name))
+        (e.joint for e in spanning.edges), key=lambda j: (GROWTH_ORDER.index(type(j)), order[j.name])
     )
     loops = []
     for name in spanning.closures:
