@@ -18,7 +18,10 @@ import adapters
 from reports.cli.main import main
 from scenarios import all_families
 
-FAMILIES = all_families()
+# The kinematic families: a random stiffness or horizon of a dynamic family can make one forward
+# integration take minutes (seen in CI); every dynamic parameter's range is still refused as declared
+# in tests/scenarios/test_catalogue.py.
+FAMILIES = {name: family for name, family in all_families().items() if not family.dynamic}
 ENGINES = {name: adapters.load(name) for name in adapters.names()}
 OPTIONS = {name: {o.name: o for o in engine.options} for name, engine in ENGINES.items()}
 MODES = sorted({mode for engine in ENGINES.values() for mode in engine.modes} | {"nosuch"})
