@@ -26,6 +26,7 @@ import adapters
 from adapters.base import Adapter, RunResult, Setting
 from reports.harness import provenance
 from reports.harness.columns import NOT_RUN
+from reports.harness.energy_drift import energy_drift
 from reports.harness.isolation import run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION, level_errors
 from reports.harness.metrics import (
@@ -33,7 +34,7 @@ from reports.harness.metrics import (
     Residual,
     compared_levels,
     error_metrics,
-    residual_metric,
+    residual_metrics,
 )
 from reports.harness.results_store import ResultsStore
 from reports.harness.resume import STALE, ResumeLog, ResumePolicy, rerun_reason, staleness
@@ -346,8 +347,13 @@ def compare(
         notes.append("constraint residual not measured (reference_solver.constraint_residual missing)")
     else:
         try:
-            metrics["constraint_residual"] = residual_metric(scenario, result.trajectory, residual)
+            metrics.update(residual_metrics(scenario, result.trajectory, residual))
         except Exception as error:
             notes.append(f"constraint residual failed: {type(error).__name__}: {error}")
             metrics["constraint_residual"] = math.nan
+    if scenario.analysis == "dynamic":
+        try:
+            metrics["energy_drift"] = energy_drift(scenario, result.trajectory, truth)
+        except (ValueError, KeyError) as error:
+            notes.append(f"energy drift not measured: {error}")
     return metrics, levels, "; ".join(notes)

@@ -16,7 +16,7 @@ from typing import Any
 
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.provenance import revision_label
-from reports.render import first_screen, level_plots, overview, plots, stability_render
+from reports.render import dynamics_render, first_screen, level_plots, overview, plots, stability_render
 from reports.render.report_data import ReportData, number, table
 
 STYLE = """
@@ -57,7 +57,7 @@ def render(data: ReportData) -> str:
         '<html lang="en"><head><meta charset="utf-8">',
         "<title>mbxval report</title>",
         f"<style>{STYLE}</style><script>{CHECK}</script></head><body>",
-        "<h1>mbxval: planar multibody kinematics across engines</h1>",
+        f"<h1>mbxval: planar multibody {_subject(meta)} across engines</h1>",
         f'<p class="muted">{html.escape(_provenance(meta))}</p>',
         f"<p><strong>{html.escape(first_screen.native_line(data.frame))}</strong></p>",
         "<h2>Error at each level, each engine's default setting</h2>",
@@ -71,12 +71,17 @@ def render(data: ReportData) -> str:
         "<h2>Engines against each other (default settings)</h2>",
         _agreement(data),
         stability_render.html_fragment(data),  # "" unless these are the stress suite's results
+        dynamics_render.html_fragment(data, _image),  # "" without dynamic scenarios
         "<h2>Engines and machine</h2>",
         _key_values(_versions(meta)),
     ]
     parts += _sections(data)
     parts.append("</body></html>")
     return "\n".join(parts)
+
+
+def _subject(meta: dict[str, Any]) -> str:
+    return "dynamics" if meta.get("suite") == "dynamics" else "kinematics"
 
 
 def _definitions(meta: dict[str, Any]) -> str:
