@@ -34,10 +34,13 @@ LEFT_OUT = ("n_four_bar/spec",)
 
 def scenario_names() -> list[str]:
     """Every dynamic scenario of the catalogue, LEFT_OUT excepted."""
-    dynamic = {name for name, family in all_families().items() if family.dynamic}
-    return [
-        n for n in catalogue(include_dynamic=True) if n.partition("/")[0] in dynamic and n not in LEFT_OUT
-    ]
+    return [n for n in catalogue(include_dynamic=True) if is_dynamic(n) and n not in LEFT_OUT]
+
+
+def is_dynamic(name: str) -> bool:
+    """Whether `name` is a scenario of a dynamic family."""
+    family = all_families().get(name.partition("/")[0])
+    return family is not None and family.dynamic
 
 
 def map_cells() -> dict[str, dict[str, float]]:

@@ -297,7 +297,8 @@ class Runner:
             "resume": self.resume_log.lines(),
             "truth": (
                 "each row's `truth` column: the closed form where the scenario has one, else the "
-                "native solver on a refined grid at tight tolerance"
+                "native solver on a refined grid at tight tolerance; for dynamic scenarios the native "
+                "forward dynamics at tight tolerance"
             ),
             "headline": HEADLINE_DEFINITION,
             "scales": SCALE_DEFINITION,

@@ -14,7 +14,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from reference_solver import constraint_residual
-from reports.dynamics.cases import map_cells
+from reports.dynamics.cases import SINGULAR_PASSAGES, TRUTH_RTOL, is_dynamic, map_cells
 from reports.dynamics.stability import DRIFTED, Cell, map_rows
 from reports.harness.energy_drift import DRIFT_DEFINITION, drift_series
 from reports.render.plots import FLOOR, colour
@@ -39,10 +39,24 @@ Series = Callable[[Scenario, Trajectory, Trajectory], np.ndarray]
 def dynamic_scenarios(data: ReportData) -> list[str]:
     """The dynamic scenarios of the results (map cells apart), in the report's order."""
     cells = map_cells()
-    present = set(
-        data.frame.loc[data.frame["truth"].astype(str).str.startswith("native dynamics"), "scenario"]
+    return [s for s in data.scenarios() if is_dynamic(s) and s not in cells]
+
+
+def headline(data: ReportData) -> str:
+    """One sentence for the first screen: the truth, and per engine its default's worst position
+    error over the dynamic scenarios (map cells apart) and how many ran ok."""
+    names = dynamic_scenarios(data)
+    parts = []
+    for engine in data.engines():
+        rows = [r for n in names if (r := data.default_row(n, engine)) is not None]
+        ok = [float(r["error_position"]) for r in rows if r["status"] == "ok"]
+        worst = max((v for v in ok if math.isfinite(v)), default=math.nan)
+        parts.append(f"{engine} ok on {len(ok)} of {len(rows)}, worst {number(worst)}")
+    truth = (
+        f"the native forward dynamics (DOP853 at rtol {TRUTH_RTOL:g}; "
+        f"{', '.join(f'{f} {r:g}' for f, r in SINGULAR_PASSAGES.items())} through its singular passage)"
     )
-    return [s for s in data.scenarios() if s in present and s not in cells]
+    return f"Dynamic scenarios against {truth}, each engine's default setting: {'; '.join(parts)}."
 
 
 def stability_figure(cells: list[Cell]) -> Figure | None:

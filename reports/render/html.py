@@ -59,7 +59,7 @@ def render(data: ReportData) -> str:
         f"<style>{STYLE}</style><script>{CHECK}</script></head><body>",
         f"<h1>mbxval: planar multibody {_subject(meta)} across engines</h1>",
         f'<p class="muted">{html.escape(_provenance(meta))}</p>',
-        f"<p><strong>{html.escape(first_screen.native_line(data.frame))}</strong></p>",
+        f"<p><strong>{html.escape(_headline(data))}</strong></p>",
         "<h2>Error at each level, each engine's default setting</h2>",
         f'<p class="muted">{html.escape(_definitions(meta))}</p>',
         first_screen.level_matrix(data),
@@ -78,6 +78,12 @@ def render(data: ReportData) -> str:
     parts += _sections(data)
     parts.append("</body></html>")
     return "\n".join(parts)
+
+
+def _headline(data: ReportData) -> str:
+    if data.meta.get("suite") == "dynamics":
+        return dynamics_render.headline(data)
+    return first_screen.native_line(data.frame)
 
 
 def _subject(meta: dict[str, Any]) -> str:
