@@ -74,6 +74,7 @@ def render(data: ReportData) -> str:
         dynamics_render.html_fragment(data, _image),  # "" without dynamic scenarios
         "<h2>Engines and machine</h2>",
         _key_values(_versions(meta)),
+        _modes(data),
     ]
     parts += _sections(data)
     parts.append("</body></html>")
@@ -116,6 +117,25 @@ def _versions(meta: dict[str, Any]) -> dict[str, str]:
 def _key_values(values: dict[str, str]) -> str:
     rows = "".join(f"<tr><th>{html.escape(k)}</th><td>{html.escape(v)}</td></tr>" for k, v in values.items())
     return f"<table>{rows}</table>"
+
+
+def _modes(data: ReportData) -> str:
+    """What each engine mode in the results measures (the rows' `measures` column)."""
+    if "measures" not in data.frame:
+        return ""
+    known = data.frame[data.frame["measures"].astype(str) != ""]
+    modes = known.drop_duplicates(["engine", "mode"])[["engine", "mode", "measures"]]
+    if modes.empty:
+        return ""
+    order = {engine: k for k, engine in enumerate(data.engines())}
+    modes = (
+        modes.assign(_order=modes["engine"].map(order)).sort_values(["_order", "mode"]).drop(columns="_order")
+    )
+    note = (
+        "What each mode measures: the engine's own solver or integrator, or a loop in the adapter on "
+        "the engine's kinematics, and which levels the adapter derives."
+    )
+    return f'<p class="muted">{note}</p>{modes.to_html(index=False, escape=True, border=0)}'
 
 
 def _counts(data: ReportData) -> str:
