@@ -46,8 +46,9 @@ def dynamic_default(scenario: Scenario) -> Setting:
 
 def dynamic_sweep(scenario: Scenario) -> list[Setting]:
     """Each integrator over a 1-3-10 ladder of steps from the finest its budget allows up to the
-    output interval (the engine step divides it), at the default softness; then RK4's softness (solref time constant, solimp) at the default step.
-    Beyond BODY_BUDGET bodies, the default alone."""
+    output interval (the engine step divides it), at the default softness; then RK4's softness
+    (solref time constant, solimp) at the default step. Beyond BODY_BUDGET bodies, the default
+    alone."""
     default = dynamic_default(scenario)
     if default is LARGE:
         return [LARGE]
