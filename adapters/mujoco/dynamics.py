@@ -17,6 +17,7 @@ import numpy as np
 
 from adapters.base import Setting, Singular
 from adapters.mujoco.loads import Motor
+from adapters.mujoco.tree import TreeError, plan_tree
 from scenarios.motions import Constant
 from scenarios.scenario import Scenario
 
@@ -37,36 +38,55 @@ SOFTNESS = ((2.0, 0.9999), (16.0, 0.9999), (4.0, 0.99))
 
 
 def dynamic_default(scenario: Scenario) -> Setting:
-    """RK4 at 1e-4 s; the equalities as stiff as MuJoCo's soft constraints go (impedance 0.9999,
-    its maximum) with a time constant of 4 steps: at MuJoCo's minimum of 2 the constraint rings
-    under RK4 (velocity errors ten times larger on the free four-bar), beyond 8 the softness shows.
-    Beyond BODY_BUDGET bodies, LARGE."""
-    return LARGE if len(scenario.bodies) > BODY_BUDGET else DEFAULT
+    """RK4 at 1e-4 s (coarser where the horizon needs more than STEP_BUDGET such steps); the
+    equalities as stiff as MuJoCo's soft constraints go (impedance 0.9999, its maximum) with a time
+    constant of 4 steps: at MuJoCo's minimum of 2 the constraint rings under RK4 (velocity errors
+    ten times larger on the free four-bar), beyond 8 the softness shows. Beyond BODY_BUDGET bodies,
+    LARGE."""
+    if len(scenario.bodies) > BODY_BUDGET:
+        return LARGE
+    ladder = _ladder(scenario)
+    return DEFAULT.replace(dt=max(float(DEFAULT["dt"]), ladder[0])) if ladder else DEFAULT
 
 
 def dynamic_sweep(scenario: Scenario) -> list[Setting]:
     """Each integrator over a 1-3-10 ladder of steps from the finest its budget allows up to the
-    output interval (the engine step divides it), at the default softness; then RK4's softness
-    (solref time constant, solimp) at the default step. Beyond BODY_BUDGET bodies, the default
-    alone."""
+    output interval (the engine step divides it), at the default softness; then, where a loop is
+    closed, RK4's softness (solref time constant, solimp) at the default step. Beyond BODY_BUDGET
+    bodies, the default alone."""
     default = dynamic_default(scenario)
     if default is LARGE:
         return [LARGE]
+    ladder = _ladder(scenario)
+    settings = [
+        Setting(mode, default.options).replace(dt=dt)
+        for mode, rungs in RUNGS.items()
+        for dt in ladder[:rungs]
+    ]
+    if _closes_loops(scenario):
+        settings += [default.replace(tc_steps=tc, impedance=imp) for tc, imp in SOFTNESS]
+    return settings
+
+
+def _ladder(scenario: Scenario) -> list[float]:
+    """Steps of 1, 3, 10, 30 ... from the finest keeping the horizon within STEP_BUDGET steps up to
+    the output interval."""
     times = scenario.times()
     finest = float(times[-1] - times[0]) / STEP_BUDGET
     interval = float(times[1] - times[0]) if len(times) > 1 else np.inf
-    ladder = [
+    return [
         step
         for step in (c * 10.0**e for e in range(-9, 0) for c in (1.0, 3.0))
         if finest * (1 - 1e-9) <= step <= interval * (1 + 1e-9)
     ]
-    settings = [
-        Setting(mode, DEFAULT.options).replace(dt=dt)
-        for mode, rungs in RUNGS.items()
-        for dt in ladder[:rungs]
-    ]
-    settings += [DEFAULT.replace(tc_steps=tc, impedance=imp) for tc, imp in SOFTNESS]
-    return settings
+
+
+def _closes_loops(scenario: Scenario) -> bool:
+    """Whether MuJoCo closes a loop with a soft equality (an open chain has nothing to soften)."""
+    try:
+        return bool(plan_tree(scenario).loops)
+    except TreeError:
+        return False
 
 
 def rate_velocities(m: mujoco.MjModel, d: mujoco.MjData, sites: list[int], rates: np.ndarray) -> None:

@@ -137,6 +137,8 @@ def mjcf(
         key = ET.SubElement(ET.SubElement(root, "keyframe"), "key", name="start")
         key.set("qpos", num(*keyframe[0]))
         key.set("qvel", num(*keyframe[1]))
+        if physics.loads.motors:  # the motors' controls at t = 0 (constant ones hold throughout)
+            key.set("ctrl", num(*(motor.law.f(0.0) for motor in physics.loads.motors)))
     ET.indent(root)
     return ET.tostring(root, encoding="unicode")
 
