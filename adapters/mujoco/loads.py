@@ -38,18 +38,6 @@ class Motor:
 
 
 @dataclass(frozen=True)
-class Tendon:
-    """A spatial tendon between two points with a linear spring-damper."""
-
-    name: str
-    p_i: Point
-    p_j: Point
-    stiffness: float
-    damping: float
-    free_length: float
-
-
-@dataclass(frozen=True)
 class HingeSpring:
     """Stiffness, damping and rest position (in the hinge's qpos) of a tree hinge."""
 
@@ -64,7 +52,8 @@ class Loads:
 
     gravity: tuple[float, float] = (0.0, 0.0)
     motors: tuple[Motor, ...] = ()
-    tendons: tuple[Tendon, ...] = ()
+    tendons: tuple[SpringDamper, ...] = ()
+    """Each spring-damper becomes a spatial tendon between two sites."""
     hinge_springs: tuple[tuple[str, HingeSpring], ...] = ()
 
     @property
@@ -85,7 +74,7 @@ def loads_of(scenario: Scenario, tree: Tree) -> Loads:
     if scenario.analysis != "dynamic":
         return Loads()
     motors: list[Motor] = []
-    tendons: list[Tendon] = []
+    tendons: list[SpringDamper] = []
     springs: list[tuple[str, HingeSpring]] = []
     for force in scenario.forces:
         if isinstance(force, AppliedTorque):
@@ -97,9 +86,7 @@ def loads_of(scenario: Scenario, tree: Tree) -> Loads:
                 gear = (1.0, 0.0, 0.0, 0.0, 0.0, 0.0) if axis == "x" else (0.0, 1.0, 0.0, 0.0, 0.0, 0.0)
                 motors.append(Motor(f"{force.name}.{axis}", force.point, WORLD_SITE, gear, law))
         elif isinstance(force, SpringDamper):
-            tendons.append(
-                Tendon(force.name, force.p_i, force.p_j, force.stiffness, force.damping, force.free_length)
-            )
+            tendons.append(force)
         elif isinstance(force, RotationalSpringDamper):
             springs.append(_hinge_spring(force, tree))
     return Loads(scenario.gravity, tuple(motors), tuple(tendons), tuple(springs))
