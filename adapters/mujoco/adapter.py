@@ -179,8 +179,6 @@ class MujocoAdapter(Adapter):
         dynamic = scenario.analysis == "dynamic"
         if dynamic and setting.mode not in DYNAMIC_MODES:
             raise Unsupported(f"mode {setting.mode} is not a MuJoCo integrator of free dynamics")
-        if not dynamic and setting.mode == "implicit":
-            raise Unsupported("the implicit integrator is compared on free dynamics only")
         try:
             scenario = cam_model_scenario(
                 scenario, str(setting.get("cam_model", default_cam_model(scenario)))

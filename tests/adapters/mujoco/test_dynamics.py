@@ -12,6 +12,8 @@ the four-bar's reach 1249 m/s^2).
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -30,6 +32,29 @@ def test_the_adapter_runs_dynamics_with_mujocos_integrators() -> None:
     assert ADAPTER.dynamics
     assert {s.mode for s in ADAPTER.sweep(scenario)} == {"RK4", "implicit", "implicitfast", "Euler"}
     assert ADAPTER.default_setting(scenario) == Setting.of("RK4", dt=1e-4, tc_steps=4.0, impedance=0.9999)
+
+
+def test_the_start_velocity_is_the_bodies_rates() -> None:
+    scenario = scenarios.load("compound_pendulum")
+    omega = (1.5, -2.0)
+    link_1, link_2 = scenario.bodies
+    tip = np.array(link_1.guess[:2]) * 2.0  # link_1's far pin: its centre is midway from the origin
+    v_1 = omega[0] * np.array([-link_1.guess[1], link_1.guess[0]])
+    v_2 = omega[0] * np.array([-tip[1], tip[0]]) + omega[1] * np.array(
+        [-(link_2.guess[1] - tip[1]), link_2.guess[0] - tip[0]]
+    )
+    rated = dataclasses.replace(
+        scenario,
+        bodies=(
+            dataclasses.replace(link_1, rate=(*v_1, omega[0])),
+            dataclasses.replace(link_2, rate=(*v_2, omega[1])),
+        ),
+    )
+    result = ADAPTER.run(rated, times=[0.0])
+    assert result.status == "ok", result.message
+    assert result.trajectory is not None and result.trajectory.velocity is not None
+    expected = np.array([[*v_1, omega[0]], [*v_2, omega[1]]])
+    np.testing.assert_allclose(result.trajectory.velocity[0], expected, rtol=0, atol=1e-13)
 
 
 @pytest.mark.parametrize(
