@@ -52,6 +52,9 @@ SWEEP_DT = (1e-3, 1e-4, 1e-5)
 BAD = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL)
 STATE = mujoco.mjtState.mjSTATE_INTEGRATION
 RUN_IN = 50
+DYNAMIC_CAM_REASON = (
+    "a cam contact in MuJoCo needs a preload spring on the follower, a force the scenario does not have"
+)
 SOLIMP_WIDTH = 0.005
 """solimp's transition width in characteristic lengths (0.001 m on the nominal 0.2 m crank)."""
 """Steps run before t = 0 from the assembled start, so soft constraints begin in steady state."""
@@ -141,6 +144,8 @@ class MujocoAdapter(Adapter):
             loads_of(scenario, tree)
         except TreeError as reason:
             return str(reason)
+        if scenario.analysis == "dynamic" and default_cam_model(scenario) == "contact":
+            return DYNAMIC_CAM_REASON
         if default_cam_model(scenario) == "contact":
             return next(filter(None, map(knife_edge_reason, scenario.cams)), None)
         return None
@@ -186,6 +191,8 @@ class MujocoAdapter(Adapter):
         except ValueError as error:
             raise Unsupported(str(error)) from error
         reason = next(filter(None, map(knife_edge_reason, scenario.cams)), None)
+        if dynamic and scenario.cams:
+            reason = DYNAMIC_CAM_REASON
         if reason is not None:
             raise Unsupported(reason)
         dt = engine_step(float(setting.get("dt", 1e-4)), _interval(np.asarray(scenario.times())))
