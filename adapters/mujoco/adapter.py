@@ -7,8 +7,11 @@ is then reached by a short run-in from t = -RUN_IN steps. simulate: steps MuJoCo
 grid and reads poses from the body-frame sites, velocities and accelerations from MuJoCo's state
 (mj_objectVelocity, and mj_objectAcceleration on the qacc of a forward pass at the grid time).
 Instability (a bad-acceleration warning, auto-reset disabled) is `diverged`.
+A dynamic scenario carries gravity and its loads (adapters.mujoco.loads), starts from the
+assembled poses and the bodies' rates without a run-in, and has its own settings
+(adapters.mujoco.dynamics).
 
-Settings: mode RK4 (default), implicitfast or Euler; dt, the requested step (the engine step divides
+Settings: mode RK4 (default), implicitfast, Euler or implicit; dt, the requested step (the engine step divides
 the output interval); tc_steps, the solref time constant in steps (2, the smallest MuJoCo allows);
 impedance, solimp of the equalities; for cams preload (N) and contact_impedance.
 """
