@@ -147,7 +147,7 @@ class MujocoAdapter(Adapter):
             loads_of(scenario, tree)
         except TreeError as reason:
             return str(reason)
-        if scenario.analysis == "dynamic" and default_cam_model(scenario) == "contact":
+        if scenario.analysis == "dynamic" and scenario.cams and default_cam_model(scenario) == "contact":
             return DYNAMIC_CAM_REASON
         if default_cam_model(scenario) == "contact":
             return next(filter(None, map(knife_edge_reason, scenario.cams)), None)

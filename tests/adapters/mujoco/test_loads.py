@@ -1,6 +1,7 @@
 """MuJoCo's loads in free dynamics: every force of the vocabulary on an open chain (so no
 constraint softness blurs them) against the native truth, the spring's tendon as the straight
-line between its points, and the rotational spring it cannot place on a loop closure."""
+line between its points; and what it cannot represent: a rotational spring on a loop closure, a cam
+contact (its preload spring would be a force of its own)."""
 
 from __future__ import annotations
 
@@ -74,3 +75,11 @@ def test_a_rotational_spring_on_a_loop_closure_is_unsupported() -> None:
     result = ADAPTER.run(dataclasses.replace(scenario, forces=(spring,)))
     assert result.status == "unsupported"
     assert "not one tree hinge" in result.message
+
+
+def test_a_cam_contact_in_free_dynamics_is_unsupported() -> None:
+    scenario = dataclasses.replace(scenarios.load("cam_roller"), analysis="dynamic")
+    setting = ADAPTER.default_setting(scenario).replace(cam_model="contact")
+    result = ADAPTER.run(scenario, setting)
+    assert result.status == "unsupported"
+    assert "preload spring" in result.message
