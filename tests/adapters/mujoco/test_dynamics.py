@@ -64,6 +64,8 @@ def test_the_start_velocity_is_the_bodies_rates() -> None:
         ("four_bar_gravity", SHORT, (1e-7, 1e-4, 0.3)),
         # measured 8.4e-8 / 1.4e-5 / 0.12
         pytest.param("slider_crank_spring", SHORT, (2e-7, 3e-5, 0.3), marks=pytest.mark.slow),
+        # two loops through the singular horizontal position; measured 1.0e-7 / 7.4e-7 / 8.3e-4
+        ("n_four_bar", {"t_end": 1.0, "steps": 40}, (5e-7, 5e-6, 5e-3)),
         # open chain, no constraint: RK4 alone; measured 3e-12 / 4e-11 / 7e-10 (the truth's rtol)
         ("compound_pendulum", {"t_end": 1.0, "steps": 25}, (1e-10, 1e-9, 1e-8)),
     ],
@@ -85,6 +87,7 @@ def test_default_against_the_native_truth(
         ("slider_crank_spring", (2e-7, 3e-5, 0.3)),  # measured 8.5e-8 / 1.5e-5 / 0.12
         ("compound_pendulum", (1e-11, 1e-10, 2e-9)),  # measured 3.3e-12 / 2.7e-11 / 5.7e-10 (3e-4 s)
         ("stiff_spring", (1e-9, 1e-7, 2e-5)),  # measured 2.7e-10 / 4.3e-8 / 6.1e-6
+        ("stiff_spring/damped", (1e-9, 1e-7, 2e-5)),  # measured 2.6e-10 / 4.1e-8 / 5.9e-6
         ("andrews_squeezer", (1e-3, 0.5, 1e3)),  # measured 3.9e-4 / 0.18 / 3.9e2
     ],
 )
