@@ -28,6 +28,8 @@ from typing import Any
 import numpy as np
 
 from adapters.base import Adapter, Option, Setting, Unsupported
+from adapters.exudyn.initial_state import released_start
+from adapters.exudyn.loads import FORCES
 from adapters.exudyn.model import ExudynModel, ModelError, build_model
 from adapters.exudyn.simulation import Plan, States, assemble, march, quiet, simulation_settings, trajectory
 from adapters.modes import ENGINE, Mode
@@ -49,7 +51,12 @@ MODES: dict[str, tuple[str, float, float]] = {  # solver, spectral radius, Newto
     "GA3-rho0.5": ("GA", 0.5, 1e-12),
     "TR2": ("TR2", 1.0, 1e-12),
     "STATIC": ("STATIC", 1.0, 1e-14),
+    "RK44": ("RK44", 1.0, 1e-12),
 }
+EXPLICIT_REASON = (
+    "Exudyn's explicit integrators (RK44, DOPRI5, ...) refuse joint constraints: they eliminate only "
+    "coordinate constraints to the ground, and this scenario has {what}"
+)
 ROWS: dict[type, int] = {
     Revolute: 2,
     Prismatic: 2,
@@ -68,6 +75,8 @@ ROWS: dict[type, int] = {
 OPTIONS = ("dt", "rho", "tol", "mass_scale", "cams", "cam_model")
 DEFAULT_SUBSTEPS = 10
 SWEEP_SUBSTEPS = {"GA3": (1, 3, 10), "GA3-rho0.5": (1, 3), "TR2": (1, 3)}
+DYNAMIC_SUBSTEPS = {"GA3": (1, 3, 10, 30), "GA3-rho0.5": (1, 3, 10), "TR2": (1, 3, 10, 30)}
+"""Free dynamics: engine steps per output interval in the sweep (the default is DEFAULT_SUBSTEPS)."""
 
 
 @dataclass(frozen=True)
@@ -80,6 +89,7 @@ class ExudynRun:
 
 class ExudynAdapter(Adapter):
     name = "exudyn"
+    dynamics = True
     measured = (
         Mode(
             "GA3",
@@ -92,6 +102,9 @@ class ExudynAdapter(Adapter):
             "Exudyn's generalized-alpha (index 3, spectral radius 0.5), all levels from its state",
         ),
         Mode("TR2", ENGINE, "Exudyn's trapezoidal rule (index 2), all levels from its state"),
+        Mode(
+            "RK44", ENGINE, "Exudyn's explicit RK4 (constraint-free scenes only), all levels from its state"
+        ),
         Mode(
             "STATIC",
             ENGINE,
@@ -125,6 +138,11 @@ class ExudynAdapter(Adapter):
                 return f"no Exudyn element for {type(item).__name__} '{getattr(item, 'name', '?')}'"
             if isinstance(item, RevoluteRevolute) and not item.length > 0.0:
                 return f"Exudyn's distance connector needs a positive length ('{item.name}': {item.length})"
+        for force in scenario.forces:
+            if not isinstance(force, FORCES):
+                return f"no Exudyn element for {type(force).__name__} '{force.name}'"
+        if scenario.analysis == "dynamic":
+            return None
         rows = sum(ROWS[type(item)] for item in (*scenario.joints, *scenario.drivers))
         unknowns = 3 * len(scenario.bodies) + len(scenario.cams)
         if rows != unknowns:
@@ -140,7 +158,11 @@ class ExudynAdapter(Adapter):
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
         """Engine steps of 1, 1/3 (and 1/10 for GA3, the default) of the scenario's output interval,
-        and the static solve per time point."""
+        and the static solve per time point; in free dynamics, steps down to 1/30 of the interval
+        for the implicit integrators (the explicit ones refuse joints, see EXPLICIT_REASON)."""
+        if scenario.analysis == "dynamic":
+            ladders = DYNAMIC_SUBSTEPS.items()
+            return [Setting.of(m, dt=_interval(scenario) / k) for m, ladder in ladders for k in ladder]
         steps = [
             Setting.of(m, dt=_interval(scenario) / k) for m, ladder in SWEEP_SUBSTEPS.items() for k in ladder
         ]
@@ -167,6 +189,8 @@ class ExudynAdapter(Adapter):
         cams = str(setting.get("cams", "native" if model_choice == "linkage" else "user"))
         if not (plan.dt > 0.0 and plan.tolerance > 0.0 and 0.0 <= plan.rho <= 1.0):
             raise ValueError(f"invalid Exudyn setting {setting.label}")
+        dynamic = scenario.analysis == "dynamic"
+        _check_dynamic_mode(scenario, plan, dynamic, float(setting.get("mass_scale", 1.0)))
         try:
             with quiet():
                 model = build_model(scenario, float(setting.get("mass_scale", 1.0)), cams == "native")
@@ -174,7 +198,7 @@ class ExudynAdapter(Adapter):
             raise Unsupported(str(error)) from error
         t0 = float(scenario.times()[0])
         with quiet():
-            start = assemble(model, t0, _settings(model, plan))
+            start = (released_start if dynamic else assemble)(model, t0, _settings(model, plan))
         return ExudynRun(model, plan, (t0, start))
 
     def simulate(self, model: ExudynRun, times: np.ndarray) -> Trajectory:
@@ -184,6 +208,19 @@ class ExudynAdapter(Adapter):
             states, steps = march(model.model, model.plan, grid, _settings(model.model, model.plan), start)
         self.count_steps(steps)
         return trajectory(model.model, grid, states)
+
+
+def _check_dynamic_mode(scenario: Scenario, plan: Plan, dynamic: bool, mass_scale: float) -> None:
+    """Unsupported for a mode that cannot run the scenario's analysis faithfully."""
+    if plan.solver == "RK44":
+        constrained = [*scenario.joints, *scenario.drivers]
+        if constrained:
+            what = f"{type(constrained[0]).__name__} '{getattr(constrained[0], 'name', '?')}'"
+            raise Unsupported(EXPLICIT_REASON.format(what=what))
+    if dynamic and plan.solver == "STATIC":
+        raise Unsupported("Exudyn's static solver finds equilibria; free dynamics needs an integrator")
+    if dynamic and mass_scale != 1.0:
+        raise ValueError("mass_scale applies to kinematically driven scenarios only")
 
 
 def _settings(model: ExudynModel, plan: Plan) -> Any:

@@ -41,6 +41,7 @@ from exudyn.itemInterface import (
 
 from adapters.exudyn.constraints import UserConstraint, user_constraint
 from adapters.exudyn.disc import PhiFromPoses, disc_contact
+from adapters.exudyn.loads import add_loads
 from adapters.exudyn.user_functions import constraint_functions, offset_functions
 from scenarios.bodies import GROUND, Point
 from scenarios.cam_profiles import EccentricDisc
@@ -82,6 +83,7 @@ def build_model(scenario: Scenario, mass_scale: float = 1.0, native_cams: bool =
     builder = _Builder(model, mass_scale)
     for item in (*scenario.joints, *scenario.drivers):
         builder.add(item)
+    add_loads(mbs, scenario, builder.objects, builder.nodes, builder.at, builder.ground_coordinate)
     mbs.Assemble()
     model.index = {b: mbs.GetNodeODE2Index(n) for b, n in builder.nodes.items()}
     model.phi_index = {c: mbs.GetNodeODE2Index(n) for c, n in builder.phi_nodes.items()}
@@ -100,7 +102,11 @@ class _Builder:
         self.objects: dict[str, Any] = {GROUND: self.ground}
         self.phi_nodes: dict[str, Any] = {}
         for body in model.scenario.bodies:
-            node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0] * 3, initialCoordinates=body.guess))
+            node = mbs.AddNode(
+                NodeRigidBody2D(
+                    referenceCoordinates=[0.0] * 3, initialCoordinates=body.guess, initialVelocities=body.rate
+                )
+            )
             self.nodes[body.name] = node
             self.objects[body.name] = mbs.AddObject(
                 ObjectRigidBody2D(

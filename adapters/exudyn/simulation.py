@@ -25,7 +25,11 @@ from scenarios.trajectory import Trajectory
 
 INITIAL = exu.ConfigurationType.Initial
 CURRENT = exu.ConfigurationType.Current
-DYNAMIC = {"GA": exu.DynamicSolverType.GeneralizedAlpha, "TR2": exu.DynamicSolverType.TrapezoidalIndex2}
+DYNAMIC = {
+    "GA": exu.DynamicSolverType.GeneralizedAlpha,
+    "TR2": exu.DynamicSolverType.TrapezoidalIndex2,
+    "RK44": exu.DynamicSolverType.RK44,
+}
 
 
 @dataclass(frozen=True)
@@ -193,11 +197,11 @@ def assemble(model: ExudynModel, t0: float, settings: Any) -> States:
     v0, a0 = probe.rates(q0, t0, *_scales(model))
     probe.close(settings)
     start = States(q0[None, :], v0[None, :], a0[None, :])
-    _write_initial(model, start)
+    write_initial(model, start)
     return start
 
 
-def _write_initial(model: ExudynModel, start: States) -> None:
+def write_initial(model: ExudynModel, start: States) -> None:
     """`start` as the system's initial state."""
     data = model.mbs.systemData
     data.SetODE2Coordinates(start.q[0].tolist(), INITIAL)
@@ -229,7 +233,7 @@ def march(
     if start is None:
         start = assemble(model, float(times[0]), settings)
     else:
-        _write_initial(model, start)
+        write_initial(model, start)
     if len(times) == 1:
         return start, 0
     if plan.solver == "STATIC":
