@@ -332,13 +332,20 @@ def _failure(model: ExudynModel, key: str, text: str) -> EngineFailure:
 
 
 def trajectory(model: ExudynModel, times: np.ndarray, states: States) -> Trajectory:
-    """The canonical trajectory of the output bodies, with each cam's `<contact>.phi`."""
+    """The canonical trajectory of the output bodies, with each cam's `<contact>.phi` and the
+    scenario's angle outputs (relative angles of bodies)."""
     bodies = model.scenario.output_bodies
     cols = [np.arange(model.index[b], model.index[b] + 3) for b in bodies]
     pick = [np.stack([level[:, c] for c in cols], axis=1) for level in (states.q, states.v, states.a)]
     extras = {name: states.q[:, i].copy() for name, i in model.phi_index.items()}
     for name, (cam, follower, phi_of, guess) in model.phi_from_poses.items():
         extras[f"{name}.phi"] = _phi_series(model, states.q, cam, follower, phi_of, guess)
+
+    def angle(body: str) -> np.ndarray:
+        return np.zeros(len(states.q)) if body == GROUND else states.q[:, model.index[body] + 2]
+
+    for output in model.scenario.angle_outputs:
+        extras[output.name] = angle(output.body) - angle(output.relative_to)
     grid = np.asarray(times, dtype=float)
     return Trajectory(grid, bodies, position=pick[0], velocity=pick[1], acceleration=pick[2], extras=extras)
 
