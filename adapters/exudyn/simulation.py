@@ -98,10 +98,13 @@ class ConstraintProbe:
         self.solver = _static_solver()
         self.solver.InitializeSolver(self.mbs, settings)
         self.n = self.solver.GetODE2size()
-        if self.solver.GetAEsize() != self.n:
-            rows = self.solver.GetAEsize()
+        # a joint with a row switched off (a prismatic joint free to turn) keeps it as lambda = 0:
+        # no coordinate in it, a 1 on the multiplier's diagonal; only the other rows constrain
+        full = self._full_jacobian()
+        self.live = np.flatnonzero(np.diag(full[self.n :, self.n :]) == 0.0)
+        if len(self.live) != self.n:
             raise EngineFailure(
-                f"not kinematically driven in Exudyn: {self.n} coordinates, {rows} constraints"
+                f"not kinematically driven in Exudyn: {self.n} coordinates, {len(self.live)} constraints"
             )
 
     def _set(self, q: np.ndarray, v: np.ndarray, t: float) -> None:
@@ -110,25 +113,28 @@ class ConstraintProbe:
         data.SetODE2Coordinates_t(v.tolist(), CURRENT)
         data.SetTime(t)
 
-    def jacobian(self, q: np.ndarray, t: float) -> np.ndarray:
-        self._set(q, np.zeros_like(q), t)
+    def _full_jacobian(self) -> np.ndarray:
         self.solver.ComputeJacobianODE2RHS(
             self.mbs, scalarFactor_ODE2=-1.0, scalarFactor_ODE2_t=0.0
         )  # resets
         self.solver.ComputeJacobianAE(self.mbs, scalarFactor_ODE2=1.0, scalarFactor_ODE2_t=0.0)
-        return np.array(self.solver.GetSystemJacobian())[self.n :, : self.n]
+        return np.array(self.solver.GetSystemJacobian())
+
+    def jacobian(self, q: np.ndarray, t: float) -> np.ndarray:
+        self._set(q, np.zeros_like(q), t)
+        return self._full_jacobian()[self.n + self.live, : self.n]
 
     def residual(self, q: np.ndarray, t: float) -> np.ndarray:
         """C(q, t), the constraints at position level."""
         self._set(q, np.zeros_like(q), t)
         self.solver.ComputeAlgebraicEquations(self.mbs, velocityLevel=False)
-        return np.array(self.solver.GetSystemResidual())[self.n :]
+        return np.array(self.solver.GetSystemResidual())[self.n + self.live]
 
     def rate_residual(self, q: np.ndarray, v: np.ndarray, t: float) -> np.ndarray:
         """C_q v + C_t, the constraints at velocity level."""
         self._set(q, v, t)
         self.solver.ComputeAlgebraicEquations(self.mbs, velocityLevel=True)
-        return np.array(self.solver.GetSystemResidual())[self.n :]
+        return np.array(self.solver.GetSystemResidual())[self.n + self.live]
 
     def rates(
         self, q: np.ndarray, t: float, scale: np.ndarray, frequency: float
@@ -238,7 +244,7 @@ def march(
         return start, 0
     if plan.solver == "STATIC":
         return _static_sweep(model, times, settings, plan.tolerance), len(times) - 1
-    return _integrate(model, plan, times, settings, start)
+    return _integrate(model, plan, times, settings)
 
 
 def _recorder(model: ExudynModel, times: np.ndarray, states: States, tolerance: float) -> Callable[..., bool]:
@@ -260,9 +266,7 @@ def _empty(n_times: int, n: int) -> States:
     return States(*(np.full((n_times, n), np.nan) for _ in range(3)))
 
 
-def _integrate(
-    model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any, start: States
-) -> tuple[States, int]:
+def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any) -> tuple[States, int]:
     interval = float(times[1] - times[0])
     substeps = max(1, math.ceil(interval / plan.dt - 1e-9))
     steps = substeps * (len(times) - 1)
@@ -270,13 +274,29 @@ def _integrate(
     ti.startTime, ti.endTime, ti.numberOfSteps = float(times[0]), float(times[-1]), steps
     ti.generalizedAlpha.spectralRadius = plan.rho
     ti.generalizedAlpha.computeInitialAccelerations = False  # the assembled start has them
-    states = _empty(len(times), len(model.guess))
-    states.q[0], states.v[0], states.a[0] = start.q[0], start.v[0], start.a[0]
-    model.mbs.SetPostStepUserFunction(_recorder(model, times, states, 1e-6 * interval / substeps))
+    # Exudyn's sensors record each node's state at every output time, inside the solver
+    settings.solution.sensors.active = True
+    settings.solution.sensors.writePeriod = interval
     solver = DYNAMIC[plan.solver]
     _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
+    return _sensed(model, times), steps
+
+
+def _sensed(model: ExudynModel, times: np.ndarray) -> States:
+    """The states the sensors stored; an EngineFailure when a row is missing or off the grid."""
+    states = _empty(len(times), len(model.guess))
+    tolerance = 1e-9 * float(times[1] - times[0])
+    for index, width, handles in model.sensors:
+        for level, handle in zip((states.q, states.v, states.a), handles, strict=True):
+            data = np.asarray(model.mbs.GetSensorStoredData(handle))
+            rows = min(len(data), len(times))
+            off = np.flatnonzero(np.abs(data[:rows, 0] - times[:rows]) > tolerance)
+            if off.size or rows < len(times):
+                k = int(off[0]) if off.size else rows
+                raise EngineFailure(f"Exudyn's sensors recorded no state at t = {times[k]}", float(times[k]))
+            level[:, index : index + width] = data[:rows, 1:]
     _check_complete(states, times)
-    return states, steps
+    return states
 
 
 def _static_sweep(model: ExudynModel, times: np.ndarray, settings: Any, tolerance: float) -> States:
