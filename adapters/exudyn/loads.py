@@ -66,24 +66,18 @@ def add_loads(
                 vector = _vector((force.fx, force.fy, None), 1.0)
                 mbs.AddLoad(LoadForceVector(markerNumber=at(force.point), bodyFixed=False, **vector))
         elif isinstance(force, SpringDamper):
+            markers = [at(force.p_i), at(force.p_j)]
+            law: dict[str, Any] = {"stiffness": force.stiffness, "damping": force.damping}
             mbs.AddObject(
-                ObjectConnectorSpringDamper(
-                    markerNumbers=[at(force.p_i), at(force.p_j)],
-                    stiffness=force.stiffness,
-                    damping=force.damping,
-                    referenceLength=force.free_length,
-                )
+                ObjectConnectorSpringDamper(markerNumbers=markers, referenceLength=force.free_length, **law)
             )
         elif isinstance(force, RotationalSpringDamper):
             # Exudyn's coordinate spring-damper: f = k (q1 - q0 - offset) + d (q1' - q0'), +f on
             # marker 0's coordinate and -f on marker 1's: the scenario's torque on body i and j
+            markers = [rotation(force.body_i), rotation(force.body_j)]
+            law = {"stiffness": force.stiffness, "damping": force.damping}
             mbs.AddObject(
-                ObjectConnectorCoordinateSpringDamper(
-                    markerNumbers=[rotation(force.body_i), rotation(force.body_j)],
-                    stiffness=force.stiffness,
-                    damping=force.damping,
-                    offset=force.free_angle,
-                )
+                ObjectConnectorCoordinateSpringDamper(markerNumbers=markers, offset=force.free_angle, **law)
             )
         else:
             raise TypeError(f"no Exudyn element for {type(force).__name__}")
