@@ -268,6 +268,8 @@ def _empty(n_times: int, n: int) -> States:
 
 def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any) -> tuple[States, int]:
     interval = float(times[1] - times[0])
+    if np.max(np.abs(np.diff(times) - interval)) > 1e-9 * interval:
+        raise EngineFailure("Exudyn's sensors record at a fixed period: the output grid must be uniform")
     substeps = max(1, math.ceil(interval / plan.dt - 1e-9))
     steps = substeps * (len(times) - 1)
     ti = settings.timeIntegration

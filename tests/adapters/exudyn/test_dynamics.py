@@ -105,3 +105,10 @@ def test_the_static_solver_is_not_offered_for_free_dynamics() -> None:
     s = scenario("compound_pendulum")
     assert ADAPTER.run(s, Setting.of("STATIC")).status == "unsupported"
     assert {setting.mode for setting in ADAPTER.sweep(s)} == {"GA3", "GA3-rho0.5", "TR2"}
+
+
+def test_the_sensors_record_every_grid_time_or_the_run_fails() -> None:
+    """Exudyn's sensors write once per output interval: a uniform grid is recorded whole (the
+    default run above), a non-uniform one fails with the reason instead of a shifted trajectory."""
+    result = ADAPTER.run(scenario("four_bar_gravity"), times=np.array([0.0, 0.01, 0.03]))
+    assert result.status == "failed" and "uniform" in result.message
