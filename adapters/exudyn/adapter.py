@@ -7,6 +7,8 @@ Modes (one work-precision curve each):
                  accelerations O(dt) through a start-up transient (the default, at a tenth of the
                  scenario's output interval)
     GA3-rho0.5   the same with spectral radius 0.5 (a shorter transient)
+    GA3-modified GA3 with Exudyn's own modified Newton (the Jacobian kept over iterations and steps,
+                 Exudyn's default; the other modes update it at every iteration)
     TR2          the trapezoidal rule (Newmark 1/4, 1/2) on index-2 constraints; positions drift O(dt^2)
     STATIC       Exudyn's static solver at each grid time, then velocity and acceleration solves on
                  Exudyn's own constraint Jacobian and velocity-level constraints (kinematic scenes)
@@ -57,10 +59,13 @@ from scenarios.trajectory import Trajectory
 MODES: dict[str, tuple[str, float, float]] = {  # solver, spectral radius, Newton tolerance
     "GA3": ("GA", 0.9, 1e-12),
     "GA3-rho0.5": ("GA", 0.5, 1e-12),
+    "GA3-modified": ("GA", 0.9, 1e-12),
     "TR2": ("TR2", 1.0, 1e-12),
     "STATIC": ("STATIC", 1.0, 1e-14),
     "RK44": ("RK44", 1.0, 1e-12),
 }
+MODIFIED_NEWTON = ("GA3-modified",)
+"""Modes that keep Exudyn's own modified Newton (its Jacobian reused over iterations and steps)."""
 EXPLICIT_REASON = (
     "Exudyn's explicit integrators (RK44, DOPRI5, ...) refuse joint constraints: they eliminate only "
     "coordinate constraints to the ground, and this scenario has {what}"
@@ -85,7 +90,12 @@ DEFAULT_SUBSTEPS = 10
 SPARSE_ABOVE = 100
 """Coordinates above which free dynamics uses Exudyn's sparse linear solver."""
 SWEEP_SUBSTEPS = {"GA3": (1, 3, 10), "GA3-rho0.5": (1, 3), "TR2": (1, 3)}
-DYNAMIC_SUBSTEPS = {"GA3": (1, 3, 10, 30), "GA3-rho0.5": (1, 3, 10), "TR2": (1, 3, 10, 30)}
+DYNAMIC_SUBSTEPS = {
+    "GA3": (1, 3, 10, 30),
+    "GA3-rho0.5": (1, 3, 10),
+    "GA3-modified": (3, 10, 30),
+    "TR2": (1, 3, 10, 30),
+}
 """Free dynamics: engine steps per output interval in the sweep (the default is DEFAULT_SUBSTEPS)."""
 LARGE_DYNAMIC_SUBSTEPS = {"GA3": (3, 10), "TR2": (10,)}
 """A large system (the 81-body chain: 17 s at the default) sweeps less."""
@@ -112,6 +122,12 @@ class ExudynAdapter(Adapter):
             "GA3-rho0.5",
             ENGINE,
             "Exudyn's generalized-alpha (index 3, spectral radius 0.5), all levels from its state",
+        ),
+        Mode(
+            "GA3-modified",
+            ENGINE,
+            "Exudyn's generalized-alpha (index 3, spectral radius 0.9) with its modified Newton, all levels "
+            "from its state",
         ),
         Mode("TR2", ENGINE, "Exudyn's trapezoidal rule (index 2), all levels from its state"),
         Mode(
@@ -194,6 +210,7 @@ class ExudynAdapter(Adapter):
             dt=float(setting.get("dt", _interval(scenario) / DEFAULT_SUBSTEPS)),
             rho=float(setting.get("rho", rho)),
             tolerance=float(setting.get("tol", tolerance)),
+            modified_newton=setting.mode in MODIFIED_NEWTON,
         )
         # the equivalent linkage is Exudyn's native distance connector (knife edge, roller) and its
         # exact native flat-face element; the contact is the user-function connector on the profile
@@ -243,6 +260,7 @@ def _settings(model: ExudynModel, plan: Plan) -> Any:
     81-body chain 45 times faster than the dense default; the same on small systems)."""
     size = max(1.0, float(np.max(np.abs(model.guess), initial=0.0)))
     settings = simulation_settings(plan.tolerance * size)
+    settings.timeIntegration.newton.useModifiedNewton = plan.modified_newton
     if model.scenario.analysis == "dynamic" and len(model.guess) > SPARSE_ABOVE:
         settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
     return settings

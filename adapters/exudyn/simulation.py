@@ -35,12 +35,14 @@ DYNAMIC = {
 @dataclass(frozen=True)
 class Plan:
     """How to march: `solver` GA, TR2 or STATIC; the requested step `dt`; GA's spectral radius;
-    Newton's tolerance on the increment of each step (or of each static solve)."""
+    Newton's tolerance on the increment of each step (or of each static solve); whether the
+    integrator keeps Exudyn's modified Newton (else full Newton)."""
 
     solver: str
     dt: float
     rho: float
     tolerance: float
+    modified_newton: bool = False
 
 
 @dataclass

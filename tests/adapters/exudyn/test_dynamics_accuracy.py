@@ -67,3 +67,20 @@ BEST_DIGITS = (4.22, 4.12, 3.65, 4.52, 6.04, 4.52, 6.59)  # GA3, dt = 1e-3 / 30 
 def test_andrews_digits(setting: Setting | None, measured: tuple[float, ...]) -> None:
     digits = andrews_digits(setting)
     assert np.all(digits > np.array(measured) - 0.3), dict(zip(ANGLES, digits.round(2), strict=True))
+
+
+def test_modified_newton_keeps_generalized_alpha_on_andrews_and_loses_it_on_the_stiff_spring() -> None:
+    """Exudyn's modified Newton (its default; GA3-modified) stops on a small increment. On Andrews it
+    lands where full Newton does (4.4e-4 both over 0.01 s, measured); on the stiff spring at a step
+    of 1e-5 s it stops early: 9.3e-8 against full Newton's 7.7e-9 over 0.02 s (over the whole 0.1 s,
+    1.0e-6 against 2.6e-8, and worse at smaller steps: 6.6e-6 at 3.3e-6 s)."""
+    andrews = scenario("andrews_squeezer", t_end=0.01, steps=10)
+    ref = truth(andrews, 1e-11)
+    full = position_error(andrews, run(andrews, Setting.of("GA3", dt=1e-4)), ref)
+    modified = position_error(andrews, run(andrews, Setting.of("GA3-modified", dt=1e-4)), ref)
+    assert abs(modified - full) < 1e-3 * full
+    stiff = scenario("stiff_spring", t_end=0.02)
+    ref = truth(stiff, 1e-11)
+    full = position_error(stiff, run(stiff, Setting.of("GA3", dt=1e-5)), ref)
+    modified = position_error(stiff, run(stiff, Setting.of("GA3-modified", dt=1e-5)), ref)
+    assert modified > 5 * full
