@@ -17,7 +17,7 @@ Dask is imported here only: the serial runner does not import it.
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from typing import Any
 
 from adapters.base import Setting
@@ -70,7 +70,7 @@ def connect(workers: int | None, address: str | None) -> Iterator[Any]:
     from distributed import Client
 
     if address is not None:
-        with Client(address, timeout="20s") as client:
+        with Client(address, timeout="10s") as client:
             yield client
         return
     assert workers is not None
@@ -102,24 +102,27 @@ class DaskRunner(Runner):
     def __init__(self, *args: Any, workers: int | None = None, cluster: str | None = None, **kw: Any) -> None:
         super().__init__(*args, **kw)
         self.local_workers, self.address = workers, cluster
+        self.client: Any = None
+
+    def run(self, scenario_names: Sequence[str]) -> None:
+        """Connect first (a bad address fails before anything is written), then run as the Runner."""
+        with connect(self.local_workers, self.address) as client:
+            self.client = client
+            self.workers = sum(client.nthreads().values()) or 1
+            super().run(scenario_names)
 
     def _execute(self, groups: list[tuple[Group, list[tuple[Setting, bool]]]]) -> None:
         todo = [(g, jobs) for g, jobs in groups if g.reason_row is None and jobs]
-        if not todo:  # nothing to run: the stored rows reconciled with the plan, as the serial runner does
-            super()._execute(groups)
-            return
-        with connect(self.local_workers, self.address) as client:  # a bad address fails before any write
-            for group, _ in groups:
-                self._reconcile(group)
-                if group.reason_row is not None:
-                    self._add(group.reason_row)
-            self._save()
-            self.workers = sum(client.nthreads().values()) or 1
-            truths, futures = self._submit(client, todo)
-            try:
-                self._gather(futures, truths)
-            finally:
-                client.cancel([f for f, _, _ in futures.values()] + list(truths.values()))
+        for group, _ in groups:
+            self._reconcile(group)
+            if group.reason_row is not None:
+                self._add(group.reason_row)
+        self._save()
+        truths, futures = self._submit(self.client, todo)
+        try:
+            self._gather(futures, truths)
+        finally:
+            self.client.cancel([f for f, _, _ in futures.values()] + list(truths.values()))
 
     def _submit(self, client: Any, todo: list[tuple[Group, list[tuple[Setting, bool]]]]) -> tuple[Any, Any]:
         """One truth task per scenario, one task per group that takes its scenario's truth."""
