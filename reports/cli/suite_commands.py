@@ -217,7 +217,11 @@ def _selection_arguments(parser: argparse.ArgumentParser, suite: str) -> None:
     parser.add_argument("--wait", action="store_true", help="wait for another run writing --out to end")
 
 
-BENCHMARKS = {"speed": "benchmarks.solver_speed", "scaling": "benchmarks.chain_scaling"}
+BENCHMARKS = {
+    "speed": "benchmarks.solver_speed",
+    "scaling": "benchmarks.chain_scaling",
+    "sweep": "benchmarks.sweep_speed",
+}
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
@@ -264,7 +268,8 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         nargs="?",
         choices=sorted(BENCHMARKS),
         default="speed",
-        help="speed: cost per time point per family; scaling: cost against chain size",
+        help="speed: cost per time point per family; scaling: cost against chain size; "
+        "sweep: a 200-point sweep serial against --workers",
     )
     bench.add_argument("options", nargs=argparse.REMAINDER, help="passed to the benchmark (see its --help)")
 
