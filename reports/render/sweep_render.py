@@ -107,9 +107,10 @@ def figure(swept: SweptMap, fixed: dict[int, int]) -> Figure:
         handles.append(plt.Line2D([], [], marker="x", ls="", color="#00c8ff", label="native singular"))
     if handles:
         fig.legend(handles=handles, loc="lower center", ncol=min(5, len(handles)), fontsize=7, frameon=False)
+    bottom = 0.12 + 0.25 / len(swept.engines)
+    fig.subplots_adjust(bottom=bottom, top=0.93, right=0.86)
     scale = plt.cm.ScalarMappable(Normalize(BEST, WORST), ERRORS)
-    fig.colorbar(scale, ax=list(axes_list[:, 0]), label="log10 error (ok runs)", fraction=0.03, pad=0.01)
-    fig.subplots_adjust(bottom=0.12 + 0.25 / len(swept.engines), top=0.93)
+    fig.colorbar(scale, cax=fig.add_axes((0.88, bottom, 0.015, 0.93 - bottom)), label="log10 error (ok runs)")
     return fig
 
 
