@@ -269,7 +269,7 @@ def run_group(
     row), timed and compared with the truth; `done(label)` after each. Stores nothing, so that it
     runs the same here and in a Dask task."""
     timed_out: set[str] = set()
-    out = []
+    out: list[Stored] = []
     for setting, is_default in jobs:
         if setting.mode in timed_out:
             message = "not run: a cheaper setting of this mode hit the time limit"

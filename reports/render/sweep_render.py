@@ -102,7 +102,9 @@ def figure(swept: SweptMap, fixed: dict[int, int]) -> Figure:
         else:
             axes.set_yticks([])
     axes_list[-1, 0].set_xlabel(swept.axes[0], fontsize=8)
-    handles = [Patch(facecolor=VERDICT_COLOURS[v], edgecolor="#999", label=v) for v in sorted(seen)]
+    handles: list[Any] = [
+        Patch(facecolor=VERDICT_COLOURS[v], edgecolor="#999", label=v) for v in sorted(seen)
+    ]
     if singular:
         handles.append(plt.Line2D([], [], marker="x", ls="", color="#00c8ff", label="native singular"))
     if handles:
