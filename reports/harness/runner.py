@@ -29,7 +29,6 @@ import tqdm
 import adapters
 from adapters.base import Adapter, RunResult, Setting
 from reports.harness import provenance
-from reports.harness.columns import NOT_RUN
 from reports.harness.isolation import run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION, level_errors
 from reports.harness.metrics import (
@@ -41,7 +40,7 @@ from reports.harness.metrics import (
 )
 from reports.harness.planning import Group, SettingsHook, plan_engine
 from reports.harness.results_store import ResultsStore
-from reports.harness.resume import STALE, ResumeLog, ResumePolicy, rerun_reason, staleness
+from reports.harness.resume import ResumePolicy, StoredRuns
 from reports.harness.rows import failure_row, result_row
 from reports.harness.truth import NamedTruth, independent_truth, named
 from scenarios import Scenario, ScenarioError
@@ -99,7 +98,7 @@ class Runner:
         self.adapters: dict[str, Adapter | str] = {}
         self.revision = provenance.git_revision()
         self.policy = ResumePolicy(options.rerun, options.keep_failures, options.keep_stale)
-        self.resume_log = ResumeLog()
+        self.stored = StoredRuns(store, self.revision, self.policy)
         for name in self.engines:
             try:
                 self.adapters[name] = loader(name)
@@ -112,9 +111,12 @@ class Runner:
     def run(self, scenario_names: Sequence[str]) -> None:
         """Plan every group, then run what is not stored yet, saving after each group."""
         groups = [g for name in scenario_names for g in self._plan(name)]
-        kept = {id(g) for g in groups if g.adapter is None and self._stored_results(g)}
-        pending = {id(g): [j for j in g.jobs if not self._stored(g, j[0])] for g in groups}
-        for line in self.resume_log.lines():
+        stored = self.stored = StoredRuns(self.store, self.revision, self.policy)
+        kept = {id(g) for g in groups if g.adapter is None and stored.keeps_unavailable(*_pair(g))}
+        pending = {
+            id(g): [j for j in g.jobs if not stored.keeps(*_pair(g), g.version, j[0].label)] for g in groups
+        }
+        for line in self.stored.log.lines():
             print(f"mbxval: {line}", file=sys.stderr)
         try:
             self._execute([(g, pending[id(g)]) for g in groups if id(g) not in kept])
@@ -155,45 +157,9 @@ class Runner:
             for e in self.engines
         ]
 
-    def _stored(self, group: Group, setting: Setting) -> bool:
-        """Whether the stored row of this run is kept (see reports.harness.resume)."""
-        key = (group.scenario.name, group.engine, setting.label)
-        row = self.store.rows.get(key)
-        if row is None:
-            return False
-        reason = rerun_reason(row, self.revision, group.version, key in self.store.trajectories, self.policy)
-        log = self.resume_log
-        if reason is not None:
-            log.reasons[reason] += 1
-        stale = staleness(row, self.revision, group.version)
-        if stale and reason in (STALE, None):
-            log.stale_from[stale] += 1
-        if reason is None and stale:
-            log.kept_stale += 1
-            row["stale"] = True
-        return reason is None
-
-    def _stored_results(self, group: Group) -> bool:
-        """Whether the store has rows of an engine that cannot be loaded now (counted in the log)."""
-        pair = (group.scenario.name, group.engine)
-        count = sum(1 for k in self.store.rows if k[:2] == pair and k[2] != NOT_RUN)
-        if count:
-            log = self.resume_log.kept_unavailable
-            log[group.engine] = log.get(group.engine, 0) + count
-        return count > 0
-
     def _reconcile(self, group: Group) -> None:
-        """Make the stored rows of this scenario-engine pair agree with the plan: a pair that no
-        longer runs keeps only its reason row; one that runs loses its old reason row; stored
-        settings outside the plan (another suite's sweep) stay, but are no longer the default."""
-        planned = {s.label for s, _ in group.jobs}
-        for key in [k for k in self.store.rows if k[:2] == (group.scenario.name, group.engine)]:
-            if (group.reason_row is None) == (key[2] == NOT_RUN):
-                del self.store.rows[key]
-                self.store.trajectories.pop(key, None)
-            elif group.reason_row is None and key[2] not in planned:
-                self.store.rows[key]["is_default"] = False
-                self.store.trajectories.pop(key, None)
+        planned = None if group.reason_row is not None else {s.label for s, _ in group.jobs}
+        self.stored.reconcile(group.scenario.name, group.engine, planned)
 
     # --- storing ----------------------------------------------------------------------------
     def _put_truth(self, scenario: Scenario, truth: NamedTruth | str) -> None:
@@ -217,7 +183,7 @@ class Runner:
             "warmup": self.options.warmup,
             "timeout": self.options.timeout,
             "revisions": sorted({str(r.get("revision") or "unknown") for r in self.store.rows.values()}),
-            "resume": self.resume_log.lines(),
+            "resume": self.stored.log.lines(),
             "truth": (
                 "each row's `truth` column: the closed form where the scenario has one, else the "
                 "native solver on a refined grid at tight tolerance"
@@ -226,6 +192,10 @@ class Runner:
             "scales": SCALE_DEFINITION,
         }
         self.store.save(meta)
+
+
+def _pair(group: Group) -> tuple[str, str]:
+    return group.scenario.name, group.engine
 
 
 def progress_bar(total: int, shown: bool, unit: str) -> tqdm.tqdm:
