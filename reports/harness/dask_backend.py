@@ -17,6 +17,7 @@ Dask is imported here only: the serial runner does not import it.
 from __future__ import annotations
 
 import contextlib
+from collections import Counter
 from collections.abc import Iterator, Sequence
 from typing import Any
 
@@ -122,7 +123,8 @@ class DaskRunner(Runner):
         try:
             self._gather(futures, truths)
         finally:
-            self.client.cancel([f for f, _, _ in futures.values()] + list(truths.values()))
+            left = [f for f, _, _ in futures.values()] + [f for f in truths.values() if f is not None]
+            self.client.cancel(left)
 
     def _submit(self, client: Any, todo: list[tuple[Group, list[tuple[Setting, bool]]]]) -> tuple[Any, Any]:
         """One truth task per scenario, one task per group that takes its scenario's truth."""
@@ -144,20 +146,26 @@ class DaskRunner(Runner):
         return truths, futures
 
     def _gather(self, futures: dict[str, Any], truths: dict[str, Any]) -> None:
-        """Store each group's rows as it finishes, saving after each batch of finished groups."""
+        """Store each group's rows as it finishes, saving after each batch of finished groups. The
+        client drops its reference to a finished group's result, and to a scenario's truth once its
+        last group is in, so the workers release them: a long sweep holds only what still runs."""
         from distributed import as_completed
 
-        stored_truths: set[str] = set()
+        waiting = Counter(group.scenario.name for _, group, _ in futures.values())
         with progress_bar(len(futures), self.progress, "group") as bar:
             for batch in as_completed([f for f, _, _ in futures.values()]).batches():
                 for future in batch:
-                    _, group, jobs = futures[future.key]
+                    _, group, jobs = futures.pop(future.key)
                     for row, trajectory in self._outcome(future, group, jobs):
                         self._add(row, trajectory)
                     name = group.scenario.name
-                    if name not in stored_truths and truths[name].status == "finished":
-                        stored_truths.add(name)
-                        self._put_truth(group.scenario, truths[name].result())
+                    truth = truths.get(name)
+                    if truth is not None and truth.status == "finished":
+                        self._put_truth(group.scenario, truth.result())
+                        truths[name] = None  # stored once; no longer held for the client
+                    waiting[name] -= 1
+                    if not waiting[name]:
+                        truths.pop(name, None)  # its last group is in: nothing holds the truth now
                     bar.set_description(f"{name} {group.engine}", refresh=False)
                     bar.update()
                 self._save()
