@@ -110,7 +110,7 @@ def figure(swept: SweptMap, fixed: dict[int, int]) -> Figure:
     if handles:
         fig.legend(handles=handles, loc="lower center", ncol=min(5, len(handles)), fontsize=7, frameon=False)
     bottom = 0.12 + 0.25 / len(swept.engines)
-    fig.subplots_adjust(bottom=bottom, top=0.93, right=0.86)
+    fig.subplots_adjust(bottom=bottom, top=0.93, right=0.86, hspace=0.55)
     scale = plt.cm.ScalarMappable(Normalize(BEST, WORST), ERRORS)
     fig.colorbar(scale, cax=fig.add_axes((0.88, bottom, 0.015, 0.93 - bottom)), label="log10 error (ok runs)")
     return fig

@@ -13,7 +13,7 @@ from matplotlib.colors import to_rgba
 from reports.harness.results_store import ResultsStore
 from reports.harness.runner import Runner, RunOptions
 from reports.harness.sweep import points
-from reports.render import markdown, sweep_render
+from reports.render import html, markdown, sweep_render
 from reports.render.report_data import ReportData
 from reports.stress.sweep_verdicts import SINGULAR, swept_maps
 
@@ -74,3 +74,10 @@ def test_the_report_sections_name_the_singular_points(data: ReportData) -> None:
     summary = markdown.render(data)
     assert "| four_bar[crank_length=0.08,omega=10] | singular detected @0.5815 s |" in summary
     assert "## four_bar[" not in summary  # swept points are in the sweep's table, not sections
+
+
+def test_the_page_opens_with_the_map_and_says_how_the_runs_were_timed(data: ReportData) -> None:
+    page = html.render(data)
+    assert page.index("Stability over the swept parameters") < page.index("Error against run time")
+    assert 'id="s-four_bar' not in page  # no section per swept point
+    assert "Run times measured on " in page and "one at a time" in page
