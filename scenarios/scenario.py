@@ -57,11 +57,15 @@ class Scenario:
     forces: tuple[Force, ...] = ()
     analysis: Analysis = "kinematic"
     angle_outputs: tuple[AngleOutput, ...] = ()
+    point: tuple[tuple[str, str], ...] = ()
+    """The overrides that make this scenario a point of a parameter sweep (`point_name`): its
+    name carries them, so that every point is stored under a name of its own."""
 
     @property
     def name(self) -> str:
-        """`family` or `family/variant` for a named variant."""
-        return self.family if self.variant == "default" else f"{self.family}/{self.variant}"
+        """`family` or `family/variant` for a named variant; `...[k=v,...]` for a swept point."""
+        base = self.family if self.variant == "default" else f"{self.family}/{self.variant}"
+        return point_name(base, dict(self.point))
 
     @property
     def body_names(self) -> tuple[str, ...]:
@@ -89,6 +93,19 @@ class Scenario:
         t_end = self.t_end if t_end is None else t_end
         steps = self.steps if steps is None else steps
         return [t_end * k / steps for k in range(steps + 1)]
+
+
+POINT_RESERVED = "[],="
+"""Characters a swept parameter's name or value cannot hold: they delimit the point in its name."""
+
+
+def point_name(base: str, overrides: dict[str, str]) -> str:
+    """A swept point's name, `four_bar[crank_length=0.08,omega=50]`: the scenario's name and the
+    values that make the point, in the order given, so that every point of a sweep has a stable
+    name of its own from which it can be rebuilt (scenarios.loading). Just `base` without overrides."""
+    if not overrides:
+        return base
+    return base + "[" + ",".join(f"{key}={value}" for key, value in overrides.items()) + "]"
 
 
 def require_positive(family: str, **values: float) -> None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import math
+import re
 import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -13,7 +14,7 @@ from typing import Any
 
 import adapters
 from reports.cli.usage import UsageError
-from reports.harness import gate, stop, suites
+from reports.harness import gate, stop, suites, sweep
 from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import Runner, RunOptions
 from reports.harness.store_lock import WriterLock
@@ -23,6 +24,8 @@ from scenarios import load as build_scenario
 DEFAULT_OUT = "mbxval-report"
 MAX_REPEATS = 1000
 MAX_TIMEOUT = 86400.0  # seconds: one day per run
+MAX_WORKERS = 1024
+CLUSTER_ADDRESS = re.compile(r"^[a-z0-9+]+://[^\s/]+:\d+$")
 
 
 def _selection(args: argparse.Namespace) -> tuple[Suite, list[str], list[str]]:
@@ -34,6 +37,16 @@ def _selection(args: argparse.Namespace) -> tuple[Suite, list[str], list[str]]:
     names = args.scenario or suite.scenarios()
     for name in args.scenario:
         build_scenario(name)  # an unknown name fails here, with the known ones listed
+    specs = getattr(args, "sweep", [])
+    if specs:
+        if not args.scenario:
+            raise UsageError("--sweep needs the scenarios to sweep: give them with --scenario")
+        try:
+            names = sweep.points(names, specs)
+        except sweep.SweepError as error:
+            raise UsageError(str(error)) from error
+        for name in names:
+            build_scenario(name)  # a combination no single range excludes fails here, before any run
     unknown = [e for e in args.engine if e not in adapters.names()]
     if unknown:
         raise UsageError(f"unknown engine '{unknown[0]}'; known: {', '.join(adapters.names())}")
@@ -63,6 +76,26 @@ def _run_options(args: argparse.Namespace, suite: Suite, rerun: bool) -> RunOpti
 
 
 @dataclass(frozen=True)
+class Backend:
+    """Where the runs happen: here one by one (neither set), on a local Dask cluster of `workers`
+    processes, or on the Dask scheduler at `cluster`."""
+
+    workers: int | None = None
+    cluster: str | None = None
+
+
+def _backend(args: argparse.Namespace) -> Backend:
+    workers, cluster = getattr(args, "workers", None), getattr(args, "cluster", None)
+    if workers is not None and cluster is not None:
+        raise UsageError("--workers starts a local cluster and --cluster names one: give one of them")
+    if workers is not None and not 1 <= workers <= MAX_WORKERS:
+        raise UsageError(f"--workers must be in [1, {MAX_WORKERS}], got {workers}")
+    if cluster is not None and not CLUSTER_ADDRESS.match(cluster):
+        raise UsageError(f"--cluster expects a scheduler address such as tcp://HOST:PORT, got '{cluster}'")
+    return Backend(workers, cluster)
+
+
+@dataclass(frozen=True)
 class Selection:
     """A checked selection: what to run and how, before anything is written."""
 
@@ -70,6 +103,7 @@ class Selection:
     names: list[str]
     engines: list[str]
     options: RunOptions
+    backend: Backend = Backend()
 
 
 def select(args: argparse.Namespace, out: Path, rerun: bool = False) -> Selection:
@@ -77,21 +111,27 @@ def select(args: argparse.Namespace, out: Path, rerun: bool = False) -> Selectio
     suite, names, engines = _selection(args)
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} is a file, not a directory")
-    return Selection(suite, names, engines, _run_options(args, suite, rerun or args.rerun))
+    options = _run_options(args, suite, rerun or args.rerun)
+    return Selection(suite, names, engines, options, _backend(args))
 
 
 def run_selection(selection: Selection, out: Path, progress: bool) -> Path:
     """Run a checked selection into `out` (the caller holds its writer lock); returns `out`."""
-    suite = selection.suite
-    runner = Runner(
-        ResultsStore(out),
-        selection.engines,
-        selection.options,
-        truth=suite.truth,
-        progress=progress,
-        suite=suite.name,
-        settings=suite.settings,
-    )
+    suite, backend = selection.suite, selection.backend
+    arguments: dict[str, Any] = {
+        "truth": suite.truth,
+        "progress": progress,
+        "suite": suite.name,
+        "settings": suite.settings,
+    }
+    if backend == Backend():
+        runner = Runner(ResultsStore(out), selection.engines, selection.options, **arguments)
+    else:  # Dask is imported only here
+        from reports.harness.dask_backend import DaskRunner
+
+        runner = DaskRunner(
+            ResultsStore(out), selection.engines, selection.options, **arguments, **vars(backend)
+        )
     runner.run(selection.names)
     return out
 
@@ -177,7 +217,11 @@ def _selection_arguments(parser: argparse.ArgumentParser, suite: str) -> None:
     parser.add_argument("--wait", action="store_true", help="wait for another run writing --out to end")
 
 
-BENCHMARKS = {"speed": "benchmarks.solver_speed", "scaling": "benchmarks.chain_scaling"}
+BENCHMARKS = {
+    "speed": "benchmarks.solver_speed",
+    "scaling": "benchmarks.chain_scaling",
+    "sweep": "benchmarks.sweep_speed",
+}
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
@@ -193,6 +237,17 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
     _selection_arguments(run, "default")
     run.add_argument("--out", default=DEFAULT_OUT, help=f"output directory (default {DEFAULT_OUT})")
     run.add_argument("--quiet", action="store_true", help="no progress bar")
+    run.add_argument(
+        "--sweep",
+        action="append",
+        default=[],
+        metavar="NAME=SPEC",
+        help="sweep a parameter of the --scenario ones: log:LOW:HIGH:N, lin:LOW:HIGH:N or A,B,... "
+        "(repeatable: the grid of every --sweep)",
+    )
+    where = run.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=int, help="run on a local Dask cluster of N worker processes")
+    where.add_argument("--cluster", metavar="ADDRESS", help="run on the Dask scheduler at tcp://HOST:PORT")
 
     report = sub.add_parser("report", help="re-render the report from stored results")
     report.add_argument("results", help="results directory (or its results.parquet)")
@@ -213,7 +268,8 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         nargs="?",
         choices=sorted(BENCHMARKS),
         default="speed",
-        help="speed: cost per time point per family; scaling: cost against chain size",
+        help="speed: cost per time point per family; scaling: cost against chain size; "
+        "sweep: a 200-point sweep serial against --workers",
     )
     bench.add_argument("options", nargs=argparse.REMAINDER, help="passed to the benchmark (see its --help)")
 

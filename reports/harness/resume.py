@@ -9,10 +9,15 @@ A row is never dropped because its engine cannot be loaded now: those rows stay 
 
 from __future__ import annotations
 
-from collections import Counter
+from collections import Counter, defaultdict
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+from reports.harness.columns import NOT_RUN
+
+if TYPE_CHECKING:
+    from reports.harness.results_store import Key, ResultsStore
 
 RETRIED = ("failed", "timeout")
 RETRY, STALE, NO_TRAJECTORY, RERUN = "retry", "stale", "trajectory missing", "rerun"
@@ -79,3 +84,52 @@ class ResumeLog:
         for engine, count in sorted(self.kept_unavailable.items()):
             out.append(f"{engine} is unavailable: its {count} stored rows are kept as they are")
         return out
+
+
+class StoredRuns:
+    """The rows a run finds in its store, indexed by scenario and engine (a sweep of many points
+    reconciles each pair without reading every row), and what the resume decides about each."""
+
+    def __init__(self, store: ResultsStore, revision: str, policy: ResumePolicy) -> None:
+        self.store, self.revision, self.policy, self.log = store, revision, policy, ResumeLog()
+        self.by_pair: defaultdict[tuple[str, str], list[Key]] = defaultdict(list)
+        for key in store.rows:
+            self.by_pair[key[:2]].append(key)
+
+    def keeps(self, scenario: str, engine: str, version: str, setting: str) -> bool:
+        """Whether the stored row of this run is kept (rerun_reason), counted in the log."""
+        key = (scenario, engine, setting)
+        row = self.store.rows.get(key)
+        if row is None:
+            return False
+        reason = rerun_reason(row, self.revision, version, key in self.store.trajectories, self.policy)
+        if reason is not None:
+            self.log.reasons[reason] += 1
+        stale = staleness(row, self.revision, version)
+        if stale and reason in (STALE, None):
+            self.log.stale_from[stale] += 1
+        if reason is None and stale:
+            self.log.kept_stale += 1
+            row["stale"] = True
+        return reason is None
+
+    def keeps_unavailable(self, scenario: str, engine: str) -> bool:
+        """Whether the store has rows of an engine that cannot be loaded now (counted in the log)."""
+        count = sum(1 for k in self.by_pair[(scenario, engine)] if k[2] != NOT_RUN and k in self.store.rows)
+        if count:
+            self.log.kept_unavailable[engine] = self.log.kept_unavailable.get(engine, 0) + count
+        return count > 0
+
+    def reconcile(self, scenario: str, engine: str, planned: set[str] | None) -> None:
+        """Make the stored rows of this scenario-engine pair agree with the plan (`planned` setting
+        labels, None when the pair does not run): a pair that no longer runs keeps only its reason
+        row; one that runs loses its old reason row; stored settings outside the plan (another
+        suite's sweep) stay, but are no longer the default."""
+        rows, trajectories = self.store.rows, self.store.trajectories
+        for key in [k for k in self.by_pair.pop((scenario, engine), []) if k in rows]:
+            if (planned is not None) == (key[2] == NOT_RUN):
+                del rows[key]
+                trajectories.pop(key, None)
+            elif planned is not None and key[2] not in planned:
+                rows[key]["is_default"] = False
+                trajectories.pop(key, None)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import socket
 from typing import Any
 
 from adapters.base import RunResult, Setting, Status
@@ -22,6 +23,7 @@ def base_row(
         scenario=scenario.name,
         family=scenario.family,
         variant=scenario.variant,
+        sweep=json.dumps(dict(scenario.point)) if scenario.point else "",
         engine=engine,
         engine_version=version,
         mode=setting.mode if setting else "",
@@ -32,6 +34,7 @@ def base_row(
         t_end=scenario.t_end,
         characteristic_length=scenario.characteristic_length,
         characteristic_rate=characteristic_rate(scenario),
+        host=socket.gethostname(),
         recorded_at=now(),
     )
     return row

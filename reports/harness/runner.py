@@ -8,15 +8,19 @@ each engine run (build timed apart, simulation timed as the minimum of repeats a
 the adapter's base class) happens in a forked child with a time limit, and its errors against the
 truth are computed there too. A crash, a hang or a divergence costs that row only. Rows already
 stored are skipped unless `rerun`; the store is saved after each scenario-engine group.
+`run_group` makes a group's rows without storing them, so that a Dask task
+(reports.harness.dask_backend) runs a group exactly as this runner does.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import sys
+import threading
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -25,7 +29,6 @@ import tqdm
 import adapters
 from adapters.base import Adapter, RunResult, Setting
 from reports.harness import provenance
-from reports.harness.columns import NOT_RUN
 from reports.harness.energy_drift import energy_drift
 from reports.harness.isolation import run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION, level_errors
@@ -36,8 +39,9 @@ from reports.harness.metrics import (
     error_metrics,
     residual_metrics,
 )
+from reports.harness.planning import Group, SettingsHook, plan_engine
 from reports.harness.results_store import ResultsStore
-from reports.harness.resume import STALE, ResumeLog, ResumePolicy, rerun_reason, staleness
+from reports.harness.resume import ResumePolicy, StoredRuns
 from reports.harness.rows import failure_row, result_row
 from reports.harness.truth import NamedTruth, independent_truth, named
 from scenarios import Scenario, ScenarioError
@@ -50,8 +54,6 @@ Truth = Callable[[Scenario, np.ndarray], Trajectory | NamedTruth]
 """A truth hook: the truth of a scenario on a grid; a bare trajectory is named HOOK_TRUTH."""
 HOOK_TRUTH = f"native, tolerance {TRUTH_TOLERANCE:g}"
 Loader = Callable[[str], Adapter]
-SettingsHook = Callable[[Scenario, Adapter], list[Setting] | None]
-"""A suite's own settings for a scenario and engine (the first is the default), or None: the engine's."""
 
 
 @dataclass(frozen=True)
@@ -66,18 +68,6 @@ class RunOptions:
     keep_failures: bool = False  # keep stored failed/timeout rows instead of retrying them
     keep_stale: bool = False  # keep rows of another revision or engine version, marked stale
     truth_timeout: float = 600.0  # our own solver; its first call may compile its kernels
-
-
-@dataclass
-class Group:
-    """The planned runs of one engine on one scenario, or the row that says why there are none."""
-
-    scenario: Scenario
-    engine: str
-    adapter: Adapter | None
-    version: str
-    jobs: list[tuple[Setting, bool]] = field(default_factory=list)
-    reason_row: dict[str, Any] | None = None
 
 
 def reference_residual() -> Residual | None:
@@ -104,50 +94,57 @@ class Runner:
     ) -> None:
         self.store, self.engines, self.options = store, list(engines), options
         self.truth, self.progress, self.suite = truth or independent_truth, progress, suite
-        self.settings = settings
+        self.settings, self.loader = settings, loader
         self.residual = residual if residual is not None else reference_residual()
         self.adapters: dict[str, Adapter | str] = {}
         self.revision = provenance.git_revision()
         self.policy = ResumePolicy(options.rerun, options.keep_failures, options.keep_stale)
-        self.resume_log = ResumeLog()
+        self.stored = StoredRuns(store, self.revision, self.policy)
         for name in self.engines:
             try:
                 self.adapters[name] = loader(name)
             except Exception as error:  # not installed, or its module is broken
                 self.adapters[name] = f"engine unavailable: {type(error).__name__}: {error}"
 
+    workers = 1
+    """Runs made at the same time (the `workers` column): one by one here."""
+
     def run(self, scenario_names: Sequence[str]) -> None:
         """Plan every group, then run what is not stored yet, saving after each group."""
         groups = [g for name in scenario_names for g in self._plan(name)]
-        kept = {id(g) for g in groups if g.adapter is None and self._stored_results(g)}
-        pending = {id(g): [j for j in g.jobs if not self._stored(g, j[0])] for g in groups}
-        for line in self.resume_log.lines():
+        stored = self.stored = StoredRuns(self.store, self.revision, self.policy)
+        kept = {id(g) for g in groups if g.adapter is None and stored.keeps_unavailable(*_pair(g))}
+        pending = {
+            id(g): [j for j in g.jobs if not stored.keeps(*_pair(g), g.version, j[0].label)] for g in groups
+        }
+        for line in self.stored.log.lines():
             print(f"mbxval: {line}", file=sys.stderr)
-        truths_needed = {g.scenario.name for g in groups if pending[id(g)]}
-        total = sum(len(p) for p in pending.values()) + len(truths_needed)
-        tqdm.tqdm.monitor_interval = 0  # no monitor thread: the runs are forked
+        try:
+            self._execute([(g, pending[id(g)]) for g in groups if id(g) not in kept])
+        finally:
+            self._save()
+
+    def _execute(self, groups: list[tuple[Group, list[tuple[Setting, bool]]]]) -> None:
+        """Run each group's pending jobs here, one after another (unavailable groups left out)."""
+        truths_needed = {g.scenario.name for g, jobs in groups if jobs}
+        total = sum(len(jobs) for _, jobs in groups) + len(truths_needed)
         truths: dict[str, NamedTruth | str] = {}
-        # In a log rather than a terminal (a CI job), a line every 10 s instead of one per update.
-        interval = 0.1 if sys.stderr.isatty() else 10.0
-        with tqdm.tqdm(
-            total=total, file=sys.stderr, disable=not self.progress, unit="run", mininterval=interval
-        ) as bar:
-            try:
-                for group in groups:
-                    name = group.scenario.name
-                    if id(group) in kept:
-                        continue  # unavailable now: its stored rows stay as they are
-                    self._reconcile(group)
-                    if group.reason_row is not None:
-                        self._add(group.reason_row)
-                        continue
-                    if pending[id(group)] and name not in truths:
-                        bar.set_description(f"{name} truth", refresh=False)
-                        truths[name] = self._solve_truth(group.scenario)
-                        bar.update()
-                    self._run_group(group, pending[id(group)], truths.get(name, ""), bar)
-                    self._save()
-            finally:
+        with progress_bar(total, self.progress, "run") as bar:
+            for group, jobs in groups:
+                name = group.scenario.name
+                self._reconcile(group)
+                if group.reason_row is not None:
+                    self._add(group.reason_row)
+                    continue
+                if jobs and name not in truths:
+                    bar.set_description(f"{name} truth", refresh=False)
+                    truths[name] = solve_truth(self.truth, group.scenario, self.options.truth_timeout)
+                    self._put_truth(group.scenario, truths[name])
+                    bar.update()
+                done = functools.partial(tick, bar, f"{name} {group.engine}")
+                truth = truths.get(name, "")
+                for row, trajectory in run_group(group, jobs, truth, self.options, self.residual, done):
+                    self._add(row, trajectory)
                 self._save()
 
     # --- planning ---------------------------------------------------------------------------
@@ -156,130 +153,23 @@ class Runner:
             scenario = build_scenario(name)
         except ScenarioError as error:
             raise ScenarioError(f"suite scenario {name} cannot be built: {error}") from error
-        return [self._plan_engine(scenario, engine) for engine in self.engines]
-
-    def _plan_engine(self, scenario: Scenario, engine: str) -> Group:
-        adapter = self.adapters[engine]
-        if isinstance(adapter, str):
-            row = failure_row(scenario, engine, "unavailable", None, True, "failed", adapter)
-            return Group(scenario, engine, None, "unavailable", reason_row=row)
-        version = adapter._safe_version()
-        group = Group(scenario, engine, adapter, version)
-        try:
-            reason = adapter.supports(scenario)
-            if reason is not None:
-                group.reason_row = failure_row(scenario, engine, version, None, True, "unsupported", reason)
-                return group
-            default = adapter.default_setting(scenario)
-            settings = adapter.sweep(scenario) if self.options.sweep else []
-            chosen = self.settings(scenario, adapter) if self.settings else None
-            if chosen:
-                default, settings = chosen[0], chosen
-        except Exception as error:  # a broken adapter costs its own rows only
-            message = f"cannot plan the runs: {type(error).__name__}: {error}"
-            group.reason_row = failure_row(scenario, engine, version, None, True, "failed", message)
-            return group
-        group.jobs = [(s, s == default) for s in dict.fromkeys([*settings, default])]
-        return group
-
-    def _stored(self, group: Group, setting: Setting) -> bool:
-        """Whether the stored row of this run is kept (see reports.harness.resume)."""
-        key = (group.scenario.name, group.engine, setting.label)
-        row = self.store.rows.get(key)
-        if row is None:
-            return False
-        reason = rerun_reason(row, self.revision, group.version, key in self.store.trajectories, self.policy)
-        log = self.resume_log
-        if reason is not None:
-            log.reasons[reason] += 1
-        stale = staleness(row, self.revision, group.version)
-        if stale and reason in (STALE, None):
-            log.stale_from[stale] += 1
-        if reason is None and stale:
-            log.kept_stale += 1
-            row["stale"] = True
-        return reason is None
-
-    def _stored_results(self, group: Group) -> bool:
-        """Whether the store has rows of an engine that cannot be loaded now (counted in the log)."""
-        pair = (group.scenario.name, group.engine)
-        count = sum(1 for k in self.store.rows if k[:2] == pair and k[2] != NOT_RUN)
-        if count:
-            log = self.resume_log.kept_unavailable
-            log[group.engine] = log.get(group.engine, 0) + count
-        return count > 0
+        return [
+            plan_engine(scenario, e, self.adapters[e], self.options.sweep, self.settings)
+            for e in self.engines
+        ]
 
     def _reconcile(self, group: Group) -> None:
-        """Make the stored rows of this scenario-engine pair agree with the plan: a pair that no
-        longer runs keeps only its reason row; one that runs loses its old reason row; stored
-        settings outside the plan (another suite's sweep) stay, but are no longer the default."""
-        planned = {s.label for s, _ in group.jobs}
-        for key in [k for k in self.store.rows if k[:2] == (group.scenario.name, group.engine)]:
-            if (group.reason_row is None) == (key[2] == NOT_RUN):
-                del self.store.rows[key]
-                self.store.trajectories.pop(key, None)
-            elif group.reason_row is None and key[2] not in planned:
-                self.store.rows[key]["is_default"] = False
-                self.store.trajectories.pop(key, None)
+        planned = None if group.reason_row is not None else {s.label for s, _ in group.jobs}
+        self.stored.reconcile(group.scenario.name, group.engine, planned)
 
-    # --- running ----------------------------------------------------------------------------
-    def _solve_truth(self, scenario: Scenario) -> NamedTruth | str:
-        times = np.asarray(scenario.times())
-        outcome = run_here(lambda: self.truth(scenario, times), self.options.truth_timeout)
-        if outcome.kind != "ok" or outcome.value is None:
-            return f"no reference truth ({outcome.kind}: {outcome.message})"
-        found = named(outcome.value, HOOK_TRUTH)
-        self.store.put_truth(scenario.name, found.name, found.trajectory.select(scenario.output_bodies))
-        return found
-
-    def _run_group(
-        self, group: Group, jobs: list[tuple[Setting, bool]], truth: NamedTruth | str, bar: tqdm.tqdm
-    ) -> None:
-        timed_out: set[str] = set()
-        for setting, is_default in jobs:
-            bar.set_description(f"{group.scenario.name} {group.engine} {setting.label}", refresh=False)
-            if setting.mode in timed_out:
-                message = "not run: a cheaper setting of this mode hit the time limit"
-                self._fail(group, setting, is_default, "timeout", message)
-            else:
-                self._run_one(group, setting, is_default, truth, timed_out)
-            bar.update()
-
-    def _run_one(
-        self, group: Group, setting: Setting, is_default: bool, truth: NamedTruth | str, timed_out: set[str]
-    ) -> None:
-        scenario, adapter, opts = group.scenario, group.adapter, self.options
-        assert adapter is not None
-        times = np.asarray(scenario.times())
-        residual = self.residual
-
-        def execute() -> tuple[RunResult, int, dict[str, float], tuple[str, ...], str]:
-            result, repeats = timed_run(adapter, scenario, setting, times, opts)
-            against = truth.trajectory if isinstance(truth, NamedTruth) else truth
-            return (result, repeats, *compare(scenario, result, against, residual))
-
-        outcome = run_isolated(execute, opts.timeout)
-        if outcome.kind == "timeout":
-            timed_out.add(setting.mode)
-            self._fail(group, setting, is_default, "timeout", outcome.message)
-        elif outcome.kind != "ok" or outcome.value is None:
-            self._fail(group, setting, is_default, "failed", outcome.message)
-        else:
-            result, repeats, metrics, levels, note = outcome.value
-            row = result_row(scenario, result, is_default, repeats, opts.warmup, metrics, levels, note)
-            row["engine"] = group.engine  # the name it was asked by, whatever the adapter calls itself
-            row["truth"] = truth.name if isinstance(truth, NamedTruth) else ""
-            keep = result.trajectory if is_default and result.status == "ok" else None
-            keep = keep.select(scenario.output_bodies) if keep is not None else None
-            self._add(row, keep)
-
-    def _fail(self, group: Group, setting: Setting, is_default: bool, status: Any, message: str) -> None:
-        row = failure_row(group.scenario, group.engine, group.version, setting, is_default, status, message)
-        self._add(row)
+    # --- storing ----------------------------------------------------------------------------
+    def _put_truth(self, scenario: Scenario, truth: NamedTruth | str) -> None:
+        if isinstance(truth, NamedTruth):
+            self.store.put_truth(scenario.name, truth.name, truth.trajectory.select(scenario.output_bodies))
 
     def _add(self, row: dict[str, Any], trajectory: Trajectory | None = None) -> None:
         """Store a row made now: stamped with the revision, not stale."""
-        row.update(revision=self.revision, stale=False)
+        row.update(revision=self.revision, stale=False, workers=self.workers)
         self.store.add(row, trajectory)
 
     def _save(self) -> None:
@@ -294,7 +184,7 @@ class Runner:
             "warmup": self.options.warmup,
             "timeout": self.options.timeout,
             "revisions": sorted({str(r.get("revision") or "unknown") for r in self.store.rows.values()}),
-            "resume": self.resume_log.lines(),
+            "resume": self.stored.log.lines(),
             "truth": (
                 "each row's `truth` column: the closed form where the scenario has one, else the "
                 "native solver on a refined grid at tight tolerance; for dynamic scenarios the native "
@@ -304,6 +194,100 @@ class Runner:
             "scales": SCALE_DEFINITION,
         }
         self.store.save(meta)
+
+
+def _pair(group: Group) -> tuple[str, str]:
+    return group.scenario.name, group.engine
+
+
+def progress_bar(total: int, shown: bool, unit: str) -> tqdm.tqdm:
+    """The progress bar on stderr: in a log rather than a terminal (a CI job), a line every 10 s."""
+    tqdm.tqdm.monitor_interval = 0  # no monitor thread: the runs are forked
+    interval = 0.1 if sys.stderr.isatty() else 10.0
+    return tqdm.tqdm(total=total, file=sys.stderr, disable=not shown, unit=unit, mininterval=interval)
+
+
+def tick(bar: tqdm.tqdm, what: str, label: str) -> None:
+    """One more done on the bar, naming what was done last."""
+    bar.set_description(f"{what} {label}", refresh=False)
+    bar.update()
+
+
+def solve_truth(truth: Truth, scenario: Scenario, timeout: float) -> NamedTruth | str:
+    """The scenario's truth on its grid, or why there is none. Solved in this process when it is
+    the main thread (the solver's compiled kernels are then inherited by the forked runs), else (a
+    Dask worker's task thread, where no alarm can be set) in a forked child with the time limit."""
+    times = np.asarray(scenario.times())
+    here = threading.current_thread() is threading.main_thread()
+    outcome = (run_here if here else run_isolated)(lambda: truth(scenario, times), timeout)
+    if outcome.kind != "ok" or outcome.value is None:
+        return f"no reference truth ({outcome.kind}: {outcome.message})"
+    return named(outcome.value, HOOK_TRUTH)
+
+
+Stored = tuple[dict[str, Any], Trajectory | None]
+"""A row and the trajectory kept with it (the default setting's, when ok)."""
+
+
+def run_group(
+    group: Group,
+    jobs: list[tuple[Setting, bool]],
+    truth: NamedTruth | str,
+    options: RunOptions,
+    residual: Residual | None,
+    done: Callable[[str], None] | None = None,
+) -> list[Stored]:
+    """The rows of one scenario-engine group: each job run isolated (a crash or a hang costs its
+    row), timed and compared with the truth; `done(label)` after each. Stores nothing, so that it
+    runs the same here and in a Dask task."""
+    timed_out: set[str] = set()
+    out: list[Stored] = []
+    for setting, is_default in jobs:
+        if setting.mode in timed_out:
+            message = "not run: a cheaper setting of this mode hit the time limit"
+            out.append((failure(group, setting, is_default, "timeout", message), None))
+        else:
+            out.append(_run_one(group, setting, is_default, truth, options, residual, timed_out))
+        if done is not None:
+            done(setting.label)
+    return out
+
+
+def _run_one(
+    group: Group,
+    setting: Setting,
+    is_default: bool,
+    truth: NamedTruth | str,
+    opts: RunOptions,
+    residual: Residual | None,
+    timed_out: set[str],
+) -> Stored:
+    scenario, adapter = group.scenario, group.adapter
+    assert adapter is not None
+    times = np.asarray(scenario.times())
+
+    def execute() -> tuple[RunResult, int, dict[str, float], tuple[str, ...], str]:
+        result, repeats = timed_run(adapter, scenario, setting, times, opts)
+        against = truth.trajectory if isinstance(truth, NamedTruth) else truth
+        return (result, repeats, *compare(scenario, result, against, residual))
+
+    outcome = run_isolated(execute, opts.timeout)
+    if outcome.kind == "timeout":
+        timed_out.add(setting.mode)
+        return failure(group, setting, is_default, "timeout", outcome.message), None
+    if outcome.kind != "ok" or outcome.value is None:
+        return failure(group, setting, is_default, "failed", outcome.message), None
+    result, repeats, metrics, levels, note = outcome.value
+    row = result_row(scenario, result, is_default, repeats, opts.warmup, metrics, levels, note)
+    row["engine"] = group.engine  # the name it was asked by, whatever the adapter calls itself
+    row["truth"] = truth.name if isinstance(truth, NamedTruth) else ""
+    keep = result.trajectory if is_default and result.status == "ok" else None
+    return row, keep.select(scenario.output_bodies) if keep is not None else None
+
+
+def failure(group: Group, setting: Setting, is_default: bool, status: Any, message: str) -> dict[str, Any]:
+    """The row of a run of the group that produced nothing to compare."""
+    return failure_row(group.scenario, group.engine, group.version, setting, is_default, status, message)
 
 
 def timed_run(

@@ -16,8 +16,16 @@ from typing import Any
 
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.provenance import revision_label
-from reports.render import dynamics_render, first_screen, level_plots, overview, plots, stability_render
-from reports.render.report_data import ReportData, number, table
+from reports.render import (
+    dynamics_render,
+    first_screen,
+    level_plots,
+    overview,
+    plots,
+    stability_render,
+    sweep_render,
+)
+from reports.render.report_data import ReportData, number, table, timing_note
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 1.5em auto; max-width: 1200px; color: #222; }
@@ -50,8 +58,9 @@ window.addEventListener('load', function () {
 
 
 def render(data: ReportData) -> str:
-    """The whole page as text."""
-    meta = data.meta
+    """The whole page as text. The points of parameter sweeps are drawn as maps up front (a first
+    screen of their own) and left out of the per-scenario matrix and sections."""
+    meta, whole, data = data.meta, data, data.unswept()
     parts = [
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
@@ -59,23 +68,31 @@ def render(data: ReportData) -> str:
         f"<style>{STYLE}</style><script>{CHECK}</script></head><body>",
         f"<h1>mbxval: planar multibody {_subject(meta)} across engines</h1>",
         f'<p class="muted">{html.escape(_provenance(meta))}</p>',
-        f"<p><strong>{html.escape(_headline(data))}</strong></p>",
-        "<h2>Error at each level, each engine's default setting</h2>",
-        f'<p class="muted">{html.escape(_definitions(meta))}</p>',
-        first_screen.level_matrix(data),
-        f'<p class="muted">Runs by status: {html.escape(_counts(data))}. Colour: log10 error from '
-        f"1e{first_screen.BEST:.0f} (green) to 1e{first_screen.WORST:.0f} (red); hover a scenario for "
-        "its truth.</p>",
-        "<h2>Error against run time over the suite</h2>",
-        _overview(data),
-        "<h2>Engines against each other (default settings)</h2>",
-        _agreement(data),
-        stability_render.html_fragment(data),  # "" unless these are the stress suite's results
-        dynamics_render.html_fragment(data, _image),  # "" without dynamic scenarios
-        "<h2>Engines and machine</h2>",
-        _key_values(_versions(meta)),
-        _modes(data),
+        sweep_render.html_fragment(whole),  # "" unless the results hold parameter sweeps
     ]
+    if not data.frame.empty:
+        parts += [
+            f"<p><strong>{html.escape(_headline(data))}</strong></p>",
+            "<h2>Error at each level, each engine's default setting</h2>",
+            f'<p class="muted">{html.escape(_definitions(meta))}</p>',
+            first_screen.level_matrix(data),
+            f'<p class="muted">Runs by status: {html.escape(_counts(data))}. Colour: log10 error from '
+            f"1e{first_screen.BEST:.0f} (green) to 1e{first_screen.WORST:.0f} (red); hover a scenario for "
+            "its truth.</p>",
+        ]
+    parts += [
+        "<h2>Error against run time over the suite</h2>",
+        _overview(whole),
+        f'<p class="muted">{html.escape(timing_note(whole.frame))}</p>',
+    ]
+    if not data.frame.empty:
+        parts += [
+            "<h2>Engines against each other (default settings)</h2>",
+            _agreement(data),
+            stability_render.html_fragment(data),  # "" unless these are the stress suite's results
+            dynamics_render.html_fragment(data, _image),  # "" without dynamic scenarios
+        ]
+    parts += ["<h2>Engines and machine</h2>", _key_values(_versions(meta)), _modes(whole)]
     parts += _sections(data)
     parts.append("</body></html>")
     return "\n".join(parts)
@@ -209,6 +226,7 @@ def _scenario_section(data: ReportData, scenario: str) -> str:
             f"characteristic rate {number(rate)} rad/s; "
             f"{int(rows['grid_points'].iloc[0])} grid points over {number(rows['t_end'].iloc[0])} s</p>",
             f'<div class="plots">{"".join(figures)}</div>',
+            f'<p class="muted">{html.escape(timing_note(rows))}</p>',
             f'<div class="wide">{shown.to_html(index=False, escape=True, border=0)}</div>',
         ]
     )

@@ -4,17 +4,18 @@ from __future__ import annotations
 
 from reports.harness.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.harness.provenance import revision_label
-from reports.render import stability_render
+from reports.render import stability_render, sweep_render
 from reports.render.first_screen import native_line, scenario_rate, truth_names
 from reports.render.markdown_table import markdown_table
-from reports.render.report_data import HEADINGS, ReportData, number, table
+from reports.render.report_data import HEADINGS, ReportData, number, table, timing_note
 
 SHOWN = ("engine", "setting", "status", *LEVEL_COLUMNS.values(), "constraint_residual", "run_time", "message")
 SUMMARY_COLUMNS = tuple(HEADINGS.get(c, c) for c in SHOWN)
 
 
 def render(data: ReportData) -> str:
-    meta = data.meta
+    """The summary; the points of parameter sweeps as one table per sweep, not scenario by scenario."""
+    meta, whole, data = data.meta, data, data.unswept()
     engines = ", ".join(f"{k} {v}" for k, v in meta.get("engines", {}).items())
     machine = meta.get("machine", {})
     revision = revision_label(meta)
@@ -26,16 +27,23 @@ def render(data: ReportData) -> str:
         f"{machine.get('processor', '?')}, {machine.get('cpus', '?')} CPUs.",
         f"Timing: minimum of {meta.get('repeats', '?')} repeats after {meta.get('warmup', '?')} warm-up.",
         "",
-        f"**{native_line(data.frame)}**",
-        "",
         f"{meta.get('scales', SCALE_DEFINITION)} The truth: {meta.get('truth', '')}.",
         "",
-        "## Status and error (position / velocity / acceleration) at each engine's default setting",
-        "",
-        markdown_table(data.matrix(), "scenario"),
-        "",
-        "Runs by status: " + ", ".join(f"{s} {n}" for s, n in data.status_counts().items()) + ".",
+        timing_note(whole.frame),
     ]
+    if not data.frame.empty:
+        lines[-4:-4] = [f"**{native_line(data.frame)}**", ""]
+        lines += [
+            "",
+            "## Status and error (position / velocity / acceleration) at each engine's default setting",
+            "",
+            markdown_table(data.matrix(), "scenario"),
+            "",
+            "Runs by status: " + ", ".join(f"{s} {n}" for s, n in data.status_counts().items()) + ".",
+        ]
+    swept = sweep_render.markdown_section(whole)  # "" unless the results hold parameter sweeps
+    if swept:
+        lines += ["", swept.rstrip("\n")]
     stability = stability_render.markdown_section(data)  # "" unless the results hold stress cases
     if stability:
         lines += ["", stability.rstrip("\n")]
@@ -50,5 +58,7 @@ def render(data: ReportData) -> str:
             f"rate {number(scenario_rate(data, scenario))} rad/s.",
             "",
             markdown_table(rows),
+            "",
+            timing_note(data.rows(scenario)),
         ]
     return "\n".join(lines) + "\n"

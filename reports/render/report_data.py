@@ -101,8 +101,35 @@ class ReportData:
         }
         return pd.DataFrame(cells, index=self.scenarios())
 
+    def unswept(self) -> ReportData:
+        """The results without the points of parameter sweeps (drawn as maps, not one by one)."""
+        return ReportData(self.frame[~is_swept(self.frame)], self.meta, self.trajectories)
+
     def status_counts(self) -> dict[str, int]:
         return {str(k): int(v) for k, v in self.frame["status"].value_counts().items()}
+
+
+def is_swept(frame: pd.DataFrame) -> pd.Series:
+    """Which rows are points of a parameter sweep (the `sweep` column)."""
+    if "sweep" not in frame:
+        return pd.Series(False, index=frame.index)
+    return frame["sweep"].fillna("").astype(str) != ""
+
+
+def timing_note(rows: pd.DataFrame) -> str:
+    """Where the run times were measured and alongside how many other runs: parallel workers
+    share the machine, so their times are noisier (and often longer) than one-by-one runs'."""
+    if "workers" not in rows or rows.empty:
+        return "Run times: where and how many at once not recorded (results from before that)."
+    hosts = sorted({str(h) for h in rows["host"] if str(h)}) or ["an unrecorded host"]
+    counts = sorted({int(w) for w in rows["workers"] if int(w) > 0})
+    if not counts:
+        return f"Run times measured on {', '.join(hosts)}; how many runs at once was not recorded."
+    ways = " and ".join("one at a time" if w == 1 else f"{w} at once (Dask workers)" for w in counts)
+    note = f"Run times measured on {', '.join(hosts)}, {ways}"
+    if counts != [1]:
+        note += "; runs made in parallel share the machine, so their times are noisier than serial ones"
+    return note + "."
 
 
 def cell_text(row: pd.Series | None) -> str:

@@ -9,6 +9,8 @@ velocities exact, no accelerations. The other modes crash, hang, diverge, return
 from __future__ import annotations
 
 import ctypes
+import os
+import signal
 import time
 from pathlib import Path
 
@@ -76,6 +78,28 @@ class FakeAdapter(Adapter):
         return Trajectory(truth.times, truth.bodies, position, truth.velocity)
 
 
+class WorkerKiller(FakeAdapter):
+    """The fake at its default setting, except that on the four_bar family it kills the Dask worker
+    process that runs it (once: it leaves `log`.killed behind, and is a plain fake after that)."""
+
+    name = "killer"
+
+    def sweep(self, scenario: Scenario) -> list[Setting]:
+        return [GOOD[1]]
+
+    def simulate(self, model: tuple[Scenario, Setting], times: np.ndarray) -> Trajectory:
+        scenario, _ = model
+        flag = self.log.with_suffix(".killed")
+        if scenario.family == "four_bar" and not flag.exists():
+            from distributed import get_worker
+
+            get_worker()  # ValueError outside a Dask worker: never kill anything else
+            flag.touch()
+            os.kill(os.getppid(), signal.SIGKILL)  # this run is a forked child of the worker process
+            time.sleep(60)
+        return super().simulate(model, times)
+
+
 def fake_loader(log: Path):  # type: ignore[no-untyped-def]
     """A loader that knows the fake and an engine that is not installed."""
     import adapters
@@ -83,6 +107,8 @@ def fake_loader(log: Path):  # type: ignore[no-untyped-def]
     def load(name: str) -> Adapter:
         if name == "fake":
             return FakeAdapter(log)
+        if name == "killer":
+            return WorkerKiller(log)
         if name == "absent":
             raise adapters.EngineUnavailable("engine 'absent' is not installed")
         return adapters.load(name)
