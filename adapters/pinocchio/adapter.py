@@ -27,7 +27,11 @@ import pinocchio as pin
 from adapters.base import Adapter, EngineFailure, Option, Setting, Unsupported
 from adapters.modes import ADAPTER, ENGINE, Mode
 from adapters.pinocchio.dynamics import DynamicSolver, dynamic_support
+from adapters.pinocchio.free_start import free_start
 from adapters.pinocchio.kinematics import KinematicSolver, body_motion
+from adapters.pinocchio.loads import Loads
+from adapters.pinocchio.marching import EULER as EULER_METHOD
+from adapters.pinocchio.marching import RK4
 from adapters.pinocchio.model import PinModel, build_model
 from adapters.pinocchio.row_dynamics import RowDynamicSolver
 from adapters.pinocchio.rows import Rows, motions_of
@@ -36,13 +40,14 @@ from scenarios.motions import ConstantSpeed, Harmonic
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
-KINEMATIC, DYNAMIC, BAUMGARTE = "kinematic", "dynamic", "baumgarte"
+KINEMATIC, DYNAMIC, BAUMGARTE, EULER = "kinematic", "dynamic", "baumgarte", "euler"
 MODES = {
     "kinematic": KINEMATIC,
     "kinematics": KINEMATIC,
     "dynamic": DYNAMIC,
     "dynamics": DYNAMIC,
     "baumgarte": BAUMGARTE,
+    "euler": EULER,
 }
 _DECLARED = (
     Mode(
@@ -66,11 +71,21 @@ _DECLARED = (
         ENGINE,
         "the dynamic mode with Baumgarte gains on the rows, integrated by RK4 in the adapter",
     ),
+    Mode(
+        "euler",
+        ENGINE,
+        "Pinocchio's constrained dynamics with Baumgarte gains, marched by semi-implicit Euler "
+        "around pin.integrate (the loop of Pinocchio's simulation examples)",
+    ),
 )
 MEASURED = tuple(replace(m, name=alias) for alias, mode in MODES.items() for m in _DECLARED if m.name == mode)
 """What each mode measures, the aliases (kinematics, dynamics) declared like their modes."""
 STEPS_PER_PERIOD = (100, 300, 1000)
-"""RK4 steps per drive period in the dynamic sweeps; the default is 1000."""
+"""RK4 steps per drive period in the dynamic sweeps of driven scenarios; the default is 1000."""
+SUBSTEPS = {DYNAMIC: (1, 2, 4, 8), BAUMGARTE: (1, 2, 4, 8), EULER: (8, 32, 128)}
+"""Steps per output interval in the sweeps of free dynamic scenarios, per mode."""
+DEFAULT_SUBSTEPS = {DYNAMIC: 4, BAUMGARTE: 4, EULER: 32}
+"""Steps per output interval of each mode's default setting on a free dynamic scenario."""
 TOLERANCES = (1e-5, 1e-9, 1e-15)
 """Newton residual bounds in the kinematic sweep; the default is the last."""
 
@@ -85,11 +100,17 @@ def drive_period(scenario: Scenario) -> float:
     return 2.0 * math.pi / max(rates) if rates else scenario.t_end
 
 
+def output_step(scenario: Scenario) -> float:
+    """The interval between output times."""
+    return scenario.t_end / scenario.steps
+
+
 def _gains(scenario: Scenario, mode: str) -> tuple[float, float]:
-    """Default Baumgarte gains (kp, kd) of a mode: none, or critically damped at the drive frequency."""
-    if mode != BAUMGARTE:
+    """Default Baumgarte gains (kp, kd) of a mode: none, or critically damped with a time constant of
+    one radian of the drive, or of one output interval in free dynamics."""
+    if mode not in (BAUMGARTE, EULER):
         return 0.0, 0.0
-    w = 2.0 * math.pi / drive_period(scenario)
+    w = 2.0 * math.pi / drive_period(scenario) if scenario.drivers else 1.0 / output_step(scenario)
     return w * w, 2.0 * w
 
 
@@ -128,8 +149,19 @@ class PinocchioAdapter(Adapter):
             return str(reason)
         return None
 
+    dynamics = True
+
     def default_setting(self, scenario: Scenario) -> Setting:
+        if scenario.analysis == "dynamic":
+            return self.free_setting(scenario)
         return Setting.of(KINEMATIC, tol=TOLERANCES[-1], gears="mimic")
+
+    def free_setting(self, scenario: Scenario, mode: str = DYNAMIC, substeps: int | None = None) -> Setting:
+        """A setting of `mode` on a free dynamic scenario, `substeps` steps per output interval
+        (default: the mode's default)."""
+        kp, kd = _gains(scenario, mode)
+        n = DEFAULT_SUBSTEPS[mode] if substeps is None else substeps
+        return Setting.of(mode, dt=output_step(scenario) / n, kp=kp, kd=kd)
 
     def dynamic_setting(
         self, scenario: Scenario, steps_per_period: int = 1000, mode: str = DYNAMIC
@@ -139,6 +171,8 @@ class PinocchioAdapter(Adapter):
         return Setting.of(mode, dt=drive_period(scenario) / steps_per_period, kp=kp, kd=kd)
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
+        if scenario.analysis == "dynamic":
+            return [self.free_setting(scenario, mode, n) for mode, counts in SUBSTEPS.items() for n in counts]
         settings = [self.default_setting(scenario).replace(tol=tol) for tol in TOLERANCES]
         if self.supports(scenario) is None and not scenario.cams:
             for mode in (DYNAMIC, BAUMGARTE):
@@ -147,7 +181,13 @@ class PinocchioAdapter(Adapter):
 
     def _structure(self, scenario: Scenario, mimic_gears: bool) -> tuple[Tree, PinModel, Rows]:
         """The tree, the Pinocchio model and the rows; Unsupported if the rows do not make a square
-        system in the unknowns."""
+        system in the unknowns (kinematic scenarios) or leave no freedom (dynamic ones)."""
+        dynamic = scenario.analysis == "dynamic"
+        if dynamic and scenario.cams:
+            raise Unsupported(
+                "free dynamics with a cam needs a unilateral contact; the adapter's cam rows are "
+                "bilateral kinematic constraints"
+            )
         try:
             tree = plan(scenario, mimic_gears)
         except TreeError as error:
@@ -155,9 +195,18 @@ class PinocchioAdapter(Adapter):
         pm = build_model(scenario, tree)
         rows = Rows.of(scenario, pm)
         solver = KinematicSolver(pm, rows, length=scenario.characteristic_length)
-        count = rows.evaluate(solver.snapshot(self._guess(scenario, pm))).val.size
+        count = (
+            rows.evaluate(solver.snapshot(self._guess(scenario, pm))).val.size
+            if rows.loops or rows.drivers
+            else 0
+        )
         unknowns = pm.model.nq + len(scenario.cams)
-        if count != unknowns:
+        if dynamic and count >= unknowns:
+            raise Unsupported(
+                f"the loop-closure and driver rows ({count}) leave no freedom to the {unknowns} joint "
+                "coordinates"
+            )
+        if not dynamic and count != unknowns:
             raise Unsupported(
                 f"the loop-closure and driver rows ({count}) do not match the unknowns ({unknowns}): "
                 "not a kinematically driven mechanism"
@@ -185,18 +234,22 @@ class PinocchioAdapter(Adapter):
                     "dynamic mode: a cam contact carries its contact parameter phi, an unknown outside "
                     "Pinocchio's q (forwardDynamics takes rows on q only; phi is not eliminated yet)"
                 )
-            dt = float(setting.get("dt", drive_period(scenario) / 1000))
+            fallback = self.default_setting(scenario) if scenario.analysis == "dynamic" else None
+            dt = float(setting.get("dt", fallback["dt"] if fallback else drive_period(scenario) / 1000))
             kp, kd = _gains(scenario, mode)
             gains = float(setting.get("kp", kp)), float(setting.get("kd", kd))
             # revolute loops as Pinocchio's own constraint models; any other rows through forwardDynamics
             solver = DynamicSolver if dynamic_support(scenario, tree) is None else RowDynamicSolver
-            dynamics = solver(pm, rows, dt, gains)
+            loads = Loads(pm, scenario.forces) if scenario.forces else None
+            dynamics = solver(pm, rows, dt, gains, loads, EULER_METHOD if mode == EULER else RK4)
         built = Built(scenario, mode, pm, kinematics, dynamics)
         built.start = self._start(built, float(scenario.times()[0]))
         return built
 
     def _start(self, built: Built, t0: float) -> tuple[float, np.ndarray, np.ndarray]:
         """The consistent start at t0 on Pinocchio's rows (positions, and velocities for dynamics)."""
+        if built.dynamics is not None and not built.scenario.drivers:
+            return (t0, *free_start(built.scenario, built.kinematics))
         z0 = built.kinematics.assemble(self._guess(built.scenario, built.pm), t0)
         if built.dynamics is None:
             return t0, z0, np.zeros(0)

@@ -5,7 +5,8 @@ them. But `pin.forwardDynamics(model, data, q, v, tau, J, gamma)` solves M a - J
 with J a = -gamma for any rows J: here every row the tree does not satisfy (gear and rack couplings,
 loop closures, drivers), with gamma = drift - f'' + kp (g - f) + kd (g' - f') so that the rows'
 accelerations follow the prescribed motion (Baumgarte gains kp, kd). Pinocchio computes the
-dynamics (computeAllTerms, the KKT solve); the adapter supplies the rows and integrates with RK4.
+dynamics (computeAllTerms, the KKT solve) under the loads' joint torques; the adapter supplies the
+rows and marches with RK4 or semi-implicit Euler.
 Cam contacts add the contact parameter phi, an unknown outside Pinocchio's q: not handled here.
 """
 
@@ -16,6 +17,8 @@ import pinocchio as pin
 
 from adapters.base import Singular
 from adapters.pinocchio.dynamics import DynamicSolver
+from adapters.pinocchio.loads import Loads
+from adapters.pinocchio.marching import RK4
 from adapters.pinocchio.model import PinModel
 from adapters.pinocchio.rows import Rows, Snapshot
 
@@ -23,10 +26,18 @@ from adapters.pinocchio.rows import Rows, Snapshot
 class RowDynamicSolver(DynamicSolver):
     """RK4 on (q, v) with accelerations from `pin.forwardDynamics` on the stacked rows."""
 
-    def __init__(self, pm: PinModel, rows: Rows, dt: float, gains: tuple[float, float]) -> None:
+    def __init__(
+        self,
+        pm: PinModel,
+        rows: Rows,
+        dt: float,
+        gains: tuple[float, float],
+        loads: Loads | None = None,
+        method: str = RK4,
+    ) -> None:
         if rows.contacts:
             raise ValueError("cam contacts carry phi, which forwardDynamics on q cannot hold")
-        super().__init__(pm, Rows((), rows.drivers, {}, rows.motions), dt, gains)
+        super().__init__(pm, Rows((), rows.drivers, {}, rows.motions), dt, gains, loads, method)
         self.all_rows = rows
 
     def acceleration(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -39,7 +50,7 @@ class RowDynamicSolver(DynamicSolver):
             wanted -= kd * (rows.rate - self.all_rows.targets(size, t, 1))
         model = self.pm.model
         try:
-            acc = pin.forwardDynamics(model, self.data, q, v, np.zeros(model.nv), rows.jac, -wanted, 0.0)
+            acc = pin.forwardDynamics(model, self.data, q, v, self.tau(t, q, v), rows.jac, -wanted, 0.0)
         except RuntimeError as error:
             raise Singular(f"forwardDynamics failed at t = {t:.6g}: {error}", t) from error
         return np.array(acc, copy=True)
