@@ -82,10 +82,16 @@ MEASURED = tuple(replace(m, name=alias) for alias, mode in MODES.items() for m i
 """What each mode measures, the aliases (kinematics, dynamics) declared like their modes."""
 STEPS_PER_PERIOD = (100, 300, 1000)
 """RK4 steps per drive period in the dynamic sweeps of driven scenarios; the default is 1000."""
-SUBSTEPS = {DYNAMIC: (1, 2, 4, 8), BAUMGARTE: (1, 2, 4, 8), EULER: (8, 32, 128)}
-"""Steps per output interval in the sweeps of free dynamic scenarios, per mode."""
-DEFAULT_SUBSTEPS = {DYNAMIC: 4, BAUMGARTE: 4, EULER: 32}
-"""Steps per output interval of each mode's default setting on a free dynamic scenario."""
+SUBSTEPS = {DYNAMIC: (1, 4, 16, 64), BAUMGARTE: (1, 4, 16, 64), EULER: (4, 16, 64, 256)}
+"""Steps per output interval in the sweeps of free dynamic scenarios, per mode..."""
+STEP_BUDGET = {DYNAMIC: 6400, BAUMGARTE: 6400, EULER: 12800}
+"""...kept while the run takes at most this many steps (the first always), so that a scenario's
+whole sweep stays within seconds: RK4 costs four accelerations a step, Euler one."""
+DEFAULT_SUBSTEPS = {DYNAMIC: 8, BAUMGARTE: 8, EULER: 32}
+"""Steps per output interval of each mode's default setting on a free dynamic scenario, fewer where
+the run would take more than DEFAULT_BUDGET steps (long grids such as stiff_spring's 1000 intervals,
+whose output step is the step a fixed-step engine is meant to be given)."""
+DEFAULT_BUDGET = 4000
 TOLERANCES = (1e-5, 1e-9, 1e-15)
 """Newton residual bounds in the kinematic sweep; the default is the last."""
 
@@ -160,8 +166,9 @@ class PinocchioAdapter(Adapter):
         """A setting of `mode` on a free dynamic scenario, `substeps` steps per output interval
         (default: the mode's default)."""
         kp, kd = _gains(scenario, mode)
-        n = DEFAULT_SUBSTEPS[mode] if substeps is None else substeps
-        return Setting.of(mode, dt=output_step(scenario) / n, kp=kp, kd=kd)
+        if substeps is None:
+            substeps = max(1, min(DEFAULT_SUBSTEPS[mode], DEFAULT_BUDGET // scenario.steps))
+        return Setting.of(mode, dt=output_step(scenario) / substeps, kp=kp, kd=kd)
 
     def dynamic_setting(
         self, scenario: Scenario, steps_per_period: int = 1000, mode: str = DYNAMIC
@@ -172,7 +179,12 @@ class PinocchioAdapter(Adapter):
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
         if scenario.analysis == "dynamic":
-            return [self.free_setting(scenario, mode, n) for mode, counts in SUBSTEPS.items() for n in counts]
+            return [
+                self.free_setting(scenario, mode, n)
+                for mode, counts in SUBSTEPS.items()
+                for n in counts
+                if n == counts[0] or n * scenario.steps <= STEP_BUDGET[mode]
+            ]
         settings = [self.default_setting(scenario).replace(tol=tol) for tol in TOLERANCES]
         if self.supports(scenario) is None and not scenario.cams:
             for mode in (DYNAMIC, BAUMGARTE):
@@ -285,5 +297,7 @@ class PinocchioAdapter(Adapter):
         data = pm.model.createData()
         levels = np.stack([body_motion(pm, data, (q[k], v[k], a[k]), bodies) for k in range(len(times))])
         extras = {f"{c.name}.phi": z[:, nq + k].copy() for k, c in enumerate(scenario.cams)}
+        for a in scenario.angle_outputs:  # Andrews' joint angles from Pinocchio's body angles
+            extras[a.name] = np.array([pm.angle(a.body, qk) - pm.angle(a.relative_to, qk) for qk in q])
         grid = np.asarray(times, dtype=float)
         return Trajectory(grid, bodies, levels[:, 0], levels[:, 1], levels[:, 2], extras)
