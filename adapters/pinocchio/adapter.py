@@ -297,7 +297,8 @@ class PinocchioAdapter(Adapter):
         data = pm.model.createData()
         levels = np.stack([body_motion(pm, data, (q[k], v[k], a[k]), bodies) for k in range(len(times))])
         extras = {f"{c.name}.phi": z[:, nq + k].copy() for k, c in enumerate(scenario.cams)}
-        for a in scenario.angle_outputs:  # Andrews' joint angles from Pinocchio's body angles
-            extras[a.name] = np.array([pm.angle(a.body, qk) - pm.angle(a.relative_to, qk) for qk in q])
+        for column in scenario.angle_outputs:  # Andrews' joint angles from Pinocchio's body angles
+            body, base = column.body, column.relative_to
+            extras[column.name] = np.array([pm.angle(body, qk) - pm.angle(base, qk) for qk in q])
         grid = np.asarray(times, dtype=float)
         return Trajectory(grid, bodies, levels[:, 0], levels[:, 1], levels[:, 2], extras)
