@@ -14,6 +14,7 @@ Measured (2-core machine shared with other jobs):
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -63,7 +64,7 @@ def differences(name: str, mode: str, substeps: tuple[int, ...], t_end: float) -
     scenario = scenarios.build(name, overrides={"t_end": t_end, "steps": 10})
     adapter = PinocchioAdapter()
     runs = [run(scenario, adapter.free_setting(scenario, mode, n)).position for n in substeps]
-    return [float(np.abs(a - b).max()) for a, b in zip(runs, runs[1:], strict=False)]
+    return [float(np.abs(a - b).max()) for a, b in itertools.pairwise(runs)]
 
 
 @pytest.mark.parametrize(("mode", "order"), [("dynamic", 4), ("baumgarte", 4), ("euler", 1)])
@@ -74,7 +75,7 @@ def test_four_bar_gravity_converges_at_the_promised_order(mode: str, order: int)
     4.0, approaching 4 from below); Euler at 16 to 128: 1.99, 1.99."""
     substeps = (4, 8, 16, 32) if mode != "euler" else (16, 32, 64, 128)
     found = differences("four_bar_gravity", mode, substeps, 0.3)
-    orders = [math.log2(a / b) for a, b in zip(found, found[1:], strict=False)]
+    orders = [math.log2(a / b) for a, b in itertools.pairwise(found)]
     assert all(abs(p - order) < 0.4 for p in orders), (found, orders)
     assert abs(orders[-1] - order) < 0.2, (found, orders)
 
