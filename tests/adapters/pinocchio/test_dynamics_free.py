@@ -31,13 +31,15 @@ from scenarios.trajectory import Trajectory
 def run(scenario: Scenario, setting: Setting) -> Trajectory:
     result = PinocchioAdapter().run(scenario, setting)
     assert result.status == "ok", result.message
-    assert result.trajectory is not None
-    return result.trajectory
+    trajectory = result.trajectory
+    assert trajectory is not None and trajectory.position is not None and trajectory.velocity is not None
+    return trajectory
 
 
 def energy(scenario: Scenario, trajectory: Trajectory) -> tuple[np.ndarray, np.ndarray]:
     """(T + V, T) at every output time: T = sum 1/2 m v^2 + 1/2 J w^2, V = -sum m g . r."""
     gravity = np.asarray(scenario.gravity)
+    assert trajectory.position is not None and trajectory.velocity is not None
     total = kinetic = np.zeros(len(trajectory.times))
     for body in scenario.bodies:
         k = trajectory.bodies.index(body.name)
@@ -53,6 +55,7 @@ def test_the_physical_pendulum_oscillates_at_its_closed_form_frequency() -> None
     nonlinear term of theta0^3 / 16 ~ 6e-14 rad. Measured 6.9e-13 rad (RK4 at dt = 1.25e-3)."""
     scenario = scenarios.load("compound_pendulum/small_oscillation")
     trajectory = run(scenario, PinocchioAdapter().default_setting(scenario))
+    assert trajectory.position is not None
     g, length = 9.81, scenario.body("link_1").length
     theta = 1e-4 * np.cos(math.sqrt(1.5 * g / length) * trajectory.times) - math.pi / 2
     assert np.abs(trajectory.position[:, 0, 2] - theta).max() < 3e-12
@@ -63,7 +66,7 @@ def differences(name: str, mode: str, substeps: tuple[int, ...], t_end: float) -
     successive differences tends to 2^p for an order p method halving its step)."""
     scenario = scenarios.build(name, overrides={"t_end": t_end, "steps": 10})
     adapter = PinocchioAdapter()
-    runs = [run(scenario, adapter.free_setting(scenario, mode, n)).position for n in substeps]
+    runs = [np.asarray(run(scenario, adapter.free_setting(scenario, mode, n)).position) for n in substeps]
     return [float(np.abs(a - b).max()) for a, b in itertools.pairwise(runs)]
 
 

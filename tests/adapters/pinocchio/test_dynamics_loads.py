@@ -63,7 +63,7 @@ def test_a_spring_is_minus_the_gradient_of_its_energy() -> None:
 
     def potential(q: np.ndarray) -> float:
         gap = point_position(model, spring.p_i, q) - point_position(model, spring.p_j, q)
-        return 0.5 * spring.stiffness * (np.linalg.norm(gap) - spring.free_length) ** 2
+        return 0.5 * spring.stiffness * (float(np.linalg.norm(gap)) - spring.free_length) ** 2
 
     tau = Loads(model.pm, (spring,)).generalized(0.0, q, np.zeros_like(q))
     np.testing.assert_allclose(tau, -gradient(potential, q), rtol=1e-7, atol=1e-7 * np.abs(tau).max())
