@@ -97,9 +97,9 @@ class DynamicSolver:
     def _forward(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
         model = self.pm.model
         if not self.cmodels:  # a tree: Pinocchio's articulated-body algorithm
-            return np.array(pin.aba(model, self.data, q, v, tau), copy=True)
+            return pin.aba(model, self.data, q, v, tau).copy()  # type: ignore[no-any-return]
         acc = pin.constraintDynamics(model, self.data, q, v, tau, self.cmodels, self.cdatas, self.prox)
-        return np.array(acc, copy=True)
+        return acc.copy()  # type: ignore[no-any-return]
 
     def acceleration(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
         """The constrained acceleration with every driver row held to its prescribed motion."""
