@@ -92,8 +92,9 @@ STEPS_PER_PERIOD = (100, 300, 1000)
 SUBSTEPS = {DYNAMIC: (1, 4, 16, 64), BAUMGARTE: (1, 4, 16, 64), EULER: (4, 16, 64, 256)}
 """Steps per output interval in the sweeps of free dynamic scenarios, per mode..."""
 STEP_BUDGET = {DYNAMIC: 3200, BAUMGARTE: 3200, EULER: 6400}
-"""...kept while the run takes at most this many steps (the first always), so that a scenario's
-whole sweep stays within seconds: RK4 costs four accelerations a step, Euler one."""
+"""...kept while the run takes at most this many steps (the first always; a step of more than 8
+bodies counts as bodies / 8 steps), so that a scenario's whole sweep stays within seconds: RK4
+costs four accelerations a step, Euler one."""
 DEFAULT_SUBSTEPS = {DYNAMIC: 8, BAUMGARTE: 8, EULER: 32}
 """Steps per output interval of each mode's default setting on a free dynamic scenario, fewer where
 the run would take more than DEFAULT_BUDGET steps (long grids such as stiff_spring's 1000 intervals,
@@ -193,7 +194,8 @@ class PinocchioAdapter(Adapter):
                 self.free_setting(scenario, mode, n)
                 for mode, counts in SUBSTEPS.items()
                 for n in counts
-                if n == counts[0] or n * scenario.steps <= STEP_BUDGET[mode]
+                if n == counts[0]
+                or n * scenario.steps * max(1.0, len(scenario.bodies) / 8) <= STEP_BUDGET[mode]
             ]
         settings = [self.default_setting(scenario).replace(tol=tol) for tol in TOLERANCES]
         if self.supports(scenario) is None and not scenario.cams:
