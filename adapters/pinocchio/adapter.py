@@ -31,6 +31,7 @@ import pinocchio as pin
 
 from adapters.base import Adapter, EngineFailure, Option, Setting, Unsupported
 from adapters.modes import ADAPTER, ENGINE, Mode
+from adapters.pinocchio.cam_dynamics import CamDynamicSolver
 from adapters.pinocchio.dynamics import DynamicSolver, dynamic_support
 from adapters.pinocchio.free_start import free_start
 from adapters.pinocchio.kinematics import KinematicSolver, body_motion
@@ -198,7 +199,7 @@ class PinocchioAdapter(Adapter):
                 or n * scenario.steps * max(1.0, len(scenario.bodies) / 8) <= STEP_BUDGET[mode]
             ]
         settings = [self.default_setting(scenario).replace(tol=tol) for tol in TOLERANCES]
-        if self.supports(scenario) is None and not scenario.cams:
+        if self.supports(scenario) is None:
             for mode in (DYNAMIC, BAUMGARTE):
                 settings += [self.dynamic_setting(scenario, n, mode) for n in STEPS_PER_PERIOD]
         return settings
@@ -251,21 +252,21 @@ class PinocchioAdapter(Adapter):
         kinematics = KinematicSolver(
             pm, rows, tol=tol if mode == KINEMATIC else TOLERANCES[-1], length=scenario.characteristic_length
         )
-        dynamics = None
+        dynamics: DynamicSolver | None = None
         if mode != KINEMATIC:
-            if scenario.cams:
-                raise Unsupported(
-                    "dynamic mode: a cam contact carries its contact parameter phi, an unknown outside "
-                    "Pinocchio's q (forwardDynamics takes rows on q only; phi is not eliminated yet)"
-                )
             fallback = self.default_setting(scenario) if scenario.analysis == "dynamic" else None
             dt = float(setting.get("dt", fallback["dt"] if fallback else drive_period(scenario) / 1000))
             kp, kd = _gains(scenario, mode)
             gains = float(setting.get("kp", kp)), float(setting.get("kd", kd))
             # revolute loops as Pinocchio's own constraint models; any other rows through forwardDynamics
-            solver = DynamicSolver if dynamic_support(scenario, tree) is None else RowDynamicSolver
             loads = Loads(pm, scenario.forces) if scenario.forces else None
-            dynamics = solver(pm, rows, dt, gains, loads, EULER_METHOD if mode == EULER else RK4)
+            method = EULER_METHOD if mode == EULER else RK4
+            if scenario.cams:  # the contact parameters eliminated from forwardDynamics' rows
+                phi0 = self._guess(scenario, pm)[pm.model.nq :]
+                dynamics = CamDynamicSolver(kinematics, phi0, dt, gains, loads, method)
+            else:
+                solver = DynamicSolver if dynamic_support(scenario, tree) is None else RowDynamicSolver
+                dynamics = solver(pm, rows, dt, gains, loads, method)
         built = Built(scenario, mode, pm, kinematics, dynamics)
         built.start = self._start(built, float(scenario.times()[0]))
         return built
@@ -302,9 +303,15 @@ class PinocchioAdapter(Adapter):
             self.count_steps(len(times))
             q, v, a = z[:, :nq], z_rate[:, :nq], z_acc[:, :nq]
         else:
+            if isinstance(built.dynamics, CamDynamicSolver):
+                built.dynamics.restart(z0[nq:])  # each run from the start's contact parameters
             q, v, a, steps = built.dynamics.run(z0[:nq], v0[:nq], times)
             self.count_steps(steps)
             z = q
+            if isinstance(built.dynamics, CamDynamicSolver):
+                built.dynamics.restart(z0[nq:])
+                phi = [built.dynamics.solve_phi(q[k], float(times[k])) for k in range(len(times))]
+                z = np.concatenate([q, np.array(phi)], axis=1)
         bodies = scenario.output_bodies
         data = pm.model.createData()
         levels = np.stack([body_motion(pm, data, (q[k], v[k], a[k]), bodies) for k in range(len(times))])

@@ -7,7 +7,8 @@ loop closures, drivers), with gamma = drift - f'' + kp (g - f) + kd (g' - f') so
 accelerations follow the prescribed motion (Baumgarte gains kp, kd). Pinocchio computes the
 dynamics (computeAllTerms, the KKT solve) under the loads' joint torques; the adapter supplies the
 rows and marches with RK4 or semi-implicit Euler.
-Cam contacts add the contact parameter phi, an unknown outside Pinocchio's q: not handled here.
+Cam contacts add the contact parameter phi, an unknown outside Pinocchio's q: CamDynamicSolver
+(adapters.pinocchio.cam_dynamics) eliminates it.
 """
 
 from __future__ import annotations
@@ -35,8 +36,6 @@ class RowDynamicSolver(DynamicSolver):
         loads: Loads | None = None,
         method: str = RK4,
     ) -> None:
-        if rows.contacts:
-            raise ValueError("cam contacts carry phi, which forwardDynamics on q cannot hold")
         super().__init__(pm, Rows((), rows.drivers, {}, rows.motions), dt, gains, loads, method)
         self.all_rows = rows
 
