@@ -71,7 +71,8 @@ _DECLARED = (
         "dynamic",
         ENGINE,
         "Pinocchio's constrained dynamics (constraintDynamics on revolute loops, forwardDynamics on "
-        "the adapter's rows for gears and sliding lines, aba on a tree), integrated by RK4 in the "
+        "the adapter's rows for gears, sliding lines and cams with phi eliminated, aba on a tree), "
+        "integrated by RK4 in the "
         f"adapter ({_SHARE})",
     ),
     Mode(
@@ -199,7 +200,9 @@ class PinocchioAdapter(Adapter):
                 or n * scenario.steps * max(1.0, len(scenario.bodies) / 8) <= STEP_BUDGET[mode]
             ]
         settings = [self.default_setting(scenario).replace(tol=tol) for tol in TOLERANCES]
-        if self.supports(scenario) is None:
+        # cams run in the dynamic modes too, but their contact solve per evaluation makes a step
+        # cost 5-15 ms of Python: swept only on request
+        if self.supports(scenario) is None and not scenario.cams:
             for mode in (DYNAMIC, BAUMGARTE):
                 settings += [self.dynamic_setting(scenario, n, mode) for n in STEPS_PER_PERIOD]
         return settings
