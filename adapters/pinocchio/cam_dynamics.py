@@ -12,10 +12,9 @@ with the Baumgarte terms on N^T (g - f) and N^T (g' - f').
 from __future__ import annotations
 
 import numpy as np
-import pinocchio as pin
 from scipy.linalg import null_space
 
-from adapters.base import EngineFailure, Singular
+from adapters.base import EngineFailure
 from adapters.pinocchio.kinematics import KinematicSolver
 from adapters.pinocchio.row_dynamics import RowDynamicSolver
 
@@ -81,16 +80,4 @@ class CamDynamicSolver(RowDynamicSolver):
         rows = self.all_rows.evaluate(self.kinematics.snapshot(*state))
         jq, jphi = rows.jac[:, :nq], rows.jac[:, nq:]
         project = null_space(jphi.T).T  # N^T: N^T dg/dphi = 0
-        kp, kd = self.gains
-        wanted = self.all_rows.targets(size, t, 2) - rows.drift
-        if kp or kd:
-            wanted -= kp * (rows.val - self.all_rows.targets(size, t, 0))
-            wanted -= kd * (rows.rate - self.all_rows.targets(size, t, 1))
-        model = self.pm.model
-        try:
-            acc = pin.forwardDynamics(
-                model, self.data, q, v, self.tau(t, q, v), project @ jq, -project @ wanted, 0.0
-            )
-        except RuntimeError as error:
-            raise Singular(f"forwardDynamics failed at t = {t:.6g}: {error}", t) from error
-        return acc.copy()  # type: ignore[no-any-return]
+        return self.forward(t, q, v, project @ jq, project @ self.wanted(rows, t))

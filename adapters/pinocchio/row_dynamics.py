@@ -13,43 +13,46 @@ Cam contacts add the contact parameter phi, an unknown outside Pinocchio's q: Ca
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import pinocchio as pin
 
 from adapters.base import Singular
 from adapters.pinocchio.dynamics import DynamicSolver
-from adapters.pinocchio.loads import Loads
-from adapters.pinocchio.marching import RK4
 from adapters.pinocchio.model import PinModel
+from adapters.pinocchio.quantity import Quantity
 from adapters.pinocchio.rows import Rows, Snapshot
 
 
 class RowDynamicSolver(DynamicSolver):
     """RK4 on (q, v) with accelerations from `pin.forwardDynamics` on the stacked rows."""
 
-    def __init__(
-        self,
-        pm: PinModel,
-        rows: Rows,
-        dt: float,
-        gains: tuple[float, float],
-        loads: Loads | None = None,
-        method: str = RK4,
-    ) -> None:
-        super().__init__(pm, Rows((), rows.drivers, {}, rows.motions), dt, gains, loads, method)
+    def __init__(self, pm: PinModel, rows: Rows, *args: Any, **kwargs: Any) -> None:
+        """As DynamicSolver (dt, gains, loads, method), the drive rows held by forwardDynamics too."""
+        super().__init__(pm, Rows((), rows.drivers, {}, rows.motions), *args, **kwargs)
         self.all_rows = rows
 
-    def acceleration(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-        rows = self.all_rows.evaluate(Snapshot(self.pm, self.kin_data, (q, v, self.empty, self.empty), 0))
+    def wanted(self, rows: Quantity, t: float) -> np.ndarray:
+        """The rows' wanted accelerations J z'' = f'' - drift - kp (g - f) - kd (g' - f')."""
         size = rows.val.size
         kp, kd = self.gains
         wanted = self.all_rows.targets(size, t, 2) - rows.drift
         if kp or kd:
             wanted -= kp * (rows.val - self.all_rows.targets(size, t, 0))
             wanted -= kd * (rows.rate - self.all_rows.targets(size, t, 1))
-        model = self.pm.model
+        return wanted
+
+    def forward(
+        self, t: float, q: np.ndarray, v: np.ndarray, jac: np.ndarray, wanted: np.ndarray
+    ) -> np.ndarray:
+        """Pinocchio's forwardDynamics with rows jac q'' = wanted."""
         try:
-            acc = pin.forwardDynamics(model, self.data, q, v, self.tau(t, q, v), rows.jac, -wanted, 0.0)
+            acc = pin.forwardDynamics(self.pm.model, self.data, q, v, self.tau(t, q, v), jac, -wanted, 0.0)
         except RuntimeError as error:
             raise Singular(f"forwardDynamics failed at t = {t:.6g}: {error}", t) from error
-        return np.array(acc, copy=True)
+        return acc.copy()  # type: ignore[no-any-return]
+
+    def acceleration(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        rows = self.all_rows.evaluate(Snapshot(self.pm, self.kin_data, (q, v, self.empty, self.empty), 0))
+        return self.forward(t, q, v, rows.jac, self.wanted(rows, t))
