@@ -72,8 +72,7 @@ _DECLARED = (
         ENGINE,
         "Pinocchio's constrained dynamics (constraintDynamics on revolute loops, forwardDynamics on "
         "the adapter's rows for gears, sliding lines and cams with phi eliminated, aba on a tree), "
-        "integrated by RK4 in the "
-        f"adapter ({_SHARE})",
+        f"integrated by RK4 in the adapter ({_SHARE})",
     ),
     Mode(
         "baumgarte",
@@ -147,6 +146,7 @@ class PinocchioAdapter(Adapter):
     name = "pinocchio"
     measured = MEASURED
     modes = tuple(MODES)
+    dynamics = True
     options = (
         Option("tol", float, 0.0, 1.0, low_open=True, help="Newton residual bound, in the rows' sizes"),
         Option("gears", str, choices=("mimic", "row"), help="gears as mimic joints or coupling rows"),
@@ -164,8 +164,6 @@ class PinocchioAdapter(Adapter):
         except Unsupported as reason:
             return str(reason)
         return None
-
-    dynamics = True
 
     def default_setting(self, scenario: Scenario) -> Setting:
         if scenario.analysis == "dynamic":
@@ -249,6 +247,11 @@ class PinocchioAdapter(Adapter):
         mode = MODES.get(setting.mode)
         if mode is None:
             raise EngineFailure(f"unknown Pinocchio mode '{setting.mode}'; known: {', '.join(MODES)}")
+        if mode == KINEMATIC and scenario.analysis == "dynamic":
+            raise EngineFailure(
+                "the kinematic mode solves driven mechanisms; free dynamics runs in dynamic, baumgarte "
+                "or euler"
+            )
         gears = str(setting.get("gears", "mimic"))
         tree, pm, rows = self._structure(scenario, mimic_gears=mode == KINEMATIC and gears == "mimic")
         tol = float(setting.get("tol", TOLERANCES[-1]))

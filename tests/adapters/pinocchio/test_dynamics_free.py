@@ -128,3 +128,8 @@ def test_without_baumgarte_the_n_four_bar_diverges_at_its_singular_position() ->
     plain = adapter.run(scenario, adapter.free_setting(scenario, "dynamic"))
     assert plain.status == "diverged" and plain.failure_time is not None and plain.failure_time > 3.0
     assert adapter.run(scenario, adapter.default_setting(scenario)).status == "ok"
+
+
+def test_the_kinematic_mode_refuses_a_free_mechanism() -> None:
+    result = PinocchioAdapter().run(scenarios.load("four_bar_gravity"), Setting.of("kinematic"))
+    assert result.status == "failed" and "driven mechanisms" in result.message
