@@ -16,11 +16,13 @@ from collections.abc import Callable
 
 import numpy as np
 
-from adapters.base import Diverged
+from adapters.base import Diverged, EngineFailure
 
 RK4, EULER = "rk4", "euler"
 BLOWUP = 1e8
 """A joint speed above this (rad/s or m/s) counts as diverged."""
+MAX_STEPS = 1e7
+"""More steps than this in one run is a step size typed by mistake, refused before marching."""
 
 Acceleration = Callable[[float, np.ndarray, np.ndarray], np.ndarray]
 """a(t, q, v)."""
@@ -64,6 +66,9 @@ def march(
     """q, v and a at every output time from `start` at times[0], and the number of steps taken."""
     step = STEPS[method]
     n = len(times)
+    planned = (float(times[-1]) - float(times[0])) / dt if n > 1 else 0.0
+    if planned > MAX_STEPS:
+        raise EngineFailure(f"dt = {dt:.3g} s would take {planned:.3g} steps (more than {MAX_STEPS:.0e})")
     out = np.zeros((3, n, start[0].size))
     state = start
     out[:, 0] = state

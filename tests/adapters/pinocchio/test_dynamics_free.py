@@ -133,3 +133,9 @@ def test_without_baumgarte_the_n_four_bar_diverges_at_its_singular_position() ->
 def test_the_kinematic_mode_refuses_a_free_mechanism() -> None:
     result = PinocchioAdapter().run(scenarios.load("four_bar_gravity"), Setting.of("kinematic"))
     assert result.status == "failed" and "driven mechanisms" in result.message
+
+
+def test_a_step_size_typed_by_mistake_is_refused_before_marching() -> None:
+    scenario = scenarios.build("slider_crank", overrides={"steps": 4})
+    result = PinocchioAdapter().run(scenario, Setting.of("euler", dt=1e-300))
+    assert result.status == "failed" and "steps" in result.message
