@@ -3,7 +3,7 @@
 The tree spans the scenario's joints from the ground (revolute joints about z, prismatic joints in
 the plane); the remaining joints, gears and cam contacts close loops as rows built from Pinocchio's
 frame placements and Jacobians; gear pairs on a common carrier are mimic joints where Pinocchio can
-hold them. Three modes (Setting.mode):
+hold them. Four modes (Setting.mode):
 - `kinematic`: Newton on the loop and driver rows at every output time, velocities and accelerations
   from the same Jacobian and Pinocchio's classical accelerations. Option `tol` (residual bound, in
   each row's size: lengths relative to the characteristic length, angles in radians) and `gears`
@@ -13,6 +13,11 @@ hold them. Three modes (Setting.mode):
   and `kd` (Baumgarte gains, default 0).
 - `baumgarte`: the dynamic mode with gains kp = w^2, kd = 2 w by default (w the drive frequency):
   a critically damped correction of constraint and drive drift with a time constant of one radian.
+- `euler`: the Baumgarte-stabilised dynamics marched by semi-implicit Euler (first order).
+Free dynamic scenarios (no driver) carry their gravity and loads (adapters.pinocchio.loads), start
+from the scenario's assembled bodies (adapters.pinocchio.free_start), step 1/8 of the output
+interval by default (1/32 for Euler), and take w = 1 / output interval for the gains; their default
+is `baumgarte`.
 """
 
 from __future__ import annotations
@@ -26,8 +31,13 @@ import pinocchio as pin
 
 from adapters.base import Adapter, EngineFailure, Option, Setting, Unsupported
 from adapters.modes import ADAPTER, ENGINE, Mode
+from adapters.pinocchio.cam_dynamics import CamDynamicSolver
 from adapters.pinocchio.dynamics import DynamicSolver, dynamic_support
+from adapters.pinocchio.free_start import free_start
 from adapters.pinocchio.kinematics import KinematicSolver, body_motion
+from adapters.pinocchio.loads import Loads
+from adapters.pinocchio.marching import EULER as EULER_METHOD
+from adapters.pinocchio.marching import RK4
 from adapters.pinocchio.model import PinModel, build_model
 from adapters.pinocchio.row_dynamics import RowDynamicSolver
 from adapters.pinocchio.rows import Rows, motions_of
@@ -36,14 +46,16 @@ from scenarios.motions import ConstantSpeed, Harmonic
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
-KINEMATIC, DYNAMIC, BAUMGARTE = "kinematic", "dynamic", "baumgarte"
+KINEMATIC, DYNAMIC, BAUMGARTE, EULER = "kinematic", "dynamic", "baumgarte", "euler"
 MODES = {
     "kinematic": KINEMATIC,
     "kinematics": KINEMATIC,
     "dynamic": DYNAMIC,
     "dynamics": DYNAMIC,
     "baumgarte": BAUMGARTE,
+    "euler": EULER,
 }
+_SHARE = "timing adapter-dominated: Pinocchio's kernels are 12-30 % of a step in free dynamics"
 _DECLARED = (
     Mode(
         "kinematic",
@@ -59,18 +71,36 @@ _DECLARED = (
         "dynamic",
         ENGINE,
         "Pinocchio's constrained dynamics (constraintDynamics on revolute loops, forwardDynamics on "
-        "the adapter's rows for gears and sliding lines), integrated by RK4 in the adapter",
+        "the adapter's rows for gears, sliding lines and cams with phi eliminated, aba on a tree), "
+        f"integrated by RK4 in the adapter ({_SHARE})",
     ),
     Mode(
         "baumgarte",
         ENGINE,
-        "the dynamic mode with Baumgarte gains on the rows, integrated by RK4 in the adapter",
+        f"the dynamic mode with Baumgarte gains on the rows, integrated by RK4 in the adapter ({_SHARE})",
+    ),
+    Mode(
+        "euler",
+        ENGINE,
+        "Pinocchio's constrained dynamics with Baumgarte gains, marched by semi-implicit Euler "
+        f"around pin.integrate (the loop of Pinocchio's simulation examples; {_SHARE})",
     ),
 )
 MEASURED = tuple(replace(m, name=alias) for alias, mode in MODES.items() for m in _DECLARED if m.name == mode)
 """What each mode measures, the aliases (kinematics, dynamics) declared like their modes."""
 STEPS_PER_PERIOD = (100, 300, 1000)
-"""RK4 steps per drive period in the dynamic sweeps; the default is 1000."""
+"""RK4 steps per drive period in the dynamic sweeps of driven scenarios; the default is 1000."""
+SUBSTEPS = {DYNAMIC: (1, 4, 16, 64), BAUMGARTE: (1, 4, 16, 64), EULER: (4, 16, 64, 256)}
+"""Steps per output interval in the sweeps of free dynamic scenarios, per mode..."""
+STEP_BUDGET = {DYNAMIC: 3200, BAUMGARTE: 3200, EULER: 6400}
+"""...kept while the run takes at most this many steps (the first always; a step of more than 8
+bodies counts as bodies / 8 steps), so that a scenario's whole sweep stays within seconds: RK4
+costs four accelerations a step, Euler one."""
+DEFAULT_SUBSTEPS = {DYNAMIC: 8, BAUMGARTE: 8, EULER: 32}
+"""Steps per output interval of each mode's default setting on a free dynamic scenario, fewer where
+the run would take more than DEFAULT_BUDGET steps (long grids such as stiff_spring's 1000 intervals,
+whose output step is the step a fixed-step engine is meant to be given)."""
+DEFAULT_BUDGET = 4000
 TOLERANCES = (1e-5, 1e-9, 1e-15)
 """Newton residual bounds in the kinematic sweep; the default is the last."""
 
@@ -85,11 +115,17 @@ def drive_period(scenario: Scenario) -> float:
     return 2.0 * math.pi / max(rates) if rates else scenario.t_end
 
 
+def output_step(scenario: Scenario) -> float:
+    """The interval between output times."""
+    return scenario.t_end / scenario.steps
+
+
 def _gains(scenario: Scenario, mode: str) -> tuple[float, float]:
-    """Default Baumgarte gains (kp, kd) of a mode: none, or critically damped at the drive frequency."""
-    if mode != BAUMGARTE:
+    """Default Baumgarte gains (kp, kd) of a mode: none, or critically damped with a time constant of
+    one radian of the drive, or of one output interval in free dynamics."""
+    if mode not in (BAUMGARTE, EULER):
         return 0.0, 0.0
-    w = 2.0 * math.pi / drive_period(scenario)
+    w = 2.0 * math.pi / drive_period(scenario) if scenario.drivers else 1.0 / output_step(scenario)
     return w * w, 2.0 * w
 
 
@@ -110,6 +146,7 @@ class PinocchioAdapter(Adapter):
     name = "pinocchio"
     measured = MEASURED
     modes = tuple(MODES)
+    dynamics = True
     options = (
         Option("tol", float, 0.0, 1.0, low_open=True, help="Newton residual bound, in the rows' sizes"),
         Option("gears", str, choices=("mimic", "row"), help="gears as mimic joints or coupling rows"),
@@ -129,7 +166,20 @@ class PinocchioAdapter(Adapter):
         return None
 
     def default_setting(self, scenario: Scenario) -> Setting:
+        if scenario.analysis == "dynamic":
+            # Baumgarte by default: RK4 without it drifts off the loops and diverges where the
+            # constraints turn singular (n_four_bar at t = 3.18 s); Pinocchio's maintainers
+            # recommend the gains against constraint drift
+            return self.free_setting(scenario, BAUMGARTE)
         return Setting.of(KINEMATIC, tol=TOLERANCES[-1], gears="mimic")
+
+    def free_setting(self, scenario: Scenario, mode: str = DYNAMIC, substeps: int | None = None) -> Setting:
+        """A setting of `mode` on a free dynamic scenario, `substeps` steps per output interval
+        (default: the mode's default)."""
+        kp, kd = _gains(scenario, mode)
+        if substeps is None:
+            substeps = max(1, min(DEFAULT_SUBSTEPS[mode], DEFAULT_BUDGET // scenario.steps))
+        return Setting.of(mode, dt=output_step(scenario) / substeps, kp=kp, kd=kd)
 
     def dynamic_setting(
         self, scenario: Scenario, steps_per_period: int = 1000, mode: str = DYNAMIC
@@ -139,7 +189,17 @@ class PinocchioAdapter(Adapter):
         return Setting.of(mode, dt=drive_period(scenario) / steps_per_period, kp=kp, kd=kd)
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
+        if scenario.analysis == "dynamic":
+            return [
+                self.free_setting(scenario, mode, n)
+                for mode, counts in SUBSTEPS.items()
+                for n in counts
+                if n == counts[0]
+                or n * scenario.steps * max(1.0, len(scenario.bodies) / 8) <= STEP_BUDGET[mode]
+            ]
         settings = [self.default_setting(scenario).replace(tol=tol) for tol in TOLERANCES]
+        # cams run in the dynamic modes too, but their contact solve per evaluation makes a step
+        # cost 5-15 ms of Python: swept only on request
         if self.supports(scenario) is None and not scenario.cams:
             for mode in (DYNAMIC, BAUMGARTE):
                 settings += [self.dynamic_setting(scenario, n, mode) for n in STEPS_PER_PERIOD]
@@ -147,7 +207,13 @@ class PinocchioAdapter(Adapter):
 
     def _structure(self, scenario: Scenario, mimic_gears: bool) -> tuple[Tree, PinModel, Rows]:
         """The tree, the Pinocchio model and the rows; Unsupported if the rows do not make a square
-        system in the unknowns."""
+        system in the unknowns (kinematic scenarios) or leave no freedom (dynamic ones)."""
+        dynamic = scenario.analysis == "dynamic"
+        if dynamic and scenario.cams:
+            raise Unsupported(
+                "free dynamics with a cam needs a unilateral contact; the adapter's cam rows are "
+                "bilateral kinematic constraints"
+            )
         try:
             tree = plan(scenario, mimic_gears)
         except TreeError as error:
@@ -155,9 +221,18 @@ class PinocchioAdapter(Adapter):
         pm = build_model(scenario, tree)
         rows = Rows.of(scenario, pm)
         solver = KinematicSolver(pm, rows, length=scenario.characteristic_length)
-        count = rows.evaluate(solver.snapshot(self._guess(scenario, pm))).val.size
+        count = (
+            rows.evaluate(solver.snapshot(self._guess(scenario, pm))).val.size
+            if rows.loops or rows.drivers
+            else 0
+        )
         unknowns = pm.model.nq + len(scenario.cams)
-        if count != unknowns:
+        if dynamic and count >= unknowns:
+            raise Unsupported(
+                f"the loop-closure and driver rows ({count}) leave no freedom to the {unknowns} joint "
+                "coordinates"
+            )
+        if not dynamic and count != unknowns:
             raise Unsupported(
                 f"the loop-closure and driver rows ({count}) do not match the unknowns ({unknowns}): "
                 "not a kinematically driven mechanism"
@@ -172,31 +247,40 @@ class PinocchioAdapter(Adapter):
         mode = MODES.get(setting.mode)
         if mode is None:
             raise EngineFailure(f"unknown Pinocchio mode '{setting.mode}'; known: {', '.join(MODES)}")
+        if mode == KINEMATIC and scenario.analysis == "dynamic":
+            raise EngineFailure(
+                "the kinematic mode solves driven mechanisms; free dynamics runs in dynamic, baumgarte "
+                "or euler"
+            )
         gears = str(setting.get("gears", "mimic"))
         tree, pm, rows = self._structure(scenario, mimic_gears=mode == KINEMATIC and gears == "mimic")
         tol = float(setting.get("tol", TOLERANCES[-1]))
         kinematics = KinematicSolver(
             pm, rows, tol=tol if mode == KINEMATIC else TOLERANCES[-1], length=scenario.characteristic_length
         )
-        dynamics = None
+        dynamics: DynamicSolver | None = None
         if mode != KINEMATIC:
-            if scenario.cams:
-                raise Unsupported(
-                    "dynamic mode: a cam contact carries its contact parameter phi, an unknown outside "
-                    "Pinocchio's q (forwardDynamics takes rows on q only; phi is not eliminated yet)"
-                )
-            dt = float(setting.get("dt", drive_period(scenario) / 1000))
+            fallback = self.default_setting(scenario) if scenario.analysis == "dynamic" else None
+            dt = float(setting.get("dt", fallback["dt"] if fallback else drive_period(scenario) / 1000))
             kp, kd = _gains(scenario, mode)
             gains = float(setting.get("kp", kp)), float(setting.get("kd", kd))
             # revolute loops as Pinocchio's own constraint models; any other rows through forwardDynamics
-            solver = DynamicSolver if dynamic_support(scenario, tree) is None else RowDynamicSolver
-            dynamics = solver(pm, rows, dt, gains)
+            loads = Loads(pm, scenario.forces) if scenario.forces else None
+            method = EULER_METHOD if mode == EULER else RK4
+            if scenario.cams:  # the contact parameters eliminated from forwardDynamics' rows
+                phi0 = self._guess(scenario, pm)[pm.model.nq :]
+                dynamics = CamDynamicSolver(kinematics, phi0, dt, gains, loads, method)
+            else:
+                solver = DynamicSolver if dynamic_support(scenario, tree) is None else RowDynamicSolver
+                dynamics = solver(pm, rows, dt, gains, loads, method)
         built = Built(scenario, mode, pm, kinematics, dynamics)
         built.start = self._start(built, float(scenario.times()[0]))
         return built
 
     def _start(self, built: Built, t0: float) -> tuple[float, np.ndarray, np.ndarray]:
         """The consistent start at t0 on Pinocchio's rows (positions, and velocities for dynamics)."""
+        if built.dynamics is not None and not built.scenario.drivers:
+            return (t0, *free_start(built.scenario, built.kinematics))
         z0 = built.kinematics.assemble(self._guess(built.scenario, built.pm), t0)
         if built.dynamics is None:
             return t0, z0, np.zeros(0)
@@ -225,12 +309,21 @@ class PinocchioAdapter(Adapter):
             self.count_steps(len(times))
             q, v, a = z[:, :nq], z_rate[:, :nq], z_acc[:, :nq]
         else:
+            if isinstance(built.dynamics, CamDynamicSolver):
+                built.dynamics.restart(z0[nq:])  # each run from the start's contact parameters
             q, v, a, steps = built.dynamics.run(z0[:nq], v0[:nq], times)
             self.count_steps(steps)
             z = q
+            if isinstance(built.dynamics, CamDynamicSolver):
+                built.dynamics.restart(z0[nq:])
+                phi = [built.dynamics.solve_phi(q[k], float(times[k])) for k in range(len(times))]
+                z = np.concatenate([q, np.array(phi)], axis=1)
         bodies = scenario.output_bodies
         data = pm.model.createData()
         levels = np.stack([body_motion(pm, data, (q[k], v[k], a[k]), bodies) for k in range(len(times))])
         extras = {f"{c.name}.phi": z[:, nq + k].copy() for k, c in enumerate(scenario.cams)}
+        for column in scenario.angle_outputs:  # Andrews' joint angles from Pinocchio's body angles
+            body, base = column.body, column.relative_to
+            extras[column.name] = np.array([pm.angle(body, qk) - pm.angle(base, qk) for qk in q])
         grid = np.asarray(times, dtype=float)
         return Trajectory(grid, bodies, levels[:, 0], levels[:, 1], levels[:, 2], extras)

@@ -13,6 +13,7 @@ from adapters.pinocchio.tree import Edge, Tree, compose, point_pose
 from scenarios.bodies import GROUND, Point, Pose
 from scenarios.cams import FlatFaceCam, KnifeEdgeCam, RollerCam
 from scenarios.drivers import PointPathDriver, RelativeDisplacementDriver
+from scenarios.forces import AppliedForce, SpringDamper
 from scenarios.gears import RackPinion
 from scenarios.joints import Prismatic, Revolute, RevoluteRevolute
 from scenarios.scenario import Scenario
@@ -38,7 +39,7 @@ def _joint_model(edge: Edge) -> pin.JointModel:
 
 
 def used_points(scenario: Scenario) -> list[Point]:
-    """Every point a joint, gear, cam or driver refers to, plus each body's frame origin."""
+    """Every point a joint, gear, cam, driver or load refers to, plus each body's frame origin."""
     points = [Point(b) for b in scenario.body_names]
     for item in (*scenario.joints, *scenario.drivers):
         if isinstance(item, Revolute | Prismatic | RevoluteRevolute | RelativeDisplacementDriver):
@@ -53,6 +54,11 @@ def used_points(scenario: Scenario) -> list[Point]:
             points.append(item.face)
         elif isinstance(item, PointPathDriver):
             points.append(item.point)
+    for force in scenario.forces:
+        if isinstance(force, SpringDamper):
+            points += [force.p_i, force.p_j]
+        elif isinstance(force, AppliedForce):
+            points.append(force.point)
     return list(dict.fromkeys(points))
 
 
@@ -94,13 +100,34 @@ class PinModel:
         return q
 
 
+def depth_first(tree: Tree) -> list[Edge]:
+    """The tree's edges in depth-first order: Pinocchio's algorithms on the joint space inertia (crba,
+    and through it forwardDynamics and constraintDynamics) take every subtree's joints to be
+    contiguous, as its parsers add them; a breadth-first order gives a wrong mass matrix."""
+    children: dict[str, list[Edge]] = {}
+    for edge in tree.edges:
+        children.setdefault(edge.parent, []).append(edge)
+    order: list[Edge] = []
+
+    def visit(body: str) -> None:
+        for edge in children.get(body, []):
+            order.append(edge)
+            visit(edge.child)
+
+    visit(GROUND)
+    return order
+
+
 def build_model(scenario: Scenario, tree: Tree) -> PinModel:
     """Joints, inertias and frames from the tree; gear mimics applied last."""
     model = pin.Model()
-    model.gravity = pin.Motion.Zero()  # a kinematically driven scene carries no gravity (default -9.81 z)
+    # the scenario's gravity in the plane; a kinematically driven scene carries none (Pinocchio's
+    # default is -9.81 along z)
+    gx, gy = scenario.gravity if scenario.analysis == "dynamic" else (0.0, 0.0)
+    model.gravity = pin.Motion(np.array([gx, gy, 0.0]), np.zeros(3))
     model.name = scenario.name
     joint_id: dict[str, int] = {GROUND: 0}
-    for edge in tree.edges:
+    for edge in depth_first(tree):
         if edge.kind == "fixed":
             continue
         carrier, parent_pose = point_pose(tree, Point(edge.parent))

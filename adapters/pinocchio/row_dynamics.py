@@ -5,11 +5,15 @@ them. But `pin.forwardDynamics(model, data, q, v, tau, J, gamma)` solves M a - J
 with J a = -gamma for any rows J: here every row the tree does not satisfy (gear and rack couplings,
 loop closures, drivers), with gamma = drift - f'' + kp (g - f) + kd (g' - f') so that the rows'
 accelerations follow the prescribed motion (Baumgarte gains kp, kd). Pinocchio computes the
-dynamics (computeAllTerms, the KKT solve); the adapter supplies the rows and integrates with RK4.
-Cam contacts add the contact parameter phi, an unknown outside Pinocchio's q: not handled here.
+dynamics (computeAllTerms, the KKT solve) under the loads' joint torques; the adapter supplies the
+rows and marches with RK4 or semi-implicit Euler.
+Cam contacts add the contact parameter phi, an unknown outside Pinocchio's q: CamDynamicSolver
+(adapters.pinocchio.cam_dynamics) eliminates it.
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 import numpy as np
 import pinocchio as pin
@@ -17,29 +21,38 @@ import pinocchio as pin
 from adapters.base import Singular
 from adapters.pinocchio.dynamics import DynamicSolver
 from adapters.pinocchio.model import PinModel
+from adapters.pinocchio.quantity import Quantity
 from adapters.pinocchio.rows import Rows, Snapshot
 
 
 class RowDynamicSolver(DynamicSolver):
     """RK4 on (q, v) with accelerations from `pin.forwardDynamics` on the stacked rows."""
 
-    def __init__(self, pm: PinModel, rows: Rows, dt: float, gains: tuple[float, float]) -> None:
-        if rows.contacts:
-            raise ValueError("cam contacts carry phi, which forwardDynamics on q cannot hold")
-        super().__init__(pm, Rows((), rows.drivers, {}, rows.motions), dt, gains)
+    def __init__(self, pm: PinModel, rows: Rows, *args: Any, **kwargs: Any) -> None:
+        """As DynamicSolver (dt, gains, loads, method), the drive rows held by forwardDynamics too."""
+        super().__init__(pm, Rows((), rows.drivers, {}, rows.motions), *args, **kwargs)
         self.all_rows = rows
 
-    def acceleration(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-        rows = self.all_rows.evaluate(Snapshot(self.pm, self.kin_data, (q, v, self.empty, self.empty), 0))
+    def wanted(self, rows: Quantity, t: float) -> np.ndarray:
+        """The rows' wanted accelerations J z'' = f'' - drift - kp (g - f) - kd (g' - f')."""
         size = rows.val.size
         kp, kd = self.gains
         wanted = self.all_rows.targets(size, t, 2) - rows.drift
         if kp or kd:
             wanted -= kp * (rows.val - self.all_rows.targets(size, t, 0))
             wanted -= kd * (rows.rate - self.all_rows.targets(size, t, 1))
-        model = self.pm.model
+        return wanted
+
+    def forward(
+        self, t: float, q: np.ndarray, v: np.ndarray, jac: np.ndarray, wanted: np.ndarray
+    ) -> np.ndarray:
+        """Pinocchio's forwardDynamics with rows jac q'' = wanted."""
         try:
-            acc = pin.forwardDynamics(model, self.data, q, v, np.zeros(model.nv), rows.jac, -wanted, 0.0)
+            acc = pin.forwardDynamics(self.pm.model, self.data, q, v, self.tau(t, q, v), jac, -wanted, 0.0)
         except RuntimeError as error:
             raise Singular(f"forwardDynamics failed at t = {t:.6g}: {error}", t) from error
-        return np.array(acc, copy=True)
+        return acc.copy()  # type: ignore[no-any-return]
+
+    def acceleration(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        rows = self.all_rows.evaluate(Snapshot(self.pm, self.kin_data, (q, v, self.empty, self.empty), 0))
+        return self.forward(t, q, v, rows.jac, self.wanted(rows, t))

@@ -64,18 +64,8 @@ def test_sweep_has_the_three_curves_where_dynamics_is_supported() -> None:
     adapter = PinocchioAdapter()
     modes = [s.mode for s in adapter.sweep(scenarios.build("four_bar"))]
     assert sorted(set(modes)) == ["baumgarte", "dynamic", "kinematic"]
+    # the cams' dynamic modes run (test_cam_dynamics.py) but cost 5-15 ms a step: not swept
     assert {s.mode for s in adapter.sweep(scenarios.build("cam_roller"))} == {"kinematic"}
-
-
-@pytest.mark.parametrize("name", ["cam_roller", "cam_flat_face"])
-def test_dynamic_mode_is_unsupported_for_cams(name: str) -> None:
-    # gears and racks now run through forwardDynamics with rows (test_row_dynamics.py); a cam's
-    # contact parameter is an unknown outside Pinocchio's q
-    adapter = PinocchioAdapter()
-    scenario = scenarios.build(name)
-    result = adapter.run(scenario, adapter.dynamic_setting(scenario))
-    assert result.status == "unsupported"
-    assert "phi" in result.message
 
 
 def test_driven_motion_does_not_depend_on_the_masses() -> None:
