@@ -7,8 +7,8 @@
   time (the dependent coordinates' round-off is amplified there) and the truth is at the looser
   tolerance given; the native engine is then run no tighter than JUDGED_MARGIN times that, so the
   truth is always far tighter than what it judges;
-- the map cells run each engine's settings whose step is the cell's output step (fixed-step engines
-  take the output step as their step), the other scenarios each engine's sweep.
+- the map cells run each engine's modes with the cell's output step as their step `dt` (the default
+  mode first: the map shows it), the other scenarios each engine's sweep.
 """
 
 from __future__ import annotations
@@ -61,18 +61,27 @@ def truth(scenario: Scenario, times: Any) -> NamedTruth:
 
 
 def settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
-    """The suite's settings hook (reports.harness.suites): a map cell runs each engine's default and
-    its settings at the cell's step; the native engine, whose forward dynamics is the truth, runs no
+    """The suite's settings hook (reports.harness.suites): a map cell runs each engine's modes at the
+    cell's step; the native engine, whose forward dynamics is the truth, runs no
     tighter than JUDGED_MARGIN times the truth's tolerance; otherwise each engine's own sweep."""
     if scenario.name in map_cells():
-        step = scenario.t_end / scenario.steps
-        default = adapter.default_setting(scenario)
-        return _unique([default, *(s for s in adapter.sweep(scenario) if _same(s.get("dt"), step))])
+        return _at_step(scenario, adapter)
     if adapter.name == "reference" and scenario.analysis == "dynamic":
         loosest = truth_rtol(scenario) * JUDGED_MARGIN
         chosen = [adapter.default_setting(scenario), *adapter.sweep(scenario)]
         return _unique([s.replace(rtol=max(float(s["rtol"]), loosest)) for s in chosen])
     return None
+
+
+def _at_step(scenario: Scenario, adapter: Adapter) -> list[Setting]:
+    """Each of the engine's modes (its default's first) at the cell's output step, for the modes
+    that take a step `dt`; the engine's default where it takes none."""
+    step = scenario.t_end / scenario.steps
+    default = adapter.default_setting(scenario)
+    firsts = {s.mode: s for s in reversed([default, *adapter.sweep(scenario)])}
+    ordered = [firsts.pop(default.mode), *firsts.values()]
+    stepped = [s.replace(dt=step) for s in ordered if s.get("dt") is not None]
+    return _unique(stepped) if stepped and stepped[0].mode == default.mode else [default]
 
 
 def _unique(settings: list[Setting]) -> list[Setting]:

@@ -49,9 +49,11 @@ def test_the_native_engine_is_never_judged_by_a_truth_as_loose_as_itself() -> No
     assert truth_rtol(load("n_four_bar")) > TRUTH_RTOL  # the singular passage
 
 
-def test_a_map_cell_runs_the_settings_at_its_step() -> None:
-    mujoco = adapters.load("mujoco")
-    for name, values in map_cells().items():
-        chosen = settings(load(name), mujoco)
-        assert chosen is not None and chosen[0] == mujoco.default_setting(load(name))
-        assert all(math.isclose(float(s["dt"]), values["dt"]) for s in chosen[1:])
+def test_a_map_cell_runs_every_mode_at_its_step() -> None:
+    for engine in ("mujoco", "exudyn", "pinocchio"):
+        adapter = adapters.load(engine)
+        for name, values in map_cells().items():
+            chosen = settings(load(name), adapter)
+            assert chosen is not None and chosen[0].mode == adapter.default_setting(load(name)).mode
+            assert all(math.isclose(float(s["dt"]), values["dt"]) for s in chosen), (engine, name)
+            assert len({s.mode for s in chosen}) == len(chosen) >= 2
