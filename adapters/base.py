@@ -16,7 +16,8 @@ It may also provide export(scenario, setting, path) in the engine's own file for
 
 Every setting is checked against `modes` and `options` where it enters (`check_setting`): an unknown
 mode or key, a value of the wrong type or outside its range is a SettingError naming the known ones or
-the limit, raised before anything is built.
+the limit, raised before anything is built. A step `dt` that would take more than MAX_STEPS steps
+over the grid is refused too (a failed run saying so).
 
 simulate raises an EngineFailure subclass (Diverged, Singular, Unsupported) or lets any other
 exception escape: the base's `run` turns every outcome into a RunResult with a status and a message,
@@ -248,6 +249,9 @@ class Adapter:
         except SettingError as error:
             return RunResult(**base, status="failed", message=str(error))
         grid = np.asarray(scenario.times() if times is None else times, dtype=float)
+        too_many = _too_many_steps(setting, grid)
+        if too_many:
+            return RunResult(**base, status="failed", message=too_many)
         reason = self.supports(scenario)
         if reason is None and scenario.analysis == "dynamic" and not self.dynamics:
             reason = f"{self.name} is not yet compared on forward dynamics"
@@ -303,6 +307,22 @@ class Adapter:
             return self.version()
         except Exception:
             return "unknown"
+
+
+MAX_STEPS = 1e7
+"""A setting whose step `dt` would take more engine steps than this over the grid is refused: such
+a run takes hours or forever, whatever the engine."""
+
+
+def _too_many_steps(setting: Setting, grid: np.ndarray) -> str:
+    """Why the setting's step is too small for the grid, or ""."""
+    dt = setting.get("dt")
+    if dt is None or len(grid) < 2:
+        return ""
+    planned = float(grid[-1] - grid[0]) / float(dt)
+    if planned <= MAX_STEPS:
+        return ""
+    return f"dt = {float(dt):.3g} s would take {planned:.3g} steps over the grid (at most {MAX_STEPS:.0e})"
 
 
 def _one_line(text: str) -> str:

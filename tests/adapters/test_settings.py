@@ -50,3 +50,17 @@ def test_a_bad_setting_is_one_failed_run_not_an_exception() -> None:
     scenario = scenarios.build("slider_crank")
     result = adapter.run(scenario, adapter.default_setting(scenario).replace(dt=0.0))
     assert result.status == "failed" and "option dt must be a float in (0, 1] s" in result.message
+
+
+@pytest.mark.parametrize("engine", ["mujoco", "exudyn", "pinocchio"])
+def test_a_step_that_would_take_forever_is_refused_before_running(engine: str) -> None:
+    """slider_crank's grid spans 2 pi / omega; a step of 1e-12 s would take ~1e11 steps."""
+    from adapters.base import MAX_STEPS
+
+    adapter = adapters.load(engine)
+    scenario = scenarios.build("slider_crank")
+    setting = adapter.default_setting(scenario).replace(dt=1e-12)
+    result = adapter.run(scenario, setting)
+    assert (
+        result.status == "failed" and "would take" in result.message and f"{MAX_STEPS:.0e}" in result.message
+    )
