@@ -17,7 +17,7 @@ import pytest
 
 import scenarios
 from adapters.base import Setting
-from adapters.mujoco.adapter import engine_step
+from adapters.mujoco.stepping import engine_step
 from scenarios.families.andrews_squeezer import ANGLES, REFERENCE, REFERENCE_T
 from tests.adapters.mujoco.truths import ADAPTER, errors, truth
 

@@ -13,7 +13,7 @@ import pytest
 
 import scenarios
 from adapters.mujoco import MujocoAdapter
-from adapters.mujoco.adapter import engine_step
+from adapters.mujoco.stepping import engine_step
 from scenarios.closed_form import exact
 
 ADAPTER = MujocoAdapter()

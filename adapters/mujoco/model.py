@@ -1,0 +1,43 @@
+"""A compiled MuJoCo model of a scenario: the model, its consistent start and what the outputs need."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+from adapters.mujoco.kinematic import KinematicSolver
+from adapters.mujoco.laws import Clock
+from adapters.mujoco.loads import Loads
+from adapters.mujoco.tree import Affine
+from scenarios.scenario import Scenario
+
+
+@dataclass
+class Model:
+    """A compiled MuJoCo model with its consistent start and what the outputs need."""
+
+    xml: str
+    model: mujoco.MjModel
+    qpos0: np.ndarray
+    qvel0: np.ndarray
+    dt: float
+    tc_steps: float
+    bodies: tuple[str, ...]
+    sites: list[int]
+    theta: list[Affine]
+    joint_ids: dict[str, int]
+    clocks: dict[int, Clock]
+    preload: float = 0.0
+    """The cam followers' preload (N); 0 without cams."""
+    kinematic: KinematicSolver | None = None
+    """The solver of the kinematic mode (None: MuJoCo's integrator)."""
+    loads: Loads = field(default_factory=Loads)
+    """The dynamic scene's loads, whose motors' controls simulate sets."""
+    angles: Scenario | None = None
+    """The scenario whose angle outputs the trajectory carries (None: none)."""
+
+
+def evaluate(form: Affine, model: Model, qpos: np.ndarray) -> float:
+    return form.const + sum(c * float(qpos[model.joint_ids[j]]) for j, c in form.coefs.items())
