@@ -25,6 +25,11 @@ DECLARED: tuple[Column, ...] = (
     Column("scenario", "", "scenario name, family/variant"),
     Column("family", "", "mechanism family"),
     Column("variant", "", "variant of the family"),
+    Column(
+        "scenario_digest",
+        "",
+        "the mechanism measured: digest of its canonical file (harness.scenario_identity)",
+    ),
     Column("engine", "", "engine name"),
     Column("engine_version", "", "installed engine version"),
     Column("mode", "", "engine mode (integrator, solver)"),

@@ -10,6 +10,7 @@ from adapters.base import RunResult, Setting, Status
 from reports.harness.columns import NOT_RUN, empty_row
 from reports.harness.level_error import characteristic_rate
 from reports.harness.provenance import now
+from reports.harness.scenario_identity import digest
 from scenarios.scenario import Scenario
 
 
@@ -22,6 +23,7 @@ def base_row(
         scenario=scenario.name,
         family=scenario.family,
         variant=scenario.variant,
+        scenario_digest=digest(scenario),
         engine=engine,
         engine_version=version,
         mode=setting.mode if setting else "",
