@@ -9,33 +9,11 @@ Nothing here is shared with the native solver.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
+from tests.examples.closed_forms import BLOCK, DISC, oscillator
+from tests.examples.closed_forms import damped_oscillators as expected
 from tests.examples.support import example, max_errors
-
-BLOCK = {"mass": 2.5, "stiffness": 250.0, "damping": 5.0, "rest": 0.3 + 2.5 / 250.0, "start": 0.4}
-DISC = {"mass": 0.01, "stiffness": 1.0, "damping": 0.02, "rest": 0.1 / 1.0, "start": 0.5}
-
-
-def oscillator(t: np.ndarray, p: dict[str, float]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(value, rate, acceleration) of a damped oscillator released from rest at p["start"]."""
-    wn2, s = p["stiffness"] / p["mass"], p["damping"] / (2.0 * p["mass"])
-    wd, u0 = math.sqrt(wn2 - s * s), p["start"] - p["rest"]
-    decay = np.exp(-s * t)
-    u = decay * (u0 * np.cos(wd * t) + s * u0 / wd * np.sin(wd * t))
-    du = -decay * wn2 / wd * u0 * np.sin(wd * t)
-    return p["rest"] + u, du, -wn2 * u - 2.0 * s * du
-
-
-def expected(t: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]]:
-    """Each body's (position, velocity, acceleration) arrays of shape (len(t), 3)."""
-    x, zero = oscillator(t, BLOCK), np.zeros_like(t)
-    theta = oscillator(t, DISC)
-    block = tuple(np.column_stack([x[k], zero, zero]) for k in range(3))
-    disc = tuple(np.column_stack([x[k], zero, theta[k]]) for k in range(3))
-    return {"block": block, "disc": disc}  # type: ignore[dict-item]
 
 
 def test_damped_oscillators_against_closed_form() -> None:
