@@ -17,7 +17,7 @@ import adapters
 from reports.cli.usage import UsageError, pairs, scenario_argument
 from reports.harness import scenario_identity, store_files
 from reports.harness.imported import Score, add_to_store, score
-from reports.harness.level_error import characteristic_rate
+from reports.harness.level_error import LEVEL_COLUMNS, characteristic_rate
 from reports.harness.results_store import TRUTH, ResultsStore
 from reports.harness.store_lock import WriterLock
 from reports.harness.trajectory_file import TrajectoryFileError, read_trajectory
@@ -90,9 +90,24 @@ def cmd_compare(args: argparse.Namespace) -> int:
     print("\n".join(verdict(scenario, scored, label)))
     if out is not None:
         with WriterLock(out, wait=args.wait):
-            add_to_store(ResultsStore(out), scenario, scored)
-        print(f"\nadded to {out} as engine '{label}'; see it beside the engines: mbxval report {out}")
+            store = ResultsStore(out)
+            add_to_store(store, scenario, scored)
+        print("\n".join(["", *beside(store, scenario.name)]))
+        print(f"added to {out} as engine '{label}'; see it beside the engines: mbxval report {out}")
     return 0
+
+
+def beside(store: ResultsStore, name: str) -> list[str]:
+    """The store's default-setting rows of scenario `name`, one line each: engine, status, errors."""
+    lines = [f"{'in the store':<14}{'position':>10}{'velocity':>10}{'accel.':>10}   setting"]
+    rows = [r for r in store.rows.values() if r["scenario"] == name and bool(r["is_default"])]
+    for row in sorted(rows, key=lambda r: str(r["engine"])):
+        if row["status"] != "ok":
+            lines.append(f"{row['engine']!s:<14}{row['status']!s:>10}")
+            continue
+        values = "".join(f"{float(row[LEVEL_COLUMNS[lv]]):>10.1e}" for lv in LEVELS)
+        lines.append(f"{row['engine']!s:<14}{values}   {row['setting']}")
+    return lines
 
 
 def _check_store(out: Path, given: str, scenario: Scenario) -> None:

@@ -96,7 +96,10 @@ def cmd_list(args: argparse.Namespace) -> int:
         scenario = load(name)
         cells = []
         for engine, adapter in engines.items():
-            reason = adapter.supports(scenario)
+            try:
+                reason = adapter.supports(scenario)
+            except Exception as error:  # a broken adapter costs its own cell only
+                reason = f"cannot tell: its supports() failed: {type(error).__name__}: {error}"
             if reason is None:
                 cells.append("yes")
             else:

@@ -2,8 +2,10 @@
 against the scenario it claims to solve, before anything is scored or stored.
 
 The file has the column `t`, then `<body>.x <body>.y <body>.theta` (position), `.vx .vy .omega`
-(velocity), `.ax .ay .alpha` (acceleration) per body, and optionally the scenario's extra columns
-(`<cam>.phi`, its angle outputs). Bodies and levels may be missing: a level is scored when every
+(velocity), `.ax .ay .alpha` (acceleration) per body, and optionally the extra columns an engine
+writes for the scenario, kept but not scored: a cam's contact angle `<cam>.phi`, angle outputs,
+`<joint>.fx` and `<driver>.force` (reactions and driving forces, named after the scenario's own
+joints, drivers and forces) and `energy.*`. Bodies and levels may be missing: a level is scored when every
 scored body has it, and what is left out is said. Refused, with a TrajectoryFileError naming the
 file: an unreadable file, an unknown column, a body's level with some of its three columns only, a
 non-finite or non-numeric value, and a time column that is not the scenario's grid.
@@ -44,9 +46,19 @@ class ImportedTrajectory:
     notes: tuple[str, ...]
 
 
+ENERGY = "energy"
+"""The prefix of the energy columns of a dynamic run (`energy.kinetic`, ...)."""
+
+
 def extra_columns(scenario: Scenario) -> tuple[str, ...]:
-    """The extra columns a trajectory of `scenario` may carry: cam contact angles, angle outputs."""
+    """The named extra columns a trajectory of `scenario` may carry: cam angles, angle outputs."""
     return tuple(f"{cam.name}.phi" for cam in scenario.cams) + tuple(a.name for a in scenario.angle_outputs)
+
+
+def is_extra(column: str, scenario: Scenario) -> bool:
+    """Whether `column` is an extra an engine writes for `scenario` (see the module docstring)."""
+    owners = {c.name for c in (*scenario.joints, *scenario.drivers, *scenario.forces)} | {ENERGY}
+    return column in extra_columns(scenario) or ("." in column and column.split(".")[0] in owners)
 
 
 def _fail(source: str, message: str) -> TrajectoryFileError:
@@ -82,17 +94,17 @@ def check_columns(source: str, columns: list[str], scenario: Scenario) -> None:
     """Every column is `t`, a coordinate of one of the scenario's bodies, or one of its extras."""
     known = ["t", *extra_columns(scenario)]
     known += [f"{b}.{n}" for b in scenario.body_names for names in COLUMNS.values() for n in names]
+    known += [f"{j.name}.{axis}" for j in scenario.joints for axis in ("fx", "fy")]  # for suggestions
+    known += [f"{d.name}.force" for d in scenario.drivers]
     if "t" not in columns:
         raise _fail(source, "no column 't' (the time)")
     for column in columns:
-        if column not in known:
+        if column not in known and not is_extra(column, scenario):
             raise _fail(
                 source,
                 f"unknown column '{column}'{suggestion(column, known)}; {scenario.name} has the bodies "
-                f"{', '.join(scenario.body_names)} (columns BODY.x BODY.y BODY.theta BODY.vx ... BODY.alpha)"
-                + (
-                    f" and the extras {', '.join(extra_columns(scenario))}" if extra_columns(scenario) else ""
-                ),
+                f"{', '.join(scenario.body_names)} (columns BODY.x BODY.y BODY.theta BODY.vx ... "
+                "BODY.alpha; extras are named after its joints, drivers, forces or cams, or energy.*)",
             )
 
 
@@ -101,7 +113,11 @@ def check_grid(source: str, times: np.ndarray, scenario: Scenario) -> None:
     grid = np.asarray(scenario.times())
     span = f"{len(grid)} times, {scenario.steps} steps from 0 to {scenario.t_end:.17g} s"
     if len(times) != len(grid):
-        raise _fail(source, f"has {len(times)} time rows; the grid of {scenario.name} has {span}")
+        raise _fail(
+            source,
+            f"has {len(times)} time rows; the grid of {scenario.name} has {span} "
+            "(--set changes the scenario's grid)",
+        )
     off = np.abs(times - grid)
     bad = np.flatnonzero(off > GRID_TOLERANCE * scenario.t_end)
     if bad.size:
@@ -160,7 +176,7 @@ def read_trajectory(path: str | Path, scenario: Scenario) -> ImportedTrajectory:
         lv: np.stack([frame[[f"{b}.{n}" for n in COLUMNS[lv]]].to_numpy() for b in bodies], axis=1)
         for lv in kept
     }
-    extras = {c: frame[c].to_numpy() for c in extra_columns(scenario) if c in present}
+    extras = {c: frame[c].to_numpy() for c in columns if c != "t" and is_extra(c, scenario)}
     grid = np.asarray(scenario.times(), dtype=float)  # the scenario's exact grid, checked above
     trajectory = Trajectory(grid, bodies, extras=extras, **arrays)  # type: ignore[arg-type]
     missing_levels = tuple(lv for lv in scenario.levels if lv not in kept)

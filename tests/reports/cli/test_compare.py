@@ -63,6 +63,10 @@ def test_out_adds_the_row_beside_the_engines(tmp_path: Path, capsys: pytest.Capt
     code, out, err = _compare(capsys, "spur_gears", str(csv), "--label", "other_tool", "--out", str(store))
     assert (code, err) == (0, ""), err
     assert f"added to {store} as engine 'other_tool'" in out
+    beside = {line.split()[0]: line.split() for line in out.split("in the store")[1].splitlines()[1:3]}
+    assert set(beside) == {"reference", "other_tool"}  # the engine's default row beside the import
+    assert float(beside["other_tool"][1]) == pytest.approx(1e-6, rel=1e-2)
+    assert beside["other_tool"][2] == "nan"  # no velocity in the file
     frame, meta = read_results(store)
     row = frame[frame["engine"] == "other_tool"].iloc[0]
     assert row["scenario"] == "spur_gears" and row["setting"] == "imported" and bool(row["is_default"])

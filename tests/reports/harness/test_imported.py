@@ -124,3 +124,24 @@ def test_a_dynamic_family_is_scored_against_the_native_dynamics(tmp_path: Path) 
     scored = score(scenario, read_trajectory(_write(tmp_path / "t.csv", moved), scenario), "mine")
     assert scored.truth.name.startswith("native dynamics")
     assert scored.row["error_position"] == pytest.approx(1e-5 / scenario.characteristic_length, rel=1e-6)
+
+
+def test_an_engines_extra_columns_are_kept_not_scored(tmp_path: Path) -> None:
+    """A native dynamic run's CSV carries joint reactions (`slot.fx`) and energies (`energy.kinetic`):
+    accepted as extras named after the scenario's own joints, not scored; an unknown one is refused."""
+    from reports.harness.trajectory_file import TrajectoryFileError
+    from reports.harness.truth import independent_truth
+    from scenarios.files import read_scenario
+
+    examples = Path(__file__).resolve().parents[3] / "examples"
+    scenario = read_scenario(examples / "damped_oscillators.toml", {"steps": "10", "t_end": "0.2"})
+    truth = independent_truth(scenario, np.asarray(scenario.times())).trajectory
+    assert {"slot.fx", "pin.fy", "energy.kinetic"} <= set(truth.extras)
+    path = _write(tmp_path / "t.csv", truth)
+    imported = read_trajectory(path, scenario)
+    assert set(imported.trajectory.extras) == set(truth.extras)
+    assert score(scenario, imported, "mine").row["error_position"] == 0.0
+    frame = truth.to_frame().assign(**{"slott.fx": 1.0})
+    frame.to_csv(tmp_path / "bad.csv", index=False)
+    with pytest.raises(TrajectoryFileError, match=r"unknown column 'slott.fx' \(did you mean 'slot.fx'\?\)"):
+        read_trajectory(tmp_path / "bad.csv", scenario)
