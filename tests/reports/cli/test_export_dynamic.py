@@ -60,7 +60,9 @@ def test_there_are_dynamic_families_with_every_kind_of_load() -> None:
     assert any(s.angle_outputs for s in built)
 
 
-@pytest.mark.parametrize("name", DYNAMIC)
+@pytest.mark.parametrize(
+    "name", [pytest.param(n, marks=[pytest.mark.slow] if n == "n_four_bar/spec" else []) for n in DYNAMIC]
+)  # the spec variant's 81 bodies take most of a minute even over two steps
 def test_dynamic_family_exported_reads_back_equal_and_simulates_bit_identically(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], name: str
 ) -> None:

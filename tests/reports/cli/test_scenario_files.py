@@ -117,5 +117,5 @@ def test_list_survives_an_adapter_whose_supports_raises(capsys, monkeypatch) -> 
     example = str(EXAMPLES / "damped_oscillators.toml")
     code, out, _ = run(capsys, "list", example)
     assert code == 0
-    assert "pinocchio on " + example + ": cannot tell: its supports() failed: ValueError: need at least" in out
+    assert f"pinocchio on {example}: cannot tell: its supports() failed: ValueError: need at" in out
     assert "exudyn on " + example + ": not kinematically driven" in out
