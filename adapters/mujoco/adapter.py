@@ -7,8 +7,11 @@ is then reached by a short run-in from t = -RUN_IN steps. simulate: steps MuJoCo
 grid and reads poses from the body-frame sites, velocities and accelerations from MuJoCo's state
 (mj_objectVelocity, and mj_objectAcceleration on the qacc of a forward pass at the grid time).
 Instability (a bad-acceleration warning, auto-reset disabled) is `diverged`.
+A dynamic scenario carries gravity and its loads (adapters.mujoco.loads), starts from the
+assembled poses and the bodies' rates without a run-in, and has its own settings
+(adapters.mujoco.dynamics).
 
-Settings: mode RK4 (default), implicitfast or Euler; dt, the requested step (the engine step divides
+Settings: mode RK4 (default), implicitfast, Euler or implicit; dt, the requested step (the engine step divides
 the output interval); tc_steps, the solref time constant in steps (2, the smallest MuJoCo allows);
 impedance, solimp of the equalities; for cams preload (N) and contact_impedance.
 """
@@ -17,7 +20,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import mujoco
 import numpy as np
@@ -27,8 +30,17 @@ from adapters.modes import ADAPTER, ENGINE, Mode
 from adapters.mujoco.assembly import assemble, clock_velocities, contact_slopes, settle
 from adapters.mujoco.cam_load import check_contacts, knife_edge_reason, preload
 from adapters.mujoco.cams import CamPair, cam_pairs
+from adapters.mujoco.dynamics import (
+    DYNAMIC_MODES,
+    angle_columns,
+    controls,
+    dynamic_default,
+    dynamic_sweep,
+    rate_velocities,
+)
 from adapters.mujoco.kinematic import KinematicSolver
 from adapters.mujoco.laws import Clock, Law, laws
+from adapters.mujoco.loads import Loads, loads_of
 from adapters.mujoco.mjcf import Physics, mjcf
 from adapters.mujoco.scale import Scale, clock_armature, dof_sizes, scale_of
 from adapters.mujoco.tree import Affine, Tree, TreeError, angle, plan_tree
@@ -37,12 +49,15 @@ from scenarios.cam_linkage import CAM_MODELS, cam_model_scenario, default_cam_mo
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
-MODES = ("RK4", "implicitfast", "Euler", "kinematic")
+MODES = ("RK4", "implicitfast", "Euler", "kinematic", "implicit")
 KINEMATIC = "kinematic"
 SWEEP_DT = (1e-3, 1e-4, 1e-5)
 BAD = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL)
 STATE = mujoco.mjtState.mjSTATE_INTEGRATION
 RUN_IN = 50
+DYNAMIC_CAM_REASON = (
+    "a cam contact in MuJoCo needs a preload spring on the follower, a force the scenario does not have"
+)
 SOLIMP_WIDTH = 0.005
 """solimp's transition width in characteristic lengths (0.001 m on the nominal 0.2 m crank)."""
 """Steps run before t = 0 from the assembled start, so soft constraints begin in steady state."""
@@ -67,6 +82,10 @@ class Model:
     """The cam followers' preload (N); 0 without cams."""
     kinematic: KinematicSolver | None = None
     """The solver of the kinematic mode (None: MuJoCo's integrator)."""
+    loads: Loads = field(default_factory=Loads)
+    """The dynamic scene's loads, whose motors' controls simulate sets."""
+    angles: Scenario | None = None
+    """The scenario whose angle outputs the trajectory carries (None: none)."""
 
 
 def _warn(message: str) -> None:
@@ -88,6 +107,12 @@ class MujocoAdapter(Adapter):
             for name in ("RK4", "implicitfast", "Euler")
         ),
         Mode(
+            "implicit",
+            ENGINE,
+            "MuJoCo's implicit integrator (velocity-implicit with the full force derivatives) on soft "
+            "constraints, poses, velocities and accelerations read from MuJoCo's state",
+        ),
+        Mode(
             "kinematic",
             ADAPTER,
             "Newton on MuJoCo's own constraint rows (efc_pos, efc_J) at each grid time (timing "
@@ -99,6 +124,7 @@ class MujocoAdapter(Adapter):
         ),
     )
     modes = MODES
+    dynamics = True
     options = (
         Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
         Option("tc_steps", float, 1.0, 1e6, help="solref time constant of the equalities, in steps"),
@@ -118,13 +144,18 @@ class MujocoAdapter(Adapter):
             tree = plan_tree(scenario)
             laws(scenario, tree)
             cam_pairs(scenario.cams, tree)
+            loads_of(scenario, tree)
         except TreeError as reason:
             return str(reason)
+        if scenario.analysis == "dynamic" and scenario.cams and default_cam_model(scenario) == "contact":
+            return DYNAMIC_CAM_REASON
         if default_cam_model(scenario) == "contact":
             return next(filter(None, map(knife_edge_reason, scenario.cams)), None)
         return None
 
     def default_setting(self, scenario: Scenario) -> Setting:
+        if scenario.analysis == "dynamic":
+            return dynamic_default(scenario)
         options: dict[str, float] = {"dt": 1e-4, "tc_steps": 2.0, "impedance": 0.9999}
         setting = Setting.of("RK4", **options)
         if scenario.cams:
@@ -134,6 +165,8 @@ class MujocoAdapter(Adapter):
         return setting
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
+        if scenario.analysis == "dynamic":
+            return dynamic_sweep(scenario)
         base = self.default_setting(scenario)
         bases = [base]
         if base.get("cam_model") == "linkage":  # MuJoCo's own cam contact as curves of their own
@@ -151,6 +184,9 @@ class MujocoAdapter(Adapter):
         if reason is not None:
             raise Unsupported(reason)
         kinematic = setting.mode == KINEMATIC
+        dynamic = scenario.analysis == "dynamic"
+        if dynamic and setting.mode not in DYNAMIC_MODES:
+            raise Unsupported(f"mode {setting.mode} is not a MuJoCo integrator of free dynamics")
         try:
             scenario = cam_model_scenario(
                 scenario, str(setting.get("cam_model", default_cam_model(scenario)))
@@ -158,6 +194,8 @@ class MujocoAdapter(Adapter):
         except ValueError as error:
             raise Unsupported(str(error)) from error
         reason = next(filter(None, map(knife_edge_reason, scenario.cams)), None)
+        if dynamic and scenario.cams:
+            reason = DYNAMIC_CAM_REASON
         if reason is not None:
             raise Unsupported(reason)
         dt = engine_step(float(setting.get("dt", 1e-4)), _interval(np.asarray(scenario.times())))
@@ -168,17 +206,24 @@ class MujocoAdapter(Adapter):
             _solimp(float(setting.get("impedance", 0.9999)), scenario.characteristic_length),
             _solimp(float(setting.get("contact_impedance", 0.99)), scenario.characteristic_length),
         )
+        run_in = 0 if kinematic or dynamic else RUN_IN
         scale = scale_of(scenario)
         guessed = plan_tree(scenario)
+        physics = Physics(**{**physics.__dict__, "loads": loads_of(scenario, guessed)})
         first = _compile(scenario, guessed, physics, 0, scale)
         poses = _poses(scenario, guessed, first)
         tree = plan_tree(scenario, poses)
         load = float(setting.get("preload", preload(scenario)))
         springs = _springs(scenario, first, tree, load, scale)
         armatures = _armatures(scenario, guessed, first, scale)
-        sized = Physics(**{**physics.__dict__, "springs": springs, "clock_armature": armatures})
-        built = _compile(scenario, tree, sized, 0 if kinematic else RUN_IN, scale)
+        loads = loads_of(scenario, tree)
+        sized = Physics(
+            **{**physics.__dict__, "springs": springs, "clock_armature": armatures, "loads": loads}
+        )
+        built = _compile(scenario, tree, sized, run_in, scale)
         built.preload = load
+        if dynamic:
+            built.loads, built.angles = loads, scenario
         if kinematic:
             built.kinematic = KinematicSolver(built.model, built.clocks, dof_sizes(built.model, scale))
         return built
@@ -194,21 +239,23 @@ class MujocoAdapter(Adapter):
         _soften(m, dt, model.tc_steps)
         d = mujoco.MjData(m)
         d.qpos[:], d.qvel[:] = model.qpos0, model.qvel0
-        mujoco.mj_forward(m, d)
-        lead = round(grid[0] / dt) if grid.size else 0
-        if lead:
-            _advance(m, d, lead)
-            self.count_steps(lead)
         n, k = len(grid), len(model.bodies)
         pos, vel, acc = np.empty((n, k, 3)), np.empty((n, k, 3)), np.empty((n, k, 3))
-        for i in range(n):
-            if i:
-                _advance(m, d, substeps)
-                self.count_steps(substeps)
-            _record(m, d, model, pos[i], vel[i], acc[i])
-            if m.npair:
-                check_contacts(m, d, model.preload)
-        return Trajectory(grid, model.bodies, pos, vel, acc)
+        with controls(m, d, model.loads.motors):
+            mujoco.mj_forward(m, d)
+            lead = round(grid[0] / dt) if grid.size else 0
+            if lead:
+                _advance(m, d, lead)
+                self.count_steps(lead)
+            for i in range(n):
+                if i:
+                    _advance(m, d, substeps)
+                    self.count_steps(substeps)
+                _record(m, d, model, pos[i], vel[i], acc[i])
+                if m.npair:
+                    check_contacts(m, d, model.preload)
+        extras = angle_columns(model.angles, model.bodies, pos[:, :, 2]) if model.angles else {}
+        return Trajectory(grid, model.bodies, pos, vel, acc, extras=extras)
 
     def _kinematic(self, model: Model, grid: np.ndarray) -> Trajectory:
         """MuJoCo's rows solved at each grid time (adapters.mujoco.kinematic)."""
@@ -268,6 +315,9 @@ def _compile(scenario: Scenario, tree: Tree, physics: Physics, run_in: int, scal
         assemble(m, d, clocks, scale)
     if m.npair:
         settle(m, d, clocks)
+    if scenario.analysis == "dynamic":
+        sites = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE, b.name) for b in scenario.bodies]
+        rate_velocities(m, d, sites, np.array([b.rate for b in scenario.bodies], dtype=float))
     if run_in:
         d.time = -run_in * physics.timestep
         _advance(m, d, run_in)
@@ -391,10 +441,11 @@ def _read(
 ) -> None:
     """The outputs from d's computed kinematics, velocities and accelerations (cacc)."""
     six = np.empty(6)
+    gx, gy = m.opt.gravity[:2]  # MuJoCo's accelerations carry the world's -gravity
     for k, site in enumerate(model.sites):
         pos[k, :2] = d.site_xpos[site][:2]
         pos[k, 2] = _evaluate(model.theta[k], model, d.qpos)
         mujoco.mj_objectVelocity(m, d, mujoco.mjtObj.mjOBJ_SITE, site, six, 0)
         vel[k] = six[3], six[4], six[2]
         mujoco.mj_objectAcceleration(m, d, mujoco.mjtObj.mjOBJ_SITE, site, six, 0)
-        acc[k] = six[3], six[4], six[2]
+        acc[k] = six[3] + gx, six[4] + gy, six[2]

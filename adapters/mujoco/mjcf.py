@@ -16,6 +16,7 @@ import numpy as np
 
 from adapters.mujoco.cams import CamPair, Geom
 from adapters.mujoco.laws import Law
+from adapters.mujoco.loads import WORLD_SITE, Loads, site_name
 from adapters.mujoco.tree import Tree, rot
 from scenarios.bodies import GROUND, Point
 from scenarios.gears import GearPair, RackPinion
@@ -42,6 +43,8 @@ class Physics:
     """Preload springs: joint name -> (stiffness, springref)."""
     clock_armature: dict[str, float] = field(default_factory=dict)
     """Clock joint name -> armature (CLOCK_ARMATURE for a clock not listed or with nothing to drive)."""
+    loads: Loads = field(default_factory=Loads)
+    """Gravity, actuators, tendons and hinge springs of a dynamic scene (adapters.mujoco.loads)."""
 
 
 def num(*values: float) -> str:
@@ -64,7 +67,7 @@ def mjcf(
         "option",
         timestep=num(physics.timestep),
         integrator=physics.integrator,
-        gravity="0 0 0",
+        gravity=num(*physics.loads.gravity, 0.0),
         tolerance=num(physics.tolerance),
         iterations=str(physics.iterations),
         jacobian="dense",
@@ -88,6 +91,14 @@ def mjcf(
             if joint.name in physics.springs:
                 k, ref = physics.springs[joint.name]
                 attrs.update(stiffness=num(k), springref=num(ref))
+            hinge_springs = dict(physics.loads.hinge_springs)
+            if joint.name in hinge_springs:
+                spring = hinge_springs[joint.name]
+                attrs.update(
+                    stiffness=num(spring.stiffness),
+                    damping=num(spring.damping),
+                    springref=num(spring.springref),
+                )
             body = elements[joint.child]
             body.insert(0, ET.Element("joint", attrs))
     for law in laws:
@@ -108,6 +119,7 @@ def mjcf(
         for geom in (pair.cam, pair.follower):
             _geom(elements[geom.body], geom, contact=True)
     _equalities(root, elements, tree, laws)
+    _loads(root, elements, physics.loads)
     if cams:
         contact = ET.SubElement(root, "contact")
         for pair in cams:
@@ -125,6 +137,8 @@ def mjcf(
         key = ET.SubElement(ET.SubElement(root, "keyframe"), "key", name="start")
         key.set("qpos", num(*keyframe[0]))
         key.set("qvel", num(*keyframe[1]))
+        if physics.loads.motors:  # the motors' controls at t = 0 (constant ones hold throughout)
+            key.set("ctrl", num(*(motor.law.f(0.0) for motor in physics.loads.motors)))
     ET.indent(root)
     return ET.tostring(root, encoding="unicode")
 
@@ -221,3 +235,46 @@ def _equalities(root: ET.Element, elements: dict[str, ET.Element], tree: Tree, l
         for joint, coef in terms:
             ET.SubElement(fixed, "joint", joint=joint, coef=num(coef))
         ET.SubElement(equality, "tendon", name=law.name, tendon1=law.name, polycoef=num(-const, 0, 0, 0, 0))
+
+
+def _loads(root: ET.Element, elements: dict[str, ET.Element], loads: Loads) -> None:
+    """Sites, spatial tendons and motor actuators of the loads (their controls are set in data)."""
+    if not (loads.motors or loads.tendons):
+        return
+    named = {site.get("name") for site in root.iter("site")}
+
+    def site(p: Point) -> str:
+        name = site_name(p)
+        if name not in named:
+            ET.SubElement(elements[p.body], "site", name=name, pos=num(*p.local, 0.0))
+            named.add(name)
+        return name
+
+    site(Point(GROUND, (0.0, 0.0)))
+    assert WORLD_SITE in named
+    if loads.tendons:
+        tendon = root.find("tendon")
+        if tendon is None:
+            tendon = ET.SubElement(root, "tendon")
+        for spring in loads.tendons:
+            spatial = ET.SubElement(
+                tendon,
+                "spatial",
+                name=spring.name,
+                stiffness=num(spring.stiffness),
+                damping=num(spring.damping),
+                springlength=num(spring.free_length),
+            )
+            ET.SubElement(spatial, "site", site=site(spring.p_i))
+            ET.SubElement(spatial, "site", site=site(spring.p_j))
+    if loads.motors:
+        actuator = ET.SubElement(root, "actuator")
+        for motor in loads.motors:
+            ET.SubElement(
+                actuator,
+                "motor",
+                name=motor.name,
+                site=site(motor.site),
+                refsite=motor.refsite,
+                gear=num(*motor.gear),
+            )

@@ -52,6 +52,10 @@ DECLARED: tuple[Column, ...] = (
     ),
     *(Column(name, math.nan, "error statistic: level_quantity_statistic") for name in METRIC_COLUMNS),
     Column("constraint_residual", math.nan, "largest scaled constraint residual"),
+    Column(
+        "constraint_residual_final", math.nan, "scaled constraint residual at the last grid time (its drift)"
+    ),
+    Column("energy_drift", math.nan, "dynamic runs: scaled energy drift (harness.energy_drift)"),
     Column("build_time", math.nan, "seconds to build the engine's model"),
     Column("run_time", math.nan, "seconds to simulate, minimum of repeats after a warm-up"),
     Column("steps", 0, "engine steps taken"),

@@ -94,11 +94,14 @@ def headline_series(result: Trajectory, truth: Trajectory, characteristic_length
     return np.maximum(lengths / characteristic_length, angles)
 
 
-def residual_metric(scenario: Scenario, result: Trajectory, residual: Residual) -> float:
-    """The largest constraint residual |C| over the grid (the reference's residual states lengths in
-    units of the characteristic length, angles in radians)."""
-    values = np.asarray(residual(scenario, result), dtype=float)
-    return float(np.max(np.abs(values))) if values.size else math.nan
+def residual_metrics(scenario: Scenario, result: Trajectory, residual: Residual) -> dict[str, float]:
+    """The largest constraint residual |C| over the grid and the one at its last time, its drift
+    (the reference's residual states lengths in units of the characteristic length, angles in
+    radians)."""
+    values = np.abs(np.asarray(residual(scenario, result), dtype=float))
+    if not values.size:
+        return {"constraint_residual": math.nan, "constraint_residual_final": math.nan}
+    return {"constraint_residual": float(np.max(values)), "constraint_residual_final": float(values[-1])}
 
 
 def _check_grid(result: Trajectory, truth: Trajectory) -> None:

@@ -26,6 +26,7 @@ import adapters
 from adapters.base import Adapter, RunResult, Setting
 from reports.harness import provenance
 from reports.harness.columns import NOT_RUN
+from reports.harness.energy_drift import energy_drift
 from reports.harness.isolation import run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION, level_errors
 from reports.harness.metrics import (
@@ -33,7 +34,7 @@ from reports.harness.metrics import (
     Residual,
     compared_levels,
     error_metrics,
-    residual_metric,
+    residual_metrics,
 )
 from reports.harness.results_store import ResultsStore
 from reports.harness.resume import STALE, ResumeLog, ResumePolicy, rerun_reason, staleness
@@ -296,7 +297,8 @@ class Runner:
             "resume": self.resume_log.lines(),
             "truth": (
                 "each row's `truth` column: the closed form where the scenario has one, else the "
-                "native solver on a refined grid at tight tolerance"
+                "native solver on a refined grid at tight tolerance; for dynamic scenarios the native "
+                "forward dynamics at tight tolerance"
             ),
             "headline": HEADLINE_DEFINITION,
             "scales": SCALE_DEFINITION,
@@ -346,8 +348,13 @@ def compare(
         notes.append("constraint residual not measured (reference_solver.constraint_residual missing)")
     else:
         try:
-            metrics["constraint_residual"] = residual_metric(scenario, result.trajectory, residual)
+            metrics.update(residual_metrics(scenario, result.trajectory, residual))
         except Exception as error:
             notes.append(f"constraint residual failed: {type(error).__name__}: {error}")
             metrics["constraint_residual"] = math.nan
+    if scenario.analysis == "dynamic":
+        try:
+            metrics["energy_drift"] = energy_drift(scenario, result.trajectory, truth)
+        except (ValueError, KeyError) as error:
+            notes.append(f"energy drift not measured: {error}")
     return metrics, levels, "; ".join(notes)

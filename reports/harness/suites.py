@@ -116,3 +116,35 @@ register(
         settings=_stress_settings,
     )
 )
+
+
+def dynamics_scenarios() -> list[str]:
+    """Every dynamic scenario (reports.dynamics.cases)."""
+    from reports.dynamics.cases import scenario_names
+
+    return scenario_names()
+
+
+def _dynamics_truth(scenario: Scenario, times: Any) -> NamedTruth:
+    from reports.dynamics.cases import truth
+
+    return truth(scenario, times)
+
+
+def _dynamics_settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
+    from reports.dynamics.cases import settings
+
+    return settings(scenario, adapter)
+
+
+register(
+    Suite(
+        "dynamics",
+        "forward dynamics against the native truth: every dynamic scenario over each engine's sweep, "
+        "and the stiffness-step stability map",
+        dynamics_scenarios,
+        timeout=120.0,
+        truth=_dynamics_truth,
+        settings=_dynamics_settings,
+    )
+)

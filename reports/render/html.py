@@ -16,7 +16,7 @@ from typing import Any
 
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.provenance import revision_label
-from reports.render import first_screen, level_plots, overview, plots, stability_render
+from reports.render import dynamics_render, first_screen, level_plots, overview, plots, stability_render
 from reports.render.report_data import ReportData, number, table
 
 STYLE = """
@@ -57,9 +57,9 @@ def render(data: ReportData) -> str:
         '<html lang="en"><head><meta charset="utf-8">',
         "<title>mbxval report</title>",
         f"<style>{STYLE}</style><script>{CHECK}</script></head><body>",
-        "<h1>mbxval: planar multibody kinematics across engines</h1>",
+        f"<h1>mbxval: planar multibody {_subject(meta)} across engines</h1>",
         f'<p class="muted">{html.escape(_provenance(meta))}</p>',
-        f"<p><strong>{html.escape(first_screen.native_line(data.frame))}</strong></p>",
+        f"<p><strong>{html.escape(_headline(data))}</strong></p>",
         "<h2>Error at each level, each engine's default setting</h2>",
         f'<p class="muted">{html.escape(_definitions(meta))}</p>',
         first_screen.level_matrix(data),
@@ -71,12 +71,24 @@ def render(data: ReportData) -> str:
         "<h2>Engines against each other (default settings)</h2>",
         _agreement(data),
         stability_render.html_fragment(data),  # "" unless these are the stress suite's results
+        dynamics_render.html_fragment(data, _image),  # "" without dynamic scenarios
         "<h2>Engines and machine</h2>",
         _key_values(_versions(meta)),
+        _modes(data),
     ]
     parts += _sections(data)
     parts.append("</body></html>")
     return "\n".join(parts)
+
+
+def _headline(data: ReportData) -> str:
+    if data.meta.get("suite") == "dynamics":
+        return dynamics_render.headline(data)
+    return first_screen.native_line(data.frame)
+
+
+def _subject(meta: dict[str, Any]) -> str:
+    return "dynamics" if meta.get("suite") == "dynamics" else "kinematics"
 
 
 def _definitions(meta: dict[str, Any]) -> str:
@@ -105,6 +117,25 @@ def _versions(meta: dict[str, Any]) -> dict[str, str]:
 def _key_values(values: dict[str, str]) -> str:
     rows = "".join(f"<tr><th>{html.escape(k)}</th><td>{html.escape(v)}</td></tr>" for k, v in values.items())
     return f"<table>{rows}</table>"
+
+
+def _modes(data: ReportData) -> str:
+    """What each engine mode in the results measures (the rows' `measures` column)."""
+    if "measures" not in data.frame:
+        return ""
+    known = data.frame[data.frame["measures"].astype(str) != ""]
+    modes = known.drop_duplicates(["engine", "mode"])[["engine", "mode", "measures"]]
+    if modes.empty:
+        return ""
+    order = {engine: k for k, engine in enumerate(data.engines())}
+    modes = (
+        modes.assign(_order=modes["engine"].map(order)).sort_values(["_order", "mode"]).drop(columns="_order")
+    )
+    note = (
+        "What each mode measures: the engine's own solver or integrator, or a loop in the adapter on "
+        "the engine's kinematics, and which levels the adapter derives."
+    )
+    return f'<p class="muted">{note}</p>{modes.to_html(index=False, escape=True, border=0)}'
 
 
 def _counts(data: ReportData) -> str:

@@ -67,7 +67,7 @@ class ReportData:
 
     def scenarios(self) -> list[str]:
         """Scenarios in catalogue order, unknown ones after them."""
-        return _ordered(self.frame["scenario"].unique(), catalogue())
+        return _ordered(self.frame["scenario"].unique(), catalogue(include_stress=True, include_dynamic=True))
 
     def engines(self) -> list[str]:
         return _ordered(self.frame["engine"].unique(), adapters.names())

@@ -36,6 +36,18 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     )
 
 
+MAP_STIFFNESSES = (1e2, 1e4, 1e6, 1e8)
+MAP_STEPS = (1e-4, 1e-3, 1e-2)
+
+
+def map_variant(stiffness: float, dt: float) -> str:
+    """The name of the variant at one cell of the stiffness-step map, such as `k1e6_dt1e-3`."""
+    return f"k{stiffness:.0e}_dt{dt:.0e}".replace("e+0", "e").replace("e-0", "e-")
+
+
+MAP_VARIANTS = {map_variant(k, dt): {"stiffness": k, "dt": dt} for k in MAP_STIFFNESSES for dt in MAP_STEPS}
+"""The dynamics suite's stability map: stiffness against the step a fixed-step engine is given."""
+
 FAMILY = Family(
     name="stiff_spring",
     summary="a pendulum held by a stiff spring; stiffness and step size are parameters",
@@ -49,6 +61,6 @@ FAMILY = Family(
         "t_end": positive(0.1, 1e6, "s"),
     },
     build=_build,
-    variants={"damped": {"damping": 20.0}},
+    variants={"damped": {"damping": 20.0}, **MAP_VARIANTS},
     dynamic=True,
 )

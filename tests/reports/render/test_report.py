@@ -101,3 +101,13 @@ def test_the_page_loads_in_a_real_browser(results: Path) -> None:
     loaded = re.search(r'data-plots-loaded="(\d+)/(\d+)"', done.stdout)
     assert loaded, done.stderr[-2000:]
     assert loaded.group(1) == loaded.group(2) == "3"
+
+
+def test_the_page_says_what_each_mode_measures(results: Path) -> None:
+    """Every engine-mode that ran has its `measures` text in the modes table, as its rows say."""
+    page = (results / "index.html").read_text()
+    frame, _ = read_results(results)
+    measured = frame[frame["measures"].astype(str) != ""].drop_duplicates(["engine", "mode"])
+    assert not measured.empty
+    for _, row in measured.iterrows():
+        assert html.escape(str(row["measures"]), quote=False) in page, row["mode"]

@@ -1,0 +1,83 @@
+"""What the dynamics suite runs: every dynamic scenario, the stiffness-step map and the truth.
+
+- `scenario_names()`: every dynamic family's default and variants (the families declare
+  `dynamic=True`), the stiff spring's map cells (`stiff_spring/k..._dt...`) included;
+- the truth: the native forward dynamics at TRUTH_RTOL, except in scenarios that pass through a
+  singular configuration (SINGULAR_PASSAGES), where DOP853 cannot reach that tolerance in reasonable
+  time (the dependent coordinates' round-off is amplified there) and the truth is at the looser
+  tolerance given; the native engine is then run no tighter than JUDGED_MARGIN times that, so the
+  truth is always far tighter than what it judges;
+- the map cells run each engine's settings whose step is the cell's output step (fixed-step engines
+  take the output step as their step), the other scenarios each engine's sweep.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from adapters.base import Adapter, Setting
+from reports.harness.truth import DYNAMIC_RTOL, NamedTruth
+from scenarios import catalogue
+from scenarios.families.stiff_spring import MAP_VARIANTS
+from scenarios.registry import all_families
+from scenarios.scenario import Scenario
+
+TRUTH_RTOL = DYNAMIC_RTOL
+SINGULAR_PASSAGES = {"n_four_bar": 1e-12}
+"""Families whose motion passes a singular configuration, and the truth's tolerance there."""
+JUDGED_MARGIN = 10.0
+MAP_FAMILY = "stiff_spring"
+LEFT_OUT = ("n_four_bar/spec",)
+"""Too long for a suite every engine runs (81 bodies over 20 s): run it by name."""
+
+
+def scenario_names() -> list[str]:
+    """Every dynamic scenario of the catalogue, LEFT_OUT excepted."""
+    return [n for n in catalogue(include_dynamic=True) if is_dynamic(n) and n not in LEFT_OUT]
+
+
+def is_dynamic(name: str) -> bool:
+    """Whether `name` is a scenario of a dynamic family."""
+    family = all_families().get(name.partition("/")[0])
+    return family is not None and family.dynamic
+
+
+def map_cells() -> dict[str, dict[str, float]]:
+    """The stiffness-step map's scenario names and their (stiffness, dt)."""
+    return {f"{MAP_FAMILY}/{name}": values for name, values in MAP_VARIANTS.items()}
+
+
+def truth_rtol(scenario: Scenario) -> float:
+    return SINGULAR_PASSAGES.get(scenario.family, TRUTH_RTOL)
+
+
+def truth(scenario: Scenario, times: Any) -> NamedTruth:
+    """The native forward dynamics at the scenario's truth tolerance."""
+    from reference_solver.dynamics import simulate  # on first use: the native solver is slow to import
+
+    rtol = truth_rtol(scenario)
+    return NamedTruth(simulate(scenario, times, rtol).trajectory(), f"native dynamics, DOP853 rtol {rtol:g}")
+
+
+def settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
+    """The suite's settings hook (reports.harness.suites): a map cell runs each engine's default and
+    its settings at the cell's step; the native engine, whose forward dynamics is the truth, runs no
+    tighter than JUDGED_MARGIN times the truth's tolerance; otherwise each engine's own sweep."""
+    if scenario.name in map_cells():
+        step = scenario.t_end / scenario.steps
+        default = adapter.default_setting(scenario)
+        return _unique([default, *(s for s in adapter.sweep(scenario) if _same(s.get("dt"), step))])
+    if adapter.name == "reference" and scenario.analysis == "dynamic":
+        loosest = truth_rtol(scenario) * JUDGED_MARGIN
+        chosen = [adapter.default_setting(scenario), *adapter.sweep(scenario)]
+        return _unique([s.replace(rtol=max(float(s["rtol"]), loosest)) for s in chosen])
+    return None
+
+
+def _unique(settings: list[Setting]) -> list[Setting]:
+    return list(dict.fromkeys(settings))
+
+
+def _same(value: Any, step: float) -> bool:
+    return value is not None and math.isclose(float(value), step, rel_tol=1e-9)
