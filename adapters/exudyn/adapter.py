@@ -7,9 +7,18 @@ Modes (one work-precision curve each):
                  accelerations O(dt) through a start-up transient (the default, at a tenth of the
                  scenario's output interval)
     GA3-rho0.5   the same with spectral radius 0.5 (a shorter transient)
+    GA3-modified GA3 with Exudyn's own modified Newton (the Jacobian kept over iterations and steps,
+                 Exudyn's default; the other modes update it at every iteration)
     TR2          the trapezoidal rule (Newmark 1/4, 1/2) on index-2 constraints; positions drift O(dt^2)
     STATIC       Exudyn's static solver at each grid time, then velocity and acceleration solves on
-                 Exudyn's own constraint Jacobian and velocity-level constraints
+                 Exudyn's own constraint Jacobian and velocity-level constraints (kinematic scenes)
+    RK44         Exudyn's explicit RK4: unsupported wherever a joint or driver is (Exudyn's explicit
+                 integrators eliminate only coordinate constraints to the ground)
+In free dynamics (scenarios whose analysis is "dynamic") gravity and the force elements are Exudyn's
+loads and connectors (adapters.exudyn.loads), the start is the scenario's assembled state with
+Exudyn's own initial accelerations (adapters.exudyn.initial_state, at build), and GA3, GA3-rho0.5
+and TR2 integrate it (second order in the step); a system of more than SPARSE_ABOVE coordinates
+uses Exudyn's sparse linear solver.
 Options: `dt` (requested step; each output interval is divided evenly), `rho` (overrides the mode's
 spectral radius), `tol` (Newton's tolerance on its increment, per unit of coordinate size),
 `mass_scale` (multiplies every mass and inertia; a kinematically driven result must not depend on
@@ -25,9 +34,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+import exudyn as exu
 import numpy as np
 
 from adapters.base import Adapter, Option, Setting, Unsupported
+from adapters.exudyn.initial_state import released_start
+from adapters.exudyn.loads import FORCES
 from adapters.exudyn.model import ExudynModel, ModelError, build_model
 from adapters.exudyn.simulation import Plan, States, assemble, march, quiet, simulation_settings, trajectory
 from adapters.modes import ENGINE, Mode
@@ -47,9 +59,17 @@ from scenarios.trajectory import Trajectory
 MODES: dict[str, tuple[str, float, float]] = {  # solver, spectral radius, Newton tolerance
     "GA3": ("GA", 0.9, 1e-12),
     "GA3-rho0.5": ("GA", 0.5, 1e-12),
+    "GA3-modified": ("GA", 0.9, 1e-12),
     "TR2": ("TR2", 1.0, 1e-12),
     "STATIC": ("STATIC", 1.0, 1e-14),
+    "RK44": ("RK44", 1.0, 1e-12),
 }
+MODIFIED_NEWTON = ("GA3-modified",)
+"""Modes that keep Exudyn's own modified Newton (its Jacobian reused over iterations and steps)."""
+EXPLICIT_REASON = (
+    "Exudyn's explicit integrators (RK44, DOPRI5, ...) refuse joint constraints: they eliminate only "
+    "coordinate constraints to the ground, and this scenario has {what}"
+)
 ROWS: dict[type, int] = {
     Revolute: 2,
     Prismatic: 2,
@@ -67,7 +87,18 @@ ROWS: dict[type, int] = {
 }
 OPTIONS = ("dt", "rho", "tol", "mass_scale", "cams", "cam_model")
 DEFAULT_SUBSTEPS = 10
+SPARSE_ABOVE = 100
+"""Coordinates above which free dynamics uses Exudyn's sparse linear solver."""
 SWEEP_SUBSTEPS = {"GA3": (1, 3, 10), "GA3-rho0.5": (1, 3), "TR2": (1, 3)}
+DYNAMIC_SUBSTEPS = {
+    "GA3": (1, 3, 10, 30),
+    "GA3-rho0.5": (1, 3, 10),
+    "GA3-modified": (3, 10, 30),
+    "TR2": (1, 3, 10, 30),
+}
+"""Free dynamics: engine steps per output interval in the sweep (the default is DEFAULT_SUBSTEPS)."""
+LARGE_DYNAMIC_SUBSTEPS = {"GA3": (3, 10), "TR2": (10,)}
+"""A large system (the 81-body chain: 17 s at the default) sweeps less."""
 
 
 @dataclass(frozen=True)
@@ -80,6 +111,7 @@ class ExudynRun:
 
 class ExudynAdapter(Adapter):
     name = "exudyn"
+    dynamics = True
     measured = (
         Mode(
             "GA3",
@@ -91,7 +123,16 @@ class ExudynAdapter(Adapter):
             ENGINE,
             "Exudyn's generalized-alpha (index 3, spectral radius 0.5), all levels from its state",
         ),
+        Mode(
+            "GA3-modified",
+            ENGINE,
+            "Exudyn's generalized-alpha (index 3, spectral radius 0.9) with its modified Newton, all levels "
+            "from its state",
+        ),
         Mode("TR2", ENGINE, "Exudyn's trapezoidal rule (index 2), all levels from its state"),
+        Mode(
+            "RK44", ENGINE, "Exudyn's explicit RK4 (constraint-free scenes only), all levels from its state"
+        ),
         Mode(
             "STATIC",
             ENGINE,
@@ -125,6 +166,11 @@ class ExudynAdapter(Adapter):
                 return f"no Exudyn element for {type(item).__name__} '{getattr(item, 'name', '?')}'"
             if isinstance(item, RevoluteRevolute) and not item.length > 0.0:
                 return f"Exudyn's distance connector needs a positive length ('{item.name}': {item.length})"
+        for force in scenario.forces:
+            if not isinstance(force, FORCES):
+                return f"no Exudyn element for {type(force).__name__} '{force.name}'"
+        if scenario.analysis == "dynamic":
+            return None
         rows = sum(ROWS[type(item)] for item in (*scenario.joints, *scenario.drivers))
         unknowns = 3 * len(scenario.bodies) + len(scenario.cams)
         if rows != unknowns:
@@ -140,7 +186,13 @@ class ExudynAdapter(Adapter):
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
         """Engine steps of 1, 1/3 (and 1/10 for GA3, the default) of the scenario's output interval,
-        and the static solve per time point."""
+        and the static solve per time point; in free dynamics, steps down to 1/30 of the interval
+        for the implicit integrators, fewer on a large system (the explicit integrators refuse
+        joints, see EXPLICIT_REASON)."""
+        if scenario.analysis == "dynamic":
+            large = 3 * len(scenario.bodies) > SPARSE_ABOVE
+            ladders = (LARGE_DYNAMIC_SUBSTEPS if large else DYNAMIC_SUBSTEPS).items()
+            return [Setting.of(m, dt=_interval(scenario) / k) for m, ladder in ladders for k in ladder]
         steps = [
             Setting.of(m, dt=_interval(scenario) / k) for m, ladder in SWEEP_SUBSTEPS.items() for k in ladder
         ]
@@ -158,6 +210,7 @@ class ExudynAdapter(Adapter):
             dt=float(setting.get("dt", _interval(scenario) / DEFAULT_SUBSTEPS)),
             rho=float(setting.get("rho", rho)),
             tolerance=float(setting.get("tol", tolerance)),
+            modified_newton=setting.mode in MODIFIED_NEWTON,
         )
         # the equivalent linkage is Exudyn's native distance connector (knife edge, roller) and its
         # exact native flat-face element; the contact is the user-function connector on the profile
@@ -167,6 +220,8 @@ class ExudynAdapter(Adapter):
         cams = str(setting.get("cams", "native" if model_choice == "linkage" else "user"))
         if not (plan.dt > 0.0 and plan.tolerance > 0.0 and 0.0 <= plan.rho <= 1.0):
             raise ValueError(f"invalid Exudyn setting {setting.label}")
+        dynamic = scenario.analysis == "dynamic"
+        _check_dynamic_mode(scenario, plan, dynamic, float(setting.get("mass_scale", 1.0)))
         try:
             with quiet():
                 model = build_model(scenario, float(setting.get("mass_scale", 1.0)), cams == "native")
@@ -174,7 +229,7 @@ class ExudynAdapter(Adapter):
             raise Unsupported(str(error)) from error
         t0 = float(scenario.times()[0])
         with quiet():
-            start = assemble(model, t0, _settings(model, plan))
+            start = (released_start if dynamic else assemble)(model, t0, _settings(model, plan))
         return ExudynRun(model, plan, (t0, start))
 
     def simulate(self, model: ExudynRun, times: np.ndarray) -> Trajectory:
@@ -186,10 +241,29 @@ class ExudynAdapter(Adapter):
         return trajectory(model.model, grid, states)
 
 
+def _check_dynamic_mode(scenario: Scenario, plan: Plan, dynamic: bool, mass_scale: float) -> None:
+    """Unsupported for a mode that cannot run the scenario's analysis faithfully."""
+    if plan.solver == "RK44":
+        constrained = [*scenario.joints, *scenario.drivers]
+        if constrained:
+            what = f"{type(constrained[0]).__name__} '{getattr(constrained[0], 'name', '?')}'"
+            raise Unsupported(EXPLICIT_REASON.format(what=what))
+    if dynamic and plan.solver == "STATIC":
+        raise Unsupported("Exudyn's static solver finds equilibria; free dynamics needs an integrator")
+    if dynamic and mass_scale != 1.0:
+        raise ValueError("mass_scale applies to kinematically driven scenarios only")
+
+
 def _settings(model: ExudynModel, plan: Plan) -> Any:
-    """Exudyn's settings; Newton's tolerance is on increments: relative to the coordinates' size."""
+    """Exudyn's settings; Newton's tolerance is on increments: relative to the coordinates' size.
+    A large system integrates with Exudyn's sparse linear solver, as its users set it (on the
+    81-body chain 45 times faster than the dense default; the same on small systems)."""
     size = max(1.0, float(np.max(np.abs(model.guess), initial=0.0)))
-    return simulation_settings(plan.tolerance * size)
+    settings = simulation_settings(plan.tolerance * size)
+    settings.timeIntegration.newton.useModifiedNewton = plan.modified_newton
+    if model.scenario.analysis == "dynamic" and len(model.guess) > SPARSE_ABOVE:
+        settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
+    return settings
 
 
 def _interval(scenario: Scenario) -> float:

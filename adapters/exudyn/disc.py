@@ -1,6 +1,8 @@
-"""Knife-edge and roller followers on a circular disc cam, as Exudyn's distance connector: the
-follower's point keeps a fixed distance from the disc's centre. No Exudyn import here: only the
-geometry, and the contact parameter phi recovered from the bodies' poses afterwards.
+"""Followers on a circular disc cam as Exudyn's own joints: a knife edge or roller keeps a fixed
+distance from the disc's centre (a distance connector); a flat face keeps the disc's centre at the
+normal distance R from its plane (a 2D prismatic joint without its rotation constraint, sliding the
+centre along the face line moved R towards the disc). No Exudyn import here: only the geometry, and
+the contact parameter phi recovered from the bodies' poses afterwards.
 """
 
 from __future__ import annotations
@@ -13,7 +15,7 @@ import numpy as np
 
 from scenarios.bodies import GROUND, Point
 from scenarios.cam_profiles import EccentricDisc
-from scenarios.cams import KnifeEdgeCam, RollerCam
+from scenarios.cams import FlatFaceCam, KnifeEdgeCam, RollerCam
 from scenarios.geometry import world_point
 from scenarios.scenario import Scenario
 
@@ -46,6 +48,45 @@ def disc_contact(scenario: Scenario, cam: KnifeEdgeCam | RollerCam, disc: Eccent
         else:
             reach = outer
     return DiscContact(centre, follower, reach, _contact_phi(disc, follower.local, side))
+
+
+@dataclass(frozen=True)
+class FlatFaceDisc:
+    """The disc's `centre` slides on the line through `slider` (a point of the follower) with unit
+    `normal` (the follower's frame); `phi(cam_pose, follower_pose)` as for DiscContact."""
+
+    centre: Point
+    slider: Point
+    normal: tuple[float, float]
+    phi: PhiFromPoses
+
+
+def flat_face_disc(scenario: Scenario, cam: FlatFaceCam, disc: EccentricDisc) -> FlatFaceDisc:
+    """h.(C - face) = +-R as a point on a line: the sign is the side of the face the disc is on at
+    the guessed poses."""
+    centre = Point(cam.cam, (disc.eccentricity, 0.0))
+    h = np.asarray(cam.normal, dtype=float) / float(np.hypot(*cam.normal))
+    theta = scenario.body(cam.face.body).guess[2] if cam.face.body != GROUND else 0.0
+    c, s = math.cos(theta), math.sin(theta)
+    h_world = np.array([c * h[0] - s * h[1], s * h[0] + c * h[1]])
+    side = (
+        1.0 if float(h_world @ (_guessed(scenario, centre) - _guessed(scenario, cam.face))) >= 0.0 else -1.0
+    )
+    offset = side * disc.radius
+    slider = Point(cam.face.body, (cam.face.local[0] + offset * h[0], cam.face.local[1] + offset * h[1]))
+    eccentric = np.array([disc.eccentricity, 0.0])
+
+    def phi(cam_pose: np.ndarray, follower: np.ndarray) -> float:
+        """The polar angle, in the cam frame, of the disc point nearest the face: C - side R h."""
+        cf, sf = math.cos(follower[2]), math.sin(follower[2])
+        normal = np.array([cf * h[0] - sf * h[1], sf * h[0] + cf * h[1]])
+        cc, sc = math.cos(cam_pose[2]), math.sin(cam_pose[2])
+        in_cam = eccentric - offset * np.array(
+            [cc * normal[0] + sc * normal[1], -sc * normal[0] + cc * normal[1]]
+        )
+        return math.atan2(in_cam[1], in_cam[0])
+
+    return FlatFaceDisc(centre, slider, (float(h[0]), float(h[1])), phi)
 
 
 def _guessed(scenario: Scenario, point: Point) -> np.ndarray:

@@ -37,14 +37,16 @@ from exudyn.itemInterface import (
     ObjectJointPrismatic2D,
     ObjectJointRevolute2D,
     ObjectRigidBody2D,
+    SensorNode,
 )
 
 from adapters.exudyn.constraints import UserConstraint, user_constraint
-from adapters.exudyn.disc import PhiFromPoses, disc_contact
+from adapters.exudyn.disc import PhiFromPoses, disc_contact, flat_face_disc
+from adapters.exudyn.loads import add_loads
 from adapters.exudyn.user_functions import constraint_functions, offset_functions
 from scenarios.bodies import GROUND, Point
 from scenarios.cam_profiles import EccentricDisc
-from scenarios.cams import KnifeEdgeCam, RollerCam
+from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
 from scenarios.drivers import AbsoluteDriver, RelativeRotationDriver
 from scenarios.gears import GearPair, RackPinion
 from scenarios.joints import Ground, Prismatic, Revolute, RevoluteRevolute
@@ -72,6 +74,9 @@ class ExudynModel:
     guess: np.ndarray = field(default_factory=lambda: np.zeros(0))
     keep: list[Any] = field(default_factory=list)  # symbolic user functions must stay alive
     native_cams: bool = True
+    sensors: list[tuple[int, int, tuple[Any, Any, Any]]] = field(default_factory=list)
+    """(first ODE2 index, width, sensors of coordinates, velocities, accelerations) per node: Exudyn
+    records the grid states itself (adapters.exudyn.simulation reads them)."""
 
 
 def build_model(scenario: Scenario, mass_scale: float = 1.0, native_cams: bool = True) -> ExudynModel:
@@ -82,11 +87,31 @@ def build_model(scenario: Scenario, mass_scale: float = 1.0, native_cams: bool =
     builder = _Builder(model, mass_scale)
     for item in (*scenario.joints, *scenario.drivers):
         builder.add(item)
+    add_loads(mbs, scenario, builder.objects, builder.nodes, builder.at, builder.ground_coordinate)
+    recorded = [(node, 3) for node in builder.nodes.values()] + [(n, 1) for n in builder.phi_nodes.values()]
+    sensors = [(node, width, _state_sensors(mbs, node)) for node, width in recorded]
     mbs.Assemble()
+    model.sensors = [(mbs.GetNodeODE2Index(node), width, handles) for node, width, handles in sensors]
     model.index = {b: mbs.GetNodeODE2Index(n) for b, n in builder.nodes.items()}
     model.phi_index = {c: mbs.GetNodeODE2Index(n) for c, n in builder.phi_nodes.items()}
     model.guess = np.array(mbs.systemData.GetODE2Coordinates(exu.ConfigurationType.Initial))
     return model
+
+
+def _state_sensors(mbs: Any, node: Any) -> tuple[Any, Any, Any]:
+    """Sensors storing a node's coordinates, velocities and accelerations in memory (no file)."""
+    kinds = (
+        exu.OutputVariableType.Coordinates,
+        exu.OutputVariableType.Coordinates_t,
+        exu.OutputVariableType.Coordinates_tt,
+    )
+    q, v, a = (
+        mbs.AddSensor(
+            SensorNode(nodeNumber=node, storeInternal=True, writeToFile=False, outputVariableType=k)
+        )
+        for k in kinds
+    )
+    return q, v, a
 
 
 class _Builder:
@@ -100,7 +125,11 @@ class _Builder:
         self.objects: dict[str, Any] = {GROUND: self.ground}
         self.phi_nodes: dict[str, Any] = {}
         for body in model.scenario.bodies:
-            node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0] * 3, initialCoordinates=body.guess))
+            node = mbs.AddNode(
+                NodeRigidBody2D(
+                    referenceCoordinates=[0.0] * 3, initialCoordinates=body.guess, initialVelocities=body.rate
+                )
+            )
             self.nodes[body.name] = node
             self.objects[body.name] = mbs.AddObject(
                 ObjectRigidBody2D(
@@ -129,6 +158,8 @@ class _Builder:
             self.rack(item)
         elif isinstance(item, KnifeEdgeCam | RollerCam) and self.disc(item) is not None:
             self.disc_contact(item)
+        elif isinstance(item, FlatFaceCam) and self.disc(item) is not None:
+            self.flat_face(item)
         else:
             constraint = user_constraint(item)
             if constraint is None:
@@ -267,7 +298,7 @@ class _Builder:
         self.linear(terms, item.offset - pitch)
 
     # --- cams on a circular disc -------------------------------------------------------------------
-    def disc(self, cam: KnifeEdgeCam | RollerCam) -> EccentricDisc | None:
+    def disc(self, cam: CamContact) -> EccentricDisc | None:
         native = self.model.native_cams and isinstance(cam.profile, EccentricDisc)
         return cam.profile if native else None  # type: ignore[return-value]
 
@@ -277,6 +308,22 @@ class _Builder:
         contact = disc_contact(self.model.scenario, cam, disc)
         self.distance(contact.centre, contact.follower, contact.reach)
         self.model.phi_from_poses[cam.name] = (cam.cam, contact.follower.body, contact.phi, cam.phi_guess)
+
+    def flat_face(self, cam: FlatFaceCam) -> None:
+        """Exudyn's 2D prismatic joint without its rotation row: (p1 - p0).A1 n1 = 0 with p0 the
+        disc's centre and p1 on the follower, R from the face towards the disc."""
+        disc = self.disc(cam)
+        assert disc is not None
+        contact = flat_face_disc(self.model.scenario, cam, disc)
+        self.mbs.AddObject(
+            ObjectJointPrismatic2D(
+                markerNumbers=[self.rigid(contact.centre), self.rigid(contact.slider)],
+                axisMarker0=[1.0, 0.0, 0.0],
+                normalMarker1=[*contact.normal, 0.0],
+                constrainRotation=False,
+            )
+        )
+        self.model.phi_from_poses[cam.name] = (cam.cam, contact.slider.body, contact.phi, cam.phi_guess)
 
     # --- user-function connectors -------------------------------------------------------------------
     def coordinate_markers(self, nodes: list[Any]) -> tuple[list[Any], list[int]]:

@@ -25,18 +25,24 @@ from scenarios.trajectory import Trajectory
 
 INITIAL = exu.ConfigurationType.Initial
 CURRENT = exu.ConfigurationType.Current
-DYNAMIC = {"GA": exu.DynamicSolverType.GeneralizedAlpha, "TR2": exu.DynamicSolverType.TrapezoidalIndex2}
+DYNAMIC = {
+    "GA": exu.DynamicSolverType.GeneralizedAlpha,
+    "TR2": exu.DynamicSolverType.TrapezoidalIndex2,
+    "RK44": exu.DynamicSolverType.RK44,
+}
 
 
 @dataclass(frozen=True)
 class Plan:
     """How to march: `solver` GA, TR2 or STATIC; the requested step `dt`; GA's spectral radius;
-    Newton's tolerance on the increment of each step (or of each static solve)."""
+    Newton's tolerance on the increment of each step (or of each static solve); whether the
+    integrator keeps Exudyn's modified Newton (else full Newton)."""
 
     solver: str
     dt: float
     rho: float
     tolerance: float
+    modified_newton: bool = False
 
 
 @dataclass
@@ -94,10 +100,13 @@ class ConstraintProbe:
         self.solver = _static_solver()
         self.solver.InitializeSolver(self.mbs, settings)
         self.n = self.solver.GetODE2size()
-        if self.solver.GetAEsize() != self.n:
-            rows = self.solver.GetAEsize()
+        # a joint with a row switched off (a prismatic joint free to turn) keeps it as lambda = 0:
+        # no coordinate in it, a 1 on the multiplier's diagonal; only the other rows constrain
+        full = self._full_jacobian()
+        self.live = np.flatnonzero(np.diag(full[self.n :, self.n :]) == 0.0)
+        if len(self.live) != self.n:
             raise EngineFailure(
-                f"not kinematically driven in Exudyn: {self.n} coordinates, {rows} constraints"
+                f"not kinematically driven in Exudyn: {self.n} coordinates, {len(self.live)} constraints"
             )
 
     def _set(self, q: np.ndarray, v: np.ndarray, t: float) -> None:
@@ -106,25 +115,28 @@ class ConstraintProbe:
         data.SetODE2Coordinates_t(v.tolist(), CURRENT)
         data.SetTime(t)
 
-    def jacobian(self, q: np.ndarray, t: float) -> np.ndarray:
-        self._set(q, np.zeros_like(q), t)
+    def _full_jacobian(self) -> np.ndarray:
         self.solver.ComputeJacobianODE2RHS(
             self.mbs, scalarFactor_ODE2=-1.0, scalarFactor_ODE2_t=0.0
         )  # resets
         self.solver.ComputeJacobianAE(self.mbs, scalarFactor_ODE2=1.0, scalarFactor_ODE2_t=0.0)
-        return np.array(self.solver.GetSystemJacobian())[self.n :, : self.n]
+        return np.array(self.solver.GetSystemJacobian())
+
+    def jacobian(self, q: np.ndarray, t: float) -> np.ndarray:
+        self._set(q, np.zeros_like(q), t)
+        return self._full_jacobian()[self.n + self.live, : self.n]
 
     def residual(self, q: np.ndarray, t: float) -> np.ndarray:
         """C(q, t), the constraints at position level."""
         self._set(q, np.zeros_like(q), t)
         self.solver.ComputeAlgebraicEquations(self.mbs, velocityLevel=False)
-        return np.array(self.solver.GetSystemResidual())[self.n :]
+        return np.array(self.solver.GetSystemResidual())[self.n + self.live]
 
     def rate_residual(self, q: np.ndarray, v: np.ndarray, t: float) -> np.ndarray:
         """C_q v + C_t, the constraints at velocity level."""
         self._set(q, v, t)
         self.solver.ComputeAlgebraicEquations(self.mbs, velocityLevel=True)
-        return np.array(self.solver.GetSystemResidual())[self.n :]
+        return np.array(self.solver.GetSystemResidual())[self.n + self.live]
 
     def rates(
         self, q: np.ndarray, t: float, scale: np.ndarray, frequency: float
@@ -193,11 +205,11 @@ def assemble(model: ExudynModel, t0: float, settings: Any) -> States:
     v0, a0 = probe.rates(q0, t0, *_scales(model))
     probe.close(settings)
     start = States(q0[None, :], v0[None, :], a0[None, :])
-    _write_initial(model, start)
+    write_initial(model, start)
     return start
 
 
-def _write_initial(model: ExudynModel, start: States) -> None:
+def write_initial(model: ExudynModel, start: States) -> None:
     """`start` as the system's initial state."""
     data = model.mbs.systemData
     data.SetODE2Coordinates(start.q[0].tolist(), INITIAL)
@@ -229,12 +241,12 @@ def march(
     if start is None:
         start = assemble(model, float(times[0]), settings)
     else:
-        _write_initial(model, start)
+        write_initial(model, start)
     if len(times) == 1:
         return start, 0
     if plan.solver == "STATIC":
         return _static_sweep(model, times, settings, plan.tolerance), len(times) - 1
-    return _integrate(model, plan, times, settings, start)
+    return _integrate(model, plan, times, settings)
 
 
 def _recorder(model: ExudynModel, times: np.ndarray, states: States, tolerance: float) -> Callable[..., bool]:
@@ -256,23 +268,39 @@ def _empty(n_times: int, n: int) -> States:
     return States(*(np.full((n_times, n), np.nan) for _ in range(3)))
 
 
-def _integrate(
-    model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any, start: States
-) -> tuple[States, int]:
+def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any) -> tuple[States, int]:
     interval = float(times[1] - times[0])
+    if np.max(np.abs(np.diff(times) - interval)) > 1e-9 * interval:
+        raise EngineFailure("Exudyn's sensors record at a fixed period: the output grid must be uniform")
     substeps = max(1, math.ceil(interval / plan.dt - 1e-9))
     steps = substeps * (len(times) - 1)
     ti = settings.timeIntegration
     ti.startTime, ti.endTime, ti.numberOfSteps = float(times[0]), float(times[-1]), steps
     ti.generalizedAlpha.spectralRadius = plan.rho
     ti.generalizedAlpha.computeInitialAccelerations = False  # the assembled start has them
-    states = _empty(len(times), len(model.guess))
-    states.q[0], states.v[0], states.a[0] = start.q[0], start.v[0], start.a[0]
-    model.mbs.SetPostStepUserFunction(_recorder(model, times, states, 1e-6 * interval / substeps))
+    # Exudyn's sensors record each node's state at every output time, inside the solver
+    settings.solution.sensors.active = True
+    settings.solution.sensors.writePeriod = interval
     solver = DYNAMIC[plan.solver]
     _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
+    return _sensed(model, times), steps
+
+
+def _sensed(model: ExudynModel, times: np.ndarray) -> States:
+    """The states the sensors stored; an EngineFailure when a row is missing or off the grid."""
+    states = _empty(len(times), len(model.guess))
+    tolerance = 1e-9 * float(times[1] - times[0])
+    for index, width, handles in model.sensors:
+        for level, handle in zip((states.q, states.v, states.a), handles, strict=True):
+            data = np.asarray(model.mbs.GetSensorStoredData(handle))
+            rows = min(len(data), len(times))
+            off = np.flatnonzero(np.abs(data[:rows, 0] - times[:rows]) > tolerance)
+            if off.size or rows < len(times):
+                k = int(off[0]) if off.size else rows
+                raise EngineFailure(f"Exudyn's sensors recorded no state at t = {times[k]}", float(times[k]))
+            level[:, index : index + width] = data[:rows, 1:]
     _check_complete(states, times)
-    return states, steps
+    return states
 
 
 def _static_sweep(model: ExudynModel, times: np.ndarray, settings: Any, tolerance: float) -> States:
@@ -328,13 +356,20 @@ def _failure(model: ExudynModel, key: str, text: str) -> EngineFailure:
 
 
 def trajectory(model: ExudynModel, times: np.ndarray, states: States) -> Trajectory:
-    """The canonical trajectory of the output bodies, with each cam's `<contact>.phi`."""
+    """The canonical trajectory of the output bodies, with each cam's `<contact>.phi` and the
+    scenario's angle outputs (relative angles of bodies)."""
     bodies = model.scenario.output_bodies
     cols = [np.arange(model.index[b], model.index[b] + 3) for b in bodies]
     pick = [np.stack([level[:, c] for c in cols], axis=1) for level in (states.q, states.v, states.a)]
     extras = {name: states.q[:, i].copy() for name, i in model.phi_index.items()}
     for name, (cam, follower, phi_of, guess) in model.phi_from_poses.items():
         extras[f"{name}.phi"] = _phi_series(model, states.q, cam, follower, phi_of, guess)
+
+    def angle(body: str) -> np.ndarray:
+        return np.zeros(len(states.q)) if body == GROUND else states.q[:, model.index[body] + 2]
+
+    for output in model.scenario.angle_outputs:
+        extras[output.name] = angle(output.body) - angle(output.relative_to)
     grid = np.asarray(times, dtype=float)
     return Trajectory(grid, bodies, position=pick[0], velocity=pick[1], acceleration=pick[2], extras=extras)
 
