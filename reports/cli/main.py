@@ -1,5 +1,5 @@
 """The `mbxval` command line: list, solve and export here; run, report, check and bench in
-reports.cli.suite_commands.
+reports.cli.suite_commands; compare in reports.cli.compare_command.
 
 Every failure the user can cause ends with one line `mbxval: error: ...` on stderr, exit status 2,
 and no partial output file.
@@ -16,9 +16,10 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 import adapters
+import reports.cli.compare_command as compare_command
 import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
-from reports.cli.usage import Parser, UsageError, pairs
+from reports.cli.usage import Parser, UsageError, pairs, scenario_argument
 from reports.harness import stop
 from reports.harness.atomic_write import atomic_output
 from reports.harness.gate import GateError
@@ -95,7 +96,10 @@ def cmd_list(args: argparse.Namespace) -> int:
         scenario = load(name)
         cells = []
         for engine, adapter in engines.items():
-            reason = adapter.supports(scenario)
+            try:
+                reason = adapter.supports(scenario)
+            except Exception as error:  # a broken adapter costs its own cell only
+                reason = f"cannot tell: its supports() failed: {type(error).__name__}: {error}"
             if reason is None:
                 cells.append("yes")
             else:
@@ -157,17 +161,8 @@ def cmd_export(args: argparse.Namespace) -> int:
 
 
 def _scenario_arguments(parser: argparse.ArgumentParser, engine_default: str) -> None:
-    parser.add_argument(
-        "scenario", help="scenario name, family/variant (see `mbxval list`), or a scenario file (.toml)"
-    )
+    scenario_argument(parser)
     parser.add_argument("--engine", default=engine_default, help=f"engine (default {engine_default})")
-    parser.add_argument(
-        "--set",
-        action="append",
-        default=[],
-        metavar="NAME=VALUE",
-        help="family parameter, or a scenario file's value by dotted key path",
-    )
     parser.add_argument("--mode", help="engine mode (for example RK4, implicitfast, kinematic)")
     parser.add_argument(
         "--setting",
@@ -211,6 +206,7 @@ def parser() -> argparse.ArgumentParser:
     )
 
     suite_commands.add_parsers(sub)
+    compare_command.add_parser(sub)
     for name, subparser in sub.choices.items():
         what, example = GUIDE[name]
         subparser.description, subparser.epilog = textwrap.fill(what, 90), "example:\n  " + example
@@ -248,6 +244,13 @@ GUIDE: dict[str, tuple[str, str]] = {
         "cell whose status got worse or whose error grew past the factor.",
         "mbxval check --baseline baselines/default.json",
     ),
+    "compare": (
+        "Score a trajectory made by any tool (the CSV `mbxval solve` writes: t, then BODY.x BODY.y "
+        "BODY.theta, BODY.vx ... BODY.alpha; missing bodies and levels are allowed) against the same "
+        "truth and with the same metrics as a run; with --out, add it to a results store so the "
+        "report shows it beside the engines.",
+        "mbxval compare slider_crank my_tool.csv --label my_tool --out mbxval-report",
+    ),
     "bench": (
         "Measure the native solver's speed beside the engines (benchmarks, run on demand).",
         "mbxval bench speed",
@@ -260,6 +263,7 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "solve": cmd_solve,
     "export": cmd_export,
     **suite_commands.COMMANDS,
+    **compare_command.COMMANDS,
 }
 
 

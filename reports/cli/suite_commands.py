@@ -14,12 +14,13 @@ from typing import Any
 
 import adapters
 from reports.cli.usage import UsageError
-from reports.harness import gate, stop, suites, sweep
+from reports.harness import gate, scenario_identity, stop, store_files, suites, sweep
 from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import Runner, RunOptions
 from reports.harness.store_lock import WriterLock
 from reports.harness.suites import Suite
 from scenarios import load as build_scenario
+from scenarios.loading import is_scenario_file
 
 DEFAULT_OUT = "mbxval-report"
 MAX_REPEATS = 1000
@@ -112,7 +113,22 @@ def select(args: argparse.Namespace, out: Path, rerun: bool = False) -> Selectio
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} is a file, not a directory")
     options = _run_options(args, suite, rerun or args.rerun)
+    check_scenario_names(args.scenario, out, options.rerun)
     return Selection(suite, names, engines, options, _backend(args))
+
+
+def check_scenario_names(names: list[str], out: Path, rerun: bool) -> None:
+    """Refuse (UsageError) two different mechanisms under one scenario name: two files of this run,
+    or a file and what the store in `out` holds under its name (unless `rerun` replaces it)."""
+    given = {name: build_scenario(name) for name in names}
+    clash = scenario_identity.name_clash(given)
+    if clash is None and not rerun and store_files.committed(out) is not None:
+        rows = read_results(out)[0].to_dict("records")
+        files = [name for name in names if is_scenario_file(name)]
+        found = (scenario_identity.stored_clash(rows, n, given[n], str(out)) for n in files)
+        clash = next((f"{c}, or add --rerun to replace those results" for c in found if c), None)
+    if clash is not None:
+        raise UsageError(clash)
 
 
 def run_selection(selection: Selection, out: Path, progress: bool) -> Path:

@@ -1,4 +1,5 @@
-"""The command line's error convention: one line `mbxval: error: ...`, exit status 2."""
+"""The command line's error convention (one line `mbxval: error: ...`, exit status 2) and the
+arguments several commands share."""
 
 from __future__ import annotations
 
@@ -26,3 +27,17 @@ def pairs(items: Sequence[str], what: str) -> dict[str, str]:
             raise UsageError(f"{what} expects NAME=VALUE, got '{item}'")
         pairs[key] = value
     return pairs
+
+
+def scenario_argument(parser: argparse.ArgumentParser) -> None:
+    """The positional SCENARIO (a name or a scenario file) and its `--set` overrides."""
+    parser.add_argument(
+        "scenario", help="scenario name, family/variant (see `mbxval list`), or a scenario file (.toml)"
+    )
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="family parameter, or a scenario file's value by dotted key path",
+    )

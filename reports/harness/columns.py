@@ -26,6 +26,11 @@ DECLARED: tuple[Column, ...] = (
     Column("family", "", "mechanism family"),
     Column("variant", "", "variant of the family"),
     Column("sweep", "", "a swept point's parameter values as JSON (harness.sweep); '' off a sweep"),
+    Column(
+        "scenario_digest",
+        "",
+        "the mechanism measured: digest of its canonical file (harness.scenario_identity)",
+    ),
     Column("engine", "", "engine name"),
     Column("engine_version", "", "installed engine version"),
     Column("mode", "", "engine mode (integrator, solver)"),

@@ -11,6 +11,7 @@ from adapters.base import RunResult, Setting, Status
 from reports.harness.columns import NOT_RUN, empty_row
 from reports.harness.level_error import characteristic_rate
 from reports.harness.provenance import now
+from reports.harness.scenario_identity import digest
 from scenarios.scenario import Scenario
 
 
@@ -24,6 +25,7 @@ def base_row(
         family=scenario.family,
         variant=scenario.variant,
         sweep=json.dumps(dict(scenario.point)) if scenario.point else "",
+        scenario_digest=digest(scenario),
         engine=engine,
         engine_version=version,
         mode=setting.mode if setting else "",

@@ -16,6 +16,7 @@ from scenarios.bodies import GROUND, Body, Point
 from scenarios.files.overrides import apply_overrides
 from scenarios.files.profile_csv import read_radii
 from scenarios.files.schema import (
+    ANGLE_OUTPUT_KEYS,
     BODY_KEYS,
     FORMAT,
     MOTIONS,
@@ -30,6 +31,7 @@ from scenarios.files.schema import (
     in_range,
     suggestion,
 )
+from scenarios.outputs import AngleOutput
 from scenarios.scenario import LEVELS, Scenario, ScenarioError
 
 
@@ -238,12 +240,22 @@ def _bodies(reader: Reader, raw: object) -> tuple[Body, ...]:
     return tuple(bodies)
 
 
+def _angle_outputs(reader: Reader, raw: object) -> tuple[AngleOutput, ...]:
+    outputs: list[AngleOutput] = []
+    for k, table in enumerate(_named_tables(reader, raw, "angle_outputs")):
+        values = reader.keys(table, ANGLE_OUTPUT_KEYS, required_keys(AngleOutput), f"angle_outputs[{k}]")
+        if values["name"] in (a.name for a in outputs):
+            reader.fail(f"angle_outputs[{k}].name", f"'{values['name']}' is already taken")
+        outputs.append(AngleOutput(**values))
+    return tuple(outputs)
+
+
 def _constraints(reader: Reader, doc: dict[str, Any], section: str, taken: set[str]) -> tuple[Any, ...]:
     built = []
     for k, table in enumerate(_named_tables(reader, doc.get(section, []), section)):
         item = reader.kind(table, SECTIONS[section], f"{section}[{k}]")
         if item.name in taken:
-            reader.fail(f"{section}[{k}].name", f"'{item.name}' names another constraint already")
+            reader.fail(f"{section}[{k}].name", f"'{item.name}' names another constraint or force already")
         taken.add(item.name)
         built.append(item)
     return tuple(built)
@@ -267,9 +279,8 @@ def parse_scenario(
         reader.fail("format", f"format {version} is newer than this mbxval reads (format {FORMAT})")
     if "format" in doc and version != FORMAT:
         reader.fail("format", f"expected format = {FORMAT}, got {version!r}")
-    structure = {
-        k: v for k, v in doc.items() if k not in ("bodies", "joints", "drivers", "outputs", "levels")
-    }
+    tables = ("bodies", "joints", "drivers", "forces", "angle_outputs", "outputs", "levels")
+    structure = {k: v for k, v in doc.items() if k not in tables}
     top = reader.keys(structure, TOP_LEVEL, (), "")
     for name in TOP_LEVEL_REQUIRED:
         if name not in doc:
@@ -279,6 +290,7 @@ def parse_scenario(
     taken: set[str] = set()
     joints = _constraints(reader, doc, "joints", taken)
     drivers = _constraints(reader, doc, "drivers", taken)
+    forces = _constraints(reader, doc, "forces", taken)
     return Scenario(
         family=top["name"],
         variant=top.get("variant", "default"),
@@ -292,6 +304,10 @@ def parse_scenario(
         levels=reader.value(doc.get("levels", list(LEVELS)), TOP_LEVEL["levels"], "levels"),
         parameters=top.get("parameters", ()),
         description=top.get("description", ""),
+        gravity=top.get("gravity", (0.0, 0.0)),
+        forces=forces,
+        analysis=top.get("analysis", "kinematic"),
+        angle_outputs=_angle_outputs(reader, doc.get("angle_outputs", [])),
     )
 
 

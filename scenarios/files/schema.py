@@ -1,4 +1,5 @@
 """The scenario file format, version 1, as data: every key each table accepts, its type and range.
+(Gravity, analysis, forces, angle outputs and body rates were added to format 1 as optional keys.)
 
 A table of a given `kind` maps one to one onto a vocabulary class: its keys are the class's field
 names, required exactly when the field has no default. `docs/scenario-files.md` describes the same
@@ -22,6 +23,7 @@ from scenarios.drivers import (
     RelativeDisplacementDriver,
     RelativeRotationDriver,
 )
+from scenarios.forces import AppliedForce, AppliedTorque, RotationalSpringDamper, SpringDamper
 from scenarios.gears import GearPair, RackPinion
 from scenarios.joints import Ground, Prismatic, Revolute, RevoluteRevolute
 from scenarios.motion_laws import Polynomial, TabulatedLaw
@@ -68,9 +70,13 @@ TOP_LEVEL: dict[str, Key] = {
     "outputs": Key("strings"),
     "levels": Key("levels"),
     "parameters": Key("parameters"),
+    "gravity": Key("vec2"),
+    "analysis": Key("choice", choices=("kinematic", "dynamic")),
     "bodies": Key("tables", minimum_length=1),
     "joints": Key("tables"),
     "drivers": Key("tables"),
+    "forces": Key("tables"),
+    "angle_outputs": Key("tables"),
 }
 TOP_LEVEL_REQUIRED = ("format", "name", "t_end", "steps", "characteristic_length", "bodies")
 
@@ -80,9 +86,12 @@ BODY_KEYS: dict[str, Key] = {
     "mass": POSITIVE,
     "inertia": POSITIVE,
     "length": NONNEGATIVE,
+    "rate": Key("pose"),
 }
 
 POINT_KEYS: dict[str, Key] = {"body": BODY, "local": Key("vec2")}
+
+ANGLE_OUTPUT_KEYS: dict[str, Key] = {"name": NAME, "body": BODY, "relative_to": BODY}
 
 
 @dataclass(frozen=True)
@@ -104,6 +113,18 @@ def _distinct_points(v: Mapping[str, Any]) -> tuple[str, str] | None:
 def _distinct_gears(v: Mapping[str, Any]) -> tuple[str, str] | None:
     if v["gear_i"] == v["gear_j"]:
         return "gear_j", f"meshes gear '{v['gear_i']}' with itself"
+    return None
+
+
+def _distinct_bodies(v: Mapping[str, Any]) -> tuple[str, str] | None:
+    if v["body_i"] == v["body_j"]:
+        return "body_j", f"joins body '{v['body_i']}' to itself"
+    return None
+
+
+def _reaction(v: Mapping[str, Any]) -> tuple[str, str] | None:
+    if v.get("reaction") == v["body"]:
+        return "reaction", f"is the body '{v['body']}' the torque acts on"
     return None
 
 
@@ -224,6 +245,37 @@ DRIVERS: dict[str, Kind] = {
     ),
 }
 
+FORCES: dict[str, Kind] = {
+    "applied_torque": Kind(
+        AppliedTorque, {"name": NAME, "body": MOVING_BODY, "torque": MOTION, "reaction": BODY}, _reaction
+    ),
+    "applied_force": Kind(AppliedForce, {"name": NAME, "point": POINT, "fx": MOTION, "fy": MOTION}),
+    "spring_damper": Kind(
+        SpringDamper,
+        {
+            "name": NAME,
+            "p_i": POINT,
+            "p_j": POINT,
+            "stiffness": NONNEGATIVE,
+            "damping": NONNEGATIVE,
+            "free_length": NONNEGATIVE,
+        },
+        _distinct_points,
+    ),
+    "rotational_spring_damper": Kind(
+        RotationalSpringDamper,
+        {
+            "name": NAME,
+            "body_i": BODY,
+            "body_j": BODY,
+            "stiffness": NONNEGATIVE,
+            "damping": NONNEGATIVE,
+            "free_angle": NUMBER,
+        },
+        _distinct_bodies,
+    ),
+}
+
 MOTIONS: dict[str, Kind] = {
     "constant": Kind(Constant, {"value": NUMBER}),
     "constant_speed": Kind(ConstantSpeed, {"start": NUMBER, "rate": NUMBER}),
@@ -253,7 +305,7 @@ PROFILES: dict[str, Kind] = {
 SPLINE_CSV_KEY = "csv"
 """A spline profile may give `csv = "path"` (relative to the file) instead of an inline `table`."""
 
-SECTIONS: dict[str, dict[str, Kind]] = {"joints": JOINTS, "drivers": DRIVERS}
+SECTIONS: dict[str, dict[str, Kind]] = {"joints": JOINTS, "drivers": DRIVERS, "forces": FORCES}
 
 
 def in_range(value: float, range_: str) -> bool:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 from typing import Any
 
 from scenarios.bodies import Body, Point
@@ -77,7 +78,8 @@ def _body(body: Body) -> dict[str, Any]:
 
 WRITTEN = frozenset(
     {"family", "variant", "description", "t_end", "steps", "characteristic_length", "outputs", "levels"}
-    | {"parameters", "bodies", "joints", "drivers"}
+    | {"parameters", "bodies", "joints", "drivers", "forces", "gravity", "analysis"}
+    | {"angle_outputs"}
 )
 """The Scenario fields format 1 holds. Any other field with a value off its default is refused, so
 that a file never silently drops part of a scenario."""
@@ -118,14 +120,21 @@ def scenario_toml(scenario: Scenario) -> str:
         lines.append(f"outputs = {toml_value(scenario.outputs)}")
     if scenario.levels != LEVELS:
         lines.append(f"levels = {toml_value(scenario.levels)}")
+    if any(g != 0.0 or math.copysign(1.0, g) < 0.0 for g in scenario.gravity):  # -0.0 kept too
+        lines.append(f"gravity = {toml_value(tuple(float(g) for g in scenario.gravity))}")
+    if scenario.analysis != "kinematic":
+        lines.append(f"analysis = {toml_value(scenario.analysis)}")
     if scenario.parameters:
         lines += ["", "[parameters]", *(f"{k} = {toml_value(v)}" for k, v in scenario.parameters)]
     for body in scenario.bodies:
         lines += _table("bodies", _body(body))
-    for section, items in (("joints", scenario.joints), ("drivers", scenario.drivers)):
+    sections = (("joints", scenario.joints), ("drivers", scenario.drivers), ("forces", scenario.forces))
+    for section, items in sections:
         for item in items:
             values = _fields(item)
             lines += _table(
                 section, {"kind": kind_name(item, SECTIONS[section]), "name": values.pop("name"), **values}
             )
+    for output in scenario.angle_outputs:
+        lines += _table("angle_outputs", _fields(output))
     return "\n".join(lines) + "\n"

@@ -11,41 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from tests.examples.closed_forms import OMEGA, D, R, whitworth
 from tests.examples.support import example, max_errors
-
-R, D, OMEGA = 0.1, 0.05, 10.0
-
-
-def whitworth(t: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]]:
-    theta2 = OMEGA * t
-    c2, s2 = np.cos(theta2), np.sin(theta2)
-    a = np.column_stack([R * c2, D + R * s2])  # O4 at the origin
-    da = np.column_stack([-R * OMEGA * s2, R * OMEGA * c2])
-    dda = np.column_stack([-R * OMEGA**2 * c2, -R * OMEGA**2 * s2])
-    s = np.hypot(a[:, 0], a[:, 1])
-    theta4 = np.unwrap(np.arctan2(a[:, 1], a[:, 0]))
-    e_r = np.column_stack([np.cos(theta4), np.sin(theta4)])
-    e_t = np.column_stack([-e_r[:, 1], e_r[:, 0]])
-    ds = np.einsum("ij,ij->i", da, e_r)
-    omega4 = np.einsum("ij,ij->i", da, e_t) / s
-    coriolis = 2.0 * ds * omega4
-    alpha4 = (np.einsum("ij,ij->i", dda, e_t) - coriolis) / s
-    n = t.size
-    zeros, full = np.zeros(n), np.full(n, OMEGA)
-    pivot = np.column_stack([zeros, np.full(n, D)])
-    return {
-        "crank": (np.column_stack([pivot, theta2]), np.column_stack([zeros, zeros, full]), np.zeros((n, 3))),
-        "block": (
-            np.column_stack([a, theta4]),
-            np.column_stack([da, omega4]),
-            np.column_stack([dda, alpha4]),
-        ),
-        "slotted_link": (
-            np.column_stack([zeros, zeros, theta4]),
-            np.column_stack([zeros, zeros, omega4]),
-            np.column_stack([zeros, zeros, alpha4]),
-        ),
-    }
 
 
 def test_whitworth_against_closed_form() -> None:

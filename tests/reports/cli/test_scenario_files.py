@@ -104,3 +104,19 @@ def test_list_takes_files_and_names(capsys) -> None:  # type: ignore[no-untyped-
     rows = [line.split()[0] for line in out.splitlines() if line.startswith((example, "four_bar"))]
     assert rows == [example, "four_bar"]
     assert "parameters (defaults)" not in out
+
+
+def test_list_survives_an_adapter_whose_supports_raises(capsys, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    """A broken adapter costs its own cell: the table says why it cannot tell, the others stand."""
+    from adapters.pinocchio import PinocchioAdapter
+
+    def broken(self, scenario):  # type: ignore[no-untyped-def]
+        raise ValueError("need at least one array to concatenate")
+
+    monkeypatch.setattr(PinocchioAdapter, "supports", broken)
+    example = str(EXAMPLES / "damped_oscillators.toml")
+    code, out, _ = run(capsys, "list", example)
+    assert code == 0
+    assert f"pinocchio on {example}: cannot tell: its supports() failed: ValueError: need at" in out
+    row = next(line.split()[1:] for line in out.splitlines() if line.startswith(example))
+    assert row == ["yes", "yes", "yes", "no", "[1]"]  # reference, mujoco, exudyn stand

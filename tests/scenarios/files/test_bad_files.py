@@ -11,7 +11,10 @@ import pytest
 import scenarios
 from scenarios.files import ScenarioFileError, parse_scenario, read_scenario, scenario_toml
 
-BASES = {name: scenario_toml(scenarios.build(name)) for name in ("slider_crank", "cam_roller", "spur_gears")}
+BASES = {
+    name: scenario_toml(scenarios.build(name))
+    for name in ("slider_crank", "cam_roller", "spur_gears", "andrews_squeezer", "compound_pendulum")
+}
 SLIDER_CRANK, CAM = BASES["slider_crank"], BASES["cam_roller"]
 ROLLER = 'profile = { kind = "eccentric_disc", radius = 0.05, eccentricity = 0.01 }'
 # Each case edits a built-in scenario's file: (base, old text, new text, expected message start).
