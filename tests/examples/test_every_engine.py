@@ -39,15 +39,10 @@ DYNAMIC_BOUNDS: dict[str, tuple[float, float, float]] = {
     "reference": (1e-11, 2e-11, 1e-10),
     "mujoco": (1e-11, 3e-11, 1e-10),
     "exudyn": (1e-4, 3e-4, 1e-3),
+    "pinocchio": (3e-9, 1e-8, 3e-8),  # measured 3.0e-10, 9.5e-10, 3.0e-9 (baumgarte, dt 1.25e-3)
 }
 UNSUPPORTED: dict[tuple[str, str], str] = {}
 """(engine, example) pairs an engine refuses, with the words its reason must contain."""
-KNOWN_BUGS: dict[tuple[str, str], str] = {
-    ("pinocchio", "damped_oscillators"): (
-        "Pinocchio's supports() raises ValueError (quantity.stack of no rows) on a mechanism whose "
-        "joints leave no loop-closure or driver rows; to be fixed with Pinocchio's dynamics"
-    ),
-}
 FAST = ("slider_crank", "watt_straight_line")
 LEVELS = ("position", "velocity", "acceleration")
 
@@ -57,8 +52,6 @@ def _cases() -> list[object]:
     for name in CLOSED_FORMS:
         for engine in ENGINES:
             marks = [] if name in FAST else [pytest.mark.slow]
-            if (engine, name) in KNOWN_BUGS:
-                marks.append(pytest.mark.xfail(strict=True, reason=KNOWN_BUGS[(engine, name)]))
             cases.append(pytest.param(name, engine, marks=marks, id=f"{name}-{engine}"))
     return cases
 
