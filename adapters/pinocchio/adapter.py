@@ -40,7 +40,7 @@ from adapters.pinocchio.marching import EULER as EULER_METHOD
 from adapters.pinocchio.marching import RK4
 from adapters.pinocchio.model import PinModel, build_model
 from adapters.pinocchio.row_dynamics import RowDynamicSolver
-from adapters.pinocchio.rows import Rows, motions_of
+from adapters.pinocchio.rows import Rows, force_labels, motions_of
 from adapters.pinocchio.tree import Tree, TreeError, plan
 from scenarios.motions import ConstantSpeed, Harmonic
 from scenarios.scenario import Scenario
@@ -322,8 +322,20 @@ class PinocchioAdapter(Adapter):
         data = pm.model.createData()
         levels = np.stack([body_motion(pm, data, (q[k], v[k], a[k]), bodies) for k in range(len(times))])
         extras = {f"{c.name}.phi": z[:, nq + k].copy() for k, c in enumerate(scenario.cams)}
+        if built.dynamics is not None and scenario.analysis == "kinematic" and not scenario.cams:
+            extras.update(_drive_forces(built, q, v, times))
         for column in scenario.angle_outputs:  # Andrews' joint angles from Pinocchio's body angles
             body, base = column.body, column.relative_to
             extras[column.name] = np.array([pm.angle(body, qk) - pm.angle(base, qk) for qk in q])
         grid = np.asarray(times, dtype=float)
         return Trajectory(grid, bodies, levels[:, 0], levels[:, 1], levels[:, 2], extras)
+
+
+def _drive_forces(built: Built, q: np.ndarray, v: np.ndarray, times: np.ndarray) -> dict[str, np.ndarray]:
+    """Each driver's force or torque at the grid states, from the dynamics' multipliers."""
+    assert built.dynamics is not None
+    labels = [label for driver in built.scenario.drivers for label in force_labels(driver)]
+    if not labels:
+        return {}
+    forces = np.array([built.dynamics.drive_forces(float(t), q[k], v[k]) for k, t in enumerate(times)])
+    return {label: forces[:, k].copy() for k, label in enumerate(labels)}

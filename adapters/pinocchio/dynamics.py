@@ -103,10 +103,18 @@ class DynamicSolver:
 
     def acceleration(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
         """The constrained acceleration with every driver row held to its prescribed motion."""
+        return self._driven(t, q, v)[0]
+
+    def drive_forces(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """The generalized force each driver row applies (its multiplier) at this state."""
+        return self._driven(t, q, v)[1]
+
+    def _driven(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The acceleration and the drive rows' forces mu: the drives apply tau + J^T mu."""
         tau = self.tau(t, q, v)
         a0 = self._forward(q, v, tau)
         if not self.rows.drivers:
-            return a0
+            return a0, self.empty
         drive = self.rows.drive_rows(Snapshot(self.pm, self.kin_data, (q, v, self.empty, self.empty), 0))
         size, rows = drive.val.size, self.rows
         kp, kd = self.gains
@@ -118,7 +126,7 @@ class DynamicSolver:
         _, _, multipliers, info = lapack.dgesv(drive.jac @ response, wanted)
         if info != 0:
             raise Singular(f"the drive cannot be held by constraint forces at t = {t:.6g}", t)
-        return a0 + response @ multipliers
+        return a0 + response @ multipliers, multipliers
 
     def move(self, q: np.ndarray, dq: np.ndarray) -> np.ndarray:
         """Pinocchio's configuration update q (+) dq."""

@@ -149,6 +149,14 @@ def _driver_rows(driver: Driver, s: Snapshot) -> Quantity:
     return s.point(driver.p_i) - s.point(driver.p_j)
 
 
+def force_labels(driver: Driver) -> tuple[str, ...]:
+    """The trajectory columns of a driver's forces, as the canonical CSV names them: `<driver>.force`
+    for a driver of one row, `<driver>.x.force` and `<driver>.y.force` for a point's two."""
+    if isinstance(driver, AbsoluteDriver | RelativeRotationDriver):
+        return (f"{driver.name}.force",)
+    return (f"{driver.name}.x.force", f"{driver.name}.y.force")
+
+
 def motions_of(driver: Driver) -> tuple[Motion, ...]:
     """The prescribed functions of a driver, one per row."""
     if isinstance(driver, PointPathDriver | RelativeDisplacementDriver):

@@ -57,6 +57,11 @@ DECLARED: tuple[Column, ...] = (
         "constraint_residual_final", math.nan, "scaled constraint residual at the last grid time (its drift)"
     ),
     Column("energy_drift", math.nan, "dynamic runs: scaled energy drift (harness.energy_drift)"),
+    Column(
+        "driver_force_error",
+        math.nan,
+        "driven runs reporting driver forces: error against native inverse dynamics (harness.driver_forces)",
+    ),
     Column("build_time", math.nan, "seconds to build the engine's model"),
     Column("run_time", math.nan, "seconds to simulate, minimum of repeats after a warm-up"),
     Column("steps", 0, "engine steps taken"),

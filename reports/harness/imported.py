@@ -16,11 +16,12 @@ from typing import Any
 
 from adapters.base import RunResult, Setting
 from reports.harness import provenance
+from reports.harness.comparison import compare
 from reports.harness.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.harness.metrics import HEADLINE_DEFINITION, Residual
 from reports.harness.results_store import ResultsStore
 from reports.harness.rows import result_row
-from reports.harness.runner import compare, reference_residual
+from reports.harness.runner import reference_residual
 from reports.harness.trajectory_file import ImportedTrajectory
 from reports.harness.truth import NamedTruth, independent_truth
 from scenarios.scenario import Level, Scenario

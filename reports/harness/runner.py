@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import math
 import sys
 import threading
 from collections.abc import Callable, Sequence
@@ -29,15 +28,12 @@ import tqdm
 import adapters
 from adapters.base import Adapter, RunResult, Setting
 from reports.harness import provenance
-from reports.harness.energy_drift import energy_drift
+from reports.harness.comparison import compare
 from reports.harness.isolation import run_here, run_isolated
-from reports.harness.level_error import SCALE_DEFINITION, level_errors
+from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.metrics import (
     HEADLINE_DEFINITION,
     Residual,
-    compared_levels,
-    error_metrics,
-    residual_metrics,
 )
 from reports.harness.planning import Group, SettingsHook, plan_engine
 from reports.harness.results_store import ResultsStore
@@ -306,39 +302,3 @@ def timed_run(
         first, run_time=min(first.run_time, more.run_time), build_time=min(first.build_time, more.build_time)
     )
     return best, opts.repeats
-
-
-class ComparisonError(Exception):
-    """An engine's trajectory that cannot be set against the truth (wrong grid or bodies)."""
-
-
-def compare(
-    scenario: Scenario, result: RunResult, truth: Trajectory | str, residual: Residual | None
-) -> tuple[dict[str, float], tuple[str, ...], str]:
-    """Error metrics, compared levels and a note (why something is missing) for one run."""
-    if result.status != "ok" or result.trajectory is None:
-        return {}, (), ""
-    if isinstance(truth, str):
-        return {}, (), truth
-    notes = []
-    try:
-        metrics = error_metrics(scenario, result.trajectory, truth)
-        metrics.update(level_errors(scenario, result.trajectory, truth))
-        metrics["error"] = metrics["error_position"]  # one headline: the position level
-        levels = compared_levels(scenario, result.trajectory, truth)
-    except (ValueError, KeyError) as error:  # the engine's trajectory is not what it should be
-        raise ComparisonError(f"cannot compare with the truth: {error}") from error
-    if residual is None:
-        notes.append("constraint residual not measured (reference_solver.constraint_residual missing)")
-    else:
-        try:
-            metrics.update(residual_metrics(scenario, result.trajectory, residual))
-        except Exception as error:
-            notes.append(f"constraint residual failed: {type(error).__name__}: {error}")
-            metrics["constraint_residual"] = math.nan
-    if scenario.analysis == "dynamic":
-        try:
-            metrics["energy_drift"] = energy_drift(scenario, result.trajectory, truth)
-        except (ValueError, KeyError) as error:
-            notes.append(f"energy drift not measured: {error}")
-    return metrics, levels, "; ".join(notes)

@@ -29,6 +29,8 @@ TABLE_COLUMNS = (
     "acceleration_length_max",
     "acceleration_angle_max",
     "constraint_residual",
+    "energy_drift",
+    "driver_force_error",
     "build_time",
     "run_time",
     "steps",
@@ -45,6 +47,8 @@ HEADINGS = {
     "acceleration_length_max": "acc max [m/s²]",
     "acceleration_angle_max": "acc max [rad/s²]",
     "constraint_residual": "residual",
+    "energy_drift": "energy drift",
+    "driver_force_error": "driver force err",
     "build_time": "build [s]",
     "run_time": "run [s]",
 }

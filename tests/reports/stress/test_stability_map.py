@@ -12,9 +12,9 @@ import pytest
 import scenarios
 from adapters.base import RunResult, Setting
 from reference_solver import constraint_residual, solve
+from reports.harness.comparison import compare
 from reports.harness.results_store import ResultsStore
 from reports.harness.rows import failure_row, result_row
-from reports.harness.runner import compare
 from reports.render.report_data import ReportData
 from reports.render.stability_render import html_fragment, markdown_section
 from reports.stress.stability_map import Judgement, judge_all

@@ -1,0 +1,56 @@
+"""One run set against its truth: the error metrics per level, the constraint residual, and what the
+scenario adds (energy drift in dynamics, driver forces where the run reports them), with a note on
+whatever could not be measured."""
+
+from __future__ import annotations
+
+import math
+
+from adapters.base import RunResult
+from reports.harness.driver_forces import driver_force_error, force_columns
+from reports.harness.energy_drift import energy_drift
+from reports.harness.level_error import level_errors
+from reports.harness.metrics import Residual, compared_levels, error_metrics, residual_metrics
+from scenarios import Scenario
+from scenarios.trajectory import Trajectory
+
+
+class ComparisonError(Exception):
+    """An engine's trajectory that cannot be set against the truth (wrong grid or bodies)."""
+
+
+def compare(
+    scenario: Scenario, result: RunResult, truth: Trajectory | str, residual: Residual | None
+) -> tuple[dict[str, float], tuple[str, ...], str]:
+    """Error metrics, compared levels and a note (why something is missing) for one run."""
+    if result.status != "ok" or result.trajectory is None:
+        return {}, (), ""
+    if isinstance(truth, str):
+        return {}, (), truth
+    notes = []
+    try:
+        metrics = error_metrics(scenario, result.trajectory, truth)
+        metrics.update(level_errors(scenario, result.trajectory, truth))
+        metrics["error"] = metrics["error_position"]  # one headline: the position level
+        levels = compared_levels(scenario, result.trajectory, truth)
+    except (ValueError, KeyError) as error:  # the engine's trajectory is not what it should be
+        raise ComparisonError(f"cannot compare with the truth: {error}") from error
+    if residual is None:
+        notes.append("constraint residual not measured (reference_solver.constraint_residual missing)")
+    else:
+        try:
+            metrics.update(residual_metrics(scenario, result.trajectory, residual))
+        except Exception as error:
+            notes.append(f"constraint residual failed: {type(error).__name__}: {error}")
+            metrics["constraint_residual"] = math.nan
+    if scenario.analysis == "dynamic":
+        try:
+            metrics["energy_drift"] = energy_drift(scenario, result.trajectory, truth)
+        except (ValueError, KeyError) as error:
+            notes.append(f"energy drift not measured: {error}")
+    elif force_columns(result.trajectory):
+        try:
+            metrics["driver_force_error"] = driver_force_error(scenario, result.trajectory)
+        except Exception as error:  # the native analysis failing here is a note, never the run's failure
+            notes.append(f"driver forces not compared: {type(error).__name__}: {error}")
+    return metrics, levels, "; ".join(notes)
