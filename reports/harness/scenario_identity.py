@@ -11,6 +11,7 @@ a resume reruns them when the code changes, reports.harness.resume.)
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 from collections.abc import Iterable, Mapping
 from typing import Any
@@ -22,8 +23,10 @@ DIGEST_LENGTH = 12
 
 
 def digest(scenario: Scenario) -> str:
-    """The scenario's identity: the start of the SHA-256 of its canonical scenario file."""
-    return hashlib.sha256(scenario_toml(scenario).encode()).hexdigest()[:DIGEST_LENGTH]
+    """The scenario's identity: the start of the SHA-256 of its canonical scenario file (a swept
+    point's file without the point's name tag: its parameters are in the file)."""
+    mechanism = dataclasses.replace(scenario, point=())
+    return hashlib.sha256(scenario_toml(mechanism).encode()).hexdigest()[:DIGEST_LENGTH]
 
 
 def name_clash(sources: Mapping[str, Scenario]) -> str | None:
