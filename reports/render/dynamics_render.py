@@ -13,6 +13,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
+import adapters
 from reference_solver import constraint_residual
 from reports.dynamics.cases import SINGULAR_PASSAGES, TRUTH_RTOL, is_dynamic, map_cells
 from reports.dynamics.stability import DRIFTED, Cell, map_rows
@@ -64,7 +65,10 @@ def stability_figure(cells: list[Cell]) -> Figure | None:
     shown = [c for c in cells if c.is_default]
     if not shown:
         return None
-    engines = list(dict.fromkeys(c.engine for c in shown))
+    known = adapters.names()
+    engines = sorted(
+        {c.engine for c in shown}, key=lambda e: (known.index(e) if e in known else len(known), e)
+    )
     stiffnesses = sorted({c.stiffness for c in shown})
     steps = sorted({c.dt for c in shown})
     figure, axes_row = plt.subplots(1, len(engines), figsize=(3.4 * len(engines) + 0.6, 3.4), squeeze=False)
@@ -137,7 +141,7 @@ def summary_table(data: ReportData, names: list[str]) -> pd.DataFrame:
                 {
                     "scenario": name,
                     "engine": engine,
-                    "default": f"{default['setting']} ({default['status']})",
+                    "default setting": f"{default['setting']} ({default['status']})",
                     "pos": number(default.get("error_position")),
                     "vel": number(default.get("error_velocity")),
                     "energy drift": number(default.get("energy_drift")),
@@ -177,7 +181,7 @@ def html_fragment(data: ReportData, image: Callable[[Figure | None, str], str]) 
             '<p class="muted">Each engine\'s default setting on each dynamic scenario: errors against the '
             "native truth (dimensionless, as above), energy drift, the constraint residual at the end, "
             "the run time per engine step, and the best position error over the engine's sweep.</p>",
-            f'<div class="wide">{table.to_html(index=False, escape=True, border=0)}</div>',
+            f'<div class="wide">{table.to_html(index=False, escape=True, border=0, classes="matrix")}</div>',
         ]
     if cells:
         parts += [

@@ -14,6 +14,7 @@ import multiprocessing
 import os
 from typing import Any
 
+from reports.dynamics.cases import map_cells
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.provenance import revision_label
 from reports.render import (
@@ -61,6 +62,8 @@ def render(data: ReportData) -> str:
     """The whole page as text. The points of parameter sweeps are drawn as maps up front (a first
     screen of their own) and left out of the per-scenario matrix and sections."""
     meta, whole, data = data.meta, data, data.unswept()
+    listed = data.without(map_cells())  # the dynamics map's cells are drawn as its map
+    dynamics = dynamics_render.html_fragment(data, _image)  # "" without dynamic scenarios
     parts = [
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
@@ -75,10 +78,11 @@ def render(data: ReportData) -> str:
             f"<p><strong>{html.escape(_headline(data))}</strong></p>",
             "<h2>Error at each level, each engine's default setting</h2>",
             f'<p class="muted">{html.escape(_definitions(meta))}</p>',
-            first_screen.level_matrix(data),
+            first_screen.level_matrix(listed),
             f'<p class="muted">Runs by status: {html.escape(_counts(data))}. Colour: log10 error from '
             f"1e{first_screen.BEST:.0f} (green) to 1e{first_screen.WORST:.0f} (red); hover a scenario for "
             "its truth.</p>",
+            dynamics,
         ]
     parts += [
         "<h2>Error against run time over the suite</h2>",
@@ -88,12 +92,11 @@ def render(data: ReportData) -> str:
     if not data.frame.empty:
         parts += [
             "<h2>Engines against each other (default settings)</h2>",
-            _agreement(data),
+            _agreement(listed),
             stability_render.html_fragment(data),  # "" unless these are the stress suite's results
-            dynamics_render.html_fragment(data, _image),  # "" without dynamic scenarios
         ]
     parts += ["<h2>Engines and machine</h2>", _key_values(_versions(meta)), _modes(whole)]
-    parts += _sections(data)
+    parts += _sections(listed)
     parts.append("</body></html>")
     return "\n".join(parts)
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
@@ -108,6 +109,12 @@ class ReportData:
     def unswept(self) -> ReportData:
         """The results without the points of parameter sweeps (drawn as maps, not one by one)."""
         return ReportData(self.frame[~is_swept(self.frame)], self.meta, self.trajectories)
+
+    def without(self, scenarios: Iterable[str]) -> ReportData:
+        """The results without the rows of `scenarios` (drawn elsewhere, such as map cells)."""
+        return ReportData(
+            self.frame[~self.frame["scenario"].isin(set(scenarios))], self.meta, self.trajectories
+        )
 
     def status_counts(self) -> dict[str, int]:
         return {str(k): int(v) for k, v in self.frame["status"].value_counts().items()}
