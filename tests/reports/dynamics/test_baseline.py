@@ -1,0 +1,36 @@
+"""The dynamics suite's regression baseline (made from a real `mbxval run --suite dynamics`): it covers
+every scenario of the suite on every engine, and the gate sees a regression in it."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pandas as pd
+
+import adapters
+from reports.dynamics.cases import scenario_names
+from reports.harness import gate
+
+BASELINE = Path(__file__).resolve().parents[3] / "baselines" / "dynamics.json"
+
+
+def test_every_scenario_of_the_suite_has_a_default_cell_per_engine() -> None:
+    cells = gate.read_baseline(BASELINE)
+    defaults = {(c["scenario"], c["engine"]) for c in cells if c["is_default"]}
+    missing = [(s, e) for s in scenario_names() for e in adapters.names() if (s, e) not in defaults]
+    assert not missing, missing
+    # every engine runs free dynamics: no built-in engine's default cell is unsupported
+    assert not [c for c in cells if c["is_default"] and c["status"] == "unsupported"]
+
+
+def test_the_gate_sees_an_engine_losing_accuracy_in_dynamics() -> None:
+    cells = gate.read_baseline(BASELINE)
+    frame = pd.DataFrame(cells)
+    assert gate.compare(cells, frame, gate.DEFAULT_FACTOR).passed
+    worse = frame.copy()
+    k = worse.index[
+        (worse["engine"] == "mujoco") & (worse["scenario"] == "four_bar_gravity") & worse["is_default"]
+    ][0]
+    worse.loc[k, "error_position"] = 100.0 * float(worse.loc[k, "error_position"])
+    verdict = gate.compare(cells, worse, gate.DEFAULT_FACTOR)
+    assert [(r.scenario, r.engine) for r in verdict.regressions] == [("four_bar_gravity", "mujoco")]
