@@ -85,6 +85,11 @@ WRITTEN = frozenset(
 that a file never silently drops part of a scenario."""
 
 
+NAME_TAGS = frozenset({"point"})
+"""Scenario fields that only tag a scenario's name (a swept point's overrides), not its mechanism: a
+file of a swept point is written from the family with --set instead, so the writer refuses them."""
+
+
 def _default(field: dataclasses.Field[Any]) -> Any:
     if field.default_factory is not dataclasses.MISSING:
         return field.default_factory()

@@ -118,7 +118,10 @@ def test_the_format_has_a_kind_for_every_class_of_the_vocabulary() -> None:
 def test_a_field_the_format_cannot_hold_is_refused_not_dropped(monkeypatch: pytest.MonkeyPatch) -> None:
     # Format 1 holds every field of a Scenario now; a field added later without a key in the format
     # is refused rather than written without it (here: gravity, as if the format had no key for it).
-    assert {f.name for f in dataclasses.fields(scenarios.Scenario)} <= writer.WRITTEN
+    assert {f.name for f in dataclasses.fields(scenarios.Scenario)} <= writer.WRITTEN | writer.NAME_TAGS
+    point = dataclasses.replace(scenarios.build("four_bar"), point=(("omega", "5"),))
+    with pytest.raises(scenarios.ScenarioError, match="cannot hold point"):
+        scenario_toml(point)
     plain = scenarios.build("slider_crank")
     heavy = dataclasses.replace(plain, gravity=(0.0, -9.81))
     assert parse_scenario(scenario_toml(heavy)) == heavy
