@@ -16,12 +16,11 @@ from collections.abc import Callable
 
 import numpy as np
 
-from adapters.base import Diverged, EngineFailure
+from adapters.base import MAX_STEPS, Diverged, EngineFailure
 
 RK4, EULER = "rk4", "euler"
 BLOWUP = 1e8
 """A joint speed above this (rad/s or m/s) counts as diverged."""
-MAX_STEPS = 1e7
 """More steps than this in one run is a step size typed by mistake, refused before marching."""
 
 Acceleration = Callable[[float, np.ndarray, np.ndarray], np.ndarray]

@@ -19,6 +19,7 @@ import numpy as np
 
 from scenarios.bodies import GROUND, Point
 from scenarios.forces import RotationalSpringDamper, SpringDamper
+from scenarios.geometry import world_point
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -96,10 +97,8 @@ def _world(position: np.ndarray, trajectory: Trajectory, point: Point) -> np.nda
     """A body point's world position at each grid time."""
     if point.body == GROUND:
         return np.broadcast_to(np.asarray(point.local, dtype=float), (len(trajectory.times), 2))
-    pose = position[:, trajectory.bodies.index(point.body), :]
-    c, s = np.cos(pose[:, 2]), np.sin(pose[:, 2])
-    x, y = point.local
-    return np.stack([pose[:, 0] + c * x - s * y, pose[:, 1] + s * x + c * y], axis=1)
+    poses = position[:, trajectory.bodies.index(point.body), :]
+    return np.array([world_point((x, y, theta), point.local) for x, y, theta in poses])
 
 
 def _angle(position: np.ndarray, trajectory: Trajectory, body: str) -> np.ndarray:

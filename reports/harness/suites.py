@@ -10,6 +10,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from reports.dynamics import cases as dynamics_cases
 from scenarios import catalogue
 
 if TYPE_CHECKING:
@@ -118,34 +119,15 @@ register(
 )
 
 
-def dynamics_scenarios() -> list[str]:
-    """Every dynamic scenario (reports.dynamics.cases)."""
-    from reports.dynamics.cases import scenario_names
-
-    return scenario_names()
-
-
-def _dynamics_truth(scenario: Scenario, times: Any) -> NamedTruth:
-    from reports.dynamics.cases import truth
-
-    return truth(scenario, times)
-
-
-def _dynamics_settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
-    from reports.dynamics.cases import settings
-
-    return settings(scenario, adapter)
-
-
 register(
     Suite(
         "dynamics",
         "forward dynamics against the native truth: every dynamic scenario over each engine's sweep, "
         "and the stiffness-step stability map",
-        dynamics_scenarios,
+        dynamics_cases.scenario_names,
         warmup=0,  # the minimum of the repeats drops a first call's cost; a long run is run once
         timeout=300.0,
-        truth=_dynamics_truth,
-        settings=_dynamics_settings,
+        truth=dynamics_cases.truth,
+        settings=dynamics_cases.settings,
     )
 )
