@@ -13,7 +13,6 @@
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 from adapters.base import Adapter, Setting
@@ -78,15 +77,12 @@ def _at_step(scenario: Scenario, adapter: Adapter) -> list[Setting]:
     that take a step `dt`; the engine's default where it takes none."""
     step = scenario.t_end / scenario.steps
     default = adapter.default_setting(scenario)
-    firsts = {s.mode: s for s in reversed([default, *adapter.sweep(scenario)])}
-    ordered = [firsts.pop(default.mode), *firsts.values()]
-    stepped = [s.replace(dt=step) for s in ordered if s.get("dt") is not None]
+    firsts: dict[str, Setting] = {}
+    for setting in (default, *adapter.sweep(scenario)):
+        firsts.setdefault(setting.mode, setting)
+    stepped = [s.replace(dt=step) for s in firsts.values() if s.get("dt") is not None]
     return _unique(stepped) if stepped and stepped[0].mode == default.mode else [default]
 
 
 def _unique(settings: list[Setting]) -> list[Setting]:
     return list(dict.fromkeys(settings))
-
-
-def _same(value: Any, step: float) -> bool:
-    return value is not None and math.isclose(float(value), step, rel_tol=1e-9)
