@@ -18,10 +18,9 @@ from reference_solver import constraint_residual
 from reports.dynamics.cases import SINGULAR_PASSAGES, TRUTH_RTOL, is_dynamic, map_cells
 from reports.dynamics.stability import DRIFTED, Cell, map_rows
 from reports.harness.energy_drift import DRIFT_DEFINITION, drift_series
-from reports.render.plots import FLOOR, colour
-from reports.render.report_data import ReportData, number
-from scenarios import build
-from scenarios.scenario import Scenario, ScenarioError
+from reports.render.plots import FLOOR, colour, legend_entries
+from reports.render.report_data import ReportData, number, stored_scenario
+from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
 SHADES = {
@@ -91,7 +90,7 @@ def stability_figure(cells: list[Cell]) -> Figure | None:
 
 def drift_figure(data: ReportData, names: list[str], series: Series, label: str) -> Figure | None:
     """One panel per scenario: each engine's default run's `series` over time (log scale)."""
-    panels = [(n, s) for n in names if (s := _scenario(n)) is not None and data.truth(n) is not None]
+    panels = [(n, s) for n in names if (s := stored_scenario(n)) is not None and data.truth(n) is not None]
     if not panels:
         return None
     columns = min(3, len(panels))
@@ -112,7 +111,7 @@ def drift_figure(data: ReportData, names: list[str], series: Series, label: str)
         axes.set_xlabel("t [s]", fontsize=8)
         axes.tick_params(labelsize=7)
     grid[0][0].set_ylabel(label, fontsize=8)
-    handles, labels = _legend(grid)
+    handles, labels = legend_entries(grid.ravel())
     if handles:
         figure.legend(handles, labels, loc="upper right", fontsize=8)
     figure.tight_layout(rect=(0, 0, 0.9, 1))
@@ -151,21 +150,6 @@ def summary_table(data: ReportData, names: list[str]) -> pd.DataFrame:
                 }
             )
     return pd.DataFrame.from_records(records)
-
-
-def _scenario(name: str) -> Scenario | None:
-    try:
-        return build(name)
-    except ScenarioError:
-        return None
-
-
-def _legend(grid: np.ndarray) -> tuple[list, list[str]]:
-    seen: dict[str, object] = {}
-    for axes in grid.ravel():
-        for handle, label in zip(*axes.get_legend_handles_labels(), strict=True):
-            seen.setdefault(label, handle)
-    return list(seen.values()), list(seen)
 
 
 def html_fragment(data: ReportData, image: Callable[[Figure | None, str], str]) -> str:

@@ -16,7 +16,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator
 
 from reports.harness.level_error import LEVEL_COLUMNS, level_series
-from reports.render.plots import FLOOR, MARKERS, colour
+from reports.render.plots import FLOOR, MARKERS, colour, legend_entries
 from scenarios.trajectory import Trajectory
 
 PEAK_POINTS = 400
@@ -98,12 +98,7 @@ def deviations(
 def finish(figure: Figure, axes_row: Sequence[Axes], title: str) -> None:
     """One legend of every line of the panels to the right, the title, light axes, fixed margins
     (measuring every text for a tight layout costs more than drawing the figure)."""
-    handles, labels = [], []
-    for axes in axes_row:
-        for handle, label in zip(*axes.get_legend_handles_labels(), strict=True):
-            if label not in labels:
-                handles.append(handle)
-                labels.append(label)
+    handles, labels = legend_entries(axes_row)
     figure.legend(handles, labels, fontsize=8, loc="center left", bbox_to_anchor=(0.85, 0.5))
     figure.suptitle(title, fontsize=10)
     for axes in axes_row:

@@ -5,11 +5,14 @@ from __future__ import annotations
 
 import base64
 import io
+from collections.abc import Iterable
+from typing import Any
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 FLOOR = 1e-17  # errors of exactly zero are drawn here on log axes
@@ -22,6 +25,18 @@ def colour(engine: str) -> str:
     if engine in COLOURS:
         return COLOURS[engine]
     return OTHER_COLOURS[sum(map(ord, engine)) % len(OTHER_COLOURS)]
+
+
+def legend_entries(panels: Iterable[Axes]) -> tuple[list[Any], list[str]]:
+    """Every labelled line of the panels, each label once, for one legend of the whole figure."""
+    handles: list[Any] = []
+    labels: list[str] = []
+    for axes in panels:
+        for handle, label in zip(*axes.get_legend_handles_labels(), strict=True):
+            if label not in labels:
+                handles.append(handle)
+                labels.append(label)
+    return handles, labels
 
 
 def png(figure: Figure, tight: bool = True) -> str:

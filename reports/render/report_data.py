@@ -13,7 +13,8 @@ import pandas as pd
 
 import adapters
 from reports.harness.results_store import TRUTH, Key, read_results, read_trajectories
-from scenarios import catalogue
+from scenarios import ScenarioError, catalogue, load
+from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
 TABLE_COLUMNS = (
@@ -141,6 +142,15 @@ def timing_note(rows: pd.DataFrame) -> str:
     if counts != [1]:
         note += "; runs made in parallel share the machine, so their times are noisier than serial ones"
     return note + "."
+
+
+def stored_scenario(name: str) -> Scenario | None:
+    """The scenario a stored row names (a family, a variant, a file, a swept point), rebuilt to read
+    its constraints and masses; None where it no longer builds (renamed, or a file since edited)."""
+    try:
+        return load(name)
+    except ScenarioError:
+        return None
 
 
 def cell_text(row: pd.Series | None) -> str:

@@ -29,11 +29,10 @@ import numpy as np
 import pandas as pd
 
 from reports.harness.metrics import headline_series
-from reports.render.report_data import ReportData
+from reports.render.report_data import ReportData, stored_scenario
 from reports.stress.branch_check import LOST, ON_CLOSURE, check_branch
 from reports.stress.cases import CASES
-from scenarios import build
-from scenarios.scenario import Scenario, ScenarioError
+from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
 NO_CONVERGENCE = re.compile(r"converge|newton", re.IGNORECASE)
@@ -67,17 +66,10 @@ def judge_all(data: ReportData) -> list[Judgement]:
     for _, row in stress_rows(data.frame).iterrows():
         name = str(row["scenario"])
         if name not in scenarios:
-            scenarios[name] = _scenario(name)
+            scenarios[name] = stored_scenario(name)
         result = data.trajectories.get((name, str(row["engine"]), str(row["setting"])))
         out.append(judge(row, result, data.truth(name), scenarios[name]))
     return out
-
-
-def _scenario(name: str) -> Scenario | None:
-    try:
-        return build(name)
-    except ScenarioError:
-        return None
 
 
 Outcome = tuple[str, float, float, str]

@@ -15,9 +15,8 @@ from dataclasses import dataclass
 
 import pandas as pd
 
-from reports.render.report_data import ReportData, is_swept
+from reports.render.report_data import ReportData, is_swept, stored_scenario
 from reports.stress.stability_map import judge
-from scenarios import ScenarioError, load
 from scenarios.loading import split_point
 
 NATIVE = "reference"
@@ -98,15 +97,8 @@ def _swept_map(data: ReportData, base: str, axes: tuple[str, ...], rows: list[pd
         point = str(row["scenario"])
         index = tuple(values[k].index(points[point][a]) for k, a in enumerate(axes))
         result = data.trajectories.get((point, str(row["engine"]), str(row["setting"])))
-        judged = judge(row, result, data.truth(point), _scenario(point))
+        judged = judge(row, result, data.truth(point), stored_scenario(point))
         cells.append(
             Cell(point, judged.engine, index, judged.verdict, judged.time, judged.error, judged.detail)
         )
     return SweptMap(base, axes, values, tuple(engines), tuple(cells))
-
-
-def _scenario(point: str):  # type: ignore[no-untyped-def]
-    try:
-        return load(point)
-    except ScenarioError:
-        return None
