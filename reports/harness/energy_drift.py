@@ -20,7 +20,7 @@ import numpy as np
 from scenarios.bodies import GROUND, Point
 from scenarios.forces import RotationalSpringDamper, SpringDamper
 from scenarios.geometry import world_point
-from scenarios.scenario import Scenario
+from scenarios.scenario import Level, Scenario
 from scenarios.trajectory import Trajectory
 
 DRIFT_DEFINITION = (
@@ -86,8 +86,8 @@ def energy_drift(scenario: Scenario, result: Trajectory, truth: Trajectory) -> f
     return float(np.max(defined)) if defined.size else math.nan
 
 
-def _level(trajectory: Trajectory, level: str) -> np.ndarray:
-    values = trajectory.level(level)  # type: ignore[arg-type]
+def _level(trajectory: Trajectory, level: Level) -> np.ndarray:
+    values = trajectory.level(level)
     if values is None:
         raise ValueError(f"the trajectory has no {level} level: no energy")
     return values
