@@ -28,7 +28,7 @@ def mechanical_energy(name: str, **overrides: float) -> tuple[np.ndarray, float]
 def test_frictionless_mechanisms_conserve_energy(name: str, overrides: dict[str, float]) -> None:
     drift, exchanged = mechanical_energy(name, **overrides)
     assert exchanged > 0.01
-    assert np.max(np.abs(drift)) < 1e-10 * exchanged
+    assert np.max(np.abs(drift)) < 1e-11 * exchanged  # the README's claim; measured 1.5e-12, 1.3e-12
 
 
 @pytest.mark.slow
@@ -36,7 +36,8 @@ def test_frictionless_mechanisms_conserve_energy(name: str, overrides: dict[str,
 def test_frictionless_mechanisms_conserve_energy_over_the_full_horizon(name: str) -> None:
     extras = simulate(scenarios.build(name)).extras
     energy = extras["energy.kinetic"] + extras["energy.potential"] - extras["energy.applied_work"]
-    assert np.max(np.abs(energy - energy[0])) < 1e-10 * np.max(extras["energy.kinetic"])
+    # measured 1.5e-11 (four_bar_gravity) and 1.1e-11 (the undamped spring): the README says 3e-11
+    assert np.max(np.abs(energy - energy[0])) < 3e-11 * np.max(extras["energy.kinetic"])
 
 
 def point(q: np.ndarray, qd: np.ndarray, column: int | None, local: tuple[float, float]):  # type: ignore[no-untyped-def]
