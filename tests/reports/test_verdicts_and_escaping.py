@@ -1,0 +1,111 @@
+"""Issue 22 replayed for verdicts and pages: the truth is always the truth of the mechanism judged
+(a closed form only for a family's own mechanism, by digest), compare refuses numbers it cannot
+score, a store made by `compare --out` renders, and the report escapes every name it did not write.
+The command-line cases call `main` in this process."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import scenarios
+from reports.cli.main import main
+from reports.harness.truth import CLOSED_FORM, NATIVE, independent_truth
+from scenarios.closed_form import NoClosedForm, exact
+from scenarios.files import read_scenario, scenario_toml
+from scenarios.identity import family_twin
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLE = ROOT / "examples" / "slider_crank.toml"
+RATE_20 = "drivers.crank_drive.motion.rate=20"
+
+
+def compare_lines(capsys: pytest.CaptureFixture[str], *argv: str) -> dict[str, str]:
+    """`mbxval compare` on argv: exit 0, and its verdict's lines by their first word."""
+    assert main(["compare", *argv]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    return {line.split(":")[0].split()[0]: line for line in lines if line.strip()}
+
+
+def level_error(lines: dict[str, str], level: str) -> float:
+    return float(lines[level].split()[1])
+
+
+def edited_export(tmp_path: Path, old: str, new: str) -> Path:
+    """The slider-crank family exported as a file, with `old` replaced by `new` once."""
+    text = scenario_toml(scenarios.build("slider_crank"))
+    assert old in text
+    path = tmp_path / "edited.toml"
+    path.write_text(text.replace(old, new, 1))
+    return path
+
+
+# --- the truth of the mechanism judged -----------------------------------------------------------
+def test_the_readme_example_edited_by_set_scores_round_off(tmp_path: Path, capsys) -> None:
+    csv = tmp_path / "r20.csv"
+    assert main(["solve", str(EXAMPLE), "--set", RATE_20, "--out", str(csv)]) == 0
+    lines = compare_lines(capsys, str(EXAMPLE), str(csv), "--set", RATE_20)
+    assert lines["truth"] == f"truth: {NATIVE}"
+    for level in ("position", "velocity", "acceleration"):  # was 3.77, 1.34, 1.59 against 50 rad/s
+        assert level_error(lines, level) < 1e-12
+        assert lines[level].split()[2] == "green"
+
+
+def test_an_export_with_its_rate_edited_gets_the_native_truth(tmp_path: Path) -> None:
+    path = edited_export(tmp_path, "rate = 50.0", "rate = 20.0")
+    scenario = read_scenario(path)
+    assert family_twin(scenario) is None
+    with pytest.raises(NoClosedForm, match="not the mechanism the family slider_crank builds"):
+        exact(scenario)
+    times = np.asarray(scenario.times())
+    truth = independent_truth(scenario, times)
+    assert truth.name == NATIVE
+    # The native truth turns the crank at 20 rad/s, as the file says, not at the table's 50.
+    crank = truth.trajectory.velocity[:, 0, 2]  # type: ignore[index]
+    assert np.allclose(crank, 20.0, rtol=0, atol=1e-9)
+
+
+def test_an_edited_parameters_table_alone_does_not_choose_a_closed_form(tmp_path: Path) -> None:
+    """The table is inert: saying omega = 20 there leaves a mechanism turning at 50 rad/s."""
+    path = edited_export(tmp_path, "omega = 50.0", "omega = 20.0")
+    scenario = read_scenario(path)
+    assert family_twin(scenario) is None
+    assert independent_truth(scenario, np.asarray(scenario.times())).name == NATIVE
+
+
+def test_a_file_that_only_borrows_a_family_name_has_no_closed_form(tmp_path: Path) -> None:
+    text = scenario_toml(scenarios.build("slider_crank"))
+    body, table = text.split("\n[parameters]\n", 1)
+    path = tmp_path / "bare.toml"  # the same mechanism without the table that says where it came from
+    path.write_text(body + "\n" + table.split("\n\n", 1)[1])
+    assert family_twin(read_scenario(path)) is None
+    with pytest.raises(NoClosedForm):
+        exact(read_scenario(path))
+
+
+def test_an_unedited_export_keeps_the_closed_form_bit_for_bit() -> None:
+    family, file = scenarios.build("slider_crank"), read_scenario(EXAMPLE)
+    assert family_twin(file) is not None
+    times = np.asarray(family.times())
+    mine, theirs = independent_truth(file, times), independent_truth(family, times)
+    assert mine.name == theirs.name == CLOSED_FORM
+    for level in ("position", "velocity", "acceleration"):
+        assert np.array_equal(mine.trajectory.level(level), theirs.trajectory.level(level))  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("name", scenarios.catalogue(include_stress=True))
+def test_every_built_in_scenario_is_its_own_family_twin(name: str) -> None:
+    scenario = scenarios.build(name)
+    assert family_twin(scenario) is not None
+    assert family_twin(scenarios.load(f"{name}[steps=7]")) is not None  # a swept point too
+
+
+def test_a_changed_grid_is_still_the_family_mechanism() -> None:
+    import dataclasses
+
+    scenario = dataclasses.replace(scenarios.build("four_bar"), t_end=0.5, steps=17)
+    assert family_twin(scenario) is not None
+    assert math.isclose(float(exact(scenario).times[-1]), 0.5)
