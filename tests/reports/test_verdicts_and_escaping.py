@@ -123,3 +123,75 @@ def test_a_file_taking_a_stress_case_name_gets_no_similarity_truth(tmp_path: Pat
     edited = read_scenario(path)
     assert edited.name == name
     assert "scaled" not in stress_truth_name(edited)
+
+
+# --- compare's numbers ---------------------------------------------------------------------------
+def one_line_error(capsys: pytest.CaptureFixture[str], *words: str) -> str:
+    captured = capsys.readouterr()
+    assert captured.err.startswith("mbxval: error: ") and captured.err.count("\n") == 1, captured.err
+    for word in words:
+        assert word in captured.err, captured.err
+    return captured.err
+
+
+def family_csv(path: Path, cell: tuple[int, str] | None = None, columns: tuple[str, ...] = ()) -> Path:
+    """The slider-crank family's closed form as a CSV (only `columns` when given, with `t`), with
+    the cell (row, column) replaced by the given text."""
+    frame = exact(scenarios.build("slider_crank")).to_frame()
+    if columns:
+        frame = frame[["t", *columns]]
+    text = frame.astype(float).map(lambda v: f"{v:.17g}").astype(str)
+    if cell is not None:
+        text.iloc[cell[0], text.columns.get_loc("crank.y")] = cell[1]
+    text.to_csv(path, index=False)
+    return path
+
+
+@pytest.mark.parametrize(
+    ("value", "words"),
+    [
+        ("1e308", ("column crank.y, row 4", "beyond the largest magnitude", "1e+100")),
+        ("-1e101", ("column crank.y, row 4", "beyond the largest magnitude")),
+        ("1_0", ("column crank.y, row 4: not a number: '1_0'",)),
+        ("\u0661", ("not a number",)),  # Arabic-Indic one: float() reads it, a CSV does not
+        ("nan", ("not finite",)),
+        ("-Infinity", ("not finite",)),
+    ],
+)
+def test_a_csv_number_compare_cannot_score_is_refused_in_one_line(
+    tmp_path: Path, capsys, value: str, words: tuple[str, ...]
+) -> None:
+    csv = family_csv(tmp_path / "bad.csv", (3, value))
+    out = tmp_path / "store"
+    assert main(["compare", "slider_crank", str(csv), "--out", str(out)]) == 2
+    one_line_error(capsys, *words)
+    assert not out.exists()
+
+
+def test_plain_csv_numbers_with_spaces_and_exponents_are_read(tmp_path: Path, capsys) -> None:
+    csv = family_csv(tmp_path / "fine.csv", (3, " 3.0E-2 "))
+    assert main(["compare", "slider_crank", str(csv)]) == 0
+    assert "position" in capsys.readouterr().out
+
+
+def test_an_overflowing_error_counts_as_infinite_not_as_undefined() -> None:
+    from reports.harness.level_error import largest
+    from reports.harness.metrics import summarise
+
+    assert largest(np.array([1e-3, math.inf, math.nan])) == math.inf
+    assert math.isnan(largest(np.array([math.nan, math.nan])))
+    assert summarise(np.array([1.0, math.inf, math.nan]))["max"] == math.inf
+
+
+def test_update_never_writes_a_baseline_check_refuses(tmp_path: Path, capsys) -> None:
+    """An imported row without positions is ok but has no headline error: check would refuse a
+    baseline holding it, so --update refuses to write one, in one line, and keeps the old file."""
+    csv = family_csv(tmp_path / "vel.csv", columns=("crank.vx", "crank.vy", "crank.omega"))
+    store = tmp_path / "store"
+    assert main(["compare", "slider_crank", str(csv), "--out", str(store)]) == 0
+    capsys.readouterr()
+    baseline = tmp_path / "b.json"
+    baseline.write_text("old")
+    assert main(["check", "--baseline", str(baseline), "--results", str(store), "--update"]) == 2
+    one_line_error(capsys, "cannot write baseline", "slider_crank x vel", "check would refuse it")
+    assert baseline.read_text() == "old"
