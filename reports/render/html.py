@@ -166,7 +166,18 @@ def _overview(data: ReportData) -> str:
     summary = overview.summary(data.frame, float(data.meta.get("timeout", float("nan"))))
     truths = first_screen.truth_names(data.frame)
     figure = overview.overview_figure(summary, truths) if not summary.empty else None
-    return f'{_image(figure, "overview of error against run time")}<p class="muted">{overview.DEFINITION}</p>'
+    return _image(figure, "overview of error against run time", _why_none(data.frame)) + _muted(
+        " ".join(filter(None, (overview.untimed_note(data.frame), overview.DEFINITION)))
+    )
+
+
+def _why_none(rows: Any) -> str:
+    """Why a figure of error against run time has nothing to draw."""
+    return "no timed run to draw" if overview.untimed(rows).any() else "no successful run to draw"
+
+
+def _muted(text: str) -> str:
+    return f'<p class="muted">{html.escape(text)}</p>'
 
 
 def _agreement(data: ReportData) -> str:
@@ -184,10 +195,10 @@ def _anchor(scenario: str) -> str:
     return "s-" + scenario.replace("/", "-")
 
 
-def _image(figure: Any, alt: str) -> str:
+def _image(figure: Any, alt: str, why: str = "no successful run to draw") -> str:
     """The figure inline (drawn with its own fixed margins), or why there is none."""
     if figure is None:
-        return f'<p class="muted">no {html.escape(alt)}: no successful run to draw</p>'
+        return _muted(f"no {alt}: {why}")
     encoded = plots.png(figure, tight=False)
     return f'<img class="plot" alt="{html.escape(alt)}" src="data:image/png;base64,{encoded}">'
 
@@ -215,7 +226,7 @@ def _scenario_section(data: ReportData, scenario: str) -> str:
     rows = data.rows(scenario)
     length, rate = data.characteristic_length(scenario), first_screen.scenario_rate(data, scenario)
     truth, truth_name = data.truth(scenario), first_screen.truth_names(rows)
-    figures = [_image(level_plots.work_precision(rows, truth_name), "work-precision plot")]
+    figures = [_image(level_plots.work_precision(rows, truth_name), "work-precision plot", _why_none(rows))]
     if truth is not None:
         runs = data.default_trajectories(scenario)
         figures.append(_image(level_plots.deviations(truth, runs, length, rate, truth_name), "deviations"))

@@ -195,3 +195,22 @@ def test_update_never_writes_a_baseline_check_refuses(tmp_path: Path, capsys) ->
     assert main(["check", "--baseline", str(baseline), "--results", str(store), "--update"]) == 2
     one_line_error(capsys, "cannot write baseline", "slider_crank x vel", "check would refuse it")
     assert baseline.read_text() == "old"
+
+
+# --- a store made by compare --out renders ------------------------------------------------------
+def test_report_renders_a_store_made_only_by_compare(tmp_path: Path, capsys) -> None:
+    """The README's workflow: `compare --out DIR` then `report DIR`. The imported row has no run
+    time: it is left off the time axes with a note saying so, never put at a time limit."""
+    csv = family_csv(tmp_path / "mine.csv")
+    store = tmp_path / "store"
+    assert main(["compare", "slider_crank", str(csv), "--out", str(store)]) == 0
+    capsys.readouterr()
+    assert main(["report", str(store)]) == 0
+    captured = capsys.readouterr()
+    assert captured.err == "" and captured.out.strip() == f"report: {store / 'index.html'}"
+    page = (store / "index.html").read_text()
+    assert "Not on the time axes: mine on slider_crank (no run time" in page
+    assert "no overview of error against run time: no timed run to draw" in page
+    assert "no work-precision plot: no timed run to draw" in page
+    assert 'alt="deviations"' in page  # the imported run against the truth, drawn over time
+    assert "| mine |" in (store / "summary.md").read_text()
