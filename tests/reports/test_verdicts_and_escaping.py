@@ -5,7 +5,10 @@ The command-line cases call `main` in this process."""
 
 from __future__ import annotations
 
+import json
 import math
+import re
+from html.parser import HTMLParser
 from pathlib import Path
 
 import numpy as np
@@ -214,3 +217,82 @@ def test_report_renders_a_store_made_only_by_compare(tmp_path: Path, capsys) -> 
     assert "no work-precision plot: no timed run to draw" in page
     assert 'alt="deviations"' in page  # the imported run against the truth, drawn over time
     assert "| mine |" in (store / "summary.md").read_text()
+
+
+# --- the report escapes what it did not write ---------------------------------------------------
+HOSTILE_NAME = 'q" onmouseover="alert(1)" x="<script>alert(3)</script>|$\\frac$'
+HOSTILE_LABEL = '"><img src=x onerror=alert(2)>|$x^$'
+
+
+class PageParts(HTMLParser):
+    """Every start tag, attribute and piece of text of a page, as a browser's tokenizer sees them."""
+
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=True)
+        self.tags: list[str] = []
+        self.attributes: list[tuple[str, str | None]] = []
+        self.text: list[str] = []
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        self.tags.append(tag)
+        self.attributes += attrs
+
+    def handle_data(self, data: str) -> None:
+        self.text.append(data)
+
+
+@pytest.fixture(scope="module")
+def hostile_store(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A store with a file scenario of a hostile name run on the native engine, and a trajectory
+    imported under a hostile label, rendered."""
+    folder = tmp_path_factory.mktemp("hostile")
+    scenario = scenario_toml(scenarios.build("slider_crank", overrides={"steps": 40}))
+    file = folder / "hostile.toml"
+    file.write_text(scenario.replace('name = "slider_crank"', f"name = {json.dumps(HOSTILE_NAME)}", 1))
+    store, csv = folder / "store", folder / "h.csv"
+    quick = ["--engine", "reference", "--repeats", "1", "--warmup", "0", "--quiet"]
+    assert main(["run", "--suite", "quick", "--scenario", str(file), "--out", str(store), *quick]) == 0
+    assert main(["solve", str(file), "--out", str(csv)]) == 0
+    assert main(["compare", str(file), str(csv), "--label", HOSTILE_LABEL, "--out", str(store)]) == 0
+    assert main(["report", str(store)]) == 0
+    return store
+
+
+def test_a_hostile_name_and_label_render_as_text_in_the_page(hostile_store: Path) -> None:
+    page = PageParts()
+    page.feed((hostile_store / "index.html").read_text())
+    assert page.tags.count("script") == 1  # the page's own plot check, nothing injected
+    assert not [name for name, _ in page.attributes if name.startswith("on") or name == "x"]
+    assert [tag for tag in page.tags if tag == "img"] == ["img"] * sum(
+        1 for name, value in page.attributes if name == "class" and value == "plot"
+    )  # every img is one of the report's plots
+    ids = [value or "" for name, value in page.attributes if name == "id"]
+    hrefs = [value or "" for name, value in page.attributes if name == "href"]
+    links = [href[1:] for href in hrefs if href.startswith("#")]
+    section = [i for i in ids if i.startswith("s-")]
+    assert len(section) == 1 and links == section  # the matrix's link finds its section
+    assert all(c.isascii() and (c.isalnum() or c in "_-.~") for c in section[0])
+    text = "".join(page.text)
+    assert HOSTILE_NAME in text and HOSTILE_LABEL in text  # shown as written
+
+
+def test_a_hostile_name_and_label_are_text_in_the_markdown_summary(hostile_store: Path) -> None:
+    summary = (hostile_store / "summary.md").read_text()
+    assert "<script" not in summary and "<img" not in summary
+    heading = "## " + HOSTILE_NAME.replace("<", "&lt;").replace(">", "&gt;").replace("|", "\\|")
+    assert heading in summary.splitlines()
+    label = HOSTILE_LABEL.replace("<", "&lt;").replace(">", "&gt;").replace("|", "\\|")
+    table_rows = [line for line in summary.splitlines() if "onerror" in line]
+    assert len(table_rows) == 2  # the matrix's heading and the scenario's table
+    for line in table_rows:  # the label is one whole cell: its pipe does not split the row
+        assert label in [cell.strip() for cell in re.split(r"(?<!\\)\|", line)]
+
+
+def test_markup_boundary_escapes_what_lands_in_each_place() -> None:
+    from reports.render import markup
+
+    assert markup.escape('a"<b>&') == "a&quot;&lt;b&gt;&amp;"
+    assert markup.anchor("four_bar/stress_toggle") == "s-four_bar-stress_toggle"  # old links still work
+    assert markup.anchor('x" y') == "s-x~22~20y"
+    assert markup.markdown_text("a|b<i>\nc") == "a\\|b&lt;i&gt; c"
+    assert markup.figure_text("$x$") == "\\$x\\$"
