@@ -3,7 +3,8 @@
 Angles come from the classical geometric solutions (triangle closures, inverse trigonometry); rates
 from differentiating the loop equations by hand (2x2 systems solved by Cramer's rule). Each
 returns a Trajectory of every body of the scenario, all three levels, and the contact parameter
-phi of cams as the extra `contact.phi` (positions only).
+phi of cams as the extra `contact.phi` (positions only). A closed form is given only for the
+mechanism the family builds (`exact`): the truth is never another mechanism's.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ import numpy as np
 
 from scenarios import Scenario, Trajectory
 from scenarios.families.slider_crank import stroke_limits
+from scenarios.identity import family_twin
 
 
 def _e(theta: np.ndarray) -> np.ndarray:
@@ -253,9 +255,25 @@ FAMILIES = {
 }
 
 
+class NoClosedForm(ValueError):
+    """The scenario has no closed form: it is not a family's own mechanism, or its family has none."""
+
+
 def exact(scenario: Scenario, times: np.ndarray | list[float] | None = None) -> Trajectory:
-    """The closed-form trajectory of `scenario` (eccentric disc profiles only for cams)."""
+    """The closed-form trajectory of `scenario` (eccentric disc profiles only for cams).
+
+    Only a family's own mechanism has one: `scenario` must be what the family builds from the
+    parameters it records (scenarios.identity.family_twin, by digest). A file that takes a family's
+    name, or an export edited after it was written, is another mechanism, whatever its
+    `[parameters]` table says, and gets NoClosedForm."""
+    if scenario.family not in FAMILIES:
+        raise NoClosedForm(f"{scenario.name}: no closed form: not a family with one")
+    if family_twin(scenario) is None:
+        raise NoClosedForm(
+            f"{scenario.name}: no closed form: not the mechanism the family {scenario.family} builds "
+            "from the parameters it records"
+        )
     if scenario.family.startswith("cam_") and scenario.parameter("profile") != "disc":
-        raise ValueError("closed forms exist for the eccentric disc profile only")
+        raise NoClosedForm("closed forms exist for the eccentric disc profile only")
     grid = np.asarray(scenario.times() if times is None else times, dtype=float)
     return FAMILIES[scenario.family](scenario, grid)

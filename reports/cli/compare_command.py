@@ -32,6 +32,8 @@ SCALE_WORDS = ("green", "yellow", "red")
 def colour_word(error: float) -> str:
     """Where `error` falls on the report's colour scale: green up to 10^(BEST + a third of the
     span), red from two thirds on (the report colours by log error; it has no pass/fail line)."""
+    if math.isinf(error):
+        return SCALE_WORDS[-1]
     share = (math.log10(max(error, 1e-300)) - BEST) / (WORST - BEST)
     return SCALE_WORDS[min(max(int(share * 3), 0), 2)]
 
@@ -64,7 +66,7 @@ def verdict(scenario: Scenario, scored: Score, label: str) -> list[str]:
             lines.append(f"{level:<14}{'-':>10}   not in the file")
         else:
             error = scored.level_error(level)
-            word = colour_word(error) if math.isfinite(error) else "not compared"
+            word = "not compared" if math.isnan(error) else colour_word(error)
             lines.append(f"{level:<14}{error:>10.2e}   {word}")
     residual = float(row.get("constraint_residual", math.nan))
     if math.isfinite(residual):

@@ -204,7 +204,15 @@ def update_baseline(path: str | os.PathLike[str], frame: pd.DataFrame, meta: dic
         before = {_key(c): c for c in json.loads(Path(path).read_text()).get("cells", [])}
     except (OSError, ValueError, AttributeError, TypeError, KeyError):
         before = {}
-    after = {_key(c): c for c in baseline_cells(frame)}
+    cells = baseline_cells(frame)
+    for cell in cells:  # never write a baseline that `check` would refuse
+        problem = _unsound(cell)
+        if problem:
+            raise GateError(
+                f"cannot write baseline {path}: row {' x '.join(_key(cell))}: {problem} "
+                "(check would refuse it); rerun that row, or leave it out with --scenario/--engine"
+            )
+    after = {_key(c): c for c in cells}
     added = sorted(k for k in after if k not in before)
     dropped = sorted(k for k in before if k not in after)
     changed = sorted(k for k in after if k in before and _moved(before[k], after[k]))

@@ -61,18 +61,20 @@ def level_series(
         return None
     if mine.shape != ref.shape:
         raise ValueError(f"{level}: shapes differ, {mine.shape} against {ref.shape}")
-    diff = mine - ref
     length_scale, angle_scale = level_scales(length, rate, level)
-    lengths = np.hypot(diff[:, :, 0], diff[:, :, 1]) / length_scale
-    angles = np.abs(diff[:, :, 2]) / angle_scale
+    with np.errstate(over="ignore"):  # an overflow is an infinite error, counted as one
+        diff = mine - ref
+        lengths = np.hypot(diff[:, :, 0], diff[:, :, 1]) / length_scale
+        angles = np.abs(diff[:, :, 2]) / angle_scale
     return np.asarray(np.fmax(lengths, angles).max(axis=1), dtype=float)
 
 
 def largest(series: np.ndarray | None) -> float:
-    """The largest defined value of a series; NaN when none is defined."""
+    """The largest defined value of a series (an infinite error, from an overflow, counts); NaN
+    when none is defined (NaN is where the truth has no value)."""
     if series is None:
         return math.nan
-    defined = series[np.isfinite(series)]
+    defined = series[~np.isnan(series)]
     return float(defined.max()) if defined.size else math.nan
 
 

@@ -55,15 +55,14 @@ def level_errors(result: Trajectory, truth: Trajectory, level: Level) -> tuple[n
 def summarise(series: np.ndarray) -> dict[str, float]:
     """max, rms and final value of a per-time error series, over the times where it is defined: a
     stress truth stops (NaN) where no configuration exists past a singular time. An engine's own
-    non-finite values never get here (its run is `diverged`)."""
-    defined = series[np.isfinite(series)]
+    non-finite values never get here (its run is `diverged`); an error that overflows counts, as
+    infinite."""
+    defined = series[~np.isnan(series)]
     if defined.size == 0:
         return dict.fromkeys(("max", "rms", "final"), math.nan)
-    return {
-        "max": float(np.max(defined)),
-        "rms": float(np.sqrt(np.mean(defined**2))),
-        "final": float(defined[-1]),
-    }
+    with np.errstate(over="ignore"):
+        rms = float(np.sqrt(np.mean(defined**2)))
+    return {"max": float(np.max(defined)), "rms": rms, "final": float(defined[-1])}
 
 
 def error_metrics(scenario: Scenario, result: Trajectory, truth: Trajectory) -> dict[str, float]:

@@ -1,32 +1,23 @@
-"""Which mechanism a stored row measured: a short digest of the scenario's canonical file text.
+"""Which mechanism a stored row measured: a short digest of the scenario's canonical file text
+(scenarios.identity.digest).
 
 Results are keyed by the scenario's name, and a scenario file chooses its own `name`: two different
 files (or one file edited between runs) can claim the same name. Every row records the digest of
-the scenario it measured (`scenario_digest`: the SHA-256 of `mbxval export --format toml`'s text,
-12 hex digits), and a file whose name is already taken in a store by a different mechanism, or
-by another file of the same run, is refused with a message saying so, before anything runs: rows of
-two mechanisms never mix under one name. (A built-in family's rows follow the revision instead:
-a resume reruns them when the code changes, reports.harness.resume.)
+the scenario it measured (`scenario_digest`), and a file whose name is already taken in a store by
+a different mechanism, or by another file of the same run, is refused with a message saying so,
+before anything runs: rows of two mechanisms never mix under one name. (A built-in family's rows
+follow the revision instead: a resume reruns them when the code changes, reports.harness.resume.)
 """
 
 from __future__ import annotations
 
-import dataclasses
-import hashlib
 from collections.abc import Iterable, Mapping
 from typing import Any
 
-from scenarios.files import scenario_toml
+from scenarios.identity import digest
 from scenarios.scenario import Scenario
 
-DIGEST_LENGTH = 12
-
-
-def digest(scenario: Scenario) -> str:
-    """The scenario's identity: the start of the SHA-256 of its canonical scenario file (a swept
-    point's file without the point's name tag: its parameters are in the file)."""
-    mechanism = dataclasses.replace(scenario, point=())
-    return hashlib.sha256(scenario_toml(mechanism).encode()).hexdigest()[:DIGEST_LENGTH]
+__all__ = ["digest", "name_clash", "stored_clash"]
 
 
 def name_clash(sources: Mapping[str, Scenario]) -> str | None:

@@ -14,6 +14,7 @@ non-finite or non-numeric value, and a time column that is not the scenario's gr
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -26,6 +27,15 @@ from scenarios.trajectory import COLUMNS, Trajectory
 
 GRID_TOLERANCE = 1e-9
 """A time may differ from the scenario's grid by this much times t_end (written-out rounding)."""
+
+MAX_MAGNITUDE = 1e100
+"""The largest |value| a trajectory file may hold: far beyond any mechanism in range (lengths and
+rates up to 1e6: accelerations up to 1e18), and small enough that every error and its square stay
+finite, so that an error is never lost to overflow."""
+
+NUMBER = re.compile(r"[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?")
+"""A CSV number: ASCII digits, an optional point and exponent (not Python's wider float(): no `1_0`,
+no `nan`, no `inf`, no other scripts' digits), with spaces around it allowed."""
 
 
 class TrajectoryFileError(ValueError):
@@ -80,14 +90,29 @@ def read_table(path: str | Path) -> pd.DataFrame:
     for column in frame.columns:
         values = np.empty(len(frame))
         for row, text in enumerate(frame[column]):
-            try:
-                values[row] = float(text)
-            except ValueError:
-                raise _fail(source, f"column {column}, row {row + 1}: not a number: {text!r}") from None
-            if not math.isfinite(values[row]):
-                raise _fail(source, f"column {column}, row {row + 1}: not finite: {text!r}")
+            values[row] = _number(source, f"column {column}, row {row + 1}", text)
         numbers[column] = values
     return pd.DataFrame(numbers)
+
+
+def _number(source: str, where: str, text: str) -> float:
+    """The cell's value; TrajectoryFileError for one that is not a plain finite CSV number within
+    MAX_MAGNITUDE."""
+    shown = text if len(text) <= 40 else text[:40] + "..."
+    if not NUMBER.fullmatch(text.strip(" \t")):
+        try:
+            finite = math.isfinite(float(text))
+        except ValueError:
+            finite = True
+        kind = "not a number" if finite else "not finite"
+        raise _fail(source, f"{where}: {kind}: {shown!r} (a CSV number is digits, a point and an exponent)")
+    value = float(text)
+    if not abs(value) <= MAX_MAGNITUDE:
+        raise _fail(
+            source,
+            f"{where}: {shown!r} is beyond the largest magnitude a trajectory may hold, {MAX_MAGNITUDE:g}",
+        )
+    return value
 
 
 def check_columns(source: str, columns: list[str], scenario: Scenario) -> None:

@@ -1,11 +1,13 @@
 """The truth each run is measured against, independent of every engine where it can be.
 
-Where the scenario has a closed form (scenarios.closed_form.exact: every family, eccentric disc cams
-among the cams) the closed form is the truth, and the native solver is measured against it like any
-other engine. Elsewhere (spline and lobed cam profiles) the truth is the native solver solved on a
-grid REFINE times finer at tolerance TOLERANCE, sampled on the scenario's grid. A dynamic scenario
-(no closed form) takes the native forward dynamics at DYNAMIC_RTOL, tighter than any setting the
-native engine is measured at. Each truth carries its name, stored with every row measured against it.
+Where the scenario has a closed form (scenarios.closed_form.exact: a kinematic family's own
+mechanism, identified by its digest, eccentric disc cams among the cams) the closed form is the
+truth, and the native solver is measured against it like any other engine. Elsewhere (spline and
+lobed cam profiles, scenario files that are not a family's own mechanism) the truth is the native
+solver solved on a grid REFINE times finer at tolerance TOLERANCE, sampled on the scenario's grid.
+A dynamic scenario (no closed form) takes the native forward dynamics at DYNAMIC_RTOL, tighter
+than any setting the native engine is measured at. Each truth carries its name, stored with every
+row measured against it.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from scenarios import Scenario, Trajectory
-from scenarios.closed_form import exact
+from scenarios.closed_form import NoClosedForm, exact
 
 TOLERANCE = 1e-12
 REFINE = 4
@@ -34,10 +36,11 @@ class NamedTruth:
 
 
 def closed_form(scenario: Scenario, times: np.ndarray) -> Trajectory | None:
-    """The closed-form trajectory, or None where the family has none for this scenario."""
+    """The closed-form trajectory, or None where there is none for this mechanism (a file that
+    takes a family's name but is not the family's own mechanism has none: scenarios.closed_form)."""
     try:
         return exact(scenario, times)
-    except (KeyError, ValueError):
+    except NoClosedForm:
         return None
 
 

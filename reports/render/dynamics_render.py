@@ -4,7 +4,6 @@ reaches and costs per step. Empty ("") when the results hold no dynamic scenario
 
 from __future__ import annotations
 
-import html
 import math
 from collections.abc import Callable
 
@@ -18,6 +17,7 @@ from reference_solver import constraint_residual
 from reports.dynamics.cases import SINGULAR_PASSAGES, TRUTH_RTOL, is_dynamic, map_cells
 from reports.dynamics.stability import DRIFTED, Cell, map_rows
 from reports.harness.energy_drift import DRIFT_DEFINITION, drift_series
+from reports.render import markup
 from reports.render.plots import FLOOR, colour, legend_entries
 from reports.render.report_data import ReportData, number, stored_scenario
 from scenarios.scenario import Scenario
@@ -82,7 +82,7 @@ def stability_figure(cells: list[Cell]) -> Figure | None:
         axes.set_xticks(range(len(steps)), [f"{s:.0e}" for s in steps])
         axes.set_yticks(range(len(stiffnesses)), [f"{k:.0e}" for k in stiffnesses])
         axes.set_xlabel("step dt [s]")
-        axes.set_title(engine, fontsize=10, color=colour(engine))
+        axes.set_title(markup.figure_text(engine), fontsize=10, color=colour(engine))
     axes_row[0][0].set_ylabel("spring stiffness [N/m]")
     figure.tight_layout()
     return figure
@@ -107,7 +107,7 @@ def drift_figure(data: ReportData, names: list[str], series: Series, label: str)
             except (ValueError, KeyError, IndexError):
                 continue
             axes.semilogy(run.times, np.maximum(values, FLOOR), color=colour(engine), label=engine, lw=1.2)
-        axes.set_title(name, fontsize=9)
+        axes.set_title(markup.figure_text(name), fontsize=9)
         axes.set_xlabel("t [s]", fontsize=8)
         axes.tick_params(labelsize=7)
     grid[0][0].set_ylabel(label, fontsize=8)
@@ -179,7 +179,7 @@ def html_fragment(data: ReportData, image: Callable[[Figure | None, str], str]) 
         parts += [
             "<h3>Energy drift over time</h3>",
             image(drift_figure(data, names, drift_series, "energy drift"), "energy drift"),
-            f'<p class="muted">{html.escape(DRIFT_DEFINITION)}.</p>',
+            f'<p class="muted">{markup.escape(DRIFT_DEFINITION)}.</p>',
             "<h3>Constraint drift over time</h3>",
             image(drift_figure(data, names, residual_series, "constraint residual"), "constraint drift"),
             '<p class="muted">The largest constraint residual of each default run at each time, lengths '

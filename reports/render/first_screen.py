@@ -3,7 +3,6 @@ scenario x engine matrix at every level, and how far the engines' default runs l
 
 from __future__ import annotations
 
-import html
 import math
 from typing import Any
 
@@ -12,6 +11,7 @@ import pandas as pd
 from reports.harness.agreement import pair_differences, widest
 from reports.harness.level_error import LEVEL_COLUMNS, characteristic_rate
 from reports.harness.truth import CLOSED_FORM
+from reports.render import markup
 from reports.render.report_data import ReportData, number
 from scenarios import ScenarioError
 from scenarios import load as build_scenario
@@ -60,7 +60,7 @@ def level_matrix(data: ReportData) -> str:
     """scenario x (engine, level) at each engine's default setting: the error coloured by its log,
     the status where the run was not ok, a dash for a level the engine does not produce."""
     engines = data.engines()
-    top = "".join(f'<th colspan="3">{html.escape(e)}</th>' for e in engines)
+    top = "".join(f'<th colspan="3">{markup.escape(e)}</th>' for e in engines)
     sub = "".join(f"<th>{LEVEL_LETTERS[lv]}</th>" for _ in engines for lv in LEVEL_COLUMNS)
     body = []
     for scenario in data.scenarios():
@@ -68,8 +68,8 @@ def level_matrix(data: ReportData) -> str:
         for engine in engines:
             cells += matrix_cells(data.default_row(scenario, engine))
         truth = _truth_of(data, scenario)
-        link = f'<a href="#s-{scenario.replace("/", "-")}">{html.escape(scenario)}</a>'
-        body.append(f'<tr><th title="truth: {html.escape(truth)}">{link}</th>{"".join(cells)}</tr>')
+        link = f'<a href="#{markup.anchor(scenario)}">{markup.escape(scenario)}</a>'
+        body.append(f'<tr><th title="truth: {markup.escape(truth)}">{link}</th>{"".join(cells)}</tr>')
     head = f'<tr><th rowspan="2">scenario</th>{top}</tr><tr>{sub}</tr>'
     return f'<table class="matrix">{head}{"".join(body)}</table>'
 
@@ -80,8 +80,8 @@ def matrix_cells(row: pd.Series | None) -> list[str]:
         return ['<td class="notrun" colspan="3">not run</td>']
     status = str(row["status"])
     if status != "ok":
-        tip = html.escape(f"{row['setting']}: {row['message']}")
-        return [f'<td class="{html.escape(status)}" colspan="3" title="{tip}">{html.escape(status)}</td>']
+        tip = markup.escape(f"{row['setting']}: {row['message']}")
+        return [f'<td class="{markup.escape(status)}" colspan="3" title="{tip}">{markup.escape(status)}</td>']
     cells = []
     for column in LEVEL_COLUMNS.values():
         value = float(row[column]) if column in row and row[column] is not None else math.nan
@@ -89,7 +89,7 @@ def matrix_cells(row: pd.Series | None) -> list[str]:
             cells.append('<td class="notrun" title="level not produced">–</td>')
         else:
             style = f'style="background:{cell_colour(value)}"'
-            cells.append(f'<td {style} title="{html.escape(str(row["setting"]))}">{value:.0e}</td>')
+            cells.append(f'<td {style} title="{markup.escape(str(row["setting"]))}">{value:.0e}</td>')
     return cells
 
 

@@ -9,7 +9,6 @@ at the three levels side by side, and the table of runs.
 
 from __future__ import annotations
 
-import html
 import multiprocessing
 import os
 from typing import Any
@@ -21,6 +20,7 @@ from reports.render import (
     dynamics_render,
     first_screen,
     level_plots,
+    markup,
     overview,
     plots,
     stability_render,
@@ -70,16 +70,16 @@ def render(data: ReportData) -> str:
         "<title>mbxval report</title>",
         f"<style>{STYLE}</style><script>{CHECK}</script></head><body>",
         f"<h1>mbxval: planar multibody {_subject(meta)} across engines</h1>",
-        f'<p class="muted">{html.escape(_provenance(meta))}</p>',
+        f'<p class="muted">{markup.escape(_provenance(meta))}</p>',
         sweep_render.html_fragment(whole),  # "" unless the results hold parameter sweeps
     ]
     if not data.frame.empty:
         parts += [
-            f"<p><strong>{html.escape(_headline(data))}</strong></p>",
+            f"<p><strong>{markup.escape(_headline(data))}</strong></p>",
             "<h2>Error at each level, each engine's default setting</h2>",
-            f'<p class="muted">{html.escape(_definitions(meta))}</p>',
+            f'<p class="muted">{markup.escape(_definitions(meta))}</p>',
             first_screen.level_matrix(listed),
-            f'<p class="muted">Runs by status: {html.escape(_counts(data))}. Colour: log10 error from '
+            f'<p class="muted">Runs by status: {markup.escape(_counts(data))}. Colour: log10 error from '
             f"1e{first_screen.BEST:.0f} (green) to 1e{first_screen.WORST:.0f} (red); hover a scenario for "
             "its truth.</p>",
             dynamics,
@@ -87,7 +87,7 @@ def render(data: ReportData) -> str:
     parts += [
         "<h2>Error against run time over the suite</h2>",
         _overview(whole),
-        f'<p class="muted">{html.escape(timing_note(whole.frame))}</p>',
+        f'<p class="muted">{markup.escape(timing_note(whole.frame))}</p>',
     ]
     if not data.frame.empty:
         parts += [
@@ -135,7 +135,9 @@ def _versions(meta: dict[str, Any]) -> dict[str, str]:
 
 
 def _key_values(values: dict[str, str]) -> str:
-    rows = "".join(f"<tr><th>{html.escape(k)}</th><td>{html.escape(v)}</td></tr>" for k, v in values.items())
+    rows = "".join(
+        f"<tr><th>{markup.escape(k)}</th><td>{markup.escape(v)}</td></tr>" for k, v in values.items()
+    )
     return f"<table>{rows}</table>"
 
 
@@ -166,7 +168,18 @@ def _overview(data: ReportData) -> str:
     summary = overview.summary(data.frame, float(data.meta.get("timeout", float("nan"))))
     truths = first_screen.truth_names(data.frame)
     figure = overview.overview_figure(summary, truths) if not summary.empty else None
-    return f'{_image(figure, "overview of error against run time")}<p class="muted">{overview.DEFINITION}</p>'
+    return _image(figure, "overview of error against run time", _why_none(data.frame)) + _muted(
+        " ".join(filter(None, (overview.untimed_note(data.frame), overview.DEFINITION)))
+    )
+
+
+def _why_none(rows: Any) -> str:
+    """Why a figure of error against run time has nothing to draw."""
+    return "no timed run to draw" if overview.untimed(rows).any() else "no successful run to draw"
+
+
+def _muted(text: str) -> str:
+    return f'<p class="muted">{markup.escape(text)}</p>'
 
 
 def _agreement(data: ReportData) -> str:
@@ -177,19 +190,16 @@ def _agreement(data: ReportData) -> str:
         "Per scenario and level, the pair of engines whose default runs differ most and by how much "
         "(dimensionless, as above; no truth involved)."
     )
-    return f'<p class="muted">{note}</p><div class="wide">{frame.to_html(index=False, border=0)}</div>'
+    shown = frame.to_html(index=False, escape=True, border=0)
+    return f'<p class="muted">{note}</p><div class="wide">{shown}</div>'
 
 
-def _anchor(scenario: str) -> str:
-    return "s-" + scenario.replace("/", "-")
-
-
-def _image(figure: Any, alt: str) -> str:
+def _image(figure: Any, alt: str, why: str = "no successful run to draw") -> str:
     """The figure inline (drawn with its own fixed margins), or why there is none."""
     if figure is None:
-        return f'<p class="muted">no {html.escape(alt)}: no successful run to draw</p>'
+        return _muted(f"no {alt}: {why}")
     encoded = plots.png(figure, tight=False)
-    return f'<img class="plot" alt="{html.escape(alt)}" src="data:image/png;base64,{encoded}">'
+    return f'<img class="plot" alt="{markup.escape(alt)}" src="data:image/png;base64,{encoded}">'
 
 
 def _sections(data: ReportData) -> list[str]:
@@ -215,7 +225,7 @@ def _scenario_section(data: ReportData, scenario: str) -> str:
     rows = data.rows(scenario)
     length, rate = data.characteristic_length(scenario), first_screen.scenario_rate(data, scenario)
     truth, truth_name = data.truth(scenario), first_screen.truth_names(rows)
-    figures = [_image(level_plots.work_precision(rows, truth_name), "work-precision plot")]
+    figures = [_image(level_plots.work_precision(rows, truth_name), "work-precision plot", _why_none(rows))]
     if truth is not None:
         runs = data.default_trajectories(scenario)
         figures.append(_image(level_plots.deviations(truth, runs, length, rate, truth_name), "deviations"))
@@ -224,12 +234,12 @@ def _scenario_section(data: ReportData, scenario: str) -> str:
     shown = table(rows)
     return "\n".join(
         [
-            f'<h2 id="{_anchor(scenario)}">{html.escape(scenario)}</h2>',
-            f'<p class="muted">truth: {html.escape(truth_name)}; characteristic length {number(length)} m, '
+            f'<h2 id="{markup.anchor(scenario)}">{markup.escape(scenario)}</h2>',
+            f'<p class="muted">truth: {markup.escape(truth_name)}; characteristic length {number(length)} m, '
             f"characteristic rate {number(rate)} rad/s; "
             f"{int(rows['grid_points'].iloc[0])} grid points over {number(rows['t_end'].iloc[0])} s</p>",
             f'<div class="plots">{"".join(figures)}</div>',
-            f'<p class="muted">{html.escape(timing_note(rows))}</p>',
+            f'<p class="muted">{markup.escape(timing_note(rows))}</p>',
             f'<div class="wide">{shown.to_html(index=False, escape=True, border=0)}</div>',
         ]
     )

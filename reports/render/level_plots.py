@@ -16,6 +16,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator
 
 from reports.harness.level_error import LEVEL_COLUMNS, level_series
+from reports.render.markup import figure_text
 from reports.render.plots import FLOOR, MARKERS, colour, legend_entries
 from scenarios.trajectory import Trajectory
 
@@ -100,7 +101,7 @@ def finish(figure: Figure, axes_row: Sequence[Axes], title: str) -> None:
     (measuring every text for a tight layout costs more than drawing the figure)."""
     handles, labels = legend_entries(axes_row)
     figure.legend(handles, labels, fontsize=8, loc="center left", bbox_to_anchor=(0.85, 0.5))
-    figure.suptitle(title, fontsize=10)
+    figure.suptitle(figure_text(title), fontsize=10)
     for axes in axes_row:
         light_log_axes(axes)
     figure.subplots_adjust(**MARGINS)

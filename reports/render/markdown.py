@@ -7,6 +7,7 @@ from reports.harness.provenance import revision_label
 from reports.render import stability_render, sweep_render
 from reports.render.first_screen import native_line, scenario_rate, truth_names
 from reports.render.markdown_table import markdown_table
+from reports.render.markup import markdown_text
 from reports.render.report_data import HEADINGS, ReportData, number, table, timing_note
 
 SHOWN = ("engine", "setting", "status", *LEVEL_COLUMNS.values(), "constraint_residual", "run_time", "message")
@@ -16,7 +17,7 @@ SUMMARY_COLUMNS = tuple(HEADINGS.get(c, c) for c in SHOWN)
 def render(data: ReportData) -> str:
     """The summary; the points of parameter sweeps as one table per sweep, not scenario by scenario."""
     meta, whole, data = data.meta, data, data.unswept()
-    engines = ", ".join(f"{k} {v}" for k, v in meta.get("engines", {}).items())
+    engines = markdown_text(", ".join(f"{k} {v}" for k, v in meta.get("engines", {}).items()))
     machine = meta.get("machine", {})
     revision = revision_label(meta)
     lines = [
@@ -51,9 +52,9 @@ def render(data: ReportData) -> str:
         rows = table(data.rows(scenario))[list(SUMMARY_COLUMNS)]
         lines += [
             "",
-            f"## {scenario}",
+            f"## {markdown_text(scenario)}",
             "",
-            f"Truth: {truth_names(data.rows(scenario))}. "
+            f"Truth: {markdown_text(truth_names(data.rows(scenario)))}. "
             f"Characteristic length {number(data.characteristic_length(scenario))} m, "
             f"rate {number(scenario_rate(data, scenario))} rad/s.",
             "",

@@ -5,7 +5,9 @@ no step; the steps scale with each scenario's period) is summarised over the sce
 with a shifted geometric mean, as qpbenchmark does: exp(mean(log(x + s))) - s,
 so that neither an error of exactly zero nor a few very fast runs dominate. A run that did not end
 `ok` counts with error FAILED_ERROR (off by the whole characteristic scale) and run time the time
-limit, so that a setting cannot look good by failing on the hard scenarios.
+limit, so that a setting cannot look good by failing on the hard scenarios. A row that ended `ok`
+without a run time (an imported trajectory, `mbxval compare`: made outside mbxval, never timed) has
+no place on a time axis and is left off it (`untimed`), never put at the time limit.
 """
 
 from __future__ import annotations
@@ -62,10 +64,30 @@ def sweep_points(runs: pd.DataFrame) -> pd.Series:
     return steps.groupby(keys).rank(method="dense", ascending=False).astype(int)
 
 
+def untimed(frame: pd.DataFrame) -> pd.Series:
+    """The rows that ended ok without a run time (imported trajectories): off every time axis."""
+    times = pd.to_numeric(frame["run_time"], errors="coerce") if "run_time" in frame else np.nan
+    return (frame["status"] == "ok") & ~np.isfinite(pd.Series(times, index=frame.index, dtype=float))
+
+
+def untimed_note(frame: pd.DataFrame) -> str:
+    """Which rows the time axes leave out and why, in words; "" when there are none."""
+    rows = frame[untimed(frame)]
+    if rows.empty:
+        return ""
+    pairs = sorted(
+        {f"{engine} on {scenario}" for engine, scenario in zip(rows["engine"], rows["scenario"], strict=True)}
+    )
+    return (
+        f"Not on the time axes: {', '.join(pairs)} (no run time: a trajectory imported with `mbxval "
+        "compare`, made and timed outside mbxval). Their errors are in the tables and the deviation plots."
+    )
+
+
 def summary(frame: pd.DataFrame, timeout: float) -> pd.DataFrame:
     """One row per engine, mode and sweep point: its shifted geometric mean run time and error per
-    level, how many scenarios it ran and how many did not end ok."""
-    runs = frame[frame["mode"].astype(str) != ""].copy()
+    level, how many scenarios it ran and how many did not end ok (untimed rows left out)."""
+    runs = frame[(frame["mode"].astype(str) != "") & ~untimed(frame)].copy()
     runs["point"] = sweep_points(runs)
     records: list[dict[str, Any]] = []
     for (engine, mode, point), group in runs.groupby(["engine", "mode", "point"], sort=True):
@@ -97,11 +119,15 @@ def overview_figure(table: pd.DataFrame, truth: str) -> Figure | None:
     if table.empty:
         return None
     figure, axes_row = plt.subplots(1, 3, figsize=(13.5, 3.9), sharey=True)
+    drawn = False
     for axes, (level, column) in zip(axes_row, LEVEL_COLUMNS.items(), strict=True):
         for k, ((engine, mode), curve) in enumerate(table.groupby(["engine", "mode"], sort=True)):
-            curve = curve[np.isfinite(curve[column].to_numpy(float))].sort_values("run_time")
+            times = curve["run_time"].to_numpy(float)
+            placed = np.isfinite(curve[column].to_numpy(float)) & np.isfinite(times) & (times > 0)
+            curve = curve[placed].sort_values("run_time")  # no time limit known: nowhere on the axis
             if curve.empty:
                 continue
+            drawn = True
             errors = np.maximum(curve[column].to_numpy(float), FLOOR)
             times = curve["run_time"].to_numpy(float)
             label = f"{engine} {mode} ({int(curve['scenarios'].max())})"
@@ -113,6 +139,9 @@ def overview_figure(table: pd.DataFrame, truth: str) -> Figure | None:
         axes.set_xlabel(f"{level} error (dimensionless)")
         axes.grid(True, which="major", alpha=0.3)
         axes.set_title(level, fontsize=10)
+    if not drawn:
+        plt.close(figure)
+        return None
     axes_row[0].set_ylabel("run time [s]")
     title = (
         f"error against run time over the suite (shifted geometric mean; truth: {truth}; "

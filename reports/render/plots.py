@@ -15,6 +15,8 @@ import matplotlib.pyplot as plt
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from reports.render.markup import figure_text
+
 FLOOR = 1e-17  # errors of exactly zero are drawn here on log axes
 COLOURS = {"reference": "#444444", "mujoco": "#1f77b4", "exudyn": "#d62728", "pinocchio": "#2ca02c"}
 OTHER_COLOURS = ("#9467bd", "#8c564b", "#e377c2", "#bcbd22", "#17becf", "#ff7f0e")
@@ -28,7 +30,8 @@ def colour(engine: str) -> str:
 
 
 def legend_entries(panels: Iterable[Axes]) -> tuple[list[Any], list[str]]:
-    """Every labelled line of the panels, each label once, for one legend of the whole figure."""
+    """Every labelled line of the panels, each label once, for one legend of the whole figure (the
+    labels shown as written: markup.figure_text)."""
     handles: list[Any] = []
     labels: list[str] = []
     for axes in panels:
@@ -36,7 +39,7 @@ def legend_entries(panels: Iterable[Axes]) -> tuple[list[Any], list[str]]:
             if label not in labels:
                 handles.append(handle)
                 labels.append(label)
-    return handles, labels
+    return handles, [figure_text(label) for label in labels]
 
 
 def png(figure: Figure, tight: bool = True) -> str:

@@ -12,7 +12,6 @@ Both renderings return "" when the results hold no stress case.
 
 from __future__ import annotations
 
-import html
 import math
 import re
 from collections import Counter
@@ -22,6 +21,7 @@ import pandas as pd
 
 from reference_solver import constraint_residual
 from reports.harness.metrics import headline_series
+from reports.render import markup
 from reports.render.markdown_table import markdown_table
 from reports.render.report_data import ReportData
 from reports.stress.branch_check import LOST
@@ -252,7 +252,12 @@ def markdown_section(data: ReportData) -> str:
         return ""
     lines = ["## Stability map", "", LEGEND]
     for title, frame in tables:
-        lines += ["", f"### {title}", "", markdown_table(frame, str(frame.index.name or " "))]
+        lines += [
+            "",
+            f"### {markup.markdown_text(title)}",
+            "",
+            markdown_table(frame, str(frame.index.name or " ")),
+        ]
     return "\n".join(lines) + "\n"
 
 
@@ -261,17 +266,17 @@ def html_fragment(data: ReportData) -> str:
     tables = _tables(data)
     if not tables:
         return ""
-    parts = [STYLE, '<h2 id="stability-map">Stability map</h2>', f"<p>{html.escape(LEGEND)}</p>"]
+    parts = [STYLE, '<h2 id="stability-map">Stability map</h2>', f"<p>{markup.escape(LEGEND)}</p>"]
     for title, frame in tables:
-        parts += [f"<h3>{html.escape(title)}</h3>", _html_table(frame)]
+        parts += [f"<h3>{markup.escape(title)}</h3>", _html_table(frame)]
     return "\n".join(parts)
 
 
 def _html_table(frame: pd.DataFrame) -> str:
-    head = "".join(f"<th>{html.escape(str(n))}</th>" for n in [frame.index.name or "", *frame.columns])
+    head = "".join(f"<th>{markup.escape(str(n))}</th>" for n in [frame.index.name or "", *frame.columns])
     body = []
     for index, row in frame.iterrows():
-        cells = f"<th>{html.escape(str(index))}</th>" + "".join(_html_cell(str(v)) for v in row)
+        cells = f"<th>{markup.escape(str(index))}</th>" + "".join(_html_cell(str(v)) for v in row)
         body.append(f"<tr>{cells}</tr>")
     return f'<div style="overflow-x:auto"><table><tr>{head}</tr>{"".join(body)}</table></div>'
 
@@ -286,4 +291,4 @@ def _html_cell(text: str) -> str:
         css = "rough"
     if "truth regular there" in text:
         css = "bad"
-    return f'<td class="sm-{css}">{html.escape(text)}</td>' if css else f"<td>{html.escape(text)}</td>"
+    return f'<td class="sm-{css}">{markup.escape(text)}</td>' if css else f"<td>{markup.escape(text)}</td>"

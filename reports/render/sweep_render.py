@@ -8,7 +8,6 @@ points where the native solver detected a singular configuration carry a cross o
 
 from __future__ import annotations
 
-import html
 import itertools
 import math
 from typing import Any
@@ -20,7 +19,7 @@ from matplotlib.colors import Normalize, to_rgba
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from reports.render import plots
+from reports.render import markup, plots
 from reports.render.first_screen import BEST, WORST
 from reports.render.markdown_table import markdown_table
 from reports.render.report_data import ReportData, number
@@ -94,7 +93,7 @@ def figure(swept: SweptMap, fixed: dict[int, int]) -> Figure:
             xs = [i[0] for i in singular]
             ys = [i[1] if len(swept.axes) > 1 else 0 for i in singular]
             axes.scatter(xs, ys, marker="x", s=40, c="#00c8ff", linewidths=1.6, zorder=3)
-        axes.set_title(engine, fontsize=9, loc="left")
+        axes.set_title(markup.figure_text(engine), fontsize=9, loc="left")
         axes.set_xticks(*_ticks(swept.values[0]), fontsize=7)
         if len(swept.axes) > 1:
             axes.set_yticks(*_ticks(swept.values[1]), fontsize=7)
@@ -146,12 +145,12 @@ def html_fragment(data: ReportData) -> str:
     maps = swept_maps(data)
     if not maps:
         return ""
-    parts = ["<h2>Stability over the swept parameters</h2>", f'<p class="muted">{html.escape(LEGEND)}</p>']
+    parts = ["<h2>Stability over the swept parameters</h2>", f'<p class="muted">{markup.escape(LEGEND)}</p>']
     for swept in maps:
-        parts.append(f"<p><strong>{html.escape(swept.base)}</strong>: {html.escape(_summary(swept))}</p>")
+        parts.append(f"<p><strong>{markup.escape(swept.base)}</strong>: {markup.escape(_summary(swept))}</p>")
         for fixed in combinations(swept):
             encoded = plots.png(figure(swept, fixed), tight=False)
-            alt = html.escape(_title(swept, fixed))
+            alt = markup.escape(_title(swept, fixed))
             image = f'<img class="plot" alt="{alt}" src="data:image/png;base64,{encoded}">'
             parts.append(f'<p class="muted">{alt}</p>{image}')
     return "\n".join(parts)
@@ -170,7 +169,8 @@ def markdown_section(data: ReportData) -> str:
             text += f" @{cell.time:.4g} s" if math.isfinite(cell.time) else ""
             table.setdefault(cell.point, {})[cell.engine] = text
         frame = _frame(table, swept.engines)
-        lines += ["", f"### {swept.base}", "", _summary(swept), "", markdown_table(frame, "point")]
+        lines += ["", f"### {markup.markdown_text(swept.base)}", "", markup.markdown_text(_summary(swept))]
+        lines += ["", markdown_table(frame, "point")]
     return "\n".join(lines) + "\n"
 
 

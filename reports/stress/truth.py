@@ -18,8 +18,9 @@ import dataclasses
 import numpy as np
 
 import reference_solver
-from reports.stress.cases import Similar, case
+from reports.stress.cases import Similar, StressCase, case
 from scenarios import build
+from scenarios.identity import family_twin
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -27,9 +28,16 @@ TOLERANCE = 1e-12
 ATTEMPTS = 3
 
 
+def declared_case(scenario: Scenario) -> StressCase:
+    """The stress case `scenario` is: its name's declaration when it is that built-in mechanism
+    (by digest), a bare case otherwise (a file that takes a case's name is another mechanism, and
+    never gets the truth of a nominal scenario it is not a similarity of)."""
+    return case(scenario.name) if family_twin(scenario) is not None else StressCase(scenario.name, "")
+
+
 def stress_truth(scenario: Scenario, times: np.ndarray) -> Trajectory:
     """The truth of `scenario` on `times` (the runner's truth hook for the stress suite)."""
-    declared = case(scenario.name)
+    declared = declared_case(scenario)
     grid = np.asarray(times, dtype=float)
     if declared.similar is not None:
         return similar_truth(declared.similar, grid)
@@ -38,7 +46,7 @@ def stress_truth(scenario: Scenario, times: np.ndarray) -> Trajectory:
 
 def stress_truth_name(scenario: Scenario) -> str:
     """What the stress truth of `scenario` is, for the rows measured against it."""
-    declared = case(scenario.name)
+    declared = declared_case(scenario)
     native = f"native, tolerance {TOLERANCE:g}"
     if declared.similar is not None:
         return f"{native} on {declared.similar.nominal}, scaled"
