@@ -27,6 +27,7 @@ from reports.harness.store_files import StoreDamaged
 from reports.harness.store_lock import StoreBusy
 from scenarios import Scenario, ScenarioError, all_families, catalogue, limits, load
 from scenarios.files import scenario_toml
+from scenarios.trajectory import Trajectory
 
 
 def _option_value(text: str) -> OptionValue:
@@ -88,7 +89,7 @@ def cmd_list(args: argparse.Namespace) -> int:
         except adapters.EngineUnavailable as error:
             print(f"engine {name}: unavailable ({error})")
     print("engines: " + ", ".join(f"{n} {a._safe_version()}" for n, a in engines.items()))
-    names = args.scenarios or catalogue(include_stress=args.stress)
+    names = args.scenarios or catalogue(include_stress=args.stress, include_dynamic=True)
     width = max(len(n) for n in names) + 2
     print("\n" + "scenario".ljust(width) + "".join(e.ljust(12) for e in engines))
     reasons: list[str] = []
@@ -112,7 +113,7 @@ def cmd_list(args: argparse.Namespace) -> int:
         return 0
     print("\nmodes: what each measures (derived levels named):")
     for engine, adapter in engines.items():
-        for mode in adapter.measured:
+        for mode in (m for m in adapter.measured if not m.alias_of):
             print(f"  {engine} {mode.name}: {mode.measures}")
     print("\nparameters: default and range; set them with --set NAME=VALUE:")
     for fam in all_families().values():
@@ -122,16 +123,29 @@ def cmd_list(args: argparse.Namespace) -> int:
     return 0
 
 
-def cmd_solve(args: argparse.Namespace) -> int:
-    scenario = load(args.scenario, pairs(args.set, "--set"))
-    grid = time_grid(scenario, args.t_end, args.steps, args.dt)
-    adapter = load_engine(args.engine)
-    setting = engine_setting(adapter, scenario, args.mode, args.setting)
-    result = adapter.run(scenario, setting, grid)
+def solve_trajectory(
+    scenario: Scenario,
+    engine: str,
+    mode: str | None = None,
+    options: Sequence[str] = (),
+    grid: tuple[float | None, int | None, float | None] = (None, None, None),
+) -> Trajectory:
+    """The trajectory of the scenario's output bodies by one engine, on the grid (t_end, steps, dt)
+    gives (each None: the scenario's); UsageError for bad input or a run that is not ok."""
+    times = time_grid(scenario, *grid)
+    adapter = load_engine(engine)
+    setting = engine_setting(adapter, scenario, mode, list(options))
+    result = adapter.run(scenario, setting, times)
     if result.status != "ok" or result.trajectory is None:
         when = "" if result.failure_time is None else f" at t={result.failure_time:.6g}"
-        raise UsageError(f"{args.engine} {result.status}{when}: {result.message}")
-    trajectory = result.trajectory.select(scenario.output_bodies)
+        raise UsageError(f"{engine} {result.status}{when}: {result.message}")
+    return result.trajectory.select(scenario.output_bodies)
+
+
+def cmd_solve(args: argparse.Namespace) -> int:
+    scenario = load(args.scenario, pairs(args.set, "--set"))
+    grid = (args.t_end, args.steps, args.dt)
+    trajectory = solve_trajectory(scenario, args.engine, args.mode, args.setting, grid)
     if args.out is None:
         trajectory.write_csv(sys.stdout)
     else:

@@ -7,12 +7,14 @@ import importlib
 import math
 import re
 import tempfile
+from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import adapters
+from reports.cli import run_overrides
 from reports.cli.usage import UsageError
 from reports.harness import gate, scenario_identity, stop, store_files, suites, sweep
 from reports.harness.results_store import ResultsStore, read_results
@@ -48,6 +50,7 @@ def _selection(args: argparse.Namespace) -> tuple[Suite, list[str], list[str]]:
             raise UsageError(str(error)) from error
         for name in names:
             build_scenario(name)  # a combination no single range excludes fails here, before any run
+    names = run_overrides.apply(names, run_overrides.overrides(args))
     unknown = [e for e in args.engine if e not in adapters.names()]
     if unknown:
         raise UsageError(f"unknown engine '{unknown[0]}'; known: {', '.join(adapters.names())}")
@@ -131,8 +134,9 @@ def check_scenario_names(names: list[str], out: Path, rerun: bool) -> None:
         raise UsageError(clash)
 
 
-def run_selection(selection: Selection, out: Path, progress: bool) -> Path:
-    """Run a checked selection into `out` (the caller holds its writer lock); returns `out`."""
+def run_selection(selection: Selection, out: Path, progress: bool) -> Counter[str]:
+    """Run a checked selection into `out` (the caller holds its writer lock); returns the rows this
+    run made, by status (the store may hold more: rows kept from earlier runs)."""
     suite, backend = selection.suite, selection.backend
     arguments: dict[str, Any] = {
         "truth": suite.truth,
@@ -149,7 +153,14 @@ def run_selection(selection: Selection, out: Path, progress: bool) -> Path:
             ResultsStore(out), selection.engines, selection.options, **arguments, **vars(backend)
         )
     runner.run(selection.names)
-    return out
+    return runner.made
+
+
+def run_summary(made: Counter[str], out: Path, page: Path) -> str:
+    """The last line of a run: this run's rows by status, then the store's total apart."""
+    counts = ", ".join(f"{status} {n}" for status, n in made.most_common())
+    stored = len(read_results(out)[0])
+    return f"{made.total()} runs ({counts or 'all stored already'}); {out} holds {stored} rows; report: {page}"
 
 
 def render_reports(results: Path | str, out: str | None = None) -> Path:
@@ -164,15 +175,13 @@ def cmd_run(args: argparse.Namespace) -> int:
     selection = select(args, out)
     with WriterLock(out, wait=args.wait):
         try:
-            run_selection(selection, out, progress=not args.quiet)
+            made = run_selection(selection, out, progress=not args.quiet)
         except KeyboardInterrupt:
             return stop.interrupted(
                 f"interrupted; the runs made so far are stored in {out}: run again to resume"
             )
         page = render_reports(out)
-    frame, _ = read_results(out)
-    counts = ", ".join(f"{k} {v}" for k, v in frame["status"].value_counts().items())
-    print(f"{len(frame)} runs ({counts}); report: {page}")
+    print(run_summary(made, out, page))
     return 0
 
 
@@ -198,9 +207,11 @@ def cmd_check(args: argparse.Namespace) -> int:
     selection = select(args, out or Path(tempfile.gettempdir()), rerun=True)
     if out is not None:
         with WriterLock(out, wait=args.wait):
-            return _check(args, run_selection(selection, out, progress=not args.quiet), baseline)
+            run_selection(selection, out, progress=not args.quiet)
+            return _check(args, out, baseline)
     with tempfile.TemporaryDirectory(prefix="mbxval-check-") as temporary:
-        return _check(args, run_selection(selection, Path(temporary), progress=not args.quiet), baseline)
+        run_selection(selection, Path(temporary), progress=not args.quiet)
+        return _check(args, Path(temporary), baseline)
 
 
 def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, Any]] | None) -> int:
@@ -253,6 +264,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
     _selection_arguments(run, "default")
     run.add_argument("--out", default=DEFAULT_OUT, help=f"output directory (default {DEFAULT_OUT})")
     run.add_argument("--quiet", action="store_true", help="no progress bar")
+    run_overrides.add_arguments(run)
     run.add_argument(
         "--sweep",
         action="append",
