@@ -7,8 +7,8 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 
-from scenarios.files import read_scenario
 from scenarios.family import MAX_STEPS
+from scenarios.files import read_scenario
 from scenarios.limits import check_grid, check_t_end
 from scenarios.registry import build, family
 from scenarios.scenario import POINT_RESERVED, Scenario, ScenarioError

@@ -20,7 +20,7 @@ import reports.cli.compare_command as compare_command
 import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
 from reports.cli.usage import Parser, UsageError, pairs, scenario_argument
-from reports.harness import stop
+from reports.harness import provenance, stop
 from reports.harness.atomic_write import atomic_output
 from reports.harness.gate import GateError
 from reports.harness.store_files import StoreDamaged
@@ -190,10 +190,17 @@ def _scenario_arguments(parser: argparse.ArgumentParser, engine_default: str) ->
 def parser() -> argparse.ArgumentParser:
     top = Parser(
         prog="mbxval",
-        description="Cross-validate planar multibody kinematics: solve the same mechanism with a "
-        "reference solver and several engines, and compare their errors.",
-        epilog="example: mbxval list; mbxval solve four_bar --out four_bar.csv; "
-        "mbxval run --out results; mbxval report results",
+        description=textwrap.fill(
+            "Cross-validate planar multibody kinematics: solve the same mechanism with a "
+            "reference solver and several engines, and compare their errors.",
+            90,
+        ),
+        epilog="example: mbxval list; mbxval solve four_bar --out four_bar.csv;\n"
+        "  mbxval run --out results; mbxval report results; mbxval --version",
+        formatter_class=argparse.RawDescriptionHelpFormatter,  # keeps --version's lines
+    )
+    top.add_argument(
+        "-V", "--version", action="version", version=provenance.version_text(), help="print the versions"
     )
     sub = top.add_subparsers(dest="command", required=True, parser_class=Parser)
 

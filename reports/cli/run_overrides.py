@@ -24,7 +24,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="set a parameter of every scenario of the run (a family's, or a file's dotted key)",
     )
     parser.add_argument("--t-end", type=float, help="end time of every scenario (default: each one's)")
-    parser.add_argument("--steps", type=int, help="equal steps of every scenario's grid (default: each one's)")
+    parser.add_argument("--steps", type=int, help="equal steps of every scenario's grid (default: its own)")
 
 
 def overrides(args: argparse.Namespace) -> dict[str, str]:

@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 import adapters
-from reports.cli import run_overrides
+import reports.cli.run_overrides as run_overrides
 from reports.cli.usage import UsageError
 from reports.harness import gate, scenario_identity, stop, store_files, suites, sweep
 from reports.harness.results_store import ResultsStore, read_results
@@ -156,11 +156,12 @@ def run_selection(selection: Selection, out: Path, progress: bool) -> Counter[st
     return runner.made
 
 
-def run_summary(made: Counter[str], out: Path, page: Path) -> str:
+def run_summary(made: Counter[str], out: Path, page: Path | None) -> str:
     """The last line of a run: this run's rows by status, then the store's total apart."""
     counts = ", ".join(f"{status} {n}" for status, n in made.most_common())
     stored = len(read_results(out)[0])
-    return f"{made.total()} runs ({counts or 'all stored already'}); {out} holds {stored} rows; report: {page}"
+    made_now = f"{made.total()} runs ({counts or 'all stored already'})"
+    return f"{made_now}; {out} holds {stored} rows; report: {page}"
 
 
 def render_reports(results: Path | str, out: str | None = None) -> Path:
@@ -170,17 +171,23 @@ def render_reports(results: Path | str, out: str | None = None) -> Path:
     return render(results, out)
 
 
+def run_and_render(
+    selection: Selection, out: Path, wait: bool, progress: bool, report: bool = True
+) -> tuple[Counter[str], Path | None]:
+    """Run a checked selection into `out` under its writer lock, then render its report (unless
+    not `report`); the rows this run made by status, and the report's page."""
+    with WriterLock(out, wait=wait):
+        made = run_selection(selection, out, progress)
+        return made, render_reports(out) if report else None
+
+
 def cmd_run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     selection = select(args, out)
-    with WriterLock(out, wait=args.wait):
-        try:
-            made = run_selection(selection, out, progress=not args.quiet)
-        except KeyboardInterrupt:
-            return stop.interrupted(
-                f"interrupted; the runs made so far are stored in {out}: run again to resume"
-            )
-        page = render_reports(out)
+    try:
+        made, page = run_and_render(selection, out, args.wait, progress=not args.quiet)
+    except KeyboardInterrupt:
+        return stop.interrupted(f"interrupted; the runs made so far are stored in {out}: run again to resume")
     print(run_summary(made, out, page))
     return 0
 
