@@ -16,7 +16,7 @@ from typing import Any
 import adapters
 import reports.cli.run_overrides as run_overrides
 from reports.cli.usage import UsageError
-from reports.harness import gate, scenario_identity, stop, store_files, suites, sweep
+from reports.harness import baselines, gate, gate_files, scenario_identity, stop, store_files, suites, sweep
 from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import Runner, RunOptions
 from reports.harness.store_lock import WriterLock
@@ -207,6 +207,9 @@ def cmd_check(args: argparse.Namespace) -> int:
     """The gate runs what it compares (every selected run made afresh) unless --results is given."""
     if not (math.isfinite(args.factor) and args.factor > 0):
         raise UsageError(f"--factor must be a finite positive number, got {args.factor}")
+    if args.update and (args.junit or args.json):
+        raise UsageError("--junit and --json write a comparison; --update writes the baseline instead")
+    args.baseline = str(baselines.resolve(args.baseline))
     baseline = None if args.update else gate.read_baseline(args.baseline)  # bad baseline: before running
     if args.results is not None:
         return _check(args, Path(args.results), baseline)
@@ -228,6 +231,10 @@ def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, A
         print(gate.update_baseline(args.baseline, frame, meta))
         return 0
     verdict = gate.compare(baseline, frame, args.factor)
+    if args.junit:
+        gate_files.write(args.junit, gate_files.junit_xml(verdict, args.baseline, args.factor))
+    if args.json:
+        gate_files.write(args.json, gate_files.verdict_json(verdict, args.baseline, args.factor))
     print(gate.describe(verdict, args.baseline, args.factor))
     return 0 if verdict.passed else 1
 
@@ -289,7 +296,13 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
     report.add_argument("--out", help="directory for index.html and summary.md (default: RESULTS)")
 
     check = sub.add_parser("check", help="regression gate: compare results with a baseline (exit 1 if worse)")
-    check.add_argument("--baseline", required=True, help="baseline JSON file (see baselines/)")
+    check.add_argument(
+        "--baseline",
+        required=True,
+        help=f"baseline JSON file, or a shipped one by name ({', '.join(baselines.names())})",
+    )
+    check.add_argument("--junit", metavar="FILE", help="also write the verdict as JUnit XML, a test per cell")
+    check.add_argument("--json", metavar="FILE", help="also write the verdict as JSON")
     check.add_argument("--results", help="compare these stored results instead of running the suite")
     _selection_arguments(check, "quick")
     check.add_argument("--out", help="directory for the results of the run (default: a temporary one)")
