@@ -17,6 +17,7 @@ import numpy as np
 
 import adapters
 import reports.cli.compare_command as compare_command
+import reports.cli.schema_command as schema_command
 import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
 from reports.cli.usage import Parser, UsageError, pairs, scenario_argument
@@ -228,6 +229,7 @@ def parser() -> argparse.ArgumentParser:
 
     suite_commands.add_parsers(sub)
     compare_command.add_parser(sub)
+    schema_command.add_parser(sub)
     for name, subparser in sub.choices.items():
         what, example = GUIDE[name]
         subparser.description, subparser.epilog = textwrap.fill(what, 90), "example:\n  " + example
@@ -272,6 +274,11 @@ GUIDE: dict[str, tuple[str, str]] = {
         "report shows it beside the engines.",
         "mbxval compare slider_crank my_tool.csv --label my_tool --out mbxval-report",
     ),
+    "schema": (
+        "Print the JSON Schema of the scenario file format, so that editors complete and check "
+        "scenario files (TOML editors such as Taplo read a `#:schema FILE` first line).",
+        "mbxval schema --out scenario.schema.json",
+    ),
     "bench": (
         "Measure the native solver's speed beside the engines (benchmarks, run on demand).",
         "mbxval bench speed",
@@ -285,6 +292,7 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "export": cmd_export,
     **suite_commands.COMMANDS,
     **compare_command.COMMANDS,
+    **schema_command.COMMANDS,
 }
 
 
