@@ -8,6 +8,7 @@ and no partial output file.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 import sys
 import textwrap
@@ -28,6 +29,7 @@ from reports.harness.store_files import StoreDamaged
 from reports.harness.store_lock import StoreBusy
 from scenarios import Scenario, ScenarioError, all_families, catalogue, limits, load
 from scenarios.files import scenario_toml
+from scenarios.scenario import POINT_RESERVED, characteristic_rate
 from scenarios.trajectory import Trajectory
 
 
@@ -111,6 +113,13 @@ def cmd_list(args: argparse.Namespace) -> int:
     if reasons:
         print("\n" + "\n".join(reasons))
     if args.scenarios:
+        print("\nscales: errors are divided by these (docs/scenario-files.md):")
+        for name in names:
+            scenario = load(name)
+            print(
+                f"  {name}: characteristic_length = {scenario.characteristic_length:g} m, "
+                f"characteristic_rate = {characteristic_rate(scenario):.6g} rad/s"
+            )
         return 0
     print("\nmodes: what each measures (derived levels named):")
     for engine, adapter in engines.items():
@@ -155,8 +164,23 @@ def cmd_solve(args: argparse.Namespace) -> int:
     return 0
 
 
+def renamed(scenario: Scenario, name: str | None) -> Scenario:
+    """The scenario under the name a file's user gives it (`export --name`): its whole name, so
+    that the file runs beside the family it came from; unchanged without a name."""
+    if name is None:
+        return scenario
+    if not name or any(c in POINT_RESERVED + "/" for c in name) or name.endswith(".toml"):
+        raise UsageError(
+            f"--name must be a plain name, without '/', '.toml' or any of {POINT_RESERVED}: '{name}'"
+        )
+    return dataclasses.replace(scenario, family=name, variant="default", point=())
+
+
 def cmd_export(args: argparse.Namespace) -> int:
     scenario = load(args.scenario, pairs(args.set, "--set"))
+    if args.name is not None and args.format != "toml":
+        raise UsageError("--name names a scenario file: give it with --format toml")
+    scenario = renamed(scenario, args.name)
     if args.format == "toml":
         with atomic_output(args.out) as stream:
             stream.write(scenario_toml(scenario))
@@ -226,6 +250,7 @@ def parser() -> argparse.ArgumentParser:
         default="engine",
         help="engine: the engine's own model file; toml: an mbxval scenario file",
     )
+    export.add_argument("--name", help="the scenario file's name (default: the scenario's; --format toml)")
 
     suite_commands.add_parsers(sub)
     compare_command.add_parser(sub)
@@ -265,7 +290,7 @@ GUIDE: dict[str, tuple[str, str]] = {
     "check": (
         "Regression gate for CI: compare results with a committed baseline; exit 1 with one line per "
         "cell whose status got worse or whose error grew past the factor.",
-        "mbxval check --baseline baselines/default.json",
+        "mbxval check --baseline default --junit check.xml",
     ),
     "compare": (
         "Score a trajectory made by any tool (the CSV `mbxval solve` writes: t, then BODY.x BODY.y "

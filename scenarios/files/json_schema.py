@@ -49,7 +49,12 @@ def _numbers(key: Key, size: int | None) -> Schema:
 
 
 def key_schema(key: Key) -> Schema:
-    """The schema of one declared key."""
+    """The schema of one declared key, with its meaning where it declares one."""
+    schema = _typed(key)
+    return {**schema, "description": key.doc} if key.doc else schema
+
+
+def _typed(key: Key) -> Schema:
     kind = key.type
     if kind == "number":
         return {"type": "number", **NUMBER_RANGES[key.range]}
