@@ -209,6 +209,9 @@ def cmd_check(args: argparse.Namespace) -> int:
         raise UsageError(f"--factor must be a finite positive number, got {args.factor}")
     if args.update and (args.junit or args.json):
         raise UsageError("--junit and --json write a comparison; --update writes the baseline instead")
+    for option, target in (("--junit", args.junit), ("--json", args.json)):  # before running anything
+        if target is not None and (Path(target).is_dir() or not Path(target).parent.is_dir()):
+            raise UsageError(f"{option} {target}: not a file in an existing directory")
     args.baseline = str(baselines.resolve(args.baseline))
     baseline = None if args.update else gate.read_baseline(args.baseline)  # bad baseline: before running
     if args.results is not None:

@@ -73,3 +73,12 @@ def test_junit_with_update_is_one_error_line(stored: Path, tmp_path: Path, capsy
     assert main([*argv, "--junit", str(tmp_path / "j.xml")]) == 2
     assert capsys.readouterr().err.startswith("mbxval: error: --junit and --json write a comparison")
     assert not (tmp_path / "j.xml").exists() and not (tmp_path / "b.json").exists()
+
+
+@pytest.mark.parametrize("where", ["a directory", "a missing directory"])
+def test_a_junit_file_that_cannot_be_written_is_refused_before_running(tmp_path: Path, capsys, where) -> None:
+    target = tmp_path if where == "a directory" else tmp_path / "missing" / "check.xml"
+    argv = ["check", "--baseline", "default", "--junit", str(target), "--out", str(tmp_path / "run"), *NARROW]
+    assert main(argv) == 2
+    assert capsys.readouterr().err.startswith(f"mbxval: error: --junit {target}: not a file")
+    assert not (tmp_path / "run").exists()
