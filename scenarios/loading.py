@@ -7,9 +7,10 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 
+from scenarios.family import MAX_STEPS
 from scenarios.files import read_scenario
 from scenarios.limits import check_grid, check_t_end
-from scenarios.registry import build
+from scenarios.registry import build, family
 from scenarios.scenario import POINT_RESERVED, Scenario, ScenarioError
 
 
@@ -42,5 +43,37 @@ def load(name_or_path: str, overrides: Mapping[str, str] | None = None) -> Scena
         check_t_end(scenario.name, scenario.t_end)
         check_grid(scenario.name, scenario.steps + 1, len(scenario.bodies))
     else:
-        scenario = build(base, overrides=values)  # checks the same bounds
+        values, grid = _grid_keys(base, values)
+        scenario = _with_grid(build(base, overrides=values), grid)  # build checks the same bounds
     return dataclasses.replace(scenario, point=tuple(point.items())) if point else scenario
+
+
+GRID_KEYS = ("t_end", "steps")
+"""The time grid's keys, which every scenario takes: a file and a family that declares them set
+them itself; for another family `t_end` replaces the end its parameters give (turns over a speed,
+periods) and `steps` its number of equal steps, so that `run --t-end/--steps` and the bracket form
+`slider_crank[t_end=0.5]` mean the same for every scenario."""
+
+
+def _grid_keys(base: str, values: dict[str, str]) -> tuple[dict[str, str], dict[str, str]]:
+    """The family's own parameters, and the grid keys it does not declare."""
+    declared = family(base.split("/", 1)[0]).parameters
+    grid = {k: v for k, v in values.items() if k in GRID_KEYS and k not in declared}
+    return {k: v for k, v in values.items() if k not in grid}, grid
+
+
+def _with_grid(scenario: Scenario, grid: Mapping[str, str]) -> Scenario:
+    """`scenario` on the grid the undeclared grid keys give, each checked (ScenarioError)."""
+    if not grid:
+        return scenario
+    name, t_end, steps = scenario.name, scenario.t_end, scenario.steps
+    try:
+        t_end = float(grid.get("t_end", t_end))
+        steps = int(grid.get("steps", steps))
+    except ValueError as error:
+        raise ScenarioError(f"{name}: t_end must be a number and steps a whole number: {error}") from None
+    if not 1 <= steps <= MAX_STEPS:
+        raise ScenarioError(f"{name}: steps must be in [1, {MAX_STEPS}], got {steps}")
+    check_t_end(name, t_end)
+    check_grid(name, steps + 1, len(scenario.bodies))
+    return dataclasses.replace(scenario, t_end=t_end, steps=steps)

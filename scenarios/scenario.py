@@ -60,6 +60,9 @@ class Scenario:
     point: tuple[tuple[str, str], ...] = ()
     """The overrides that make this scenario a point of a parameter sweep (`point_name`): its
     name carries them, so that every point is stored under a name of its own."""
+    characteristic_rate: float | None = None
+    """The rate (rad/s) errors in rates are divided by (to the power of the level); None: derived
+    (`characteristic_rate`)."""
 
     @property
     def name(self) -> str:
@@ -93,6 +96,20 @@ class Scenario:
         t_end = self.t_end if t_end is None else t_end
         steps = self.steps if steps is None else steps
         return [t_end * k / steps for k in range(steps + 1)]
+
+
+def characteristic_rate(scenario: Scenario) -> float:
+    """The rate scale of the scenario's errors: the declared one, else |omega| of a family that has
+    that parameter (its drive speed), else 2 pi / t_end (one cycle over the run)."""
+    if scenario.characteristic_rate is not None:
+        return scenario.characteristic_rate
+    try:
+        rate = abs(float(scenario.parameter("omega")))
+    except (KeyError, TypeError, ValueError):
+        rate = math.nan
+    if not (math.isfinite(rate) and rate > 0):
+        rate = 2.0 * math.pi / scenario.t_end
+    return rate
 
 
 POINT_RESERVED = "[],="

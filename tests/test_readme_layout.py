@@ -6,7 +6,7 @@ import pathlib
 import re
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-PACKAGES = ("scenarios", "reference_solver", "adapters", "reports")
+PACKAGES = ("mbxval", "scenarios", "reference_solver", "adapters", "reports")
 
 
 def test_the_layout_section_matches_the_package_tree() -> None:

@@ -86,8 +86,14 @@ _DECLARED = (
         f"around pin.integrate (the loop of Pinocchio's simulation examples; {_SHARE})",
     ),
 )
-MEASURED = tuple(replace(m, name=alias) for alias, mode in MODES.items() for m in _DECLARED if m.name == mode)
-"""What each mode measures, the aliases (kinematics, dynamics) declared like their modes."""
+MEASURED = tuple(
+    m if alias == mode else replace(m, name=alias, alias_of=mode)
+    for alias, mode in MODES.items()
+    for m in _DECLARED
+    if m.name == mode
+)
+"""What each mode measures; the aliases (kinematics, dynamics) measure what their modes do and are
+marked as aliases, so that `mbxval list` gives one name per mode."""
 STEPS_PER_PERIOD = (100, 300, 1000)
 """RK4 steps per drive period in the dynamic sweeps of driven scenarios; the default is 1000."""
 SUBSTEPS = {DYNAMIC: (1, 4, 16, 64), BAUMGARTE: (1, 4, 16, 64), EULER: (4, 16, 64, 256)}

@@ -8,6 +8,7 @@ and no partial output file.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 import sys
 import textwrap
@@ -17,16 +18,19 @@ import numpy as np
 
 import adapters
 import reports.cli.compare_command as compare_command
+import reports.cli.schema_command as schema_command
 import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
 from reports.cli.usage import Parser, UsageError, pairs, scenario_argument
-from reports.harness import stop
+from reports.harness import provenance, stop
 from reports.harness.atomic_write import atomic_output
 from reports.harness.gate import GateError
 from reports.harness.store_files import StoreDamaged
 from reports.harness.store_lock import StoreBusy
 from scenarios import Scenario, ScenarioError, all_families, catalogue, limits, load
 from scenarios.files import scenario_toml
+from scenarios.scenario import POINT_RESERVED, characteristic_rate
+from scenarios.trajectory import Trajectory
 
 
 def _option_value(text: str) -> OptionValue:
@@ -88,7 +92,7 @@ def cmd_list(args: argparse.Namespace) -> int:
         except adapters.EngineUnavailable as error:
             print(f"engine {name}: unavailable ({error})")
     print("engines: " + ", ".join(f"{n} {a._safe_version()}" for n, a in engines.items()))
-    names = args.scenarios or catalogue(include_stress=args.stress)
+    names = args.scenarios or catalogue(include_stress=args.stress, include_dynamic=True)
     width = max(len(n) for n in names) + 2
     print("\n" + "scenario".ljust(width) + "".join(e.ljust(12) for e in engines))
     reasons: list[str] = []
@@ -109,10 +113,17 @@ def cmd_list(args: argparse.Namespace) -> int:
     if reasons:
         print("\n" + "\n".join(reasons))
     if args.scenarios:
+        print("\nscales: errors are divided by these (docs/scenario-files.md):")
+        for name in names:
+            scenario = load(name)
+            print(
+                f"  {name}: characteristic_length = {scenario.characteristic_length:g} m, "
+                f"characteristic_rate = {characteristic_rate(scenario):.6g} rad/s"
+            )
         return 0
     print("\nmodes: what each measures (derived levels named):")
     for engine, adapter in engines.items():
-        for mode in adapter.measured:
+        for mode in (m for m in adapter.measured if not m.alias_of):
             print(f"  {engine} {mode.name}: {mode.measures}")
     print("\nparameters: default and range; set them with --set NAME=VALUE:")
     for fam in all_families().values():
@@ -122,16 +133,29 @@ def cmd_list(args: argparse.Namespace) -> int:
     return 0
 
 
-def cmd_solve(args: argparse.Namespace) -> int:
-    scenario = load(args.scenario, pairs(args.set, "--set"))
-    grid = time_grid(scenario, args.t_end, args.steps, args.dt)
-    adapter = load_engine(args.engine)
-    setting = engine_setting(adapter, scenario, args.mode, args.setting)
-    result = adapter.run(scenario, setting, grid)
+def solve_trajectory(
+    scenario: Scenario,
+    engine: str,
+    mode: str | None = None,
+    options: Sequence[str] = (),
+    grid: tuple[float | None, int | None, float | None] = (None, None, None),
+) -> Trajectory:
+    """The trajectory of the scenario's output bodies by one engine, on the grid (t_end, steps, dt)
+    gives (each None: the scenario's); UsageError for bad input or a run that is not ok."""
+    times = time_grid(scenario, *grid)
+    adapter = load_engine(engine)
+    setting = engine_setting(adapter, scenario, mode, list(options))
+    result = adapter.run(scenario, setting, times)
     if result.status != "ok" or result.trajectory is None:
         when = "" if result.failure_time is None else f" at t={result.failure_time:.6g}"
-        raise UsageError(f"{args.engine} {result.status}{when}: {result.message}")
-    trajectory = result.trajectory.select(scenario.output_bodies)
+        raise UsageError(f"{engine} {result.status}{when}: {result.message}")
+    return result.trajectory.select(scenario.output_bodies)
+
+
+def cmd_solve(args: argparse.Namespace) -> int:
+    scenario = load(args.scenario, pairs(args.set, "--set"))
+    grid = (args.t_end, args.steps, args.dt)
+    trajectory = solve_trajectory(scenario, args.engine, args.mode, args.setting, grid)
     if args.out is None:
         trajectory.write_csv(sys.stdout)
     else:
@@ -140,8 +164,23 @@ def cmd_solve(args: argparse.Namespace) -> int:
     return 0
 
 
+def renamed(scenario: Scenario, name: str | None) -> Scenario:
+    """The scenario under the name a file's user gives it (`export --name`): its whole name, so
+    that the file runs beside the family it came from; unchanged without a name."""
+    if name is None:
+        return scenario
+    if not name or any(c in POINT_RESERVED + "/" for c in name) or name.endswith(".toml"):
+        raise UsageError(
+            f"--name must be a plain name, without '/', '.toml' or any of {POINT_RESERVED}: '{name}'"
+        )
+    return dataclasses.replace(scenario, family=name, variant="default", point=())
+
+
 def cmd_export(args: argparse.Namespace) -> int:
     scenario = load(args.scenario, pairs(args.set, "--set"))
+    if args.name is not None and args.format != "toml":
+        raise UsageError("--name names a scenario file: give it with --format toml")
+    scenario = renamed(scenario, args.name)
     if args.format == "toml":
         with atomic_output(args.out) as stream:
             stream.write(scenario_toml(scenario))
@@ -176,10 +215,17 @@ def _scenario_arguments(parser: argparse.ArgumentParser, engine_default: str) ->
 def parser() -> argparse.ArgumentParser:
     top = Parser(
         prog="mbxval",
-        description="Cross-validate planar multibody kinematics: solve the same mechanism with a "
-        "reference solver and several engines, and compare their errors.",
-        epilog="example: mbxval list; mbxval solve four_bar --out four_bar.csv; "
-        "mbxval run --out results; mbxval report results",
+        description=textwrap.fill(
+            "Cross-validate planar multibody kinematics: solve the same mechanism with a "
+            "reference solver and several engines, and compare their errors.",
+            90,
+        ),
+        epilog="example: mbxval list; mbxval solve four_bar --out four_bar.csv;\n"
+        "  mbxval run --out results; mbxval report results; mbxval --version",
+        formatter_class=argparse.RawDescriptionHelpFormatter,  # keeps --version's lines
+    )
+    top.add_argument(
+        "-V", "--version", action="version", version=provenance.version_text(), help="print the versions"
     )
     sub = top.add_subparsers(dest="command", required=True, parser_class=Parser)
 
@@ -204,9 +250,11 @@ def parser() -> argparse.ArgumentParser:
         default="engine",
         help="engine: the engine's own model file; toml: an mbxval scenario file",
     )
+    export.add_argument("--name", help="the scenario file's name (default: the scenario's; --format toml)")
 
     suite_commands.add_parsers(sub)
     compare_command.add_parser(sub)
+    schema_command.add_parser(sub)
     for name, subparser in sub.choices.items():
         what, example = GUIDE[name]
         subparser.description, subparser.epilog = textwrap.fill(what, 90), "example:\n  " + example
@@ -242,7 +290,7 @@ GUIDE: dict[str, tuple[str, str]] = {
     "check": (
         "Regression gate for CI: compare results with a committed baseline; exit 1 with one line per "
         "cell whose status got worse or whose error grew past the factor.",
-        "mbxval check --baseline baselines/default.json",
+        "mbxval check --baseline default --junit check.xml",
     ),
     "compare": (
         "Score a trajectory made by any tool (the CSV `mbxval solve` writes: t, then BODY.x BODY.y "
@@ -250,6 +298,11 @@ GUIDE: dict[str, tuple[str, str]] = {
         "truth and with the same metrics as a run; with --out, add it to a results store so the "
         "report shows it beside the engines.",
         "mbxval compare slider_crank my_tool.csv --label my_tool --out mbxval-report",
+    ),
+    "schema": (
+        "Print the JSON Schema of the scenario file format, so that editors complete and check "
+        "scenario files (TOML editors such as Taplo read a `#:schema FILE` first line).",
+        "mbxval schema --out scenario.schema.json",
     ),
     "bench": (
         "Measure the native solver's speed beside the engines (benchmarks, run on demand).",
@@ -264,6 +317,7 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "export": cmd_export,
     **suite_commands.COMMANDS,
     **compare_command.COMMANDS,
+    **schema_command.COMMANDS,
 }
 
 

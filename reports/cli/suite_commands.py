@@ -7,14 +7,16 @@ import importlib
 import math
 import re
 import tempfile
+from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import adapters
+import reports.cli.run_overrides as run_overrides
 from reports.cli.usage import UsageError
-from reports.harness import gate, scenario_identity, stop, store_files, suites, sweep
+from reports.harness import baselines, gate, gate_files, scenario_identity, stop, store_files, suites, sweep
 from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import Runner, RunOptions
 from reports.harness.store_lock import WriterLock
@@ -48,6 +50,7 @@ def _selection(args: argparse.Namespace) -> tuple[Suite, list[str], list[str]]:
             raise UsageError(str(error)) from error
         for name in names:
             build_scenario(name)  # a combination no single range excludes fails here, before any run
+    names = run_overrides.apply(names, run_overrides.overrides(args))
     unknown = [e for e in args.engine if e not in adapters.names()]
     if unknown:
         raise UsageError(f"unknown engine '{unknown[0]}'; known: {', '.join(adapters.names())}")
@@ -131,8 +134,9 @@ def check_scenario_names(names: list[str], out: Path, rerun: bool) -> None:
         raise UsageError(clash)
 
 
-def run_selection(selection: Selection, out: Path, progress: bool) -> Path:
-    """Run a checked selection into `out` (the caller holds its writer lock); returns `out`."""
+def run_selection(selection: Selection, out: Path, progress: bool) -> Counter[str]:
+    """Run a checked selection into `out` (the caller holds its writer lock); returns the rows this
+    run made, by status (the store may hold more: rows kept from earlier runs)."""
     suite, backend = selection.suite, selection.backend
     arguments: dict[str, Any] = {
         "truth": suite.truth,
@@ -149,7 +153,15 @@ def run_selection(selection: Selection, out: Path, progress: bool) -> Path:
             ResultsStore(out), selection.engines, selection.options, **arguments, **vars(backend)
         )
     runner.run(selection.names)
-    return out
+    return runner.made
+
+
+def run_summary(made: Counter[str], out: Path, page: Path | None) -> str:
+    """The last line of a run: this run's rows by status, then the store's total apart."""
+    counts = ", ".join(f"{status} {n}" for status, n in made.most_common())
+    stored = len(read_results(out)[0])
+    made_now = f"{made.total()} runs ({counts or 'all stored already'})"
+    return f"{made_now}; {out} holds {stored} rows; report: {page}"
 
 
 def render_reports(results: Path | str, out: str | None = None) -> Path:
@@ -159,20 +171,24 @@ def render_reports(results: Path | str, out: str | None = None) -> Path:
     return render(results, out)
 
 
+def run_and_render(
+    selection: Selection, out: Path, wait: bool, progress: bool, report: bool = True
+) -> tuple[Counter[str], Path | None]:
+    """Run a checked selection into `out` under its writer lock, then render its report (unless
+    not `report`); the rows this run made by status, and the report's page."""
+    with WriterLock(out, wait=wait):
+        made = run_selection(selection, out, progress)
+        return made, render_reports(out) if report else None
+
+
 def cmd_run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     selection = select(args, out)
-    with WriterLock(out, wait=args.wait):
-        try:
-            run_selection(selection, out, progress=not args.quiet)
-        except KeyboardInterrupt:
-            return stop.interrupted(
-                f"interrupted; the runs made so far are stored in {out}: run again to resume"
-            )
-        page = render_reports(out)
-    frame, _ = read_results(out)
-    counts = ", ".join(f"{k} {v}" for k, v in frame["status"].value_counts().items())
-    print(f"{len(frame)} runs ({counts}); report: {page}")
+    try:
+        made, page = run_and_render(selection, out, args.wait, progress=not args.quiet)
+    except KeyboardInterrupt:
+        return stop.interrupted(f"interrupted; the runs made so far are stored in {out}: run again to resume")
+    print(run_summary(made, out, page))
     return 0
 
 
@@ -191,6 +207,12 @@ def cmd_check(args: argparse.Namespace) -> int:
     """The gate runs what it compares (every selected run made afresh) unless --results is given."""
     if not (math.isfinite(args.factor) and args.factor > 0):
         raise UsageError(f"--factor must be a finite positive number, got {args.factor}")
+    if args.update and (args.junit or args.json):
+        raise UsageError("--junit and --json write a comparison; --update writes the baseline instead")
+    for option, target in (("--junit", args.junit), ("--json", args.json)):  # before running anything
+        if target is not None and (Path(target).is_dir() or not Path(target).parent.is_dir()):
+            raise UsageError(f"{option} {target}: not a file in an existing directory")
+    args.baseline = str(baselines.resolve(args.baseline))
     baseline = None if args.update else gate.read_baseline(args.baseline)  # bad baseline: before running
     if args.results is not None:
         return _check(args, Path(args.results), baseline)
@@ -198,9 +220,11 @@ def cmd_check(args: argparse.Namespace) -> int:
     selection = select(args, out or Path(tempfile.gettempdir()), rerun=True)
     if out is not None:
         with WriterLock(out, wait=args.wait):
-            return _check(args, run_selection(selection, out, progress=not args.quiet), baseline)
+            run_selection(selection, out, progress=not args.quiet)
+            return _check(args, out, baseline)
     with tempfile.TemporaryDirectory(prefix="mbxval-check-") as temporary:
-        return _check(args, run_selection(selection, Path(temporary), progress=not args.quiet), baseline)
+        run_selection(selection, Path(temporary), progress=not args.quiet)
+        return _check(args, Path(temporary), baseline)
 
 
 def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, Any]] | None) -> int:
@@ -210,6 +234,10 @@ def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, A
         print(gate.update_baseline(args.baseline, frame, meta))
         return 0
     verdict = gate.compare(baseline, frame, args.factor)
+    if args.junit:
+        gate_files.write(args.junit, gate_files.junit_xml(verdict, args.baseline, args.factor))
+    if args.json:
+        gate_files.write(args.json, gate_files.verdict_json(verdict, args.baseline, args.factor))
     print(gate.describe(verdict, args.baseline, args.factor))
     return 0 if verdict.passed else 1
 
@@ -253,6 +281,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
     _selection_arguments(run, "default")
     run.add_argument("--out", default=DEFAULT_OUT, help=f"output directory (default {DEFAULT_OUT})")
     run.add_argument("--quiet", action="store_true", help="no progress bar")
+    run_overrides.add_arguments(run)
     run.add_argument(
         "--sweep",
         action="append",
@@ -270,7 +299,13 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
     report.add_argument("--out", help="directory for index.html and summary.md (default: RESULTS)")
 
     check = sub.add_parser("check", help="regression gate: compare results with a baseline (exit 1 if worse)")
-    check.add_argument("--baseline", required=True, help="baseline JSON file (see baselines/)")
+    check.add_argument(
+        "--baseline",
+        required=True,
+        help=f"baseline JSON file, or a shipped one by name ({', '.join(baselines.names())})",
+    )
+    check.add_argument("--junit", metavar="FILE", help="also write the verdict as JUnit XML, a test per cell")
+    check.add_argument("--json", metavar="FILE", help="also write the verdict as JSON")
     check.add_argument("--results", help="compare these stored results instead of running the suite")
     _selection_arguments(check, "quick")
     check.add_argument("--out", help="directory for the results of the run (default: a temporary one)")

@@ -152,7 +152,8 @@ class DaskRunner(Runner):
         from distributed import as_completed
 
         waiting = Counter(group.scenario.name for _, group, _ in futures.values())
-        with progress_bar(len(futures), self.progress, "group") as bar:
+        runs = sum(len(jobs) for _, _, jobs in futures.values())
+        with progress_bar(runs, self.progress, "run") as bar:
             for batch in as_completed([f for f, _, _ in futures.values()]).batches():
                 for future in batch:
                     _, group, jobs = futures.pop(future.key)
@@ -167,7 +168,7 @@ class DaskRunner(Runner):
                     if not waiting[name]:
                         truths.pop(name, None)  # its last group is in: nothing holds the truth now
                     bar.set_description(f"{name} {group.engine}", refresh=False)
-                    bar.update()
+                    bar.update(len(jobs))
                 self._save()
 
     def _outcome(self, future: Any, group: Group, jobs: list[tuple[Setting, bool]]) -> list[Stored]:

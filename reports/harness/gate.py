@@ -54,9 +54,26 @@ class Regression:
 
 
 @dataclass(frozen=True)
+class Cell:
+    """One cell the gate looked at: its status now (`missing` for a default row the results lack)
+    and the baseline's, each level's error now and in the baseline, and what regressed ('' if
+    nothing did)."""
+
+    scenario: str
+    engine: str
+    setting: str
+    status: str
+    baseline_status: str
+    errors: tuple[tuple[str, float | None, float | None], ...]
+    what: str
+
+
+@dataclass(frozen=True)
 class GateResult:
     compared: int
     regressions: tuple[Regression, ...]
+    cells: tuple[Cell, ...] = ()
+    """Every cell compared and every missing one, in the baseline's order (for --junit, --json)."""
 
     @property
     def passed(self) -> bool:
@@ -142,7 +159,7 @@ def compare(
             f"(such as {example}): it is older or smaller than what was run; update it with --update"
         )
     covered = set(zip(current["scenario"], current["engine"], strict=True))
-    regressions, compared = [], 0
+    regressions, cells, compared = [], [], 0
     for old in baseline:
         new = index.get(_key(old))
         label = DEFAULT if old["is_default"] else old["setting"]
@@ -150,14 +167,23 @@ def compare(
             if old["is_default"] and (old["scenario"], old["engine"]) in covered:
                 what = f"missing: no default-setting row (baseline: {old['status']})"
                 regressions.append(Regression(old["scenario"], old["engine"], label, what))
+                cells.append(_cell(old, None, label, what))
             continue
         compared += 1
         what = _worse(old, new, factor)
         if what:
             regressions.append(Regression(old["scenario"], old["engine"], label, what))
+        cells.append(_cell(old, new, label, what))
     if compared == 0:
         raise GateError("0 cells compared: the results and the baseline have no cell in common")
-    return GateResult(compared, tuple(regressions))
+    return GateResult(compared, tuple(regressions), tuple(cells))
+
+
+def _cell(old: dict[str, Any], new: dict[str, Any] | None, label: str, what: str) -> Cell:
+    before, after = level_errors(old), level_errors(new or {})
+    errors = tuple((level, after[level], before[level]) for level in LEVELS)
+    status = "missing" if new is None else new["status"]
+    return Cell(old["scenario"], old["engine"], label, status, old["status"], errors, what)
 
 
 def level_errors(cell: dict[str, Any]) -> dict[str, float | None]:

@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from scenarios.scenario import LEVELS, Level, Scenario
+from scenarios.scenario import LEVELS, Level, Scenario, characteristic_rate
 from scenarios.trajectory import Trajectory
 
 LEVEL_COLUMNS: dict[Level, str] = {level: f"error_{level}" for level in LEVELS}
@@ -32,17 +32,6 @@ SCALE_DEFINITION = (
     "driver's |ω| (crank, input gear, cam, planet arm, pinion; the angular frequency of an "
     "oscillating driver). `error` is the position level."
 )
-
-
-def characteristic_rate(scenario: Scenario) -> float:
-    """|omega| of the scenario's driver, or 2 pi / t_end when it declares none."""
-    try:
-        rate = abs(float(scenario.parameter("omega")))  # type: ignore[arg-type]
-    except (KeyError, TypeError, ValueError):
-        rate = math.nan
-    if not (math.isfinite(rate) and rate > 0):
-        rate = 2.0 * math.pi / scenario.t_end
-    return rate
 
 
 def level_scales(length: float, rate: float, level: Level) -> tuple[float, float]:

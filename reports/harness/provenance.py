@@ -33,6 +33,21 @@ def packages() -> dict[str, str]:
     return versions
 
 
+def version() -> str:
+    """mbxval's own version, from the installed package's metadata ('unknown' when not installed)."""
+    try:
+        return metadata.version("mbxval")
+    except metadata.PackageNotFoundError:
+        return "unknown"
+
+
+def version_text() -> str:
+    """What `mbxval --version` prints: our version, then Python's and each package's we run on
+    (the engines among them), one per line."""
+    lines = [f"mbxval {version()}", f"python {platform.python_version()}"]
+    return "\n".join(lines + [f"{name} {v}" for name, v in packages().items()])
+
+
 def git_revision() -> str:
     """HEAD of the checkout this code runs from, with `-dirty` for local changes; 'unknown' without git."""
     root = Path(__file__).resolve().parent.parent

@@ -18,6 +18,7 @@ import dataclasses
 import functools
 import sys
 import threading
+from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -93,6 +94,8 @@ class Runner:
         self.settings, self.loader = settings, loader
         self.residual = residual if residual is not None else reference_residual()
         self.adapters: dict[str, Adapter | str] = {}
+        self.made: Counter[str] = Counter()
+        """The rows this runner made, by status: what one run did, apart from the store's total."""
         self.revision = provenance.git_revision()
         self.policy = ResumePolicy(options.rerun, options.keep_failures, options.keep_stale)
         self.stored = StoredRuns(store, self.revision, self.policy)
@@ -122,8 +125,7 @@ class Runner:
 
     def _execute(self, groups: list[tuple[Group, list[tuple[Setting, bool]]]]) -> None:
         """Run each group's pending jobs here, one after another (unavailable groups left out)."""
-        truths_needed = {g.scenario.name for g, jobs in groups if jobs}
-        total = sum(len(jobs) for _, jobs in groups) + len(truths_needed)
+        total = sum(len(jobs) for _, jobs in groups)  # the bar counts runs: a truth is not one
         truths: dict[str, NamedTruth | str] = {}
         with progress_bar(total, self.progress, "run") as bar:
             for group, jobs in groups:
@@ -136,7 +138,6 @@ class Runner:
                     bar.set_description(f"{name} truth", refresh=False)
                     truths[name] = solve_truth(self.truth, group.scenario, self.options.truth_timeout)
                     self._put_truth(group.scenario, truths[name])
-                    bar.update()
                 done = functools.partial(tick, bar, f"{name} {group.engine}")
                 truth = truths.get(name, "")
                 for row, trajectory in run_group(group, jobs, truth, self.options, self.residual, done):
@@ -167,6 +168,7 @@ class Runner:
         """Store a row made now: stamped with the revision, not stale."""
         row.update(revision=self.revision, stale=False, workers=self.workers)
         self.store.add(row, trajectory)
+        self.made[str(row["status"])] += 1
 
     def _save(self) -> None:
         versions = {

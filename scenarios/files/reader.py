@@ -300,6 +300,7 @@ def parse_scenario(
         t_end=top["t_end"],
         steps=top["steps"],
         characteristic_length=top["characteristic_length"],
+        characteristic_rate=top.get("characteristic_rate"),
         outputs=reader.value(doc.get("outputs", []), TOP_LEVEL["outputs"], "outputs"),
         levels=reader.value(doc.get("levels", list(LEVELS)), TOP_LEVEL["levels"], "levels"),
         parameters=top.get("parameters", ()),

@@ -46,6 +46,8 @@ class Key:
     range: str = "finite"
     choices: tuple[str, ...] = ()
     minimum_length: int = 0
+    doc: str = ""
+    """What the key means, for people (the JSON Schema's description)."""
 
 
 NUMBER = Key("number")
@@ -66,10 +68,23 @@ TOP_LEVEL: dict[str, Key] = {
     "description": NAME,
     "t_end": POSITIVE,
     "steps": Key("integer", "positive"),
-    "characteristic_length": POSITIVE,
+    "characteristic_length": Key(
+        "number",
+        "positive",
+        doc="m: position errors are divided by it (velocity errors by it times the rate)",
+    ),
+    "characteristic_rate": Key(
+        "number",
+        "positive",
+        doc="rad/s: errors are divided by it to the power of their level (angles: rate^0, 1, 2; "
+        "lengths: the length times that); default 2 pi / t_end",
+    ),
     "outputs": Key("strings"),
     "levels": Key("levels"),
-    "parameters": Key("parameters"),
+    "parameters": Key(
+        "parameters",
+        doc="older files only: where the file came from; not used to build, not written any more",
+    ),
     "gravity": Key("vec2"),
     "analysis": Key("choice", choices=("kinematic", "dynamic")),
     "bodies": Key("tables", minimum_length=1),

@@ -14,7 +14,7 @@ from typing import Any
 
 from scenarios.bodies import Body, Point
 from scenarios.files.schema import FORMAT, MOTIONS, PROFILES, SECTIONS, Kind, kind_name
-from scenarios.scenario import LEVELS, Scenario, ScenarioError
+from scenarios.scenario import LEVELS, Scenario, ScenarioError, characteristic_rate
 
 
 def toml_value(value: Any) -> str:
@@ -78,7 +78,7 @@ def _body(body: Body) -> dict[str, Any]:
 
 WRITTEN = frozenset(
     {"family", "variant", "description", "t_end", "steps", "characteristic_length", "outputs", "levels"}
-    | {"parameters", "bodies", "joints", "drivers", "forces", "gravity", "analysis"}
+    | {"characteristic_rate", "bodies", "joints", "drivers", "forces", "gravity", "analysis"}
     | {"angle_outputs"}
 )
 """The Scenario fields format 1 holds. Any other field with a value off its default is refused, so
@@ -88,6 +88,15 @@ that a file never silently drops part of a scenario."""
 NAME_TAGS = frozenset({"point"})
 """Scenario fields that only tag a scenario's name (a swept point's overrides), not its mechanism: a
 file of a swept point is written from the family with --set instead, so the writer refuses them."""
+ORIGIN = frozenset({"parameters"})
+"""Scenario fields that say where a mechanism came from (a family's parameter values), not what it
+is: a file is the mechanism, so they are not written (the rate they give is: characteristic_rate)."""
+
+
+def read_back(scenario: Scenario) -> Scenario:
+    """The scenario its file reads back as: the same mechanism, grid and scales (its rate declared),
+    without the ORIGIN fields a file does not hold."""
+    return dataclasses.replace(scenario, parameters=(), characteristic_rate=characteristic_rate(scenario))
 
 
 def _default(field: dataclasses.Field[Any]) -> Any:
@@ -98,7 +107,7 @@ def _default(field: dataclasses.Field[Any]) -> Any:
 
 def _refuse_unwritten(scenario: Scenario) -> None:
     for field in dataclasses.fields(scenario):
-        if field.name not in WRITTEN and getattr(scenario, field.name) != _default(field):
+        if field.name not in WRITTEN | ORIGIN and getattr(scenario, field.name) != _default(field):
             raise ScenarioError(
                 f"{scenario.name}: scenario files (format {FORMAT}) cannot hold {field.name} yet"
             )
@@ -120,6 +129,7 @@ def scenario_toml(scenario: Scenario) -> str:
         f"t_end = {toml_value(float(scenario.t_end))}",
         f"steps = {int(scenario.steps)}",
         f"characteristic_length = {toml_value(float(scenario.characteristic_length))}",
+        f"characteristic_rate = {toml_value(float(characteristic_rate(scenario)))}",
     ]
     if scenario.outputs:
         lines.append(f"outputs = {toml_value(scenario.outputs)}")
@@ -129,8 +139,6 @@ def scenario_toml(scenario: Scenario) -> str:
         lines.append(f"gravity = {toml_value(tuple(float(g) for g in scenario.gravity))}")
     if scenario.analysis != "kinematic":
         lines.append(f"analysis = {toml_value(scenario.analysis)}")
-    if scenario.parameters:
-        lines += ["", "[parameters]", *(f"{k} = {toml_value(v)}" for k, v in scenario.parameters)]
     for body in scenario.bodies:
         lines += _table("bodies", _body(body))
     sections = (("joints", scenario.joints), ("drivers", scenario.drivers), ("forces", scenario.forces))

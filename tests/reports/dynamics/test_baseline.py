@@ -3,15 +3,13 @@ every scenario of the suite on every engine, and the gate sees a regression in i
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pandas as pd
 
 import adapters
 from reports.dynamics.cases import scenario_names
-from reports.harness import gate
+from reports.harness import baselines, gate
 
-BASELINE = Path(__file__).resolve().parents[3] / "baselines" / "dynamics.json"
+BASELINE = baselines.resolve("dynamics")
 
 
 def test_every_scenario_of_the_suite_has_a_default_cell_per_engine() -> None:

@@ -6,17 +6,17 @@ from __future__ import annotations
 import contextlib
 import io
 import math
-import shutil
 from pathlib import Path
 
 import pandas as pd
 import pytest
 
 from reports.cli.main import main
-from reports.harness import gate
-from reports.harness.results_store import ResultsStore, key_of, read_results
+from reports.harness import baselines, gate
+from reports.harness.results_store import read_results
+from tests.support.stores import doctor
 
-BASELINE = Path(__file__).resolve().parents[3] / "baselines" / "default.json"
+BASELINE = baselines.resolve("default")
 SUBSET = ["--scenario", "slider_crank", "--scenario", "cam_roller"]
 
 
@@ -37,18 +37,6 @@ def test_check_passes_on_the_baseline(checked) -> None:
     frame, _ = read_results(out)
     compared = int(text.split("): ")[1].split(" cells")[0])
     assert compared == len(frame) >= 8  # 2 scenarios x 4 engines, each at its default setting
-
-
-def doctor(source: Path, target: Path, edit) -> Path:  # type: ignore[no-untyped-def]
-    """A copy of the results with rows edited and committed as the store commits them (an edit of
-    the file alone is refused as damage: see tests/reports/test_reliability.py)."""
-    shutil.copytree(source, target, symlinks=True)
-    store = ResultsStore(target)
-    frame, _ = read_results(target)
-    edit(frame)
-    store.rows = {key_of(r): r for r in frame.to_dict("records")}
-    store.save(store.meta)
-    return target
 
 
 def run_check(capsys: pytest.CaptureFixture[str], *args: str) -> tuple[int, str]:

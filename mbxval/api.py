@@ -1,0 +1,182 @@
+"""The Python API: the command line's own steps (reports.cli), called with Python values.
+
+Each function checks its input exactly as the matching command does and raises what the command
+would report as `mbxval: error: ...`: ArgumentError (a ValueError) or ScenarioError (a ValueError
+too) with the same message.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from collections.abc import Iterator, Mapping, Sequence
+from contextlib import contextmanager
+from pathlib import Path
+
+import pandas as pd
+
+import reports.cli.compare_command as compare_command
+import reports.cli.suite_commands as suite_commands
+from adapters.base import OptionValue
+from reports.cli.main import parser, solve_trajectory
+from reports.cli.usage import UsageError
+from reports.harness import results_store
+from reports.harness.imported import score
+from reports.harness.trajectory_file import ImportedTrajectory, TrajectoryFileError, read_trajectory
+from scenarios import Scenario
+from scenarios import load as load_by_name
+
+Value = float | int | str
+"""A parameter's value: given as a number or as the text `--set` would take."""
+PathLike = str | os.PathLike[str]
+
+
+class ArgumentError(ValueError):
+    """An argument the command line would refuse (the message is the command line's)."""
+
+
+@contextmanager
+def _checked() -> Iterator[None]:
+    """The command line's UsageError as an ArgumentError, with its message."""
+    try:
+        yield
+    except UsageError as error:
+        raise ArgumentError(str(error)) from None
+
+
+def _texts(values: Mapping[str, object] | None) -> list[str]:
+    """`NAME=VALUE` texts, as the command line takes them (str of a float round-trips)."""
+    return [f"{key}={value}" for key, value in (values or {}).items()]
+
+
+def load_scenario(name_or_file: str | PathLike, **parameters: Value) -> Scenario:
+    """The scenario a built-in name (`four_bar`, `slider_crank/offset`, the bracket form
+    `slider_crank[offset=0.05]`) or a scenario file (`*.toml`) describes, with parameters set as
+    `--set` sets them: a family's by name, a file's by dotted key path (pass those as
+    `**{"bodies.crank.mass": 2.0}`), and the grid keys `t_end` and `steps` for every scenario.
+    Raises ScenarioError naming an unknown scenario or parameter, or a value out of its range."""
+    return load_by_name(os.fspath(name_or_file), {key: str(value) for key, value in parameters.items()})
+
+
+def _scenario(scenario: str | PathLike | Scenario, parameters: Mapping[str, Value]) -> Scenario:
+    if not isinstance(scenario, Scenario):
+        return load_scenario(scenario, **parameters)
+    if parameters:
+        raise ArgumentError(f"parameters {', '.join(parameters)} given with a built Scenario: set them in it")
+    return scenario
+
+
+def solve(
+    scenario: str | PathLike | Scenario,
+    engine: str = "reference",
+    mode: str | None = None,
+    settings: Mapping[str, OptionValue] | None = None,
+    t_end: float | None = None,
+    steps: int | None = None,
+    **parameters: Value,
+) -> pd.DataFrame:
+    """The canonical trajectory of `scenario` by one engine, as `mbxval solve` writes it: column `t`
+    (steps + 1 rows over [0, t_end], each default the scenario's), then `<body>.x .y .theta .vx .vy
+    .omega .ax .ay .alpha` for every output body, then the extras the engine writes.
+
+    `mode` and `settings` choose the engine's setting (`settings={"dt": 1e-4}`; the engine's default
+    otherwise); `parameters` set the scenario's as in `load_scenario`. Raises ArgumentError for an
+    unknown engine, mode or setting, a grid out of range, or a run that ends other than ok (its
+    status and message), and ScenarioError for a scenario that cannot be built."""
+    built = _scenario(scenario, parameters)
+    with _checked():
+        grid = (t_end, steps, None)
+        trajectory = solve_trajectory(built, engine, mode, _texts(settings), grid)
+    return trajectory.to_frame()
+
+
+def run(
+    scenarios: Sequence[str] | str | None = None,
+    engines: Sequence[str] | str | None = None,
+    *,
+    suite: str = "default",
+    out: PathLike | None = None,
+    t_end: float | None = None,
+    steps: int | None = None,
+    parameters: Mapping[str, Value] | None = None,
+    sweep: Mapping[str, str] | None = None,
+    repeats: int | None = None,
+    warmup: int | None = None,
+    timeout: float | None = None,
+    rerun: bool = False,
+    report: bool = True,
+    progress: bool = False,
+) -> pd.DataFrame:
+    """Run the harness as `mbxval run` does and return the results table of `out`: one row per run
+    (the rows stored there before are kept, and returned too, unless `rerun`).
+
+    `scenarios` and `engines` narrow the `suite` (default: all of its scenarios, every engine);
+    `t_end`, `steps` and `parameters` apply to every scenario (each becomes a bracket point such as
+    `slider_crank[offset=0.05]`); `sweep` maps a parameter to a spec (`"log:1e-3:1e-1:5"`, `"a,b"`).
+    `out` defaults to a new temporary directory; the directory is `frame.attrs["results"]`, and with
+    `report` it holds index.html. Raises ArgumentError or ScenarioError before anything runs."""
+    target = Path(tempfile.mkdtemp(prefix="mbxval-run-")) if out is None else Path(out)
+    args = parser().parse_args(["run", "--out", str(target)])
+    args.scenario = [scenarios] if isinstance(scenarios, str) else list(scenarios or [])
+    args.engine = [engines] if isinstance(engines, str) else list(engines or [])
+    args.suite, args.t_end, args.steps, args.rerun = suite, t_end, steps, rerun
+    args.repeats, args.warmup, args.timeout = repeats, warmup, timeout
+    args.set, args.sweep = _texts(parameters), _texts(sweep)
+    try:
+        with _checked():
+            selection = suite_commands.select(args, target)
+            suite_commands.run_and_render(selection, target, wait=False, progress=progress, report=report)
+    except BaseException:
+        if out is None:
+            shutil.rmtree(target, ignore_errors=True)  # the temporary directory made above
+        raise
+    return read_results(target)
+
+
+def compare(
+    scenario: str | PathLike | Scenario,
+    trajectory: pd.DataFrame | PathLike,
+    label: str = "trajectory",
+    **parameters: Value,
+) -> pd.DataFrame:
+    """Score a trajectory made by any tool as `mbxval compare` does: against the scenario's truth,
+    with the runs' metrics. `trajectory` is a DataFrame or a CSV file with the columns `solve`
+    gives (bodies and levels may be missing) on the scenario's time grid. Returns the scored row
+    (one row; `error_position`, `error_velocity`, `error_acceleration`, `truth`, ...). Raises
+    ArgumentError for a trajectory that cannot be scored (the message says why)."""
+    built = _scenario(scenario, parameters)
+    with _checked():
+        compare_command.check_label(label)
+        if isinstance(trajectory, pd.DataFrame):
+            imported = _read_frame(trajectory, built, label)
+        else:
+            imported = _read_file(trajectory, built)
+    return pd.DataFrame([score(built, imported, label).row])
+
+
+def _read_file(path: PathLike, scenario: Scenario) -> ImportedTrajectory:
+    try:
+        return read_trajectory(os.fspath(path), scenario)
+    except TrajectoryFileError as error:
+        raise ArgumentError(str(error)) from None
+
+
+def _read_frame(frame: pd.DataFrame, scenario: Scenario, label: str) -> ImportedTrajectory:
+    """The frame read through the CSV reader, so that it gets every check a file gets."""
+    with tempfile.TemporaryDirectory(prefix="mbxval-compare-") as directory:
+        path = Path(directory) / f"{label}.csv"
+        frame.to_csv(path, index=False, float_format="%.17g")
+        try:
+            return read_trajectory(os.fspath(path), scenario)
+        except TrajectoryFileError as error:
+            raise ArgumentError(str(error).replace(str(path), "the trajectory DataFrame")) from None
+
+
+def read_results(directory: PathLike) -> pd.DataFrame:
+    """The results table stored in `directory` (by `run`, `mbxval run` or `mbxval compare --out`),
+    verified against its checksums; the sidecar (machine, versions, revision, date) is
+    `frame.attrs["meta"]` and the directory `frame.attrs["results"]`."""
+    frame, meta = results_store.read_results(directory)
+    frame.attrs.update(meta=meta, results=str(directory))
+    return frame
