@@ -268,12 +268,13 @@ def exact(scenario: Scenario, times: np.ndarray | list[float] | None = None) -> 
     `[parameters]` table says, and gets NoClosedForm."""
     if scenario.family not in FAMILIES:
         raise NoClosedForm(f"{scenario.name}: no closed form: not a family with one")
-    if family_twin(scenario) is None:
+    twin = family_twin(scenario)
+    if twin is None:
         raise NoClosedForm(
             f"{scenario.name}: no closed form: not the mechanism the family {scenario.family} builds "
             "from the parameters it records"
         )
-    if scenario.family.startswith("cam_") and scenario.parameter("profile") != "disc":
+    if twin.family.startswith("cam_") and twin.parameter("profile") != "disc":
         raise NoClosedForm("closed forms exist for the eccentric disc profile only")
     grid = np.asarray(scenario.times() if times is None else times, dtype=float)
-    return FAMILIES[scenario.family](scenario, grid)
+    return FAMILIES[twin.family](twin, grid)  # the twin carries the family's parameters

@@ -58,7 +58,7 @@ def test_the_readme_example_edited_by_set_scores_round_off(tmp_path: Path, capsy
 
 
 def test_an_export_with_its_rate_edited_gets_the_native_truth(tmp_path: Path) -> None:
-    path = edited_export(tmp_path, "rate = 50.0", "rate = 20.0")
+    path = edited_export(tmp_path, " rate = 50.0 }", " rate = 20.0 }")
     scenario = read_scenario(path)
     assert family_twin(scenario) is None
     with pytest.raises(NoClosedForm, match="not the mechanism the family slider_crank builds"):
@@ -71,22 +71,28 @@ def test_an_export_with_its_rate_edited_gets_the_native_truth(tmp_path: Path) ->
     assert np.allclose(crank, 20.0, rtol=0, atol=1e-9)
 
 
-def test_an_edited_parameters_table_alone_does_not_choose_a_closed_form(tmp_path: Path) -> None:
-    """The table is inert: saying omega = 20 there leaves a mechanism turning at 50 rad/s."""
-    path = edited_export(tmp_path, "omega = 50.0", "omega = 20.0")
+def test_an_old_files_parameters_table_alone_does_not_choose_a_closed_form(tmp_path: Path) -> None:
+    """An old file's `[parameters]` table (exports no longer write one) is inert: saying omega = 20
+    there leaves a mechanism turning at 50 rad/s, which the family at 20 rad/s is not."""
+    path = tmp_path / "legacy.toml"
+    path.write_text(scenario_toml(scenarios.build("slider_crank")) + "\n[parameters]\nomega = 20.0\n")
     scenario = read_scenario(path)
     assert family_twin(scenario) is None
     assert independent_truth(scenario, np.asarray(scenario.times())).name == NATIVE
 
 
-def test_a_file_that_only_borrows_a_family_name_has_no_closed_form(tmp_path: Path) -> None:
+def test_the_family_mechanism_under_another_name_is_still_recognised_by_its_digest(tmp_path: Path) -> None:
+    """Identity is the mechanism, not the name: the export renamed keeps no closed form (the name
+    says which family to rebuild, and none is called so), and the export as written keeps it."""
     text = scenario_toml(scenarios.build("slider_crank"))
-    body, table = text.split("\n[parameters]\n", 1)
-    path = tmp_path / "bare.toml"  # the same mechanism without the table that says where it came from
-    path.write_text(body + "\n" + table.split("\n\n", 1)[1])
-    assert family_twin(read_scenario(path)) is None
+    renamed = tmp_path / "mine.toml"
+    renamed.write_text(text.replace('name = "slider_crank"', 'name = "my_crank"', 1))
+    assert family_twin(read_scenario(renamed)) is None
     with pytest.raises(NoClosedForm):
-        exact(read_scenario(path))
+        exact(read_scenario(renamed))
+    same = tmp_path / "same.toml"
+    same.write_text(text)
+    assert family_twin(read_scenario(same)) is not None
 
 
 def test_an_unedited_export_keeps_the_closed_form_bit_for_bit() -> None:
