@@ -42,7 +42,7 @@ from adapters.base import Adapter, Option, Setting, Unsupported
 from adapters.exudyn.initial_state import released_start
 from adapters.exudyn.loads import FORCES
 from adapters.exudyn.model import ExudynModel, ModelError, build_model
-from adapters.exudyn.settings import rule_default, rule_sweep
+from adapters.exudyn.settings import STEPS_PER_PERIOD, rule_default, rule_sweep
 from adapters.exudyn.simulation import Plan, States, assemble, march, quiet, simulation_settings, trajectory
 from adapters.modes import ENGINE, Mode
 from scenarios.cam_linkage import CAM_MODELS, default_cam_model, linkage_reason
@@ -90,6 +90,8 @@ ROWS: dict[type, int] = {
 OPTIONS = ("dt", "rho", "tol", "mass_scale", "cams", "cam_model")
 SPARSE_ABOVE = 100
 """Coordinates above which free dynamics uses Exudyn's sparse linear solver."""
+
+
 @dataclass(frozen=True)
 class ExudynRun:
     model: ExudynModel
@@ -101,6 +103,7 @@ class ExudynRun:
 class ExudynAdapter(Adapter):
     name = "exudyn"
     dynamics = True
+    rule = f"GA3 (spectral radius 0.9, full Newton) at 1/{STEPS_PER_PERIOD} of the shortest period"
     measured = (
         Mode(
             "GA3",

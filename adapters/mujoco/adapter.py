@@ -25,7 +25,7 @@ import warnings
 import mujoco
 import numpy as np
 
-from adapters.base import Adapter, Option, Setting, Unsupported
+from adapters.base import Adapter, Option, OptionValue, Setting, Unsupported
 from adapters.lattice import lattice_point
 from adapters.modes import ADAPTER, ENGINE, Mode
 from adapters.mujoco.cam_load import check_contacts, knife_edge_reason, preload
@@ -38,7 +38,15 @@ from adapters.mujoco.loads import loads_of
 from adapters.mujoco.mjcf import Physics
 from adapters.mujoco.model import Model
 from adapters.mujoco.scale import dof_sizes, scale_of
-from adapters.mujoco.settings import KINEMATIC_MODES, rule_default, rule_sweep, time_constant
+from adapters.mujoco.settings import (
+    IMPEDANCE,
+    KINEMATIC_MODES,
+    STEPS_PER_PERIOD,
+    TC_STEPS,
+    rule_default,
+    rule_sweep,
+    time_constant,
+)
 from adapters.mujoco.stepping import advance, read_outputs, record, side_step, soften
 from adapters.mujoco.tree import TreeError, plan_tree
 from scenarios.cam_linkage import CAM_MODELS, cam_model_scenario, default_cam_model
@@ -93,6 +101,10 @@ class MujocoAdapter(Adapter):
     )
     modes = MODES
     dynamics = True
+    rule = (
+        f"RK4 at 1/{STEPS_PER_PERIOD} of the shortest period, the equalities' time constant tc = "
+        f"{TC_STEPS:g} steps (in seconds), impedance {IMPEDANCE}; every scenario, whatever its size"
+    )
     options = (
         Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
         Option("tc", float, 0.0, 1e3, low_open=True, unit="s", help="solref time constant of the equalities"),
@@ -134,12 +146,16 @@ class MujocoAdapter(Adapter):
         dynamic = scenario.analysis == "dynamic"
         swept = rule_sweep(scenario, DYNAMIC_MODES if dynamic else KINEMATIC_MODES, closes_loops(scenario))
         base = self.default_setting(scenario)
-        extra = dict(base.options)
-        extra.pop("dt"), extra.pop("tc"), extra.pop("impedance")
+        extra = {k: v for k, v in base.options if k not in ("dt", "tc", "impedance")}
         settings = [s.replace(**extra) if extra else s for s in swept]
-        if base.get("cam_model") == "linkage":  # MuJoCo's own cam contact as curves of their own
-            contact = {"cam_model": "contact", "preload": preload(scenario), "contact_impedance": 0.99}
-            settings += [s.replace(**contact) for s in settings if s.get("impedance") == base["impedance"]]
+        if base.get("cam_model") == "linkage":  # MuJoCo's own cam contact: its step ladders
+            contact: dict[str, OptionValue] = {
+                "cam_model": "contact",
+                "preload": preload(scenario),
+                "contact_impedance": 0.99,
+            }
+            ladders = [s for s in settings if s["impedance"] == base["impedance"] and _at_tc(s)]
+            settings += [s.replace(**contact) for s in ladders]
         return settings
 
     def build(self, scenario: Scenario, setting: Setting) -> Model:
@@ -238,6 +254,11 @@ class MujocoAdapter(Adapter):
         built = self.build(scenario, setting)
         with open(path, "w", encoding="utf-8") as stream:
             stream.write(built.xml)
+
+
+def _at_tc(setting: Setting) -> bool:
+    """Whether the setting's time constant is the rule's number of steps (a point of a step ladder)."""
+    return abs(float(setting["tc"]) - TC_STEPS * float(setting["dt"])) <= 1e-9 * float(setting["tc"])
 
 
 def _solimp(impedance: float, length: float) -> tuple[float, float, float, float, float]:

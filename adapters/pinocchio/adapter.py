@@ -117,6 +117,11 @@ class Built:
 
 class PinocchioAdapter(Adapter):
     name = "pinocchio"
+    rule = (
+        "kinematic scenarios: Newton at each output time (no step, tol 1e-15); free dynamics: "
+        f"baumgarte (RK4) at 1/{STEPS_PER_PERIOD[BAUMGARTE]} of the shortest period, gains critically "
+        "damped at one radian of it"
+    )
     measured = MEASURED
     modes = tuple(MODES)
     dynamics = True

@@ -23,10 +23,10 @@ import pytest
 
 import reference_solver
 import scenarios
-from adapters.step_rule import shortest_period
 from adapters.base import Setting
 from adapters.exudyn import ExudynAdapter
 from adapters.exudyn.model import build_model
+from adapters.step_rule import shortest_period
 from scenarios import Point, RevoluteRevolute, Scenario, Trajectory
 from scenarios.closed_form import exact
 from scenarios.scenario import Level
