@@ -19,10 +19,10 @@ from scenarios.scenario import Scenario
 STEPS_PER_PERIOD = 2000
 """Exudyn's constant of the rule."""
 LADDERS = {
-    "GA3": (200, 600, 2000, 6000, 20000, 60000),
-    "GA3-rho0.5": (600, 2000, 6000),
-    "GA3-modified": (600, 2000, 6000),
-    "TR2": (200, 600, 2000, 6000, 20000),
+    "GA3": (200, 600, 2000, 6000, 20000),
+    "GA3-rho0.5": (600, 2000),
+    "GA3-modified": (600, 2000),
+    "TR2": (200, 600, 2000, 6000),
 }
 """Steps per shortest period in the sweep, per mode."""
 RHOS = (0.0, 0.6)
