@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
+from adapters.base import Setting
 from scenarios.bodies import GROUND
 from scenarios.drivers import PointPathDriver, RelativeDisplacementDriver
 from scenarios.forces import AppliedForce, AppliedTorque, RotationalSpringDamper, SpringDamper
@@ -53,6 +54,14 @@ def shortest_period(scenario: Scenario) -> float:
 def rule_step(scenario: Scenario, steps_per_period: float) -> float:
     """The default step of an engine taking `steps_per_period` steps per shortest period."""
     return shortest_period(scenario) / steps_per_period
+
+
+def at_step(setting: Setting, dt: float) -> Setting:
+    """`setting` moved to the step `dt`, its time constant (`tc`, seconds) kept the same number of
+    steps: the rule ties both to the step."""
+    if setting.get("tc") is None or setting.get("dt") is None:
+        return setting.replace(dt=dt)
+    return setting.replace(dt=dt, tc=float(setting["tc"]) * dt / float(setting["dt"]))
 
 
 def _periods(scenario: Scenario) -> Iterator[float]:

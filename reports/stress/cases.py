@@ -20,6 +20,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from adapters.base import Adapter, Setting
+from adapters.step_rule import at_step
 from scenarios import build
 from scenarios.scenario import Scenario
 
@@ -88,9 +89,8 @@ def per_revolution(speed: float) -> Settings:
 
     def settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
         nominal = adapter.default_setting(build("slider_crank"))
-        ratio = NOMINAL_SPEED / speed
-        timed = {key: float(nominal[key]) * ratio for key in ("dt", "tc") if nominal.get(key) is not None}
-        return [nominal.replace(**timed)] if "dt" in timed else None
+        dt = nominal.get("dt")
+        return None if dt is None else [at_step(nominal, float(dt) * NOMINAL_SPEED / speed)]
 
     return settings
 
@@ -126,7 +126,7 @@ def heavy(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
     default = adapter.default_setting(scenario)
     period = 2 * math.pi / abs(float(scenario.parameter("omega")))
     if adapter.name == "mujoco":
-        return [default, default.replace(dt=float(default["dt"]) / 10)]
+        return [default, at_step(default, float(default["dt"]) / 10)]
     if adapter.name == "pinocchio":
         return [default, Setting.of("dynamic", dt=period / 1000, kp=0.0, kd=0.0)]
     return None
