@@ -29,6 +29,13 @@ def lattice_point(t0: float, t: float, h: float) -> tuple[int, float]:
     return k, (0.0 if abs(rest) <= ON_LATTICE * h else rest)
 
 
+def check_grid(times: np.ndarray, start: float) -> None:
+    """ValueError unless the output times rise from `start` (a march only goes forward)."""
+    grid = np.asarray(times, dtype=float)
+    if grid.size and (grid[0] < start or np.any(np.diff(grid) < 0.0)):
+        raise ValueError(f"the output times must rise from t = {start:g}")
+
+
 def lattice_steps(t0: float, t_last: float, h: float) -> int:
     """Whole steps from t0 that reach or pass t_last."""
     k, rest = lattice_point(t0, t_last, h)

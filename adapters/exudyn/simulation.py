@@ -20,7 +20,7 @@ import numpy as np
 
 from adapters.base import EngineFailure, Singular
 from adapters.exudyn.model import ExudynModel
-from adapters.lattice import hermite, lattice_point, lattice_steps
+from adapters.lattice import check_grid, hermite, lattice_point, lattice_steps
 from scenarios.bodies import GROUND
 from scenarios.trajectory import Trajectory
 
@@ -273,6 +273,7 @@ def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any)
     """March whole steps `plan.dt` from the first output time past the last (the lattice,
     adapters.lattice), Exudyn's sensors recording every step; outputs between two steps are the
     quintic Hermite interpolant of the two (Exudyn's solver runs in one call: no side step)."""
+    check_grid(times, float(times[0]))
     t0, h = float(times[0]), plan.dt
     steps = lattice_steps(t0, float(times[-1]), h)
     ti = settings.timeIntegration

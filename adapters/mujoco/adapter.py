@@ -26,7 +26,7 @@ import mujoco
 import numpy as np
 
 from adapters.base import Adapter, Option, OptionValue, Setting, Unsupported
-from adapters.lattice import lattice_point
+from adapters.lattice import check_grid, lattice_point
 from adapters.modes import ADAPTER, ENGINE, Mode
 from adapters.mujoco.cam_load import check_contacts, knife_edge_reason, preload
 from adapters.mujoco.cams import cam_pairs
@@ -213,6 +213,7 @@ class MujocoAdapter(Adapter):
         grid = np.asarray(times, dtype=float)
         if model.kinematic is not None:
             return self._kinematic(model, grid)
+        check_grid(grid, 0.0)
         dt = model.dt
         soften(m, dt, model.tc_steps * dt)
         d = mujoco.MjData(m)

@@ -18,7 +18,7 @@ from collections.abc import Callable
 import numpy as np
 
 from adapters.base import MAX_STEPS, Diverged, EngineFailure
-from adapters.lattice import lattice_point
+from adapters.lattice import check_grid, lattice_point
 
 RK4, EULER = "rk4", "euler"
 BLOWUP = 1e8
@@ -70,6 +70,7 @@ def march(
     planned = (float(times[-1]) - float(times[0])) / dt if n > 1 else 0.0
     if planned > MAX_STEPS:
         raise EngineFailure(f"dt = {dt:.3g} s would take {planned:.3g} steps (more than {MAX_STEPS:.0e})")
+    check_grid(times, float(times[0]))
     out = np.zeros((3, n, start[0].size))
     out[:, 0] = start
     state, t0, done = start, float(times[0]), 0

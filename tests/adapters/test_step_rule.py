@@ -96,3 +96,10 @@ def test_a_driven_mechanism_s_outputs_do_not_depend_on_the_grid(engine: str) -> 
     fine = adapter.run(scenario, setting, np.asarray(scenario.times()))
     assert coarse.trajectory is not None and fine.trajectory is not None, (coarse.message, fine.message)
     np.testing.assert_allclose(coarse.trajectory.position, fine.trajectory.position[::2], rtol=0, atol=1e-13)
+
+
+@pytest.mark.parametrize("engine", FIXED_STEP)
+def test_a_grid_that_goes_back_in_time_is_a_failed_run(engine: str) -> None:
+    adapter = adapters.load(engine)
+    result = adapter.run(scenarios.load("four_bar_gravity"), times=np.array([0.0, 0.02, 0.01]))
+    assert result.status == "failed" and "must rise" in result.message
