@@ -5,9 +5,9 @@ An engine marches whole steps t0 + k h from the grid's first time. An output tim
 read as reached. One between two lattice points is reached by a side step: from a copy of the
 lattice state before it, one step of the remainder, after which the march goes on from the lattice
 state (the copy is dropped). Where an engine cannot take a side step (Exudyn's solver runs in one
-call), the output is the quintic Hermite interpolant of the two lattice states around it in
-position, velocity and acceleration: an error of order h^6, h^5 and h^4 at the three levels, below
-the integrator's own.
+call), the output is interpolated from the two lattice states around it, each level from itself and its
+derivative (cubic Hermite for positions and velocities, linear for accelerations): an error of
+order h^4, h^4 and h^2 of the motion's own derivatives, below the integrator's.
 """
 
 from __future__ import annotations
@@ -45,16 +45,17 @@ def lattice_steps(t0: float, t_last: float, h: float) -> int:
 def hermite(
     s: float, h: float, left: tuple[np.ndarray, np.ndarray, np.ndarray], right: tuple[np.ndarray, ...]
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Position, velocity and acceleration at fraction s of a step h from the quintic Hermite
-    interpolant of (q, v, a) at both ends."""
+    """Position, velocity and acceleration at fraction s of a step h between two states (q, v, a):
+    each level from itself and its derivative (cubic Hermite in q and v; v and a), the acceleration
+    linear. No level is differentiated from another: an integrator's velocity error of order h^2
+    would otherwise reach the accelerations divided by h."""
     q0, v0, a0 = left
     q1, v1, a1 = right
-    # the quintic in s with q, h v, h^2 a at s = 0 and 1
-    d0, d1, e0, e1 = h * v0, h * v1, h * h * a0, h * h * a1
-    c3 = 10.0 * (q1 - q0) - 6.0 * d0 - 4.0 * d1 - 1.5 * e0 + 0.5 * e1
-    c4 = -15.0 * (q1 - q0) + 8.0 * d0 + 7.0 * d1 + 1.5 * e0 - e1
-    c5 = 6.0 * (q1 - q0) - 3.0 * d0 - 3.0 * d1 - 0.5 * e0 + 0.5 * e1
-    q = q0 + s * (d0 + s * (0.5 * e0 + s * (c3 + s * (c4 + s * c5))))
-    dq = d0 + s * (e0 + s * (3.0 * c3 + s * (4.0 * c4 + s * 5.0 * c5)))
-    ddq = e0 + s * (6.0 * c3 + s * (12.0 * c4 + s * 20.0 * c5))
-    return q, dq / h, ddq / (h * h)
+    return _cubic(s, h, q0, v0, q1, v1), _cubic(s, h, v0, a0, v1, a1), (1.0 - s) * a0 + s * a1
+
+
+def _cubic(s: float, h: float, y0: np.ndarray, d0: np.ndarray, y1: np.ndarray, d1: np.ndarray) -> np.ndarray:
+    """The cubic Hermite interpolant of values y and slopes d at fraction s of a step h."""
+    h00, h10 = (1.0 + 2.0 * s) * (1.0 - s) ** 2, s * (1.0 - s) ** 2
+    h01, h11 = s * s * (3.0 - 2.0 * s), s * s * (s - 1.0)
+    return h00 * y0 + h10 * h * d0 + h01 * y1 + h11 * h * d1  # type: ignore[no-any-return]

@@ -272,7 +272,7 @@ def _empty(n_times: int, n: int) -> States:
 def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any) -> tuple[States, int]:
     """March whole steps `plan.dt` from the first output time past the last (the lattice,
     adapters.lattice), Exudyn's sensors recording every step; outputs between two steps are the
-    quintic Hermite interpolant of the two (Exudyn's solver runs in one call: no side step)."""
+    Hermite interpolant of the two (Exudyn's solver runs in one call: no side step)."""
     check_grid(times, float(times[0]))
     t0, h = float(times[0]), plan.dt
     steps = lattice_steps(t0, float(times[-1]), h)

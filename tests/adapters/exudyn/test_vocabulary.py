@@ -133,8 +133,8 @@ def test_static_mode_matches_the_reference_solver(case: str) -> None:
 def test_generalized_alpha_matches_the_reference_solver(case: str) -> None:
     scenario = CASES[case]()
     position, velocity, acceleration = relative_errors(scenario, ADAPTER.default_setting(scenario))
-    # exact to Newton's tolerance at the steps; the outputs between two steps are their quintic
-    # Hermite interpolant (adapters.lattice): measured 1.7e-11 and 4.3e-12
+    # exact to Newton's tolerance at the steps; the outputs between two steps are their cubic
+    # Hermite interpolant (adapters.lattice)
     assert position < 1e-10
     assert velocity < 2e-5
     assert acceleration < 5e-2
