@@ -181,6 +181,8 @@ class Adapter:
     options: ClassVar[tuple[Option, ...]] = ()
     measured: ClassVar[tuple[Mode, ...]] = ()
     """What each mode measures (adapters.modes), one declaration per name in `modes`."""
+    rule: ClassVar[str] = ""
+    """How the engine applies the settings rule (adapters.step_rule): its constants, one line."""
     dynamics: ClassVar[bool] = False
     """Whether the engine runs forward dynamics (scenarios whose `analysis` is "dynamic")."""
 

@@ -37,6 +37,10 @@ class ReferenceModel:
 
 class ReferenceAdapter(Adapter):
     name = "reference"
+    rule = (
+        "no fixed step: Newton's tolerance 1e-12 (kinematics), DOP853's rtol 1e-12 (dynamics), each "
+        "swept to its floor"
+    )
     measured = (
         Mode(
             "newton",

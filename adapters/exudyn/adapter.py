@@ -4,8 +4,8 @@ independently, solved by Exudyn's own DAE solvers.
 Modes (one work-precision curve each):
     GA3          generalized-alpha on the index-3 constraints, spectral radius 0.9, full Newton,
                  fixed step: positions exact to Newton's tolerance, velocities O(dt^2),
-                 accelerations O(dt) through a start-up transient (the default, at a tenth of the
-                 scenario's output interval)
+                 accelerations O(dt) through a start-up transient (the default, at the rule's
+                 step: adapters.step_rule, adapters.exudyn.settings)
     GA3-rho0.5   the same with spectral radius 0.5 (a shorter transient)
     GA3-modified GA3 with Exudyn's own modified Newton (the Jacobian kept over iterations and steps,
                  Exudyn's default; the other modes update it at every iteration)
@@ -19,7 +19,8 @@ loads and connectors (adapters.exudyn.loads), the start is the scenario's assemb
 Exudyn's own initial accelerations (adapters.exudyn.initial_state, at build), and GA3, GA3-rho0.5
 and TR2 integrate it (second order in the step); a system of more than SPARSE_ABOVE coordinates
 uses Exudyn's sparse linear solver.
-Options: `dt` (requested step; each output interval is divided evenly), `rho` (overrides the mode's
+Options: `dt` (the step; the output grid never changes it: outputs between steps are interpolated,
+adapters.lattice), `rho` (overrides the mode's
 spectral radius), `tol` (Newton's tolerance on its increment, per unit of coordinate size),
 `mass_scale` (multiplies every mass and inertia; a kinematically driven result must not depend on
 it), `cams` ('native' puts knife-edge and roller followers on a circular disc on Exudyn's distance
@@ -41,6 +42,7 @@ from adapters.base import Adapter, Option, Setting, Unsupported
 from adapters.exudyn.initial_state import released_start
 from adapters.exudyn.loads import FORCES
 from adapters.exudyn.model import ExudynModel, ModelError, build_model
+from adapters.exudyn.settings import STEPS_PER_PERIOD, rule_default, rule_sweep
 from adapters.exudyn.simulation import Plan, States, assemble, march, quiet, simulation_settings, trajectory
 from adapters.modes import ENGINE, Mode
 from scenarios.cam_linkage import CAM_MODELS, default_cam_model, linkage_reason
@@ -86,19 +88,8 @@ ROWS: dict[type, int] = {
     RelativeDisplacementDriver: 2,
 }
 OPTIONS = ("dt", "rho", "tol", "mass_scale", "cams", "cam_model")
-DEFAULT_SUBSTEPS = 10
 SPARSE_ABOVE = 100
 """Coordinates above which free dynamics uses Exudyn's sparse linear solver."""
-SWEEP_SUBSTEPS = {"GA3": (1, 3, 10), "GA3-rho0.5": (1, 3), "TR2": (1, 3)}
-DYNAMIC_SUBSTEPS = {
-    "GA3": (1, 3, 10, 30),
-    "GA3-rho0.5": (1, 3, 10),
-    "GA3-modified": (3, 10, 30),
-    "TR2": (1, 3, 10, 30),
-}
-"""Free dynamics: engine steps per output interval in the sweep (the default is DEFAULT_SUBSTEPS)."""
-LARGE_DYNAMIC_SUBSTEPS = {"GA3": (3, 10), "TR2": (10,)}
-"""A large system (the 81-body chain: 17 s at the default) sweeps less."""
 
 
 @dataclass(frozen=True)
@@ -112,6 +103,7 @@ class ExudynRun:
 class ExudynAdapter(Adapter):
     name = "exudyn"
     dynamics = True
+    rule = f"GA3 (spectral radius 0.9, full Newton) at 1/{STEPS_PER_PERIOD} of the shortest period"
     measured = (
         Mode(
             "GA3",
@@ -181,22 +173,13 @@ class ExudynAdapter(Adapter):
         return None
 
     def default_setting(self, scenario: Scenario) -> Setting:
-        setting = Setting.of("GA3", dt=_interval(scenario) / DEFAULT_SUBSTEPS)
+        setting = rule_default(scenario)
         return setting.replace(cam_model=default_cam_model(scenario)) if scenario.cams else setting
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
-        """Engine steps of 1, 1/3 (and 1/10 for GA3, the default) of the scenario's output interval,
-        and the static solve per time point; in free dynamics, steps down to 1/30 of the interval
-        for the implicit integrators, fewer on a large system (the explicit integrators refuse
-        joints, see EXPLICIT_REASON)."""
-        if scenario.analysis == "dynamic":
-            large = 3 * len(scenario.bodies) > SPARSE_ABOVE
-            ladders = (LARGE_DYNAMIC_SUBSTEPS if large else DYNAMIC_SUBSTEPS).items()
-            return [Setting.of(m, dt=_interval(scenario) / k) for m, ladder in ladders for k in ladder]
-        steps = [
-            Setting.of(m, dt=_interval(scenario) / k) for m, ladder in SWEEP_SUBSTEPS.items() for k in ladder
-        ]
-        return [*steps, Setting.of("STATIC")]
+        """adapters.exudyn.settings' ladders (the explicit integrators refuse joints, see
+        EXPLICIT_REASON)."""
+        return rule_sweep(scenario)
 
     def build(self, scenario: Scenario, setting: Setting) -> ExudynRun:
         if setting.mode not in MODES:
@@ -207,7 +190,7 @@ class ExudynAdapter(Adapter):
         solver, rho, tolerance = MODES[setting.mode]
         plan = Plan(
             solver=solver,
-            dt=float(setting.get("dt", _interval(scenario) / DEFAULT_SUBSTEPS)),
+            dt=float(setting.get("dt", rule_default(scenario)["dt"])),
             rho=float(setting.get("rho", rho)),
             tolerance=float(setting.get("tol", tolerance)),
             modified_newton=setting.mode in MODIFIED_NEWTON,
@@ -264,7 +247,3 @@ def _settings(model: ExudynModel, plan: Plan) -> Any:
     if model.scenario.analysis == "dynamic" and len(model.guess) > SPARSE_ABOVE:
         settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
     return settings
-
-
-def _interval(scenario: Scenario) -> float:
-    return scenario.t_end / scenario.steps

@@ -20,6 +20,7 @@ import numpy as np
 
 from adapters.base import EngineFailure, Singular
 from adapters.exudyn.model import ExudynModel
+from adapters.lattice import check_grid, hermite, lattice_point, lattice_steps
 from scenarios.bodies import GROUND
 from scenarios.trajectory import Trajectory
 
@@ -269,38 +270,48 @@ def _empty(n_times: int, n: int) -> States:
 
 
 def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any) -> tuple[States, int]:
-    interval = float(times[1] - times[0])
-    if np.max(np.abs(np.diff(times) - interval)) > 1e-9 * interval:
-        raise EngineFailure("Exudyn's sensors record at a fixed period: the output grid must be uniform")
-    substeps = max(1, math.ceil(interval / plan.dt - 1e-9))
-    steps = substeps * (len(times) - 1)
+    """March whole steps `plan.dt` from the first output time past the last (the lattice,
+    adapters.lattice), Exudyn's sensors recording every step; outputs between two steps are the
+    Hermite interpolant of the two (Exudyn's solver runs in one call: no side step)."""
+    check_grid(times, float(times[0]))
+    t0, h = float(times[0]), plan.dt
+    steps = lattice_steps(t0, float(times[-1]), h)
     ti = settings.timeIntegration
-    ti.startTime, ti.endTime, ti.numberOfSteps = float(times[0]), float(times[-1]), steps
+    ti.startTime, ti.endTime, ti.numberOfSteps = t0, t0 + steps * h, steps
     ti.generalizedAlpha.spectralRadius = plan.rho
     ti.generalizedAlpha.computeInitialAccelerations = False  # the assembled start has them
-    # Exudyn's sensors record each node's state at every output time, inside the solver
     settings.solution.sensors.active = True
-    settings.solution.sensors.writePeriod = interval
+    settings.solution.sensors.writePeriod = 0.5 * h  # every step, once
     solver = DYNAMIC[plan.solver]
     _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
-    return _sensed(model, times), steps
+    return _on_grid(_sensed(model, t0, h, steps), times, h), steps
 
 
-def _sensed(model: ExudynModel, times: np.ndarray) -> States:
-    """The states the sensors stored; an EngineFailure when a row is missing or off the grid."""
-    states = _empty(len(times), len(model.guess))
-    tolerance = 1e-9 * float(times[1] - times[0])
+def _sensed(model: ExudynModel, t0: float, h: float, steps: int) -> States:
+    """The states the sensors stored at each lattice point t0 + k h, k = 0..steps; an
+    EngineFailure when one is missing."""
+    states = _empty(steps + 1, len(model.guess))
     for index, width, handles in model.sensors:
         for level, handle in zip((states.q, states.v, states.a), handles, strict=True):
             data = np.asarray(model.mbs.GetSensorStoredData(handle))
-            rows = min(len(data), len(times))
-            off = np.flatnonzero(np.abs(data[:rows, 0] - times[:rows]) > tolerance)
-            if off.size or rows < len(times):
-                k = int(off[0]) if off.size else rows
-                raise EngineFailure(f"Exudyn's sensors recorded no state at t = {times[k]}", float(times[k]))
-            level[:, index : index + width] = data[:rows, 1:]
-    _check_complete(states, times)
+            k = np.rint((data[:, 0] - t0) / h).astype(int)
+            keep = (k >= 0) & (k <= steps) & (np.abs(data[:, 0] - t0 - k * h) <= 1e-6 * h)
+            level[k[keep], index : index + width] = data[keep, 1:]
+    _check_complete(states, t0 + h * np.arange(steps + 1))
     return states
+
+
+def _on_grid(lattice: States, times: np.ndarray, h: float) -> States:
+    """The lattice states at the output times (adapters.lattice)."""
+    out = _empty(len(times), lattice.q.shape[1])
+    for i, t in enumerate(times):
+        whole, rest = lattice_point(float(times[0]), float(t), h)
+        if rest == 0.0:
+            out.q[i], out.v[i], out.a[i] = lattice.q[whole], lattice.v[whole], lattice.a[whole]
+            continue
+        ends = [(level.q[j], level.v[j], level.a[j]) for level in (lattice,) for j in (whole, whole + 1)]
+        out.q[i], out.v[i], out.a[i] = hermite(rest / h, h, ends[0], ends[1])
+    return out
 
 
 def _static_sweep(model: ExudynModel, times: np.ndarray, settings: Any, tolerance: float) -> States:

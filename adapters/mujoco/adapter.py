@@ -11,9 +11,11 @@ A dynamic scenario carries gravity and its loads (adapters.mujoco.loads), starts
 assembled poses and the bodies' rates without a run-in, and has its own settings
 (adapters.mujoco.dynamics).
 
-Settings: mode RK4 (default), implicitfast, Euler or implicit; dt, the requested step (the engine step divides
-the output interval); tc_steps, the solref time constant in steps (2, the smallest MuJoCo allows);
-impedance, solimp of the equalities; for cams preload (N) and contact_impedance.
+Settings: mode RK4 (default), implicitfast, Euler or implicit; dt, the engine step (by default the
+rule's, adapters.step_rule and adapters.mujoco.settings; the output grid never changes it: outputs
+between steps are reached by a side step, adapters.lattice); tc, the solref time constant in
+seconds (tc_steps, in steps, is the older form); impedance, solimp of the equalities; for cams
+preload (N) and contact_impedance.
 """
 
 from __future__ import annotations
@@ -23,25 +25,29 @@ import warnings
 import mujoco
 import numpy as np
 
-from adapters.base import Adapter, Option, Setting, Unsupported
+from adapters.base import Adapter, Option, OptionValue, Setting, Unsupported
+from adapters.lattice import check_grid, lattice_point
 from adapters.modes import ADAPTER, ENGINE, Mode
 from adapters.mujoco.cam_load import check_contacts, knife_edge_reason, preload
 from adapters.mujoco.cams import cam_pairs
 from adapters.mujoco.compile import assembled_poses, clock_armatures, compile_model, follower_springs
-from adapters.mujoco.dynamics import (
-    DYNAMIC_MODES,
-    angle_columns,
-    controls,
-    dynamic_default,
-    dynamic_sweep,
-)
+from adapters.mujoco.dynamics import DYNAMIC_MODES, angle_columns, closes_loops, controls
 from adapters.mujoco.kinematic import KinematicSolver
 from adapters.mujoco.laws import laws
 from adapters.mujoco.loads import loads_of
 from adapters.mujoco.mjcf import Physics
 from adapters.mujoco.model import Model
 from adapters.mujoco.scale import dof_sizes, scale_of
-from adapters.mujoco.stepping import advance, engine_step, output_interval, read_outputs, record, soften
+from adapters.mujoco.settings import (
+    IMPEDANCE,
+    KINEMATIC_MODES,
+    STEPS_PER_PERIOD,
+    TC_STEPS,
+    rule_default,
+    rule_sweep,
+    time_constant,
+)
+from adapters.mujoco.stepping import advance, read_outputs, record, side_step, soften
 from adapters.mujoco.tree import TreeError, plan_tree
 from scenarios.cam_linkage import CAM_MODELS, cam_model_scenario, default_cam_model
 from scenarios.scenario import Scenario
@@ -49,7 +55,6 @@ from scenarios.trajectory import Trajectory
 
 MODES = ("RK4", "implicitfast", "Euler", "kinematic", "implicit")
 KINEMATIC = "kinematic"
-SWEEP_DT = (1e-3, 1e-4, 1e-5)
 RUN_IN = 50
 """Steps run before t = 0 from the assembled start, so soft constraints begin in steady state."""
 DYNAMIC_CAM_REASON = (
@@ -96,9 +101,14 @@ class MujocoAdapter(Adapter):
     )
     modes = MODES
     dynamics = True
+    rule = (
+        f"RK4 at 1/{STEPS_PER_PERIOD} of the shortest period, the equalities' time constant tc = "
+        f"{TC_STEPS:g} steps (in seconds), impedance {IMPEDANCE}; every scenario, whatever its size"
+    )
     options = (
         Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
-        Option("tc_steps", float, 1.0, 1e6, help="solref time constant of the equalities, in steps"),
+        Option("tc", float, 0.0, 1e3, low_open=True, unit="s", help="solref time constant of the equalities"),
+        Option("tc_steps", float, 1.0, 1e6, help="solref time constant in steps (when tc is not given)"),
         Option("impedance", float, 0.0, 1.0, low_open=True, help="solimp of the equalities"),
         Option("contact_impedance", float, 0.0, 1.0, low_open=True, help="solimp of cam contacts"),
         Option("preload", float, 0.0, 1e9, low_open=True, unit="N", help="follower spring preload"),
@@ -125,29 +135,28 @@ class MujocoAdapter(Adapter):
         return None
 
     def default_setting(self, scenario: Scenario) -> Setting:
-        if scenario.analysis == "dynamic":
-            return dynamic_default(scenario)
-        options: dict[str, float] = {"dt": 1e-4, "tc_steps": 2.0, "impedance": 0.9999}
-        setting = Setting.of("RK4", **options)
-        if scenario.cams:
+        setting = rule_default(scenario)
+        if scenario.cams and scenario.analysis != "dynamic":
             setting = setting.replace(cam_model=default_cam_model(scenario))
             if setting["cam_model"] == "contact":
                 setting = setting.replace(preload=preload(scenario), contact_impedance=0.99)
         return setting
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
-        if scenario.analysis == "dynamic":
-            return dynamic_sweep(scenario)
+        dynamic = scenario.analysis == "dynamic"
+        swept = rule_sweep(scenario, DYNAMIC_MODES if dynamic else KINEMATIC_MODES, closes_loops(scenario))
         base = self.default_setting(scenario)
-        bases = [base]
-        if base.get("cam_model") == "linkage":  # MuJoCo's own cam contact as curves of their own
-            bases.append(base.replace(cam_model="contact", preload=preload(scenario), contact_impedance=0.99))
-        return [
-            Setting(mode, b.options).replace(dt=dt)
-            for b in bases
-            for mode in ("RK4", "implicitfast")
-            for dt in SWEEP_DT
-        ]
+        extra = {k: v for k, v in base.options if k not in ("dt", "tc", "impedance")}
+        settings = [s.replace(**extra) if extra else s for s in swept]
+        if base.get("cam_model") == "linkage":  # MuJoCo's own cam contact: its step ladders
+            contact: dict[str, OptionValue] = {
+                "cam_model": "contact",
+                "preload": preload(scenario),
+                "contact_impedance": 0.99,
+            }
+            ladders = [s for s in settings if s["impedance"] == base["impedance"] and _at_tc(s)]
+            settings += [s.replace(**contact) for s in ladders]
+        return settings
 
     def build(self, scenario: Scenario, setting: Setting) -> Model:
         mujoco.set_mju_user_warning(_warn)  # engine warnings become Python warnings the base class records
@@ -169,11 +178,11 @@ class MujocoAdapter(Adapter):
             reason = DYNAMIC_CAM_REASON
         if reason is not None:
             raise Unsupported(reason)
-        dt = engine_step(float(setting.get("dt", 1e-4)), output_interval(np.asarray(scenario.times())))
+        dt = float(setting.get("dt", rule_default(scenario)["dt"]))
         physics = Physics(
             "RK4" if kinematic else setting.mode,
             dt,
-            (float(setting.get("tc_steps", 2.0)) * dt, 1.0),
+            (time_constant(setting, dt), 1.0),
             _solimp(float(setting.get("impedance", 0.9999)), scenario.characteristic_length),
             _solimp(float(setting.get("contact_impedance", 0.99)), scenario.characteristic_length),
         )
@@ -204,27 +213,27 @@ class MujocoAdapter(Adapter):
         grid = np.asarray(times, dtype=float)
         if model.kinematic is not None:
             return self._kinematic(model, grid)
-        interval = output_interval(grid)
-        dt = engine_step(model.dt, interval) if interval else model.dt
-        substeps = max(1, round(interval / dt)) if interval else 1
-        soften(m, dt, model.tc_steps)
+        check_grid(grid, 0.0)
+        dt = model.dt
+        soften(m, dt, model.tc_steps * dt)
         d = mujoco.MjData(m)
         d.qpos[:], d.qvel[:] = model.qpos0, model.qvel0
         n, k = len(grid), len(model.bodies)
         pos, vel, acc = np.empty((n, k, 3)), np.empty((n, k, 3)), np.empty((n, k, 3))
+        done = 0  # whole steps from t = 0: the lattice every output time is read from
         with controls(m, d, model.loads.motors):
             mujoco.mj_forward(m, d)
-            lead = round(grid[0] / dt) if grid.size else 0
-            if lead:
-                advance(m, d, lead)
-                self.count_steps(lead)
-            for i in range(n):
-                if i:
-                    advance(m, d, substeps)
-                    self.count_steps(substeps)
-                record(m, d, model, pos[i], vel[i], acc[i])
-                if m.npair:
-                    check_contacts(m, d, model.preload)
+            for i, t in enumerate(grid):
+                whole, rest = lattice_point(0.0, float(t), dt)
+                if whole > done:
+                    advance(m, d, whole - done)
+                    self.count_steps(whole - done)
+                    done = whole
+                with side_step(m, d, rest):
+                    self.count_steps(1 if rest > 0.0 else 0)
+                    record(m, d, model, pos[i], vel[i], acc[i])
+                    if m.npair:
+                        check_contacts(m, d, model.preload)
         extras = angle_columns(model.angles, model.bodies, pos[:, :, 2]) if model.angles else {}
         return Trajectory(grid, model.bodies, pos, vel, acc, extras=extras)
 
@@ -246,6 +255,11 @@ class MujocoAdapter(Adapter):
         built = self.build(scenario, setting)
         with open(path, "w", encoding="utf-8") as stream:
             stream.write(built.xml)
+
+
+def _at_tc(setting: Setting) -> bool:
+    """Whether the setting's time constant is the rule's number of steps (a point of a step ladder)."""
+    return abs(float(setting["tc"]) - TC_STEPS * float(setting["dt"])) <= 1e-9 * float(setting["tc"])
 
 
 def _solimp(impedance: float, length: float) -> tuple[float, float, float, float, float]:

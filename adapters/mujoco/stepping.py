@@ -1,10 +1,11 @@
-"""Stepping a compiled MuJoCo model and reading its outputs: the step that divides the output
-interval, the equalities' softness per step, steps with instability caught (`Diverged` with its
+"""Stepping a compiled MuJoCo model and reading its outputs: the step and the equalities' time
+constant, a side step to an output time between two steps, steps with instability caught (`Diverged` with its
 time), and each output body's pose, velocity and acceleration from MuJoCo's state."""
 
 from __future__ import annotations
 
-import math
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 import mujoco
 import numpy as np
@@ -16,26 +17,30 @@ BAD = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS, mujoc
 STATE = mujoco.mjtState.mjSTATE_INTEGRATION
 
 
-def engine_step(requested: float, interval: float) -> float:
-    """The largest step not above `requested` that divides the output interval."""
-    if interval <= 0.0:
-        return requested
-    return interval / math.ceil(interval / requested - 1e-9)
-
-
-def output_interval(grid: np.ndarray) -> float:
-    if grid.size < 2:
-        return 0.0
-    steps = np.diff(grid)
-    if np.ptp(steps) > 1e-9 * steps.mean() or grid[0] < 0.0:
-        raise ValueError("MuJoCo needs an equally spaced time grid from t >= 0")
-    return float(steps.mean())
-
-
-def soften(m: mujoco.MjModel, dt: float, tc_steps: float) -> None:
+def soften(m: mujoco.MjModel, dt: float, tc: float) -> None:
+    """The step and the equalities' (and contacts') time constant `tc` in seconds."""
     m.opt.timestep = dt
-    m.eq_solref[:, 0] = tc_steps * dt
-    m.pair_solref[:, 0] = tc_steps * dt
+    m.eq_solref[:, 0] = tc
+    m.pair_solref[:, 0] = tc
+
+
+@contextmanager
+def side_step(m: mujoco.MjModel, d: mujoco.MjData, rest: float) -> Iterator[None]:
+    """Inside: the state `rest` seconds on, reached by one step of that length from the lattice
+    state (adapters.lattice); after: the lattice state and step again. No step for rest = 0."""
+    if rest <= 0.0:
+        yield
+        return
+    state = np.empty(mujoco.mj_stateSize(m, STATE))
+    mujoco.mj_getState(m, d, state, STATE)
+    step = m.opt.timestep
+    m.opt.timestep = rest
+    try:
+        advance(m, d, 1)
+        yield
+    finally:
+        m.opt.timestep = step
+        mujoco.mj_setState(m, d, state, STATE)
 
 
 def advance(m: mujoco.MjModel, d: mujoco.MjData, steps: int) -> None:

@@ -9,20 +9,20 @@ hold them. Four modes (Setting.mode):
   each row's size: lengths relative to the characteristic length, angles in radians) and `gears`
   (`mimic` or `row`).
 - `dynamic`: `constraintDynamics` with the loops as Pinocchio constraint models and the drive as a
-  constraint, integrated with RK4. Options `dt` (step, default 1/1000 of the drive period), `kp`
-  and `kd` (Baumgarte gains, default 0).
+  constraint, integrated with RK4. Options `dt` (step, default by the rule of adapters.step_rule:
+  1/1000 of the shortest period of the motion), `kp` and `kd` (Baumgarte gains, default 0).
 - `baumgarte`: the dynamic mode with gains kp = w^2, kd = 2 w by default (w the drive frequency):
-  a critically damped correction of constraint and drive drift with a time constant of one radian.
+  a critically damped correction of constraint and drive drift with a time constant of one radian
+  of the shortest period.
 - `euler`: the Baumgarte-stabilised dynamics marched by semi-implicit Euler (first order).
 Free dynamic scenarios (no driver) carry their gravity and loads (adapters.pinocchio.loads), start
-from the scenario's assembled bodies (adapters.pinocchio.free_start), step 1/8 of the output
-interval by default (1/32 for Euler), and take w = 1 / output interval for the gains; their default
-is `baumgarte`.
+from the scenario's assembled bodies (adapters.pinocchio.free_start) and step by the same rule
+(1/10000 of the period for Euler); their default is `baumgarte`. The output grid never sets the
+step (adapters.pinocchio.settings, adapters.lattice).
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -40,13 +40,23 @@ from adapters.pinocchio.marching import EULER as EULER_METHOD
 from adapters.pinocchio.marching import RK4
 from adapters.pinocchio.model import PinModel, build_model
 from adapters.pinocchio.row_dynamics import RowDynamicSolver
-from adapters.pinocchio.rows import Rows, force_labels, motions_of
+from adapters.pinocchio.rows import Rows, force_labels
+from adapters.pinocchio.settings import (
+    BAUMGARTE,
+    DYNAMIC,
+    EULER,
+    KINEMATIC,
+    PER_PERIOD,
+    STEPS_PER_PERIOD,
+    dynamic_sweep,
+    rule_setting,
+)
+from adapters.pinocchio.settings import gains as default_gains
 from adapters.pinocchio.tree import Tree, TreeError, plan
-from scenarios.motions import ConstantSpeed, Harmonic
+from adapters.step_rule import rule_step
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
-KINEMATIC, DYNAMIC, BAUMGARTE, EULER = "kinematic", "dynamic", "baumgarte", "euler"
 MODES = {
     "kinematic": KINEMATIC,
     "kinematics": KINEMATIC,
@@ -94,45 +104,8 @@ MEASURED = tuple(
 )
 """What each mode measures; the aliases (kinematics, dynamics) measure what their modes do and are
 marked as aliases, so that `mbxval list` gives one name per mode."""
-STEPS_PER_PERIOD = (100, 300, 1000)
-"""RK4 steps per drive period in the dynamic sweeps of driven scenarios; the default is 1000."""
-SUBSTEPS = {DYNAMIC: (1, 4, 16, 64), BAUMGARTE: (1, 4, 16, 64), EULER: (4, 16, 64, 256)}
-"""Steps per output interval in the sweeps of free dynamic scenarios, per mode..."""
-STEP_BUDGET = {DYNAMIC: 3200, BAUMGARTE: 3200, EULER: 6400}
-"""...kept while the run takes at most this many steps (the first always; a step of more than 8
-bodies counts as bodies / 8 steps), so that a scenario's whole sweep stays within seconds: RK4
-costs four accelerations a step, Euler one."""
-DEFAULT_SUBSTEPS = {DYNAMIC: 8, BAUMGARTE: 8, EULER: 32}
-"""Steps per output interval of each mode's default setting on a free dynamic scenario, fewer where
-the run would take more than DEFAULT_BUDGET steps (long grids such as stiff_spring's 1000 intervals,
-whose output step is the step a fixed-step engine is meant to be given)."""
-DEFAULT_BUDGET = 4000
 TOLERANCES = (1e-5, 1e-9, 1e-15)
 """Newton residual bounds in the kinematic sweep; the default is the last."""
-
-
-def drive_period(scenario: Scenario) -> float:
-    """The period of the fastest driver motion (constant speed: one turn), else the scenario's span."""
-    rates = []
-    for motion in (m for d in scenario.drivers for m in motions_of(d)):
-        if isinstance(motion, ConstantSpeed | Harmonic):
-            rates.append(abs(motion.rate if isinstance(motion, ConstantSpeed) else motion.omega))
-    rates = [r for r in rates if r > 0.0]
-    return 2.0 * math.pi / max(rates) if rates else scenario.t_end
-
-
-def output_step(scenario: Scenario) -> float:
-    """The interval between output times."""
-    return scenario.t_end / scenario.steps
-
-
-def _gains(scenario: Scenario, mode: str) -> tuple[float, float]:
-    """Default Baumgarte gains (kp, kd) of a mode: none, or critically damped with a time constant of
-    one radian of the drive, or of one output interval in free dynamics."""
-    if mode not in (BAUMGARTE, EULER):
-        return 0.0, 0.0
-    w = 2.0 * math.pi / drive_period(scenario) if scenario.drivers else 1.0 / output_step(scenario)
-    return w * w, 2.0 * w
 
 
 @dataclass
@@ -150,6 +123,11 @@ class Built:
 
 class PinocchioAdapter(Adapter):
     name = "pinocchio"
+    rule = (
+        "kinematic scenarios: Newton at each output time (no step, tol 1e-15); free dynamics: "
+        f"baumgarte (RK4) at 1/{STEPS_PER_PERIOD[BAUMGARTE]} of the shortest period, gains critically "
+        "damped at one radian of it"
+    )
     measured = MEASURED
     modes = tuple(MODES)
     dynamics = True
@@ -179,36 +157,28 @@ class PinocchioAdapter(Adapter):
             return self.free_setting(scenario, BAUMGARTE)
         return Setting.of(KINEMATIC, tol=TOLERANCES[-1], gears="mimic")
 
-    def free_setting(self, scenario: Scenario, mode: str = DYNAMIC, substeps: int | None = None) -> Setting:
-        """A setting of `mode` on a free dynamic scenario, `substeps` steps per output interval
-        (default: the mode's default)."""
-        kp, kd = _gains(scenario, mode)
-        if substeps is None:
-            substeps = max(1, min(DEFAULT_SUBSTEPS[mode], DEFAULT_BUDGET // scenario.steps))
-        return Setting.of(mode, dt=output_step(scenario) / substeps, kp=kp, kd=kd)
+    def free_setting(
+        self, scenario: Scenario, mode: str = DYNAMIC, steps_per_period: float | None = None
+    ) -> Setting:
+        """A setting of `mode` at `steps_per_period` steps per shortest period of the motion
+        (adapters.step_rule; default: the mode's constant, adapters.pinocchio.settings)."""
+        return rule_setting(scenario, mode, steps_per_period)
 
     def dynamic_setting(
         self, scenario: Scenario, steps_per_period: int = 1000, mode: str = DYNAMIC
     ) -> Setting:
-        """A dynamic-mode setting with `steps_per_period` RK4 steps per drive period."""
-        kp, kd = _gains(scenario, mode)
-        return Setting.of(mode, dt=drive_period(scenario) / steps_per_period, kp=kp, kd=kd)
+        """A dynamic-mode setting with `steps_per_period` RK4 steps per shortest period."""
+        return rule_setting(scenario, mode, steps_per_period)
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
         if scenario.analysis == "dynamic":
-            return [
-                self.free_setting(scenario, mode, n)
-                for mode, counts in SUBSTEPS.items()
-                for n in counts
-                if n == counts[0]
-                or n * scenario.steps * max(1.0, len(scenario.bodies) / 8) <= STEP_BUDGET[mode]
-            ]
+            return dynamic_sweep(scenario)
         settings = [self.default_setting(scenario).replace(tol=tol) for tol in TOLERANCES]
         # cams run in the dynamic modes too, but their contact solve per evaluation makes a step
         # cost 5-15 ms of Python: swept only on request
         if self.supports(scenario) is None and not scenario.cams:
             for mode in (DYNAMIC, BAUMGARTE):
-                settings += [self.dynamic_setting(scenario, n, mode) for n in STEPS_PER_PERIOD]
+                settings += [rule_setting(scenario, mode, n) for n in PER_PERIOD[mode][:3]]
         return settings
 
     def _structure(self, scenario: Scenario, mimic_gears: bool) -> tuple[Tree, PinModel, Rows]:
@@ -266,9 +236,8 @@ class PinocchioAdapter(Adapter):
         )
         dynamics: DynamicSolver | None = None
         if mode != KINEMATIC:
-            fallback = self.default_setting(scenario) if scenario.analysis == "dynamic" else None
-            dt = float(setting.get("dt", fallback["dt"] if fallback else drive_period(scenario) / 1000))
-            kp, kd = _gains(scenario, mode)
+            dt = float(setting.get("dt", rule_step(scenario, STEPS_PER_PERIOD[mode])))
+            kp, kd = default_gains(scenario, mode)
             gains = float(setting.get("kp", kp)), float(setting.get("kd", kd))
             # revolute loops as Pinocchio's own constraint models; any other rows through forwardDynamics
             loads = Loads(pm, scenario.forces) if scenario.forces else None

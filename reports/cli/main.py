@@ -21,6 +21,7 @@ import reports.cli.compare_command as compare_command
 import reports.cli.schema_command as schema_command
 import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
+from adapters.step_rule import RULE
 from reports.cli.usage import Parser, UsageError, pairs, scenario_argument
 from reports.harness import provenance, stop
 from reports.harness.atomic_write import atomic_output
@@ -125,6 +126,10 @@ def cmd_list(args: argparse.Namespace) -> int:
     for engine, adapter in engines.items():
         for mode in (m for m in adapter.measured if not m.alias_of):
             print(f"  {engine} {mode.name}: {mode.measures}")
+    print(f"\nsettings, one rule (docs/settings-rule.md): {RULE}")
+    for engine, adapter in engines.items():
+        if adapter.rule:
+            print(f"  {engine}: {adapter.rule}")
     print("\nparameters: default and range; set them with --set NAME=VALUE:")
     for fam in all_families().values():
         print(f"  {fam.name}:")

@@ -16,6 +16,7 @@ from __future__ import annotations
 from typing import Any
 
 from adapters.base import Adapter, Setting
+from adapters.step_rule import at_step
 from reports.harness.truth import DYNAMIC_RTOL, NamedTruth
 from scenarios import catalogue
 from scenarios.families.stiff_spring import MAP_VARIANTS
@@ -80,7 +81,7 @@ def _at_step(scenario: Scenario, adapter: Adapter) -> list[Setting]:
     firsts: dict[str, Setting] = {}
     for setting in (default, *adapter.sweep(scenario)):
         firsts.setdefault(setting.mode, setting)
-    stepped = [s.replace(dt=step) for s in firsts.values() if s.get("dt") is not None]
+    stepped = [at_step(s, step) for s in firsts.values() if s.get("dt") is not None]
     return _unique(stepped) if stepped and stepped[0].mode == default.mode else [default]
 
 

@@ -20,6 +20,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from adapters.base import Adapter, Setting
+from adapters.step_rule import at_step
 from scenarios import build
 from scenarios.scenario import Scenario
 
@@ -82,25 +83,26 @@ def toggle(s: Scenario) -> float:
 
 
 def per_revolution(speed: float) -> Settings:
-    """Each engine at its nominal steps per revolution: a time step of its default on the nominal
-    scenario stretched by the speed ratio (engines whose step follows the grid already do this)."""
+    """Each engine at its nominal steps per revolution: a time step (and MuJoCo's time constant) of
+    its default on the nominal scenario stretched by the speed ratio (the rule's default step,
+    adapters.step_rule, does the same)."""
 
     def settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
         nominal = adapter.default_setting(build("slider_crank"))
         dt = nominal.get("dt")
-        return None if dt is None else [nominal.replace(dt=float(dt) * NOMINAL_SPEED / speed)]
+        return None if dt is None else [at_step(nominal, float(dt) * NOMINAL_SPEED / speed)]
 
     return settings
 
 
 def stiffness(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
-    """MuJoCo: the soft equality's time constant (in steps) and impedance against the step, RK4 and
+    """MuJoCo: the soft equality's time constant (2, 10, 50 steps) and impedance against the step, RK4 and
     implicitfast; Pinocchio: Baumgarte gains against RK4 steps per revolution."""
     interval = scenario.t_end / scenario.steps
     if adapter.name == "mujoco":
         base = adapter.default_setting(scenario)
         grid = [
-            Setting(mode, base.options).replace(dt=dt, tc_steps=tc, impedance=imp)
+            Setting(mode, base.options).replace(dt=dt, tc=tc * dt, impedance=imp)
             for mode in ("RK4", "implicitfast")
             for dt in (interval, 2e-3, 1e-3, 3e-4, 1e-4, 3e-5)
             for tc in (2.0, 10.0, 50.0)
@@ -124,7 +126,7 @@ def heavy(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
     default = adapter.default_setting(scenario)
     period = 2 * math.pi / abs(float(scenario.parameter("omega")))
     if adapter.name == "mujoco":
-        return [default, default.replace(dt=float(default["dt"]) / 10)]
+        return [default, at_step(default, float(default["dt"]) / 10)]
     if adapter.name == "pinocchio":
         return [default, Setting.of("dynamic", dt=period / 1000, kp=0.0, kd=0.0)]
     return None

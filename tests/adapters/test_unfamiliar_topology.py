@@ -79,7 +79,7 @@ motion = {{ kind = "constant_speed", start = {PHI0!r}, rate = {OMEGA!r} }}
 BOUNDS: dict[str, tuple[float, float, float]] = {
     "reference": (1e-14, 1e-14, 1e-14),
     "pinocchio": (1e-14, 1e-14, 1e-14),
-    "mujoco": (5e-8, 2e-5, 3e-2),
+    "mujoco": (2e-6, 2e-5, 3e-2),  # positions measured 7.1e-7: soft closures at the rule's 6.3e-4 s
     "exudyn": (2e-14, 3e-5, 1.5e-1),
 }
 

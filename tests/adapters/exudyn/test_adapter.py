@@ -26,6 +26,7 @@ import scenarios
 from adapters.base import Setting
 from adapters.exudyn import ExudynAdapter
 from adapters.exudyn.model import build_model
+from adapters.step_rule import shortest_period
 from scenarios import Point, RevoluteRevolute, Scenario, Trajectory
 from scenarios.closed_form import exact
 from scenarios.scenario import Level
@@ -86,12 +87,13 @@ def test_default_is_generalized_alpha_and_in_the_sweep() -> None:
     scenario = scenarios.build("slider_crank")
     default, sweep = ADAPTER.default_setting(scenario), ADAPTER.sweep(scenario)
     assert default.mode == "GA3" and default in sweep
-    assert {s.mode for s in sweep} == {"GA3", "GA3-rho0.5", "TR2", "STATIC"}
-    interval = scenario.t_end / scenario.steps
-    for setting in sweep:
+    assert {s.mode for s in sweep} == {"GA3", "GA3-rho0.5", "GA3-modified", "TR2", "STATIC"}
+    assert {s.get("rho") for s in sweep} == {None, 0.0, 0.6}
+    period = shortest_period(scenario)
+    for setting in sweep:  # the rule's ladder of steps per period, never the output grid's
         if setting.mode != "STATIC":
-            substeps = interval / setting["dt"]
-            assert abs(substeps - round(substeps)) < 1e-9
+            per_period = period / setting["dt"]
+            assert abs(per_period - round(per_period)) < 1e-6 * per_period
 
 
 def test_unknown_modes_and_options_fail_without_raising() -> None:

@@ -133,7 +133,9 @@ def test_static_mode_matches_the_reference_solver(case: str) -> None:
 def test_generalized_alpha_matches_the_reference_solver(case: str) -> None:
     scenario = CASES[case]()
     position, velocity, acceleration = relative_errors(scenario, ADAPTER.default_setting(scenario))
-    assert position < 1e-13
+    # exact to Newton's tolerance at the steps; the outputs between two steps are their cubic
+    # Hermite interpolant (adapters.lattice)
+    assert position < 1e-10
     assert velocity < 2e-5
     assert acceleration < 5e-2
 

@@ -19,6 +19,8 @@ import pytest
 
 import scenarios
 from adapters.base import Setting
+from adapters.mujoco.settings import STEPS_PER_PERIOD, TC_STEPS
+from adapters.step_rule import shortest_period
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 from tests.adapters.mujoco.truths import ADAPTER, errors
@@ -31,7 +33,9 @@ def test_the_adapter_runs_dynamics_with_mujocos_integrators() -> None:
     scenario = scenarios.load("four_bar_gravity")
     assert ADAPTER.dynamics
     assert {s.mode for s in ADAPTER.sweep(scenario)} == {"RK4", "implicit", "implicitfast", "Euler"}
-    assert ADAPTER.default_setting(scenario) == Setting.of("RK4", dt=1e-4, tc_steps=4.0, impedance=0.9999)
+    dt = shortest_period(scenario) / STEPS_PER_PERIOD
+    expected = Setting.of("RK4", dt=dt, tc=TC_STEPS * dt, impedance=0.9999)
+    assert ADAPTER.default_setting(scenario) == expected
 
 
 def test_the_start_velocity_is_the_bodies_rates() -> None:

@@ -19,7 +19,7 @@ import pytest
 import scenarios
 from adapters.base import Setting
 from adapters.pinocchio import PinocchioAdapter
-from adapters.pinocchio.adapter import drive_period
+from adapters.step_rule import shortest_period as drive_period
 from scenarios.closed_form import exact
 
 CAMS = ("cam_knife_edge", "cam_roller", "cam_flat_face")
