@@ -59,7 +59,7 @@ def test_a_bad_grid_or_pair_is_one_error_line(tmp_path: Path, capsys, option: st
 def test_list_gives_one_name_per_mode_and_every_family_it_lists(capsys) -> None:
     assert main(["list"]) == 0
     out = capsys.readouterr().out
-    table, modes = out.split("\nmodes:")[0], out.split("\nmodes:")[1].split("\nparameters:")[0]
+    table, modes = out.split("\nmodes:")[0], out.split("\nmodes:")[1].split("\n\n")[0]  # to its blank line
     listed = [line.split(":")[0].split() for line in modes.splitlines()[1:] if line.strip()]
     assert len(listed) == len({tuple(pair) for pair in listed})
     names = {mode for _, mode in listed}
