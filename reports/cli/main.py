@@ -17,11 +17,12 @@ import numpy as np
 
 import adapters
 import reports.cli.compare_command as compare_command
+import reports.cli.store_command as store_command
 import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
 from reports.cli.usage import Parser, UsageError, pairs, scenario_argument
 from reports.harness import stop
-from reports.harness.atomic_write import atomic_output
+from reports.harness.atomic_write import atomic_output, atomic_path, output_target
 from reports.harness.gate import GateError
 from reports.harness.store_files import StoreDamaged
 from reports.harness.store_lock import StoreBusy
@@ -123,6 +124,8 @@ def cmd_list(args: argparse.Namespace) -> int:
 
 
 def cmd_solve(args: argparse.Namespace) -> int:
+    if args.out is not None:
+        output_target(args.out)  # a device, FIFO or directory is refused before solving
     scenario = load(args.scenario, pairs(args.set, "--set"))
     grid = time_grid(scenario, args.t_end, args.steps, args.dt)
     adapter = load_engine(args.engine)
@@ -141,6 +144,7 @@ def cmd_solve(args: argparse.Namespace) -> int:
 
 
 def cmd_export(args: argparse.Namespace) -> int:
+    output_target(args.out)
     scenario = load(args.scenario, pairs(args.set, "--set"))
     if args.format == "toml":
         with atomic_output(args.out) as stream:
@@ -153,7 +157,8 @@ def cmd_export(args: argparse.Namespace) -> int:
     if reason is not None:
         raise UsageError(f"{args.engine} cannot represent {scenario.name}: {reason}")
     try:
-        adapter.export(scenario, setting, args.out)
+        with atomic_path(args.out) as temp:  # the engine's own writer fills a temporary file
+            adapter.export(scenario, setting, str(temp))
     except NotImplementedError as error:
         raise UsageError(str(error)) from error
     print(f"wrote {args.out}")
@@ -207,6 +212,7 @@ def parser() -> argparse.ArgumentParser:
 
     suite_commands.add_parsers(sub)
     compare_command.add_parser(sub)
+    store_command.add_parser(sub)
     for name, subparser in sub.choices.items():
         what, example = GUIDE[name]
         subparser.description, subparser.epilog = textwrap.fill(what, 90), "example:\n  " + example
@@ -251,6 +257,12 @@ GUIDE: dict[str, tuple[str, str]] = {
         "report shows it beside the engines.",
         "mbxval compare slider_crank my_tool.csv --label my_tool --out mbxval-report",
     ),
+    "store": (
+        "Repair a results store that mbxval refuses because its `current` link is missing or odd "
+        "(a copy made with cp -rL, a deleted link) or a generation does not verify: every generation "
+        "that verifies is kept, one that does not is moved aside, never deleted.",
+        "mbxval store repair mbxval-report",
+    ),
     "bench": (
         "Measure the native solver's speed beside the engines (benchmarks, run on demand).",
         "mbxval bench speed",
@@ -264,6 +276,7 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "export": cmd_export,
     **suite_commands.COMMANDS,
     **compare_command.COMMANDS,
+    **store_command.COMMANDS,
 }
 
 

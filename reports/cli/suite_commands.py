@@ -15,6 +15,7 @@ from typing import Any
 import adapters
 from reports.cli.usage import UsageError
 from reports.harness import gate, scenario_identity, stop, store_files, suites, sweep
+from reports.harness.atomic_write import output_target
 from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import Runner, RunOptions
 from reports.harness.store_lock import WriterLock
@@ -191,6 +192,8 @@ def cmd_check(args: argparse.Namespace) -> int:
     """The gate runs what it compares (every selected run made afresh) unless --results is given."""
     if not (math.isfinite(args.factor) and args.factor > 0):
         raise UsageError(f"--factor must be a finite positive number, got {args.factor}")
+    if args.update:
+        output_target(args.baseline)  # not a regular file: refused before running
     baseline = None if args.update else gate.read_baseline(args.baseline)  # bad baseline: before running
     if args.results is not None:
         return _check(args, Path(args.results), baseline)
