@@ -283,12 +283,13 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
 def main(argv: Sequence[str] | None = None) -> int:
     """Run one command; bad input is one line and exit 2, Ctrl-C one line and exit 130, a closed
     pipe (`mbxval solve ... | head`) ends quietly with 141 (128 + SIGPIPE, as a shell reports it)."""
+    stop.catch_sigterm()
     try:
         args = parser().parse_args(argv)
         return COMMANDS[args.command](args)
     except BrokenPipeError:
         return stop.closed_pipe()
-    except KeyboardInterrupt:
-        return stop.interrupted(f"interrupted ({' '.join(sys.argv[1:2]) or 'mbxval'})")
+    except KeyboardInterrupt as error:
+        return stop.interrupted(f"interrupted ({' '.join(sys.argv[1:2]) or 'mbxval'})", error)
     except (UsageError, ScenarioError, StoreDamaged, StoreBusy, GateError, OSError) as error:
         return stop.usage_error(str(error))

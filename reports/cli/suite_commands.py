@@ -166,9 +166,9 @@ def cmd_run(args: argparse.Namespace) -> int:
     with WriterLock(out, wait=args.wait):
         try:
             run_selection(selection, out, progress=not args.quiet)
-        except KeyboardInterrupt:
+        except KeyboardInterrupt as error:
             return stop.interrupted(
-                f"interrupted; the runs made so far are stored in {out}: run again to resume"
+                f"interrupted; the runs made so far are stored in {out}: run again to resume", error
             )
         page = render_reports(out)
     frame, _ = read_results(out)

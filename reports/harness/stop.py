@@ -1,17 +1,43 @@
-"""How a command ends when the user stops it: Ctrl-C, a closed pipe, or bad input."""
+"""How a command ends when the user stops it: Ctrl-C, SIGTERM, a closed pipe, or bad input.
+
+SIGTERM (a CI job cancelled, `kill`, `timeout`) is turned into Terminated, a KeyboardInterrupt, so
+that it unwinds through the same cleanup as a Ctrl-C: every temporary file is removed where it is
+made, the runs stored so far stay stored; the command then ends with one line and exit 143."""
 
 from __future__ import annotations
 
 import os
+import signal
 import sys
+from types import FrameType
 
 INTERRUPTED = 130  # 128 + SIGINT, as shells report a Ctrl-C
+TERMINATED = 143  # 128 + SIGTERM
 CLOSED_PIPE = 141  # 128 + SIGPIPE
 USAGE = 2
 
 
-def interrupted(what: str) -> int:
-    """One line on stderr and exit status 130 (every temporary file is removed where it is made)."""
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised where the program is, to unwind like a Ctrl-C."""
+
+
+def _terminate(signum: int, frame: FrameType | None) -> None:
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # a second SIGTERM ends the process at once
+    raise Terminated
+
+
+def catch_sigterm() -> None:
+    """Make SIGTERM raise Terminated in this process (forked children inherit it: their runs are
+    caught as failures, and the parent kills them on its way out)."""
+    signal.signal(signal.SIGTERM, _terminate)
+
+
+def interrupted(what: str, error: BaseException | None = None) -> int:
+    """One line on stderr and exit status 130, or 143 for SIGTERM (every temporary file is removed
+    where it is made)."""
+    if isinstance(error, Terminated):
+        print(f"mbxval: {what.replace('interrupted', 'terminated by SIGTERM', 1)}", file=sys.stderr)
+        return TERMINATED
     print(f"mbxval: {what}", file=sys.stderr)
     return INTERRUPTED
 

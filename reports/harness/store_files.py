@@ -118,8 +118,12 @@ def link_public(root: Path, names: Iterable[str]) -> None:
             continue
         temp = root / f".{name}.{os.getpid()}.link"
         temp.unlink(missing_ok=True)
-        os.symlink(target, temp)
-        os.replace(temp, path)
+        try:
+            os.symlink(target, temp)
+            os.replace(temp, path)
+        except BaseException:
+            temp.unlink(missing_ok=True)
+            raise
 
 
 def remove_leftovers(root: Path, home: Path) -> None:
