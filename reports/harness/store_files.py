@@ -149,8 +149,8 @@ def _discard(generation: Path) -> None:
     shutil.rmtree(gone, ignore_errors=True)
 
 
-def sync_folder(path: Path) -> None:
-    """fsync a folder, so that a rename in it is durable."""
+def sync_path(path: Path) -> None:
+    """fsync a file, or a folder so that a rename in it is durable."""
     _sync(path)
 
 

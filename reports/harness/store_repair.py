@@ -6,8 +6,9 @@ What it does, in this order, each step said in one line:
 - every generation is verified by its checksums; one that does not verify is moved aside to
   .generations/quarantine-<name>-<time>/ (never read, never collected), not deleted;
 - `current` as a directory (a copy made with `cp -rL`) and plain files in DIR whose sidecar
-  verifies are adopted as a new generation, or, when their checksums are those of a generation
-  already there, replaced by links; what does not verify is moved aside;
+  verifies are adopted as a new generation (the plain files copied into it first, so a repair
+  stopped half-way loses nothing), or, when their checksums are those of a generation already
+  there, replaced by links; what does not verify is moved aside;
 - `current` as a regular file is moved aside; a link that is dangling or points out of
   .generations is removed (a link holds no data);
 - a valid `current` is kept; otherwise it is pointed at the newest generation that verifies, and
@@ -30,6 +31,7 @@ from reports.harness.store_layout import (
     GENERATIONS,
     QUARANTINE,
     SIDECAR,
+    TEMPORARY,
     StoreDamaged,
     generation_names,
     number,
@@ -104,10 +106,11 @@ class Repair:
         if not self.good and "files" not in _sidecar_or_empty(self.root):
             self.lines.append("a store from before generations: left as it is (its next save converts it)")
             return LEGACY
-        folder = self.home / f"{QUARANTINE}files-{self.stamp}"  # never collected, should this stop
-        folder.mkdir()
+        folder = self.home / f"{TEMPORARY}adopt-{self.stamp}"  # copies: the originals stay until
+        folder.mkdir()  # their generation is committed, so a repair stopped here loses nothing
         for name in plain:
-            os.rename(self.root / name, folder / name)
+            shutil.copy2(self.root / name, folder / name)
+            store_files.sync_path(folder / name)
         self._adopt(folder, "files", "the plain files in the store's directory")
         return None
 
@@ -146,7 +149,7 @@ class Repair:
         temp = self.root / f".{CURRENT}.{os.getpid()}"
         os.symlink(Path(GENERATIONS) / newest, temp)
         os.replace(temp, self.root / CURRENT)
-        store_files.sync_folder(self.root)
+        store_files.sync_path(self.root)
         self.lines.append(f"pointed {CURRENT} at {newest}, the newest generation that verifies")
         return newest
 
