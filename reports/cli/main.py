@@ -286,7 +286,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     stop.catch_sigterm()
     try:
         args = parser().parse_args(argv)
-        return COMMANDS[args.command](args)
+        status = COMMANDS[args.command](args)
+        stop.raise_if_terminated()  # a SIGTERM whose exception was swallowed still ends as one
+        return status
     except BrokenPipeError:
         return stop.closed_pipe()
     except KeyboardInterrupt as error:

@@ -21,21 +21,41 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised where the program is, to unwind like a Ctrl-C."""
 
 
+class _Sigterm:
+    """Who installed the handler, and whether SIGTERM came (an exception raised from a signal
+    handler can be swallowed, as inside os.fork's callbacks: `raise_if_terminated` raises it again
+    at the next safe point)."""
+
+    owner: int | None = None
+    received = False
+
+
 def _terminate(signum: int, frame: FrameType | None) -> None:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)  # a second SIGTERM ends the process at once
+    if os.getpid() != _Sigterm.owner:  # a forked child (a figure worker, an engine run): die as asked
+        os.kill(os.getpid(), signal.SIGTERM)
+        return
+    _Sigterm.received = True
     raise Terminated
 
 
 def catch_sigterm() -> None:
-    """Make SIGTERM raise Terminated in this process (forked children inherit it: their runs are
-    caught as failures, and the parent kills them on its way out)."""
+    """Make SIGTERM raise Terminated in this process; forked children end as SIGTERM ends them."""
+    _Sigterm.owner, _Sigterm.received = os.getpid(), False
     signal.signal(signal.SIGTERM, _terminate)
+
+
+def raise_if_terminated() -> None:
+    """Raise Terminated if SIGTERM came and its exception was swallowed on the way."""
+    if _Sigterm.received and os.getpid() == _Sigterm.owner:
+        raise Terminated
 
 
 def interrupted(what: str, error: BaseException | None = None) -> int:
     """One line on stderr and exit status 130, or 143 for SIGTERM (every temporary file is removed
     where it is made)."""
     if isinstance(error, Terminated):
+        _Sigterm.received = False  # said once
         print(f"mbxval: {what.replace('interrupted', 'terminated by SIGTERM', 1)}", file=sys.stderr)
         return TERMINATED
     print(f"mbxval: {what}", file=sys.stderr)

@@ -214,3 +214,36 @@ def test_a_save_or_repair_killed_at_any_io_call_loses_nothing(
             Repair(out).run()
         new_row_save(out)  # a save cleans what the kill left
         assert_kept(out, before)
+
+
+@pytest.mark.slow
+def test_sigterm_during_a_run_keeps_the_store_and_leaves_no_temporary(tmp_path: Path) -> None:
+    """A real `mbxval run`, terminated after its first save: one line, exit 143, the store loads,
+    no temporary file, and a resume completes it."""
+    import sys
+    import time
+
+    out = tmp_path / "out"
+    run = ["run", "--out", str(out), "--scenario", "slider_crank", "--scenario", "four_bar"]
+    command = [
+        sys.executable,
+        "-m",
+        "reports.cli",
+        *run,
+        "--engine",
+        "reference",
+        "--engine",
+        "mujoco",
+        "--quiet",
+    ]
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[3])}
+    process = subprocess.Popen(command, env=env, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not (out / "current").is_symlink():
+        assert process.poll() is None and time.monotonic() < deadline
+        time.sleep(0.01)
+    process.send_signal(signal.SIGTERM)
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == 143 and err.count("\n") == 1 and "terminated by SIGTERM" in err, err
+    assert len(ResultsStore(out).rows) > 0 and not leftovers(out)
+    assert subprocess.run(command, env=env, capture_output=True).returncode == 0
