@@ -77,10 +77,10 @@ def commit(directory: str | os.PathLike[str], writers: Mapping[str, Writer], met
         (work / SIDECAR).write_text(text + "\n")
         _sync(work / SIDECAR)
         os.chmod(work, 0o755)
-        generation = home / _next_name(home)
+        generation = home / next_name(home)
         os.rename(work, generation)
         _sync(home)
-        _switch(root, generation)
+        switch(root, generation)
         switched = True
         _sync(root)
     except BaseException:
@@ -93,12 +93,12 @@ def commit(directory: str | os.PathLike[str], writers: Mapping[str, Writer], met
     return generation
 
 
-def _next_name(home: Path) -> str:
+def next_name(home: Path) -> str:
     names = generation_names(home)
     return f"g{(number(names[-1]) if names else 0) + 1:06d}"
 
 
-def _switch(root: Path, generation: Path) -> None:
+def switch(root: Path, generation: Path) -> None:
     """Point `current` at the generation with one rename (the commit)."""
     temp = root / f".{CURRENT}.{os.getpid()}"
     temp.unlink(missing_ok=True)

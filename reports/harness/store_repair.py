@@ -127,8 +127,7 @@ class Repair:
             shutil.rmtree(folder)
             self.lines.append(f"{what}: the same checksums as {same[-1]}, replaced by a link")
             return
-        names = generation_names(self.home)
-        name = f"g{(number(names[-1]) if names else 0) + 1:06d}"
+        name = store_files.next_name(self.home)
         os.rename(folder, self.home / name)
         self.good[name] = sidecar
         self.lines.append(f"{what}: verified, adopted as generation {name}")
@@ -146,9 +145,7 @@ class Repair:
                 "no generation verifies",
             )
         newest = max(self.good, key=number)
-        temp = self.root / f".{CURRENT}.{os.getpid()}"
-        os.symlink(Path(GENERATIONS) / newest, temp)
-        os.replace(temp, self.root / CURRENT)
+        store_files.switch(self.root, self.home / newest)
         store_files.sync_path(self.root)
         self.lines.append(f"pointed {CURRENT} at {newest}, the newest generation that verifies")
         return newest

@@ -158,7 +158,7 @@ def test_a_first_save_stopped_before_its_switch_is_read(tmp_path: Path) -> None:
     out = tmp_path / "out"
     pid = os.fork()
     if pid == 0:  # the child dies where the first save would switch `current`
-        store_files._switch = lambda root, generation: os._exit(9)  # type: ignore[assignment]
+        store_files.switch = lambda root, generation: os._exit(9)  # type: ignore[assignment]
         try:
             fake_run(out)
         finally:
