@@ -65,8 +65,11 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
     except FileNotFoundError:
         keep = None
     temp = target.parent / f".{target.name}.{secrets.token_hex(4)}.tmp"
-    fd = os.open(temp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)  # the umask applies
-    try:
+    try:  # from its creation on: a signal arriving just after os.open still removes it
+        try:
+            fd = os.open(temp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)  # the umask applies
+        except FileExistsError:  # another writer's temporary file, by chance of the name
+            raise OutputRefused(f"a temporary file {temp} is in the way; try again") from None
         os.close(fd)
         if keep is not None:
             os.chmod(temp, keep)
@@ -74,6 +77,8 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
         sync_file(temp)
         os.replace(temp, target)
         sync_file(target.parent)
+    except OutputRefused:
+        raise
     except BaseException:
         temp.unlink(missing_ok=True)
         raise

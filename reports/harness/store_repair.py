@@ -133,7 +133,9 @@ class Repair:
         self.lines.append(f"{what}: verified, adopted as generation {name}")
 
     def _aside(self, path: Path, name: str, why: str) -> None:
-        place = self.home / f"{QUARANTINE}{name}-{self.stamp}"
+        place, count = self.home / f"{QUARANTINE}{name}-{self.stamp}", 1
+        while place.exists() or place.is_symlink():  # a second repair within the same second
+            place, count = self.home / f"{QUARANTINE}{name}-{self.stamp}-{count}", count + 1
         os.rename(path, place)
         self.lines.append(f"{why}: moved aside to {place.relative_to(self.root)}, not deleted")
 
