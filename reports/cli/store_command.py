@@ -9,12 +9,12 @@ from pathlib import Path
 from typing import Any
 
 from reports.harness.store_lock import WriterLock
-from reports.harness.store_repair import Repair
+from reports.harness.store_repair import Repair, holds_a_store
 
 
 def cmd_store(args: argparse.Namespace) -> int:
     directory = Path(args.directory)
-    if not directory.is_dir():
+    if not holds_a_store(directory):  # before the lock, which would leave its file there
         raise FileNotFoundError(f"no results store at {directory}")
     with WriterLock(directory, wait=args.wait):
         lines = Repair(directory).run()

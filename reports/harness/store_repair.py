@@ -55,7 +55,7 @@ class Repair:
         self.good: dict[str, bytes] = {}  # verified generation -> its sidecar's bytes
 
     def run(self) -> list[str]:
-        if not self.root.is_dir():
+        if not holds_a_store(self.root):
             raise FileNotFoundError(f"no results store at {self.root}")
         self.home.mkdir(exist_ok=True)
         store_files.remove_leftovers(self.root, self.home)
@@ -151,6 +151,13 @@ class Repair:
         store_files.sync_path(self.root)
         self.lines.append(f"pointed {CURRENT} at {newest}, the newest generation that verifies")
         return newest
+
+
+def holds_a_store(directory: Path) -> bool:
+    """Whether the directory holds anything of a store (so that a repair of another folder, or of
+    a typo, changes nothing)."""
+    names = (GENERATIONS, CURRENT, *PUBLIC)
+    return directory.is_dir() and any((directory / n).exists() or (directory / n).is_symlink() for n in names)
 
 
 def unverifiable(folder: Path, root: Path) -> str | None:

@@ -168,3 +168,10 @@ def test_a_first_save_stopped_before_its_switch_is_read(tmp_path: Path) -> None:
     assert not (out / "current").exists()
     assert store_files.committed(out) == out / GENERATIONS / "g000001"
     assert len(ResultsStore(out).rows) > 0
+
+
+def test_repair_of_a_folder_without_a_store_changes_nothing(tmp_path: Path, capsys) -> None:
+    (tmp_path / "notes.txt").write_text("mine\n")
+    assert main(["store", "repair", str(tmp_path)]) == 2
+    one_line_error(capsys, "no results store at")
+    assert [p.name for p in tmp_path.iterdir()] == ["notes.txt"]
