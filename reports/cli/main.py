@@ -19,12 +19,13 @@ import numpy as np
 import adapters
 import reports.cli.compare_command as compare_command
 import reports.cli.schema_command as schema_command
+import reports.cli.store_command as store_command
 import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
 from adapters.step_rule import RULE
 from reports.cli.usage import Parser, UsageError, pairs, scenario_argument
 from reports.harness import provenance, stop
-from reports.harness.atomic_write import atomic_output
+from reports.harness.atomic_write import atomic_output, atomic_path, output_target
 from reports.harness.gate import GateError
 from reports.harness.store_files import StoreDamaged
 from reports.harness.store_lock import StoreBusy
@@ -158,6 +159,8 @@ def solve_trajectory(
 
 
 def cmd_solve(args: argparse.Namespace) -> int:
+    if args.out is not None:
+        output_target(args.out)  # a device, FIFO or directory is refused before solving
     scenario = load(args.scenario, pairs(args.set, "--set"))
     grid = (args.t_end, args.steps, args.dt)
     trajectory = solve_trajectory(scenario, args.engine, args.mode, args.setting, grid)
@@ -182,6 +185,7 @@ def renamed(scenario: Scenario, name: str | None) -> Scenario:
 
 
 def cmd_export(args: argparse.Namespace) -> int:
+    output_target(args.out)
     scenario = load(args.scenario, pairs(args.set, "--set"))
     if args.name is not None and args.format != "toml":
         raise UsageError("--name names a scenario file: give it with --format toml")
@@ -197,7 +201,8 @@ def cmd_export(args: argparse.Namespace) -> int:
     if reason is not None:
         raise UsageError(f"{args.engine} cannot represent {scenario.name}: {reason}")
     try:
-        adapter.export(scenario, setting, args.out)
+        with atomic_path(args.out) as temp:  # the engine's own writer fills a temporary file
+            adapter.export(scenario, setting, str(temp))
     except NotImplementedError as error:
         raise UsageError(str(error)) from error
     print(f"wrote {args.out}")
@@ -260,6 +265,7 @@ def parser() -> argparse.ArgumentParser:
     suite_commands.add_parsers(sub)
     compare_command.add_parser(sub)
     schema_command.add_parser(sub)
+    store_command.add_parser(sub)
     for name, subparser in sub.choices.items():
         what, example = GUIDE[name]
         subparser.description, subparser.epilog = textwrap.fill(what, 90), "example:\n  " + example
@@ -309,6 +315,12 @@ GUIDE: dict[str, tuple[str, str]] = {
         "scenario files (TOML editors such as Taplo read a `#:schema FILE` first line).",
         "mbxval schema --out scenario.schema.json",
     ),
+    "store": (
+        "Repair a results store that mbxval refuses because its `current` link is missing or odd "
+        "(a copy made with cp -rL, a deleted link) or a generation does not verify: every generation "
+        "that verifies is kept, one that does not is moved aside, never deleted.",
+        "mbxval store repair mbxval-report",
+    ),
     "bench": (
         "Measure the native solver's speed beside the engines (benchmarks, run on demand).",
         "mbxval bench speed",
@@ -323,18 +335,22 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     **suite_commands.COMMANDS,
     **compare_command.COMMANDS,
     **schema_command.COMMANDS,
+    **store_command.COMMANDS,
 }
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run one command; bad input is one line and exit 2, Ctrl-C one line and exit 130, a closed
     pipe (`mbxval solve ... | head`) ends quietly with 141 (128 + SIGPIPE, as a shell reports it)."""
+    stop.catch_sigterm()
     try:
         args = parser().parse_args(argv)
-        return COMMANDS[args.command](args)
+        status = COMMANDS[args.command](args)
+        stop.raise_if_terminated()  # a SIGTERM whose exception was swallowed still ends as one
+        return status
     except BrokenPipeError:
         return stop.closed_pipe()
-    except KeyboardInterrupt:
-        return stop.interrupted(f"interrupted ({' '.join(sys.argv[1:2]) or 'mbxval'})")
+    except KeyboardInterrupt as error:
+        return stop.interrupted(f"interrupted ({' '.join(sys.argv[1:2]) or 'mbxval'})", error)
     except (UsageError, ScenarioError, StoreDamaged, StoreBusy, GateError, OSError) as error:
         return stop.usage_error(str(error))

@@ -17,6 +17,7 @@ import adapters
 import reports.cli.run_overrides as run_overrides
 from reports.cli.usage import UsageError
 from reports.harness import baselines, gate, gate_files, scenario_identity, stop, store_files, suites, sweep
+from reports.harness.atomic_write import output_target
 from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import Runner, RunOptions
 from reports.harness.store_lock import WriterLock
@@ -186,8 +187,10 @@ def cmd_run(args: argparse.Namespace) -> int:
     selection = select(args, out)
     try:
         made, page = run_and_render(selection, out, args.wait, progress=not args.quiet)
-    except KeyboardInterrupt:
-        return stop.interrupted(f"interrupted; the runs made so far are stored in {out}: run again to resume")
+    except KeyboardInterrupt as error:
+        return stop.interrupted(
+            f"interrupted; the runs made so far are stored in {out}: run again to resume", error
+        )
     print(run_summary(made, out, page))
     return 0
 
@@ -213,6 +216,8 @@ def cmd_check(args: argparse.Namespace) -> int:
         if target is not None and (Path(target).is_dir() or not Path(target).parent.is_dir()):
             raise UsageError(f"{option} {target}: not a file in an existing directory")
     args.baseline = str(baselines.resolve(args.baseline))
+    if args.update:
+        output_target(args.baseline)  # not a regular file: refused before running
     baseline = None if args.update else gate.read_baseline(args.baseline)  # bad baseline: before running
     if args.results is not None:
         return _check(args, Path(args.results), baseline)

@@ -27,6 +27,7 @@ from typing import Any
 
 import pandas as pd
 
+from reports.harness.atomic_write import atomic_output, output_target
 from reports.harness.results_store import SCHEMA_VERSION
 
 DEFAULT_FACTOR = 10.0
@@ -99,7 +100,8 @@ def write_baseline(path: str | os.PathLike[str], frame: pd.DataFrame, meta: dict
     head = {"schema_version": SCHEMA_VERSION, "made_from": {k: meta.get(k) for k in keep}}
     cells = ",\n".join(json.dumps(c, sort_keys=True) for c in baseline_cells(frame))
     text = json.dumps(head, indent=1, sort_keys=True)[:-2]  # one cell a line, for readable diffs
-    Path(path).write_text(f'{text},\n "cells": [\n{cells}\n ]\n}}\n')
+    with atomic_output(path) as stream:  # a failed write leaves the old baseline as it was
+        stream.write(f'{text},\n "cells": [\n{cells}\n ]\n}}\n')
 
 
 def read_baseline(path: str | os.PathLike[str]) -> list[dict[str, Any]]:
@@ -226,6 +228,7 @@ def _nan(value: Any) -> bool:
 
 def update_baseline(path: str | os.PathLike[str], frame: pd.DataFrame, meta: dict[str, Any]) -> str:
     """Write the baseline from the results and say what it adds, drops and changes."""
+    output_target(path)  # a FIFO or a device is refused before it is read
     try:
         before = {_key(c): c for c in json.loads(Path(path).read_text()).get("cells", [])}
     except (OSError, ValueError, AttributeError, TypeError, KeyError):

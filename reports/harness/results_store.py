@@ -21,7 +21,7 @@ import pandas as pd
 
 from reports.harness import store_files
 from reports.harness.columns import COLUMNS, DECLARED
-from reports.harness.store_files import damaged
+from reports.harness.store_layout import damaged
 from scenarios.trajectory import Trajectory
 
 SCHEMA_VERSION = 1

@@ -28,7 +28,7 @@ import tqdm
 
 import adapters
 from adapters.base import Adapter, RunResult, Setting
-from reports.harness import provenance
+from reports.harness import provenance, stop
 from reports.harness.comparison import compare
 from reports.harness.isolation import run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION
@@ -143,6 +143,7 @@ class Runner:
                 for row, trajectory in run_group(group, jobs, truth, self.options, self.residual, done):
                     self._add(row, trajectory)
                 self._save()
+                stop.raise_if_terminated()
 
     # --- planning ---------------------------------------------------------------------------
     def _plan(self, name: str) -> list[Group]:

@@ -1,17 +1,63 @@
-"""How a command ends when the user stops it: Ctrl-C, a closed pipe, or bad input."""
+"""How a command ends when the user stops it: Ctrl-C, SIGTERM, a closed pipe, or bad input.
+
+SIGTERM (a CI job cancelled, `kill`, `timeout`) is turned into Terminated, a KeyboardInterrupt, so
+that it unwinds through the same cleanup as a Ctrl-C: every temporary file is removed where it is
+made, the runs stored so far stay stored; the command then ends with one line and exit 143."""
 
 from __future__ import annotations
 
 import os
+import signal
 import sys
+from types import FrameType
 
 INTERRUPTED = 130  # 128 + SIGINT, as shells report a Ctrl-C
+TERMINATED = 143  # 128 + SIGTERM
 CLOSED_PIPE = 141  # 128 + SIGPIPE
 USAGE = 2
 
 
-def interrupted(what: str) -> int:
-    """One line on stderr and exit status 130 (every temporary file is removed where it is made)."""
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised where the program is, to unwind like a Ctrl-C."""
+
+
+class _Sigterm:
+    """Who installed the handler, and whether SIGTERM came (an exception raised from a signal
+    handler can be swallowed, as inside os.fork's callbacks: `raise_if_terminated` raises it again
+    at the next safe point)."""
+
+    owner: int | None = None
+    received = False
+
+
+def _terminate(signum: int, frame: FrameType | None) -> None:
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # a second SIGTERM ends the process at once
+    if os.getpid() != _Sigterm.owner:  # a forked child (a figure worker, an engine run): die as asked
+        os.kill(os.getpid(), signal.SIGTERM)
+        return
+    _Sigterm.received = True
+    raise Terminated
+
+
+def catch_sigterm() -> None:
+    """Make SIGTERM raise Terminated in this process; forked children end as SIGTERM ends them."""
+    _Sigterm.owner, _Sigterm.received = os.getpid(), False
+    signal.signal(signal.SIGTERM, _terminate)
+
+
+def raise_if_terminated() -> None:
+    """Raise Terminated if SIGTERM came and its exception was swallowed on the way."""
+    if _Sigterm.received and os.getpid() == _Sigterm.owner:
+        raise Terminated
+
+
+def interrupted(what: str, error: BaseException | None = None) -> int:
+    """One line on stderr and exit status 130, or 143 for SIGTERM (every temporary file is removed
+    where it is made)."""
+    if isinstance(error, Terminated):
+        _Sigterm.received = False  # said once
+        print(f"mbxval: {what.replace('interrupted', 'terminated by SIGTERM', 1)}", file=sys.stderr)
+        return TERMINATED
     print(f"mbxval: {what}", file=sys.stderr)
     return INTERRUPTED
 

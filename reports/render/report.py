@@ -25,6 +25,4 @@ def render_reports(results: str | os.PathLike[str], out: str | os.PathLike[str] 
         stream.write(html_report.render(data))
     with atomic_output(target / MARKDOWN) as stream:
         stream.write(markdown_report.render(data))
-    for name in (HTML, MARKDOWN):
-        (target / name).chmod(0o644)
     return target / HTML
