@@ -49,7 +49,10 @@ def warm(scenario: Scenario, timeout: float = WARM_TIMEOUT) -> None:
 
 
 def warm_kernels() -> None:
-    """Load the native kernels in this process (a Dask worker's setup), on a built-in scenario."""
+    """Load the native kernels in this process (a Dask worker's setup), on a built-in scenario;
+    once per process, however often it is asked."""
+    if counts["kernels"]:
+        return
     counts["kernels"] += 1
     warm(build_scenario(KERNEL_SCENARIO))
 
