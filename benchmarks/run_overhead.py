@@ -2,6 +2,7 @@
 work its own rows time, for a native sweep and for a subset of the default suite.
 
     python -m benchmarks.run_overhead [--points 16] [--scenarios 6] [--engines reference]
+        [--sweep NAME=SPEC ...] [--workers N]
 
 Each case runs the command line in a fresh interpreter into an empty directory, as a user does
 (start-up, truths, forked runs, saving, the report page), and reads the rows it stored:
@@ -52,6 +53,8 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--scenario", default="four_bar", help="scenario of the sweep (default four_bar)")
     parser.add_argument("--points", type=int, default=16, help="sweep points, omega 10 to 40 (default 16)")
     parser.add_argument("--engines", default="reference", help="engines of the sweep (default reference)")
+    parser.add_argument("--sweep", action="append", help="sweep specs instead of omega=lin:10:40:POINTS")
+    parser.add_argument("--workers", type=int, help="run the sweep on a local Dask cluster of N workers too")
     parser.add_argument("--scenarios", type=int, default=6, help="default-suite scenarios (default 6)")
     parser.add_argument("--suite-engines", default="reference,mujoco", help="engines of the suite subset")
     args = parser.parse_args(argv)
@@ -63,9 +66,13 @@ def main(argv: list[str] | None = None) -> None:
           f"{'wall/comp':>9} {'wall/work':>8} {'ms/run over':>10}")  # fmt: skip
     with tempfile.TemporaryDirectory(prefix="mbxval-overhead-") as temporary:
         base = Path(temporary)
-        sweep = f"omega=lin:10:40:{args.points}"
-        native = measure(f"sweep {args.scenario} {args.points} pts", [
-            "--scenario", args.scenario, *engines, "--sweep", sweep], base / "sweep")  # fmt: skip
+        sweeps = [a for spec in args.sweep or [f"omega=lin:10:40:{args.points}"] for a in ("--sweep", spec)]
+        chosen = ["--scenario", args.scenario, *engines, *sweeps]
+        native = measure(f"sweep {args.scenario} serial", chosen, base / "sweep")
+        if args.workers:
+            workers = ["--workers", str(args.workers)]
+            parallel = measure(f"sweep --workers {args.workers}", [*chosen, *workers], base / "dask")
+            print(f"--workers {args.workers} against serial: {native['wall'] / parallel['wall']:.2f}x faster")
         if args.scenarios:
             names = main_scenarios()[: args.scenarios]
             chosen = [a for n in names for a in ("--scenario", n)]
