@@ -2,7 +2,7 @@
 work its own rows time, for a native sweep and for a subset of the default suite.
 
     python -m benchmarks.run_overhead [--points 16] [--scenarios 6] [--engines reference]
-        [--sweep NAME=SPEC ...] [--workers N]
+        [--sweep NAME=SPEC ...] [--suite quick] [--workers N]
 
 Each case runs the command line in a fresh interpreter into an empty directory, as a user does
 (start-up, truths, forked runs, saving, the report page), and reads the rows it stored:
@@ -54,6 +54,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--points", type=int, default=16, help="sweep points, omega 10 to 40 (default 16)")
     parser.add_argument("--engines", default="reference", help="engines of the sweep (default reference)")
     parser.add_argument("--sweep", action="append", help="sweep specs instead of omega=lin:10:40:POINTS")
+    parser.add_argument("--suite", help="the sweep's suite options (quick: default settings, timed once)")
     parser.add_argument("--workers", type=int, help="run the sweep on a local Dask cluster of N workers too")
     parser.add_argument("--scenarios", type=int, default=6, help="default-suite scenarios (default 6)")
     parser.add_argument("--suite-engines", default="reference,mujoco", help="engines of the suite subset")
@@ -67,7 +68,13 @@ def main(argv: list[str] | None = None) -> None:
     with tempfile.TemporaryDirectory(prefix="mbxval-overhead-") as temporary:
         base = Path(temporary)
         sweeps = [a for spec in args.sweep or [f"omega=lin:10:40:{args.points}"] for a in ("--sweep", spec)]
-        chosen = ["--scenario", args.scenario, *engines, *sweeps]
+        chosen = [
+            "--scenario",
+            args.scenario,
+            *engines,
+            *sweeps,
+            *(["--suite", args.suite] if args.suite else []),
+        ]
         native = measure(f"sweep {args.scenario} serial", chosen, base / "sweep")
         if args.workers:
             workers = ["--workers", str(args.workers)]
