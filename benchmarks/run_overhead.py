@@ -9,6 +9,7 @@ Each case runs the command line in a fresh interpreter into an empty directory, 
 - compute: the sum of the rows' build and run times (run time being the minimum of the repeats);
 - work: what the rows say was done, build + (warm-up + repeats) x run time per row;
 - overhead per run: (wall - work) / rows.
+A run that fails (a singular position, a timeout) stores no times: its work counts as overhead.
 Beside them, the wall time of a one-point `mbxval solve` of the same scenario, for the ratio the
 issue's target names (the native sweep in at most 3 times a one-point solve).
 """
@@ -36,10 +37,9 @@ def wall(arguments: list[str]) -> float:
 def measure(label: str, arguments: list[str], out: Path) -> dict[str, float]:
     seconds = wall(["run", *arguments, "--out", str(out), "--quiet"])
     rows, _ = read_results(out)
-    ok = rows[rows["status"] == "ok"]
-    compute = float((ok["build_time"].fillna(0) + ok["run_time"].fillna(0)).sum())
-    times_run = ok["warmup"].fillna(0) + ok["repeats"].fillna(1)
-    work = float((ok["build_time"].fillna(0) + ok["run_time"].fillna(0) * times_run).sum())
+    build, run = rows["build_time"].fillna(0), rows["run_time"].fillna(0)  # a failed run times nothing
+    compute = float((build + run).sum())
+    work = float((build + run * (rows["warmup"].fillna(0) + rows["repeats"].fillna(1))).sum())
     per_run = (seconds - work) / max(len(rows), 1)
     print(
         f"{label:<28} {len(rows):5d} {seconds:8.2f} {compute:9.3f} {work:8.3f} "
