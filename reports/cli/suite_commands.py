@@ -270,6 +270,7 @@ BENCHMARKS = {
     "speed": "benchmarks.solver_speed",
     "scaling": "benchmarks.chain_scaling",
     "sweep": "benchmarks.sweep_speed",
+    "overhead": "benchmarks.run_overhead",
 }
 
 
@@ -325,7 +326,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         choices=sorted(BENCHMARKS),
         default="speed",
         help="speed: cost per time point per family; scaling: cost against chain size; "
-        "sweep: a 200-point sweep serial against --workers",
+        "sweep: a 200-point sweep serial against --workers; overhead: wall time against the measured work",
     )
     bench.add_argument("options", nargs=argparse.REMAINDER, help="passed to the benchmark (see its --help)")
 

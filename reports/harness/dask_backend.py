@@ -10,6 +10,8 @@ its rows are stored `failed` with the reason, and the next run retries them. Tas
 (retries=0); the local cluster's scheduler gives up on a task at the first worker death it causes
 (allowed-failures 0) and hands each worker one task at a time (worker-saturation 1), so that a dying
 worker holds no other group. An external scheduler's own settings decide that for --cluster.
+Each worker warms once (WarmWorker: the native kernels loaded when it starts) and each task warms
+its scenario before forking its runs, so that a run's child starts ready, as in the serial runner.
 
 Dask is imported here only: the serial runner does not import it.
 """
@@ -79,6 +81,22 @@ def connect(workers: int | None, address: str | None) -> Iterator[Any]:
         yield client
 
 
+def warm_plugin() -> Any:
+    """A worker plugin: each worker process loads the native kernels once, when it starts (or joins
+    the run), rather than in the forked child of every run (reports.harness.warm)."""
+    from distributed.diagnostics.plugin import WorkerPlugin
+
+    class WarmWorker(WorkerPlugin):
+        idempotent = True  # registered again by a later run on the same cluster: kept, not rerun
+
+        def setup(self, worker: Any) -> None:
+            from reports.harness.warm import warm_kernels
+
+            warm_kernels()
+
+    return WarmWorker()
+
+
 def truth_task(truth: Truth, scenario: Scenario, timeout: float) -> NamedTruth | str:
     """The scenario's truth, solved on a worker (in a forked child with the time limit)."""
     return solve_truth(truth, scenario, timeout)
@@ -109,6 +127,7 @@ class DaskRunner(Runner):
         """Connect first (a bad address fails before anything is written), then run as the Runner."""
         with connect(self.local_workers, self.address) as client:
             self.client = client
+            client.register_plugin(warm_plugin(), name="mbxval-warm")
             self.workers = sum(client.nthreads().values()) or 1
             super().run(scenario_names)
 

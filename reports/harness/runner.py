@@ -41,6 +41,7 @@ from reports.harness.results_store import ResultsStore
 from reports.harness.resume import ResumePolicy, StoredRuns
 from reports.harness.rows import failure_row, result_row
 from reports.harness.truth import NamedTruth, independent_truth, named
+from reports.harness.warm import warm
 from scenarios import Scenario, ScenarioError
 from scenarios import load as build_scenario
 from scenarios.trajectory import Trajectory
@@ -241,6 +242,8 @@ def run_group(
     runs the same here and in a Dask task."""
     timed_out: set[str] = set()
     out: list[Stored] = []
+    if jobs:
+        warm(group.scenario)  # before the first fork: every run inherits the kernels and the program
     for setting, is_default in jobs:
         if setting.mode in timed_out:
             message = "not run: a cheaper setting of this mode hit the time limit"

@@ -123,3 +123,20 @@ def test_workers_2_gives_the_serial_rows_from_the_command_line(tmp_path: Path) -
     assert main([*args, "--out", str(tmp_path / "serial")]) == 0
     assert main([*args, "--out", str(tmp_path / "dask"), "--workers", "2"]) == 0
     same_rows(rows(tmp_path / "serial"), rows(tmp_path / "dask"))
+
+
+def test_each_worker_warms_the_kernels_once(cluster: str, tmp_path: Path) -> None:
+    from distributed import Client
+
+    from reports.harness import warm
+
+    scenarios = ["four_bar[omega=21]", "four_bar[omega=22]", "slider_crank[omega=23]"]
+    for out in ("first", "second"):  # a second run on the same workers warms nothing again
+        DaskRunner(ResultsStore(tmp_path / out), ["reference"], QUICK, progress=False, cluster=cluster).run(
+            scenarios
+        )
+    with Client(cluster) as client:
+        counts = client.run(lambda: dict(warm.counts))
+    assert len(counts) == 2
+    assert all(c["kernels"] == 1 for c in counts.values()), counts
+    assert sum(c["scenarios"] for c in counts.values()) >= len(scenarios)  # each where it first ran

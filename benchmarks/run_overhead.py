@@ -1,0 +1,93 @@
+"""What the harness spends around the work it measures: wall time of `mbxval run` against the
+work its own rows time, for a native sweep and for a subset of the default suite.
+
+    python -m benchmarks.run_overhead [--points 16] [--scenarios 6] [--engines reference]
+        [--sweep NAME=SPEC ...] [--suite quick] [--workers N]
+
+Each case runs the command line in a fresh interpreter into an empty directory, as a user does
+(start-up, truths, forked runs, saving, the report page), and reads the rows it stored:
+- compute: the sum of the rows' build and run times (run time being the minimum of the repeats);
+- work: what the rows say was done, build + (warm-up + repeats) x run time per row;
+- overhead per run: (wall - work) / rows.
+A run that fails (a singular position, a timeout) stores no times: its work counts as overhead.
+Beside them, the wall time of a one-point `mbxval solve` of the same scenario, for the ratio the
+issue's target names (the native sweep in at most 3 times a one-point solve).
+"""
+
+from __future__ import annotations
+
+import argparse
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from reports.harness.results_store import read_results
+from reports.harness.suites import main_scenarios
+
+
+def wall(arguments: list[str]) -> float:
+    """Seconds for `mbxval ARGUMENTS` in a fresh interpreter (its output dropped, its failure raised)."""
+    start = time.perf_counter()
+    subprocess.run([sys.executable, "-m", "mbxval", *arguments], check=True, capture_output=True)
+    return time.perf_counter() - start
+
+
+def measure(label: str, arguments: list[str], out: Path) -> dict[str, float]:
+    seconds = wall(["run", *arguments, "--out", str(out), "--quiet"])
+    rows, _ = read_results(out)
+    build, run = rows["build_time"].fillna(0), rows["run_time"].fillna(0)  # a failed run times nothing
+    compute = float((build + run).sum())
+    work = float((build + run * (rows["warmup"].fillna(0) + rows["repeats"].fillna(1))).sum())
+    per_run = (seconds - work) / max(len(rows), 1)
+    print(
+        f"{label:<28} {len(rows):5d} {seconds:8.2f} {compute:9.3f} {work:8.3f} "
+        f"{seconds / compute:9.1f} {seconds / work:8.1f} {1000 * per_run:10.1f}"
+    )
+    return {"wall": seconds, "work": work}
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(prog="run_overhead", description=__doc__.splitlines()[0])
+    parser.add_argument("--scenario", default="four_bar", help="scenario of the sweep (default four_bar)")
+    parser.add_argument("--points", type=int, default=16, help="sweep points, omega 10 to 40 (default 16)")
+    parser.add_argument("--engines", default="reference", help="engines of the sweep (default reference)")
+    parser.add_argument("--sweep", action="append", help="sweep specs instead of omega=lin:10:40:POINTS")
+    parser.add_argument("--suite", help="the sweep's suite options (quick: default settings, timed once)")
+    parser.add_argument("--workers", type=int, help="run the sweep on a local Dask cluster of N workers too")
+    parser.add_argument("--scenarios", type=int, default=6, help="default-suite scenarios (default 6)")
+    parser.add_argument("--suite-engines", default="reference,mujoco", help="engines of the suite subset")
+    args = parser.parse_args(argv)
+    if not 1 <= args.points <= 1000 or not 0 <= args.scenarios <= 1000:
+        parser.error("--points must be in [1, 1000] and --scenarios in [0, 1000]")
+    engines = [a for e in args.engines.split(",") for a in ("--engine", e)]
+    suite_engines = [a for e in args.suite_engines.split(",") for a in ("--engine", e)]
+    print(f"{'case':<28} {'rows':>5} {'wall s':>8} {'compute s':>9} {'work s':>8} "
+          f"{'wall/comp':>9} {'wall/work':>8} {'ms/run over':>10}")  # fmt: skip
+    with tempfile.TemporaryDirectory(prefix="mbxval-overhead-") as temporary:
+        base = Path(temporary)
+        sweeps = [a for spec in args.sweep or [f"omega=lin:10:40:{args.points}"] for a in ("--sweep", spec)]
+        chosen = [
+            "--scenario",
+            args.scenario,
+            *engines,
+            *sweeps,
+            *(["--suite", args.suite] if args.suite else []),
+        ]
+        native = measure(f"sweep {args.scenario} serial", chosen, base / "sweep")
+        if args.workers:
+            workers = ["--workers", str(args.workers)]
+            parallel = measure(f"sweep --workers {args.workers}", [*chosen, *workers], base / "dask")
+            print(f"--workers {args.workers} against serial: {native['wall'] / parallel['wall']:.2f}x faster")
+        if args.scenarios:
+            names = main_scenarios()[: args.scenarios]
+            chosen = [a for n in names for a in ("--scenario", n)]
+            measure(f"default suite, {len(names)} scen.", [*chosen, *suite_engines], base / "suite")
+        solve = wall(["solve", args.scenario, "--out", str(base / "solve.csv")])
+    print(f"one-point solve of {args.scenario}: {solve:.2f} s wall")
+    print(f"sweep wall / one-point solve wall: {native['wall'] / solve:.1f}x (target: at most 3x)")
+
+
+if __name__ == "__main__":
+    main()
