@@ -39,8 +39,20 @@ def _terminate(signum: int, frame: FrameType | None) -> None:
     raise Terminated
 
 
+def _default_in_child() -> None:
+    """A forked child takes SIGTERM's default action back at once: a Python handler runs only when
+    the child's main thread runs bytecode, so a child blocked in a lock (an idle pool worker that
+    Pool.terminate stops with SIGTERM) would never end, and its parent would wait for it forever."""
+    try:
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    except ValueError:  # not the main thread: leave the handler, which ends a child as SIGTERM does
+        pass
+
+
 def catch_sigterm() -> None:
     """Make SIGTERM raise Terminated in this process; forked children end as SIGTERM ends them."""
+    if _Sigterm.owner is None:
+        os.register_at_fork(after_in_child=_default_in_child)
     _Sigterm.owner, _Sigterm.received = os.getpid(), False
     signal.signal(signal.SIGTERM, _terminate)
 
