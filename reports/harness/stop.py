@@ -6,6 +6,7 @@ made, the runs stored so far stay stored; the command then ends with one line an
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import sys
@@ -43,10 +44,8 @@ def _default_in_child() -> None:
     """A forked child takes SIGTERM's default action back at once: a Python handler runs only when
     the child's main thread runs bytecode, so a child blocked in a lock (an idle pool worker that
     Pool.terminate stops with SIGTERM) would never end, and its parent would wait for it forever."""
-    try:
+    with contextlib.suppress(ValueError):  # not the main thread: the handler ends a child as SIGTERM does
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    except ValueError:  # not the main thread: leave the handler, which ends a child as SIGTERM does
-        pass
 
 
 def catch_sigterm() -> None:
