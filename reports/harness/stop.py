@@ -29,6 +29,7 @@ class _Sigterm:
 
     owner: int | None = None
     received = False
+    forking = False  # inside os.fork's callbacks, where an exception is printed and dropped
 
 
 def _terminate(signum: int, frame: FrameType | None) -> None:
@@ -37,13 +38,23 @@ def _terminate(signum: int, frame: FrameType | None) -> None:
         os.kill(os.getpid(), signal.SIGTERM)
         return
     _Sigterm.received = True
-    raise Terminated
+    if not _Sigterm.forking:  # else raise_if_terminated raises it at the next safe point
+        raise Terminated
+
+
+def _forking() -> None:
+    _Sigterm.forking = True
+
+
+def _forked_parent() -> None:
+    _Sigterm.forking = False
 
 
 def _default_in_child() -> None:
     """A forked child takes SIGTERM's default action back at once: a Python handler runs only when
     the child's main thread runs bytecode, so a child blocked in a lock (an idle pool worker that
     Pool.terminate stops with SIGTERM) would never end, and its parent would wait for it forever."""
+    _Sigterm.forking = False
     with contextlib.suppress(ValueError):  # not the main thread: the handler ends a child as SIGTERM does
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
@@ -51,7 +62,7 @@ def _default_in_child() -> None:
 def catch_sigterm() -> None:
     """Make SIGTERM raise Terminated in this process; forked children end as SIGTERM ends them."""
     if _Sigterm.owner is None:
-        os.register_at_fork(after_in_child=_default_in_child)
+        os.register_at_fork(before=_forking, after_in_parent=_forked_parent, after_in_child=_default_in_child)
     _Sigterm.owner, _Sigterm.received = os.getpid(), False
     signal.signal(signal.SIGTERM, _terminate)
 
