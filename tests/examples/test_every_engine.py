@@ -41,6 +41,12 @@ DYNAMIC_BOUNDS: dict[str, tuple[float, float, float]] = {
     "exudyn": (1e-4, 3e-4, 1e-3),
     "pinocchio": (3e-9, 1e-8, 3e-8),  # measured 3.0e-10, 9.5e-10, 3.0e-9 (baumgarte, dt 1.25e-3)
 }
+OFF_LATTICE: dict[tuple[str, str], tuple[float, float, float]] = {
+    ("exudyn", "peaucellier_lipkin"): (3e-9, 5e-5, 2e-1),  # measured 7.1e-10, 2.4e-6, 8.1e-4
+}
+"""Where the example's output times fall between the engine's steps (docs/settings-rule.md: the grid
+never sets the step), Exudyn's positions there are interpolated from the two steps around them, no
+longer on the constraints to round-off."""
 UNSUPPORTED: dict[tuple[str, str], str] = {}
 """(engine, example) pairs an engine refuses, with the words its reason must contain."""
 FAST = ("slider_crank", "watt_straight_line")
@@ -76,7 +82,10 @@ def test_example_on_engine(name: str, engine: str) -> None:
     assert result is not None, f"{engine} refuses {name}: {reason}"
     assert result.status == "ok" and result.trajectory is not None, result.message
     found = errors(name, scenario, result.trajectory)
-    bounds = (DYNAMIC_BOUNDS if scenario.analysis == "dynamic" else BOUNDS)[engine]
+    bounds = (
+        OFF_LATTICE.get((engine, name))
+        or (DYNAMIC_BOUNDS if scenario.analysis == "dynamic" else BOUNDS)[engine]
+    )
     for level, bound in zip(LEVELS, bounds, strict=True):
         assert not math.isnan(found[level]), f"{engine} gives no {level} for {name}"
         assert found[level] < bound, (level, found[level], bound)
