@@ -22,13 +22,13 @@ import json
 import math
 import os
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import pandas as pd
 
 from reports.harness.atomic_write import atomic_output, output_target
 from reports.harness.results_store import SCHEMA_VERSION
+from scenarios.files.bounded_read import MAX_BASELINE_BYTES, read_bounded_text
 
 DEFAULT_FACTOR = 10.0
 ERROR_FLOOR = 1e-12
@@ -107,9 +107,11 @@ def write_baseline(path: str | os.PathLike[str], frame: pd.DataFrame, meta: dict
 def read_baseline(path: str | os.PathLike[str]) -> list[dict[str, Any]]:
     """The cells of a baseline file, each checked; GateError naming the first that is not sound."""
     try:
-        document = json.loads(Path(path).read_text())
-    except (OSError, ValueError) as error:
-        raise GateError(f"baseline {path} cannot be read: {error}") from error
+        document = json.loads(read_bounded_text(path, MAX_BASELINE_BYTES, "baseline"))
+    except (OSError, ValueError) as error:  # FileRefused among them
+        raise GateError(f"baseline {path} cannot be read: {str(error)[:300]}") from None
+    except RecursionError:
+        raise GateError(f"baseline {path} cannot be read: nested too deeply") from None
     if not isinstance(document, dict) or document.get("schema_version") != SCHEMA_VERSION:
         version = document.get("schema_version") if isinstance(document, dict) else None
         raise GateError(f"baseline {path} has schema version {version}, expected {SCHEMA_VERSION}")
@@ -230,8 +232,10 @@ def update_baseline(path: str | os.PathLike[str], frame: pd.DataFrame, meta: dic
     """Write the baseline from the results and say what it adds, drops and changes."""
     output_target(path)  # a FIFO or a device is refused before it is read
     try:
-        before = {_key(c): c for c in json.loads(Path(path).read_text()).get("cells", [])}
-    except (OSError, ValueError, AttributeError, TypeError, KeyError):
+        before = {
+            _key(c): c for c in json.loads(read_bounded_text(path, MAX_BASELINE_BYTES, "baseline"))["cells"]
+        }
+    except (OSError, ValueError, AttributeError, TypeError, KeyError, RecursionError):
         before = {}
     cells = baseline_cells(frame)
     for cell in cells:  # never write a baseline that `check` would refuse

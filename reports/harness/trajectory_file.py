@@ -13,6 +13,7 @@ non-finite or non-numeric value, and a time column that is not the scenario's gr
 
 from __future__ import annotations
 
+import io
 import math
 import re
 from dataclasses import dataclass
@@ -21,6 +22,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from scenarios.files.bounded_read import MAX_TRAJECTORY_CSV_BYTES, FileRefused, read_bounded_text
 from scenarios.files.schema import suggestion
 from scenarios.scenario import LEVELS, Level, Scenario
 from scenarios.trajectory import COLUMNS, Trajectory
@@ -79,7 +81,10 @@ def read_table(path: str | Path) -> pd.DataFrame:
     """The CSV's table, every cell a float; TrajectoryFileError for a file that is not one."""
     source = str(path)
     try:
-        frame = pd.read_csv(path, dtype=str, keep_default_na=False)
+        text = read_bounded_text(path, MAX_TRAJECTORY_CSV_BYTES, "trajectory CSV")
+        frame = pd.read_csv(io.StringIO(text), dtype=str, keep_default_na=False)
+    except FileRefused as error:
+        raise TrajectoryFileError(str(error)) from None
     except OSError as error:
         raise _fail(source, f"cannot read: {error.strerror or error}") from None
     except (UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError) as error:

@@ -12,6 +12,7 @@ from collections.abc import Callable, Mapping
 from typing import Any, NoReturn
 
 from scenarios.files.schema import suggestion
+from scenarios.scenario import ScenarioError
 
 
 def override_value(text: object) -> object:
@@ -22,6 +23,8 @@ def override_value(text: object) -> object:
         return tomllib.loads(f"v = {text}")["v"]
     except tomllib.TOMLDecodeError:
         return text
+    except RecursionError:
+        raise ScenarioError("a --set value nested too deeply to read") from None
 
 
 def _element(items: list[Any], part: str) -> Any:

@@ -13,6 +13,13 @@ from pathlib import Path
 from typing import Any, NoReturn
 
 from scenarios.bodies import GROUND, Body, Point
+from scenarios.files.bounded_read import (
+    MAX_PROFILE_CSV_BYTES,
+    MAX_SCENARIO_FILE_BYTES,
+    FileRefused,
+    inside,
+    read_bounded_text,
+)
 from scenarios.files.overrides import apply_overrides
 from scenarios.files.profile_csv import read_radii
 from scenarios.files.schema import (
@@ -213,10 +220,11 @@ class Reader:
         if not isinstance(raw, str):
             self.fail(path, f"expected a file path, got {toml_type(raw)}")
         try:
-            return read_radii(self.directory / raw)
+            file = inside(self.directory, raw)
+            return read_radii(read_bounded_text(file, MAX_PROFILE_CSV_BYTES, "profile CSV"), str(file))
         except OSError as error:
-            self.fail(path, f"cannot read {self.directory / raw}: {error.strerror or error}")
-        except ValueError as error:
+            self.fail(path, f"cannot read {raw[:200]}: {error.strerror or error}")
+        except ValueError as error:  # FileRefused among them
             self.fail(path, str(error))
 
 
@@ -273,6 +281,8 @@ def parse_scenario(
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         reader.fail("", f"not valid TOML: {error}")
+    except RecursionError:
+        reader.fail("", "not read: its tables or arrays are nested too deeply")
     apply_overrides(doc, overrides or {}, reader.fail)
     version = doc.get("format")
     if type(version) is int and version > FORMAT:
@@ -316,7 +326,9 @@ def read_scenario(path: str | Path, overrides: Mapping[str, object] | None = Non
     """The scenario in the file at `path`; ScenarioFileError naming the file and key otherwise."""
     file = Path(path)
     try:
-        text = file.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as error:
-        raise ScenarioFileError(f"{file}: cannot read: {getattr(error, 'strerror', None) or error}") from None
+        text = read_bounded_text(file, MAX_SCENARIO_FILE_BYTES, "scenario file")
+    except FileRefused as error:
+        raise ScenarioFileError(str(error)) from None
+    except OSError as error:
+        raise ScenarioFileError(f"{file}: cannot read: {error.strerror or error}") from None
     return parse_scenario(text, str(file), file.parent, overrides)

@@ -169,7 +169,7 @@ def test_unreadable_file(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> 
     )
     (tmp_path / "binary.csv").write_bytes(b"\xff\xfe\x00\x81t,x\n")
     code, _, err = _compare(capsys, "slider_crank", str(tmp_path / "binary.csv"))
-    assert code == 2 and err.startswith(f"mbxval: error: {tmp_path}/binary.csv: not a CSV table")
+    assert code == 2 and err.startswith(f"mbxval: error: {tmp_path}/binary.csv: not UTF-8 text")
 
 
 @pytest.mark.parametrize(
