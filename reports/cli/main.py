@@ -54,8 +54,8 @@ def load_engine(name: str) -> Adapter:
 def time_grid(scenario: Scenario, t_end: float | None, steps: int | None, dt: float | None) -> np.ndarray:
     """The output grid: `steps` equal steps over [0, t_end], or multiples of `dt` up to t_end."""
     t_end = scenario.t_end if t_end is None else t_end
-    if not (math.isfinite(t_end) and 0 < t_end <= limits.MAX_T_END):
-        raise UsageError(f"--t-end must be positive and at most {limits.MAX_T_END:g} s, got {t_end}")
+    if not (math.isfinite(t_end) and limits.MIN_T_END <= t_end <= limits.MAX_T_END):
+        raise UsageError(f"--t-end must be in [{limits.MIN_T_END:g}, {limits.MAX_T_END:g}] s, got {t_end}")
     bodies = len(scenario.bodies)
     if dt is not None:
         if not (math.isfinite(dt) and 0 < dt <= t_end):

@@ -95,6 +95,15 @@ def closed_pipe() -> int:
     return CLOSED_PIPE
 
 
+MAX_MESSAGE = 2000
+"""An error is one line of at most this many characters: a value quoted from a file or an argument
+can be any size."""
+
+
 def usage_error(message: str) -> int:
-    print(f"mbxval: error: {message}", file=sys.stderr)
+    """The one line of bad input, and exit status 2."""
+    line = " | ".join(part.strip() for part in message.splitlines() if part.strip())
+    if len(line) > MAX_MESSAGE:
+        line = line[: MAX_MESSAGE - 30] + f"... ({len(line)} characters)"
+    print(f"mbxval: error: {line}", file=sys.stderr)
     return USAGE

@@ -21,8 +21,9 @@ from scenarios.loading import split_point
 from scenarios.scenario import POINT_RESERVED, ScenarioError, point_name
 
 SIGNIFICANT = 6
-MAX_POINTS = 100_000
-"""More swept points than this in one command is a typo, not a study."""
+MAX_POINTS = 10_000
+"""More swept points than this in one command is a typo, not a study (each point is a scenario run on
+every engine over its settings); it is checked before any point is made."""
 
 
 class SweepError(ValueError):

@@ -163,6 +163,8 @@ class Reader:
             self.fail(path, f"expected {size} numbers, got {len(raw)}")
         if len(raw) < key.minimum_length:
             self.fail(path, f"expected at least {key.minimum_length} numbers, got {len(raw)}")
+        if len(raw) > MAX_NUMBERS:
+            self.fail(path, f"{len(raw)} numbers, more than the {MAX_NUMBERS} an array may hold")
         values = tuple(self.number(v, "finite", f"{path}[{k}]") for k, v in enumerate(raw))
         if key.range == "nonzero" and not any(values):
             self.fail(path, "must not be the zero vector")
@@ -232,9 +234,20 @@ def join(path: str, key: str) -> str:
     return f"{path}.{key}" if path else key
 
 
+MAX_NUMBERS = 100_000
+"""The most numbers in one array (a spline's knots, a tabulated law's samples)."""
+MAX_TABLES = {"bodies": 2000, "joints": 4000, "drivers": 2000, "forces": 4000, "angle_outputs": 2000}
+"""The most elements a scenario file's section may hold (a mechanism of 2,000 bodies is far past any
+textbook linkage; the limits keep a hostile file from planning for minutes)."""
+MIN_TABLES = {"bodies": 1}
+
+
 def _named_tables(reader: Reader, raw: object, path: str) -> list[dict[str, Any]]:
     if not isinstance(raw, list) or not all(isinstance(t, dict) for t in raw):
         reader.fail(path, f"expected an array of tables ([[{path}]]), got {toml_type(raw)}")
+    most, least = MAX_TABLES.get(path, 2000), MIN_TABLES.get(path, 0)
+    if not least <= len(raw) <= most:
+        reader.fail(path, f"{len(raw)} tables; a scenario file holds {least} to {most} [[{path}]]")
     return raw
 
 

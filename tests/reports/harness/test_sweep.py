@@ -12,6 +12,7 @@ from pathlib import Path
 import pytest
 
 from reports.cli.main import main
+from reports.cli.suite_commands import MAX_WORKERS
 from reports.harness.sweep import SweepError, parse_axis, points
 from scenarios import ScenarioError, load
 
@@ -97,7 +98,7 @@ def test_values_outside_the_declared_range_are_refused(spec: str, words: str) ->
         (["--scenario", "four_bar", "--sweep", "crank_length=2e6"], "crank_length must be a number in"),
         (["--scenario", "four_bar", "--sweep", "omega=1", "--sweep", "omega=2"], "swept twice"),
         (["--sweep", "omega=1,2"], "--sweep needs the scenarios to sweep"),
-        (["--scenario", "four_bar", "--workers", "0"], "--workers must be in [1, 1024], got 0"),
+        (["--scenario", "four_bar", "--workers", "0"], f"--workers must be in [1, {MAX_WORKERS}], got 0"),
         (["--scenario", "four_bar", "--cluster", "localhost"], "--cluster expects a scheduler address"),
         (["--scenario", "four_bar", "--workers", "2", "--cluster", "tcp://127.0.0.1:1"], "not allowed with"),
     ],
