@@ -33,8 +33,10 @@ class WriterLock:
     def __init__(self, directory: str | os.PathLike[str], wait: bool = False) -> None:
         self.directory, self.wait = Path(directory), wait
         self._fd: int | None = None
+        self._made = False
 
     def __enter__(self) -> WriterLock:
+        self._made = not self.directory.exists()
         self.directory.mkdir(parents=True, exist_ok=True)
         fd = os.open(self.directory / LOCK, os.O_RDWR | os.O_CREAT, 0o644)
         try:
@@ -62,6 +64,11 @@ class WriterLock:
         self, kind: type[BaseException] | None, error: BaseException | None, trace: TracebackType | None
     ) -> None:
         if self._fd is not None:
+            if self._made and [p.name for p in self.directory.iterdir()] == [LOCK]:
+                # a folder this lock made for a command that stored nothing (an unreachable
+                # --cluster, bad input found late): leave no trace, while still holding the lock
+                (self.directory / LOCK).unlink()
+                self.directory.rmdir()
             os.close(self._fd)  # closing releases the flock; the file stays (removing it would race)
             self._fd = None
 

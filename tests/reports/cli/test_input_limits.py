@@ -77,3 +77,14 @@ def test_an_array_longer_than_declared() -> None:
 def test_a_huge_quoted_value_stays_one_bounded_line(capsys) -> None:
     err = refused(capsys, ["solve", "slider_crank", "--set", "offset=" + "x" * 1_000_000], "offset")
     assert len(err) <= MAX_MESSAGE + len("mbxval: error: \n")
+
+
+@pytest.mark.slow  # Dask gives up on the address after its 10 s connect timeout
+def test_an_unreachable_cluster_leaves_no_folder_behind(capsys, tmp_path: Path) -> None:
+    out = tmp_path / "o"
+    argv = ["run", "--scenario", "four_bar", "--engine", "reference", "--out", str(out), "--quiet"]
+    started = time.monotonic()
+    assert main([*argv, "--cluster", "tcp://127.0.0.1:9"]) == 2
+    assert time.monotonic() - started < 60
+    assert capsys.readouterr().err.count("\n") == 1
+    assert not out.exists()
