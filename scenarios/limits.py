@@ -22,6 +22,9 @@ MAX_RUN_BYTES = 2 * 1024**3
 engine's own record, the canonical trajectory, the differences), so a trajectory may take a quarter."""
 COPIES_PER_RUN = 4
 MAX_TRAJECTORY_BYTES = MAX_RUN_BYTES // COPIES_PER_RUN
+MAX_KEPT_BYTES = 4 * 1024**3
+"""What a whole `run` keeps for its report: per scenario the truth's and each engine's default
+trajectory (trajectories.parquet), estimated from the grids before anything runs."""
 
 
 def check_t_end(name: str, t_end: float) -> None:
@@ -47,4 +50,15 @@ def check_grid(name: str, points: float, bodies: int) -> None:
             f"{name}: {points:.4g} grid points of {bodies} bodies would take {size / 1024**3:.3g} GiB, "
             f"above the limit of {MAX_TRAJECTORY_BYTES / 1024**3:g} GiB of trajectory; "
             f"use at most {most} steps"
+        )
+
+
+def check_kept(trajectories: list[tuple[float, int]]) -> None:
+    """Refuse a run whose kept trajectories (grid points, bodies) would exceed MAX_KEPT_BYTES."""
+    size = sum(trajectory_bytes(points, bodies) for points, bodies in trajectories)
+    if size > MAX_KEPT_BYTES:
+        raise ScenarioError(
+            f"the run would keep {size / 1024**3:.3g} GiB of trajectories for its report (the truth's "
+            f"and each engine's per scenario), more than {MAX_KEPT_BYTES / 1024**3:g} GiB: "
+            "fewer --steps, scenarios or engines"
         )

@@ -23,6 +23,7 @@ from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import Runner, RunOptions
 from reports.harness.store_lock import WriterLock
 from reports.harness.suites import Suite
+from scenarios import limits
 from scenarios import load as build_scenario
 from scenarios.loading import is_scenario_file
 
@@ -59,7 +60,10 @@ def _selection(args: argparse.Namespace) -> tuple[Suite, list[str], list[str]]:
     unknown = [e for e in args.engine if e not in adapters.names()]
     if unknown:
         raise UsageError(f"unknown engine '{unknown[0]}'; known: {', '.join(adapters.names())}")
-    return suite, names, args.engine or adapters.names()
+    engines = args.engine or adapters.names()
+    grids = [(s.steps + 1.0, len(s.bodies)) for s in map(build_scenario, names)]
+    limits.check_kept([grid for grid in grids for _ in range(len(engines) + 1)])  # before any run
+    return suite, names, engines
 
 
 def _run_options(args: argparse.Namespace, suite: Suite, rerun: bool) -> RunOptions:

@@ -88,3 +88,11 @@ def test_an_unreachable_cluster_leaves_no_folder_behind(capsys, tmp_path: Path) 
     assert time.monotonic() - started < 60
     assert capsys.readouterr().err.count("\n") == 1
     assert not out.exists()
+
+
+def test_a_run_that_would_keep_too_much_is_refused_before_it_starts(capsys, tmp_path: Path) -> None:
+    """Each grid passes alone (512 MiB a trajectory), but the run keeps 5 per scenario: 4.2 GiB."""
+    out = tmp_path / "o"
+    argv = ["run", "--scenario", "slider_crank", "--scenario", "four_bar", "--out", str(out)]
+    refused(capsys, [*argv, "--steps", "2000000"], "more than 4 GiB")
+    assert not out.exists()
