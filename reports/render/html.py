@@ -18,6 +18,7 @@ from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.provenance import revision_label
 from reports.render import (
     dynamics_render,
+    engine_reach,
     first_screen,
     level_plots,
     markup,
@@ -82,6 +83,9 @@ def render(data: ReportData) -> str:
             f'<p class="muted">Runs by status: {markup.escape(_counts(data))}. Colour: log10 error from '
             f"1e{first_screen.BEST:.0f} (green) to 1e{first_screen.WORST:.0f} (red); hover a scenario for "
             "its truth.</p>",
+            "<h2>Each engine out of the box, and at its best</h2>",
+            engine_reach.html_table(listed.frame, markup.escape),
+            f'<p class="muted">{markup.escape(REACH_NOTE)}</p>',
             dynamics,
         ]
     parts += [
@@ -99,6 +103,14 @@ def render(data: ReportData) -> str:
     parts += _sections(listed)
     parts.append("</body></html>")
     return "\n".join(parts)
+
+
+REACH_NOTE = (
+    "Out of the box: each engine at the default its settings rule gives (docs/settings-rule.md). At its "
+    "best: per scenario the smallest error, over the levels it produces, of any setting it was run "
+    f"at; the column gives the worst scenario's. The cost of {engine_reach.TARGET:g}: per scenario the "
+    "least run time among the settings that meet it at every level, read off the work-precision front."
+)
 
 
 def _headline(data: ReportData) -> str:

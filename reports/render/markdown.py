@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from reports.harness.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.harness.provenance import revision_label
-from reports.render import stability_render, sweep_render
+from reports.render import engine_reach, stability_render, sweep_render
 from reports.render.first_screen import native_line, scenario_rate, truth_names
 from reports.render.markdown_table import markdown_table
 from reports.render.markup import markdown_text
@@ -41,6 +41,10 @@ def render(data: ReportData) -> str:
             markdown_table(data.matrix(), "scenario"),
             "",
             "Runs by status: " + ", ".join(f"{s} {n}" for s, n in data.status_counts().items()) + ".",
+            "",
+            "## Each engine out of the box, and at its best",
+            "",
+            *engine_reach.markdown_lines(data.frame, markdown_text),
         ]
     swept = sweep_render.markdown_section(whole)  # "" unless the results hold parameter sweeps
     if swept:
