@@ -289,7 +289,7 @@ def test_a_hostile_name_and_label_are_text_in_the_markdown_summary(hostile_store
     assert heading in summary.splitlines()
     label = HOSTILE_LABEL.replace("<", "&lt;").replace(">", "&gt;").replace("|", "\\|")
     table_rows = [line for line in summary.splitlines() if "onerror" in line]
-    assert len(table_rows) == 2  # the matrix's heading and the scenario's table
+    assert len(table_rows) == 3  # the matrix's heading, the engines' reach and the scenario's table
     for line in table_rows:  # the label is one whole cell: its pipe does not split the row
         assert label in [cell.strip() for cell in re.split(r"(?<!\\)\|", line)]
 
