@@ -107,7 +107,9 @@ def write_baseline(path: str | os.PathLike[str], frame: pd.DataFrame, meta: dict
 def read_baseline(path: str | os.PathLike[str]) -> list[dict[str, Any]]:
     """The cells of a baseline file, each checked; GateError naming the first that is not sound."""
     try:
-        document = json.loads(read_bounded_text(path, MAX_BASELINE_BYTES, "baseline"))
+        # every number as a float: a 400-digit integer becomes inf (refused as unsound), never an
+        # int that overflows a comparison or trips Python's limit on digits
+        document = json.loads(read_bounded_text(path, MAX_BASELINE_BYTES, "baseline"), parse_int=float)
     except (OSError, ValueError) as error:  # FileRefused among them
         raise GateError(f"baseline {path} cannot be read: {str(error)[:300]}") from None
     except RecursionError:

@@ -21,6 +21,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from scenarios.files.bounded_read import MiB, read_bounded_text
+
 GENERATIONS, CURRENT, SIDECAR = ".generations", "current", "results.json"
 LEGACY = "results.parquet"  # the file a store from before generations holds in DIR itself
 GENERATION = re.compile(r"g\d{6,}")
@@ -147,6 +149,10 @@ def _unaccounted(root: Path, name: str) -> str | None:
     return None
 
 
+MAX_SIDECAR_BYTES = 64 * MiB
+"""A generation's results.json (machine, versions, checksums: a few kB)."""
+
+
 def read_sidecar(generation: Path, root: Path) -> dict[str, Any]:
     """The sidecar of a generation ({} when a pre-generation store has none)."""
     path = generation / SIDECAR
@@ -155,9 +161,11 @@ def read_sidecar(generation: Path, root: Path) -> dict[str, Any]:
             raise damaged(root, f"{SIDECAR} is missing")
         return {}
     try:
-        meta = json.loads(path.read_text())
-    except (OSError, ValueError) as error:
-        raise damaged(root, f"{SIDECAR} cannot be read: {error}") from error
+        meta = json.loads(read_bounded_text(path, MAX_SIDECAR_BYTES, "results sidecar"))
+    except (OSError, ValueError) as error:  # FileRefused among them
+        raise damaged(root, f"{SIDECAR} cannot be read: {str(error)[:300]}") from None
+    except RecursionError:
+        raise damaged(root, f"{SIDECAR} cannot be read: nested too deeply") from None
     if not isinstance(meta, dict):
         raise damaged(root, f"{SIDECAR} is not a JSON object")
     return meta

@@ -135,8 +135,12 @@ def test_a_fifo_as_compare_trajectory_never_blocks(capsys, fifo: Path) -> None:
     [
         "[" * 100_000 + "]" * 100_000,
         '{"schema_version": 1, "cells": [{"error": 1' + "0" * 400 + "}]}",
+        '{"schema_version": 1, "cells": [{"scenario": "s", "engine": "e", "setting": "", "status": "ok", '
+        '"is_default": true, "message": "", "error_velocity": 1e-3, "error_acceleration": 1e-3, '
+        '"error_position": 1' + "0" * 400 + ', "error": 1' + "0" * 400 + "}]}",
+        '{"schema_version": 1, "cells": [{"error": 1' + "0" * 5000 + "}]}",
     ],
-    ids=["nested", "huge-number"],
+    ids=["nested", "huge-number", "huge-number-in-a-cell", "more-digits-than-python-converts"],
 )
 def test_a_hostile_baseline_is_one_line(capsys, tmp_path: Path, text: str) -> None:
     baseline = tmp_path / "baseline.json"
