@@ -8,12 +8,14 @@ import time
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from reports.cli.main import main
 from reports.cli.suite_commands import MAX_WORKERS
 from reports.harness.stop import MAX_MESSAGE
 from scenarios import ScenarioError
-from scenarios.files.reader import MAX_NUMBERS, MAX_TABLES, Reader
+from scenarios.files.reader import MAX_NUMBERS, MAX_TABLES, Reader, parse_scenario
 from scenarios.files.schema import Key
 
 HEAD = 'format = 1\nname = "f"\nt_end = 1.0\nsteps = 10\ncharacteristic_length = 1.0\n'
@@ -96,3 +98,24 @@ def test_a_run_that_would_keep_too_much_is_refused_before_it_starts(capsys, tmp_
     argv = ["run", "--scenario", "slider_crank", "--scenario", "four_bar", "--out", str(out)]
     refused(capsys, [*argv, "--steps", "2000000"], "more than 4 GiB")
     assert not out.exists()
+
+
+@settings(max_examples=25, deadline=None, derandomize=True)
+@given(bodies=st.integers(0, MAX_TABLES["bodies"] + 50), numbers=st.integers(0, 12))
+def test_drawn_sizes_are_read_or_refused_in_one_line(bodies: int, numbers: int) -> None:
+    """Any number of bodies (each with a guess of `numbers` values) parses within the limits, or is
+    refused naming the limit it breaks; never anything else."""
+    tables = "".join(
+        f'[[bodies]]\nname = "b{k}"\nguess = [{", ".join(["0.0"] * numbers)}]\n\n' for k in range(bodies)
+    )
+    try:
+        scenario = parse_scenario(HEAD + (tables or "bodies = []\n"), "drawn.toml")
+    except ScenarioError as error:
+        message = str(error)
+        assert "\n" not in message
+        if not 1 <= bodies <= MAX_TABLES["bodies"]:
+            assert "a scenario file holds 1 to" in message
+        else:
+            assert numbers != 3 and "guess" in message  # a guess is a pose of 3 numbers
+    else:
+        assert 1 <= bodies <= MAX_TABLES["bodies"] and numbers == 3 and len(scenario.bodies) == bodies
