@@ -24,7 +24,7 @@ import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
 from adapters.step_rule import RULE
 from reports.cli.usage import Parser, UsageError, pairs, scenario_argument
-from reports.harness import provenance, stop
+from reports.harness import provenance, self_check, stop
 from reports.harness.atomic_write import atomic_output, atomic_path, output_target
 from reports.harness.gate import GateError
 from reports.harness.store_files import StoreDamaged
@@ -155,6 +155,9 @@ def solve_trajectory(
     if result.status != "ok" or result.trajectory is None:
         when = "" if result.failure_time is None else f" at t={result.failure_time:.6g}"
         raise UsageError(f"{engine} {result.status}{when}: {result.message}")
+    drift = self_check.of_trajectory(scenario, result.trajectory)
+    if drift:  # ok by the engine, wrong by its own figures: said, the exit status stays 0
+        print(f"mbxval: warning: {engine} {drift}", file=sys.stderr)
     return result.trajectory.select(scenario.output_bodies)
 
 

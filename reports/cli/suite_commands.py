@@ -172,9 +172,13 @@ def run_selection(selection: Selection, out: Path, progress: bool) -> Counter[st
 def run_summary(made: Counter[str], out: Path, page: Path | None) -> str:
     """The last line of a run: this run's rows by status, then the store's total apart."""
     counts = ", ".join(f"{status} {n}" for status, n in made.most_common())
-    stored = len(read_results(out)[0])
+    frame = read_results(out)[0]
     made_now = f"{made.total()} runs ({counts or 'all stored already'})"
-    return f"{made_now}; {out} holds {stored} rows; report: {page}"
+    drifted = int((frame["self_check"].fillna("") != "").sum()) if "self_check" in frame else 0
+    flagged = (
+        f", {drifted} of them ok but drifted by their own figures (marked in the report)" if drifted else ""
+    )
+    return f"{made_now}; {out} holds {len(frame)} rows{flagged}; report: {page}"
 
 
 def render_reports(results: Path | str, out: str | None = None) -> Path:

@@ -58,6 +58,14 @@ DECLARED: tuple[Column, ...] = (
     ),
     Column("energy_drift", math.nan, "dynamic runs: scaled energy drift (harness.energy_drift)"),
     Column(
+        "energy_change",
+        math.nan,
+        "conservative free dynamics: the run's own change of T + V over its kinetic energy, no truth used",
+    ),
+    Column(
+        "self_check", "", "'' or what drifted by the run's own figures, no truth used (harness.self_check)"
+    ),
+    Column(
         "driver_force_error",
         math.nan,
         "driven runs reporting driver forces: error against native inverse dynamics (harness.driver_forces)",

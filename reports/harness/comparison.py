@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 
 from adapters.base import RunResult
+from reports.harness import self_check
 from reports.harness.driver_forces import driver_force_error, force_columns
 from reports.harness.energy_drift import energy_drift
 from reports.harness.level_error import level_errors
@@ -46,6 +47,7 @@ def compare(
     if scenario.analysis == "dynamic":
         try:
             metrics["energy_drift"] = energy_drift(scenario, result.trajectory, truth)
+            metrics["energy_change"] = self_check.energy_change(scenario, result.trajectory)
         except (ValueError, KeyError) as error:
             notes.append(f"energy drift not measured: {error}")
     elif force_columns(result.trajectory):

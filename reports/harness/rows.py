@@ -8,6 +8,7 @@ import socket
 from typing import Any
 
 from adapters.base import RunResult, Setting, Status
+from reports.harness import self_check
 from reports.harness.columns import NOT_RUN, empty_row
 from reports.harness.level_error import characteristic_rate
 from reports.harness.provenance import now
@@ -83,4 +84,10 @@ def result_row(
         levels=",".join(levels),
     )
     row.update(metrics)
+    if result.status == "ok":  # an ok run that drifted says so, by its own figures
+        residual, energy = (
+            metrics.get("constraint_residual", math.nan),
+            metrics.get("energy_change", math.nan),
+        )
+        row["self_check"] = self_check.verdict(residual, energy)
     return row

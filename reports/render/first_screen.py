@@ -18,6 +18,8 @@ from scenarios import load as build_scenario
 
 NATIVE = "reference"
 BEST, WORST = -14.0, -1.0  # log10 error drawn fully green, fully red
+DRIFT_MARK = " ⚠"
+"""Beside an ok run's errors when its own figures say it drifted (harness.self_check; no truth used)."""
 LEVEL_LETTERS = {"position": "pos", "velocity": "vel", "acceleration": "acc"}
 
 
@@ -83,13 +85,16 @@ def matrix_cells(row: pd.Series | None) -> list[str]:
         tip = markup.escape(f"{row['setting']}: {row['message']}")
         return [f'<td class="{markup.escape(status)}" colspan="3" title="{tip}">{markup.escape(status)}</td>']
     cells = []
+    drift = str(row.get("self_check") or "")  # stored when the run was made (harness.self_check)
+    mark, why = (DRIFT_MARK, f"; {drift}") if drift else ("", "")
     for column in LEVEL_COLUMNS.values():
         value = float(row[column]) if column in row and row[column] is not None else math.nan
         if math.isnan(value):
             cells.append('<td class="notrun" title="level not produced">–</td>')
         else:
             style = f'style="background:{cell_colour(value)}"'
-            cells.append(f'<td {style} title="{markup.escape(str(row["setting"]))}">{value:.0e}</td>')
+            tip = markup.escape(f"{row['setting']}{why}")
+            cells.append(f'<td {style} title="{tip}">{value:.0e}{mark}</td>')
     return cells
 
 
