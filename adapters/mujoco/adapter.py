@@ -167,6 +167,9 @@ class MujocoAdapter(Adapter):
         dynamic = scenario.analysis == "dynamic"
         if dynamic and setting.mode not in DYNAMIC_MODES:
             raise Unsupported(f"mode {setting.mode} is not a MuJoCo integrator of free dynamics")
+        # A cam's model adds what the scenario lacks (a link of LINK_MASS, or a preload spring):
+        # its forces would be the model's, so none are reported.
+        own = set() if scenario.cams else {c.name for c in (*scenario.joints, *scenario.drivers)}
         try:
             scenario = cam_model_scenario(
                 scenario, str(setting.get("cam_model", default_cam_model(scenario)))
@@ -202,6 +205,7 @@ class MujocoAdapter(Adapter):
         )
         built = compile_model(scenario, tree, sized, run_in, scale)
         built.preload = load
+        built.forces = built.forces.only(own)
         if dynamic:
             built.loads, built.angles = loads, scenario
         if kinematic:
@@ -220,6 +224,8 @@ class MujocoAdapter(Adapter):
         d.qpos[:], d.qvel[:] = model.qpos0, model.qvel0
         n, k = len(grid), len(model.bodies)
         pos, vel, acc = np.empty((n, k, 3)), np.empty((n, k, 3)), np.empty((n, k, 3))
+        columns = model.forces.columns()
+        forces = np.empty((n, len(columns)))
         done = 0  # whole steps from t = 0: the lattice every output time is read from
         with controls(m, d, model.loads.motors):
             mujoco.mj_forward(m, d)
@@ -232,9 +238,11 @@ class MujocoAdapter(Adapter):
                 with side_step(m, d, rest):
                     self.count_steps(1 if rest > 0.0 else 0)
                     record(m, d, model, pos[i], vel[i], acc[i])
+                    forces[i] = model.forces.read(m, d)
                     if m.npair:
                         check_contacts(m, d, model.preload)
         extras = angle_columns(model.angles, model.bodies, pos[:, :, 2]) if model.angles else {}
+        extras.update(zip(columns, forces.T, strict=True))
         return Trajectory(grid, model.bodies, pos, vel, acc, extras=extras)
 
     def _kinematic(self, model: Model, grid: np.ndarray) -> Trajectory:

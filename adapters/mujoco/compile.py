@@ -13,6 +13,7 @@ from adapters.base import Unsupported
 from adapters.mujoco.assembly import assemble, clock_velocities, contact_slopes, settle
 from adapters.mujoco.cams import CamPair, cam_pairs
 from adapters.mujoco.dynamics import rate_velocities
+from adapters.mujoco.forces import force_map
 from adapters.mujoco.laws import Law, laws
 from adapters.mujoco.mjcf import Physics, mjcf
 from adapters.mujoco.model import Model, evaluate
@@ -60,6 +61,7 @@ def compile_model(scenario: Scenario, tree: Tree, physics: Physics, run_in: int,
         theta=[angle(tree, b) for b in outputs],
         joint_ids={m.joint(j).name: m.jnt_dofadr[j] for j in range(m.njnt)},
         clocks={int(m.jnt_dofadr[m.joint(law.clock.joint).id]): law.clock for law in found if law.clock},
+        forces=force_map(scenario, tree, found, m),
     )
 
 

@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 import mujoco
 import numpy as np
 
+from adapters.mujoco.forces import ForceMap
 from adapters.mujoco.kinematic import KinematicSolver
 from adapters.mujoco.laws import Clock
 from adapters.mujoco.loads import Loads
@@ -37,6 +38,8 @@ class Model:
     """The dynamic scene's loads, whose motors' controls simulate sets."""
     angles: Scenario | None = None
     """The scenario whose angle outputs the trajectory carries (None: none)."""
+    forces: ForceMap = field(default_factory=lambda: ForceMap((), ()))
+    """Where the drivers' forces and the joints' reactions are read (adapters.mujoco.forces)."""
 
 
 def evaluate(form: Affine, model: Model, qpos: np.ndarray) -> float:

@@ -43,6 +43,7 @@ td.notrun { color: #999; }
 img { max-width: 100%; margin: 0.3em 0; } .muted { color: #666; font-size: 0.9em; }
 .wide { overflow-x: auto; }
 table.matrix td { min-width: 0; white-space: nowrap; padding: 0.15em 0.35em; }
+table.matrix .force { border-left: 2px solid #557; font-style: italic; }
 .plots { display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start; }
 """
 
