@@ -10,8 +10,9 @@ profile points at equal angles (adapters.mujoco.cam_facets), one contact pair pe
 collision stays analytic (capsule-sphere, capsule-box, as on the disc), the follower rides the chords
 (a sagitta of kappa c^2 / 8), and its velocity and acceleration carry the facets' kinks, smoothed by
 the soft contact (measured errors in cam_facets.DEFAULT_PIECES). A knife edge on
-such a polygon is refused (its velocity jumps at every vertex and it chatters), and a lobed cam's
-concave valleys where the follower cannot follow them (cam_facets.lobed_reason).
+such a polygon is refused (its velocity jumps at every vertex and it chatters), and so is a lobed cam
+(its follower chatters too; concave valleys the follower cannot follow are named:
+cam_facets.lobed_reason): only spline profiles with a roller or a flat face are built as facets.
 """
 
 from __future__ import annotations
@@ -32,6 +33,11 @@ KNIFE_ON_FACETS = (
     "the follower is thrown off every vertex and chatters (measured on cam_knife_edge/spline: "
     "position error 3e-5..5e-5 m and acceleration 510 m/s^2, the preload over the mass, from 512 to "
     "2048 facets, not converging)"
+)
+LOBES_ON_FACETS = (
+    "MuJoCo's model of it is a polygon of facets, on which the follower is thrown off the vertices "
+    "and chatters (measured on cam_roller with profile=lobed: acceleration 501 m/s^2, the preload "
+    "over the mass, against 36 m/s^2, at 512 and 2048 facets alike)"
 )
 HALF_HEIGHT = 0.2
 """Half-thickness of all cam geometry normal to the plane, in cam disc radii."""
@@ -72,7 +78,7 @@ def unsupported_reason(contact: CamContact) -> str | None:
     if isinstance(profile, SplineProfile):
         return None
     if isinstance(profile, LobedProfile):
-        return lobed_reason(contact)
+        return lobed_reason(contact) or f"cam '{contact.name}' has a lobed profile: {LOBES_ON_FACETS}"
     return f"cam '{contact.name}' has a {type(profile).__name__} profile, which MuJoCo's model does not know"
 
 
