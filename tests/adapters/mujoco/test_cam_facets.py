@@ -51,7 +51,11 @@ def follower_errors(name: str, pieces: int) -> np.ndarray:
     assert result.status == "ok", result.message
     assert result.trajectory is not None and truth is not None
     got, want = result.trajectory.select(("follower",)), truth.select(("follower",))
-    pairs = [(got.position, want.position), (got.velocity, want.velocity), (got.acceleration, want.acceleration)]
+    pairs = [
+        (got.position, want.position),
+        (got.velocity, want.velocity),
+        (got.acceleration, want.acceleration),
+    ]
     return np.array([np.abs(np.asarray(a)[..., 1] - np.asarray(b)[..., 1]).max() for a, b in pairs])
 
 
