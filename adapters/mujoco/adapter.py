@@ -15,7 +15,7 @@ Settings: mode RK4 (default), implicitfast, Euler or implicit; dt, the engine st
 rule's, adapters.step_rule and adapters.mujoco.settings; the output grid never changes it: outputs
 between steps are reached by a side step, adapters.lattice); tc, the solref time constant in
 seconds (tc_steps, in steps, is the older form); impedance, solimp of the equalities; for cams
-preload (N) and contact_impedance.
+preload (N), contact_impedance and, for a profile other than a disc, cam_pieces (its facets).
 """
 
 from __future__ import annotations
@@ -28,7 +28,8 @@ import numpy as np
 from adapters.base import Adapter, Option, OptionValue, Setting, Unsupported
 from adapters.lattice import check_grid, lattice_point
 from adapters.modes import ADAPTER, ENGINE, Mode
-from adapters.mujoco.cam_load import check_contacts, knife_edge_reason, preload
+from adapters.mujoco.cam_facets import DEFAULT_PIECES, MAX_PIECES, MIN_PIECES, PIECES_HELP, faceted, hops
+from adapters.mujoco.cam_load import check_contacts, hop_allowances, knife_edge_reason, preload
 from adapters.mujoco.cams import cam_pairs
 from adapters.mujoco.compile import assembled_poses, clock_armatures, compile_model, follower_springs
 from adapters.mujoco.dynamics import DYNAMIC_MODES, angle_columns, closes_loops, controls
@@ -115,6 +116,7 @@ class MujocoAdapter(Adapter):
         Option(
             "cam_model", str, choices=CAM_MODELS, help="disc cams as their equivalent linkage, or as contacts"
         ),
+        Option("cam_pieces", int, MIN_PIECES, MAX_PIECES, help=PIECES_HELP),
     )
 
     def version(self) -> str:
@@ -140,6 +142,8 @@ class MujocoAdapter(Adapter):
             setting = setting.replace(cam_model=default_cam_model(scenario))
             if setting["cam_model"] == "contact":
                 setting = setting.replace(preload=preload(scenario), contact_impedance=0.99)
+            if faceted(scenario):
+                setting = setting.replace(cam_pieces=DEFAULT_PIECES)
         return setting
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
@@ -188,6 +192,7 @@ class MujocoAdapter(Adapter):
             (time_constant(setting, dt), 1.0),
             _solimp(float(setting.get("impedance", 0.9999)), scenario.characteristic_length),
             _solimp(float(setting.get("contact_impedance", 0.99)), scenario.characteristic_length),
+            cam_pieces=int(setting.get("cam_pieces", DEFAULT_PIECES)),
         )
         run_in = 0 if kinematic or dynamic else RUN_IN
         scale = scale_of(scenario)
@@ -197,7 +202,7 @@ class MujocoAdapter(Adapter):
         poses = assembled_poses(scenario, guessed, first)
         tree = plan_tree(scenario, poses)
         load = float(setting.get("preload", preload(scenario)))
-        springs = follower_springs(scenario, first, tree, load, scale)
+        springs = follower_springs(scenario, first, tree, load, scale, physics.cam_pieces)
         armatures = clock_armatures(scenario, guessed, first, scale)
         loads = loads_of(scenario, tree)
         sized = Physics(
@@ -206,6 +211,7 @@ class MujocoAdapter(Adapter):
         built = compile_model(scenario, tree, sized, run_in, scale)
         built.preload = load
         built.forces = built.forces.only(own)
+        built.hops = hop_allowances(built.model, built.qpos0, hops(scenario.cams, physics.cam_pieces))
         if dynamic:
             built.loads, built.angles = loads, scenario
         if kinematic:
@@ -240,7 +246,7 @@ class MujocoAdapter(Adapter):
                     record(m, d, model, pos[i], vel[i], acc[i])
                     forces[i] = model.forces.read(m, d)
                     if m.npair:
-                        check_contacts(m, d, model.preload)
+                        check_contacts(m, d, model.preload, model.hops)
         extras = angle_columns(model.angles, model.bodies, pos[:, :, 2]) if model.angles else {}
         extras.update(zip(columns, forces.T, strict=True))
         return Trajectory(grid, model.bodies, pos, vel, acc, extras=extras)

@@ -30,7 +30,7 @@ def compile_model(scenario: Scenario, tree: Tree, physics: Physics, run_in: int,
     assembled branch; preloaded contacts settled) and run in to t = 0, so
     that the soft constraints start in their own steady state rather than in a transient."""
     found = laws(scenario, tree)
-    cams = cam_pairs(scenario.cams, tree)
+    cams = cam_pairs(scenario.cams, tree, physics.cam_pieces)
     m = mujoco.MjModel.from_xml_string(mjcf(scenario, tree, found, cams, physics))
     d = mujoco.MjData(m)
     clocks = clocks_at(m, found, 0.0)
@@ -97,7 +97,7 @@ def clock_armatures(scenario: Scenario, tree: Tree, model: Model, scale: Scale) 
 
 
 def follower_springs(
-    scenario: Scenario, model: Model, tree: Tree, preload: float, scale: Scale
+    scenario: Scenario, model: Model, tree: Tree, preload: float, scale: Scale, pieces: int
 ) -> dict[str, tuple[float, float]]:
     """A follower spring per cam pushing with `preload` into the contact at the start; it stiffens
     by 10 % over a characteristic length."""
@@ -107,7 +107,7 @@ def follower_springs(
     d = mujoco.MjData(m)
     d.qpos[:], d.qvel[:] = model.qpos0, model.qvel0
     slopes = contact_slopes(m, d, scale)
-    pairs: list[CamPair] = cam_pairs(scenario.cams, tree)
+    pairs: list[CamPair] = cam_pairs(scenario.cams, tree, pieces)
     springs = {}
     stiffness = preload / (10.0 * scenario.characteristic_length)
     for index, pair in enumerate(pairs):

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from adapters.mujoco.cam_facets import DEFAULT_PIECES
 from adapters.mujoco.cams import CamPair, Geom
 from adapters.mujoco.laws import Law
 from adapters.mujoco.loads import WORLD_SITE, Loads, site_name
@@ -45,6 +46,8 @@ class Physics:
     """Clock joint name -> armature (CLOCK_ARMATURE for a clock not listed or with nothing to drive)."""
     loads: Loads = field(default_factory=Loads)
     """Gravity, actuators, tendons and hinge springs of a dynamic scene (adapters.mujoco.loads)."""
+    cam_pieces: int = DEFAULT_PIECES
+    """Facets of a cam profile other than a disc (adapters.mujoco.cam_facets)."""
 
 
 def num(*values: float) -> str:
@@ -116,23 +119,24 @@ def mjcf(
                 stiffness=num(armature * law.clock.omega2),
             )
     for pair in cams:
-        for geom in (pair.cam, pair.follower):
+        for geom in (*pair.cam, pair.follower):
             _geom(elements[geom.body], geom, contact=True)
     _equalities(root, elements, tree, laws)
     _loads(root, elements, physics.loads)
     if cams:
         contact = ET.SubElement(root, "contact")
         for pair in cams:
-            ET.SubElement(
-                contact,
-                "pair",
-                name=pair.name,
-                geom1=pair.cam.name,
-                geom2=pair.follower.name,
-                condim="1",
-                solref=num(*physics.solref),
-                solimp=num(*physics.contact_solimp),
-            )
+            for k, piece in enumerate(pair.cam):  # one pair per facet, all on the one follower geom
+                ET.SubElement(
+                    contact,
+                    "pair",
+                    name=pair.name if len(pair.cam) == 1 else f"{pair.name}_{k}",
+                    geom1=piece.name,
+                    geom2=pair.follower.name,
+                    condim="1",
+                    solref=num(*physics.solref),
+                    solimp=num(*physics.contact_solimp),
+                )
     if keyframe is not None:
         key = ET.SubElement(ET.SubElement(root, "keyframe"), "key", name="start")
         key.set("qpos", num(*keyframe[0]))
@@ -191,16 +195,13 @@ def _pitch_radius(scenario: Scenario, name: str) -> float:
 
 def _geom(body: ET.Element, geom: Geom, contact: bool) -> None:
     half = geom.angle / 2.0
-    ET.SubElement(
-        body,
-        "geom",
-        name=geom.name,
-        type=geom.kind,
-        size=num(*geom.size),
-        pos=num(*geom.pos, 0.0),
-        quat=num(math.cos(half), 0.0, 0.0, math.sin(half)),
-        rgba="0.9 0.5 0.3 1" if contact else "0.6 0.7 0.8 1",
-    )
+    place = {"pos": num(*geom.pos, 0.0), "quat": num(math.cos(half), 0.0, 0.0, math.sin(half))}
+    if geom.fromto is not None:
+        x1, y1, x2, y2 = geom.fromto
+        place = {"fromto": num(x1, y1, 0.0, x2, y2, 0.0)}
+    colour = "0.9 0.5 0.3 1" if contact else "0.6 0.7 0.8 1"
+    attrs = {"name": geom.name, "type": geom.kind, "size": num(*geom.size), **place, "rgba": colour}
+    ET.SubElement(body, "geom", attrs)
 
 
 def _site(elements: dict[str, ET.Element], tree: Tree, point: Point, name: str) -> str:

@@ -32,6 +32,8 @@ class Model:
     clocks: dict[int, Clock]
     preload: float = 0.0
     """The cam followers' preload (N); 0 without cams."""
+    hops: dict[int, float] = field(default_factory=dict)
+    """Per faceted cam (pair group): the gap its follower may show at a grid time (its sagitta)."""
     kinematic: KinematicSolver | None = None
     """The solver of the kinematic mode (None: MuJoCo's integrator)."""
     loads: Loads = field(default_factory=Loads)
