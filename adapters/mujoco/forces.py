@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from adapters.mujoco.kinematic import EQUALITY
 from adapters.mujoco.laws import Law
 from adapters.mujoco.tree import Tree
 from scenarios.bodies import GROUND
@@ -26,11 +27,12 @@ from scenarios.scenario import Scenario
 
 @dataclass(frozen=True)
 class DriverForce:
-    """One driver's equality and the gradient of its coordinate over the model's dofs."""
+    """One driver's equality and the weights that project its generalized force on its coordinate:
+    the coordinate's gradient over the model's dofs, divided by its squared norm."""
 
     name: str
     equality: int
-    gradient: np.ndarray
+    weights: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -88,7 +90,7 @@ def force_map(scenario: Scenario, tree: Tree, laws: list[Law], m: mujoco.MjModel
             if dof_joint != clock:
                 gradient[m.jnt_dofadr[m.joint(dof_joint).id]] += coef
         equality = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_EQUALITY, law.name)
-        drivers.append(DriverForce(law.name, equality, gradient))
+        drivers.append(DriverForce(law.name, equality, gradient / (gradient @ gradient)))
     loops = {loop.name for loop in tree.loops}
     tree_joints = {j.name: j for j in tree.joints}
     reactions = []
@@ -108,20 +110,20 @@ def force_map(scenario: Scenario, tree: Tree, laws: list[Law], m: mujoco.MjModel
     return ForceMap(tuple(drivers), tuple(reactions))
 
 
+def _equality_rows(d: mujoco.MjData, equality: int) -> np.ndarray:
+    """The constraint rows of one equality in d's current constraint set."""
+    return np.flatnonzero((d.efc_type == EQUALITY) & (d.efc_id == equality))
+
+
 def _driver_force(m: mujoco.MjModel, d: mujoco.MjData, driver: DriverForce) -> float:
-    rows = np.flatnonzero(
-        (d.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY) & (d.efc_id == driver.equality)
-    )
+    rows = _equality_rows(d, driver.equality)
     generalized = d.efc_J.reshape(d.nefc, m.nv)[rows].T @ d.efc_force[rows]
-    return float(generalized @ driver.gradient / (driver.gradient @ driver.gradient))
+    return float(generalized @ driver.weights)
 
 
 def _reaction(m: mujoco.MjModel, d: mujoco.MjData, reaction: Reaction) -> np.ndarray:
     if reaction.equality >= 0:
-        rows = np.flatnonzero(
-            (d.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY) & (d.efc_id == reaction.equality)
-        )
-        return reaction.sign * d.efc_force[rows][:2]
+        return reaction.sign * d.efc_force[_equality_rows(d, reaction.equality)][:2]
     force = d.cfrc_int[reaction.body][3:].copy()
     if reaction.slide >= 0:
         axis = d.xaxis[reaction.slide]
