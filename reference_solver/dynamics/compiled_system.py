@@ -10,6 +10,7 @@ the plain system otherwise, or when asked (`fast=False`), so that each path chec
 from __future__ import annotations
 
 import warnings
+from types import ModuleType
 
 import numpy as np
 
@@ -21,11 +22,12 @@ from scenarios.scenario import Scenario
 
 
 class CompiledSystem(ConstraintSystem):
-    """A ConstraintSystem whose C, C_q, Q_d and C_t come from compiled kernels."""
+    """A ConstraintSystem whose C, C_q, Q_d and C_t come from compiled kernels (`dense`, the
+    fast.dense module); NotCompiled where its rows have no kernel."""
 
-    def __init__(self, scenario: Scenario, kernels: object) -> None:
+    def __init__(self, scenario: Scenario, dense: ModuleType) -> None:
         super().__init__(scenario)
-        self.kernels = kernels
+        self.kernels = dense.DenseKernels(compile_dense(self))
 
     def evaluate(
         self, q: np.ndarray, t: float, qd: np.ndarray | None = None
@@ -40,15 +42,13 @@ class CompiledSystem(ConstraintSystem):
 
 def constraint_system(scenario: Scenario, fast: bool = True) -> ConstraintSystem:
     """The compiled system where the scenario compiles and `fast`, else the plain one."""
-    plain = ConstraintSystem(scenario)
     if not fast or scenario.cams:
-        return plain
+        return ConstraintSystem(scenario)
     module, problem = dense_kernels()
     if module is None:
         warnings.warn(f"native dynamics: the plain path runs, {problem}", RuntimeWarning, stacklevel=2)
-        return plain
+        return ConstraintSystem(scenario)
     try:
-        program = compile_dense(plain)
+        return CompiledSystem(scenario, module)
     except NotCompiled:
-        return plain
-    return CompiledSystem(scenario, module.DenseKernels(program, plain.size, plain.unknowns))
+        return ConstraintSystem(scenario)

@@ -29,8 +29,8 @@ def rates_of_time(ints, reals, t, out):  # type: ignore[no-untyped-def]
 class DenseKernels:
     """One program's evaluation with its scratch arrays kept (no cam contacts: no profile points)."""
 
-    def __init__(self, program: Program, rows: int, columns: int) -> None:
-        self.program, self.rows, self.columns = program, rows, columns
+    def __init__(self, program: Program) -> None:
+        self.program, self.rows, self.columns = program, program.ints.shape[0], program.n
         bodies = int(program.sizes[1])
         self.work = np.zeros((5, max(bodies, WIDTH)))
         self.scratch = np.zeros((2, 2, WIDTH))
