@@ -1,6 +1,6 @@
-"""Each engine's default by the settings rule and the floor of its sweep, held two-sided: an error
-more than FACTOR away from the value measured when the rule landed (either way) fails, so a change
-in the rule, an adapter or an engine shows. Round-off values are held from above only.
+"""Each engine's default by the settings rule and the floor of its sweep, held two-sided
+(tests.support.bounds: within a factor 3 of the value measured when the rule landed, either way), so
+a change in the rule, an adapter or an engine shows. Round-off values are held from above only.
 
 Measured on the 2-core machine with mujoco 4.0.0, exudyn 1.13.6 and pin 4.1.0 against the harness
 truth (closed forms, the native forward dynamics), as the runner measures them
@@ -17,9 +17,8 @@ from adapters.base import Setting
 from adapters.step_rule import at_step
 from reports.harness.level_error import level_errors
 from reports.harness.truth import independent_truth
+from tests.support.bounds import held
 
-FACTOR = 3.0
-ROUND_OFF = 1e-12
 LEVELS = ("error_position", "error_velocity", "error_acceleration")
 
 
@@ -32,14 +31,6 @@ def errors(name: str, engine: str, setting: Setting | None = None, **overrides: 
     truth = independent_truth(scenario, np.asarray(scenario.times())).trajectory
     found = level_errors(scenario, result.trajectory, truth)
     return tuple(float(found[level]) for level in LEVELS)
-
-
-def held(found: tuple[float, ...], measured: tuple[float, ...]) -> None:
-    for level, value, expected in zip(LEVELS, found, measured, strict=True):
-        if expected <= ROUND_OFF:
-            assert value < 10 * ROUND_OFF, (level, value, expected)
-        else:
-            assert expected / FACTOR < value < expected * FACTOR, (level, value, expected)
 
 
 @pytest.mark.parametrize(
