@@ -7,22 +7,15 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from reference_solver.fast.evaluate import evaluate, motion
-from reference_solver.fast.program import K_MOTION, WIDTH, X_MOTION, Program
+from reference_solver.fast.evaluate import evaluate, row_motion
+from reference_solver.fast.program import WIDTH, Program
 
 
 @njit(cache=True, error_model="numpy")
 def rates_of_time(ints, reals, t, out):  # type: ignore[no-untyped-def]
     """out <- C_t(t): minus the motion's rate on each driven row (C = ... - f(t))."""
     for r in range(ints.shape[0]):
-        _, df, _ = motion(
-            ints[r, K_MOTION],
-            reals[r, X_MOTION],
-            reals[r, X_MOTION + 1],
-            reals[r, X_MOTION + 2],
-            reals[r, X_MOTION + 3],
-            t,
-        )
+        _, df, _ = row_motion(ints, reals, r, t)
         out[r] = -df
 
 

@@ -158,14 +158,7 @@ def evaluate(ints, reals, q, qd, t, c, q_d, band, work, jac, us):  # type: ignor
             if coefficient != 0.0:
                 value += coefficient * q[ints[r, K_SLOT_COL + s]]
                 work[ROW, s] += coefficient
-        f, _, ddf = motion(
-            ints[r, K_MOTION],
-            reals[r, X_MOTION],
-            reals[r, X_MOTION + 1],
-            reals[r, X_MOTION + 2],
-            reals[r, X_MOTION + 3],
-            t,
-        )
+        f, _, ddf = row_motion(ints, reals, r, t)
         c[r] = value - reals[r, X_CONSTANT] - f
         q_d[r] = acc + ddf
         if with_jacobian:
@@ -173,6 +166,19 @@ def evaluate(ints, reals, q, qd, t, c, q_d, band, work, jac, us):  # type: ignor
                 pos = ints[r, K_SLOT_POS + s]
                 if pos >= 0:
                     band[pos] = work[ROW, s] * reals[r, X_SLOT_SCALE + s]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def row_motion(ints, reals, r, t):  # type: ignore[no-untyped-def]
+    """f(t), f'(t), f''(t) of row r's motion (zero for a row without one)."""
+    return motion(
+        ints[r, K_MOTION],
+        reals[r, X_MOTION],
+        reals[r, X_MOTION + 1],
+        reals[r, X_MOTION + 2],
+        reals[r, X_MOTION + 3],
+        t,
+    )
 
 
 @njit(cache=True, error_model="numpy", inline="always")
