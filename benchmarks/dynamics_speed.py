@@ -1,7 +1,12 @@
-"""The native forward dynamics' cost per output time point, beside the kinematic analysis of the
-same mechanism (the kinematic family it was released from) on the same grid.
+"""The native forward dynamics' cost per output time point, plain and compiled constraints side by
+side, beside the kinematic analysis of the same mechanism (the kinematic family it was released
+from) on the same grid.
 
-    python -m benchmarks.dynamics_speed [--repeats N]
+    python -m benchmarks.dynamics_speed [--repeats N]      (or: mbxval bench dynamics)
+
+Right-hand sides per second are printed for the plain constraints (`simulate`'s default)
+and the compiled ones (`fast=True`, reference_solver.dynamics.compiled_system), with their ratio;
+the dynamics column is the compiled path.
 
 Forward dynamics: coordinate partitioning with DOP853 at rtol 1e-12 (truth quality); its cost per
 point depends on how many integrator steps fall between output points, so the right-hand-side
@@ -44,13 +49,19 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args(argv)
     print(f"microseconds per output point ({POINTS} points over each horizon); best of {args.repeats}")
-    header = f"{'scenario':<22}{'n':>4}{'dynamics':>12}{'evals/pt':>10}{'kinematic':>12}{'fast':>10}"
+    header = (
+        f"{'scenario':<22}{'n':>4}{'dynamics':>12}{'evals/pt':>10}{'rhs/s plain':>13}{'compiled':>10}"
+        f"{'ratio':>7}{'kinematic':>12}{'fast':>10}"
+    )
     print(header + "  (kinematic family)")
     for name, kinematic in PAIRS:
         scenario = scenarios.build(name, overrides={"steps": POINTS} if name != "stiff_spring" else {})
         grid = scenario.times(steps=POINTS)
-        evaluations = simulate(scenario, grid).evaluations
-        dynamic = best(lambda s=scenario, g=grid: simulate(s, g), args.repeats) / (POINTS + 1)
+        evaluations = simulate(scenario, grid, fast=True).evaluations
+        dynamic = best(lambda s=scenario, g=grid: simulate(s, g, fast=True), args.repeats) / (POINTS + 1)
+        unfast = best(lambda s=scenario, g=grid: simulate(s, g), args.repeats) / (POINTS + 1)
+        per_point = evaluations / (POINTS + 1)
+        rates = f"{per_point / unfast:13.0f}{per_point / dynamic:10.0f}{unfast / dynamic:7.1f}"
         plain = fast = "-"
         if kinematic is not None:
             driven = scenarios.build(kinematic)
@@ -60,7 +71,7 @@ def main(argv: list[str] | None = None) -> None:
             plain, fast = f"{1e6 * slow / (POINTS + 1):12.0f}", f"{1e6 * quick / (POINTS + 1):10.0f}"
         size = 3 * len(scenario.bodies)
         print(
-            f"{name:<22}{size:>4}{1e6 * dynamic:12.0f}{evaluations / (POINTS + 1):10.1f}"
+            f"{name:<22}{size:>4}{1e6 * dynamic:12.0f}{per_point:10.1f}{rates}"
             f"{plain:>12}{fast:>10}  ({kinematic or '-'})"
         )
 

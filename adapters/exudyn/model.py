@@ -42,6 +42,7 @@ from exudyn.itemInterface import (
 
 from adapters.exudyn.constraints import UserConstraint, user_constraint
 from adapters.exudyn.disc import PhiFromPoses, disc_contact, flat_face_disc
+from adapters.exudyn.force_sensors import ForceSensor, add_force_sensors
 from adapters.exudyn.loads import add_loads
 from adapters.exudyn.user_functions import constraint_functions, offset_functions
 from scenarios.bodies import GROUND, Point
@@ -77,6 +78,8 @@ class ExudynModel:
     sensors: list[tuple[int, int, tuple[Any, Any, Any]]] = field(default_factory=list)
     """(first ODE2 index, width, sensors of coordinates, velocities, accelerations) per node: Exudyn
     records the grid states itself (adapters.exudyn.simulation reads them)."""
+    force_sensors: list[ForceSensor] = field(default_factory=list)
+    """Drivers' forces and joints' reactions (adapters.exudyn.force_sensors)."""
 
 
 def build_model(scenario: Scenario, mass_scale: float = 1.0, native_cams: bool = True) -> ExudynModel:
@@ -85,9 +88,14 @@ def build_model(scenario: Scenario, mass_scale: float = 1.0, native_cams: bool =
     mbs = container.AddSystem()
     model = ExudynModel(scenario, container, mbs, native_cams=native_cams)
     builder = _Builder(model, mass_scale)
+    built: dict[str, tuple[object, list[int]]] = {}
     for item in (*scenario.joints, *scenario.drivers):
+        first = mbs.systemData.NumberOfObjects()
         builder.add(item)
+        built[item.name] = (item, list(range(first, mbs.systemData.NumberOfObjects())))
     add_loads(mbs, scenario, builder.objects, builder.nodes, builder.at, builder.ground_coordinate)
+    if mass_scale == 1.0:  # other masses give other forces than the scenario's
+        model.force_sensors = add_force_sensors(mbs, built)
     recorded = [(node, 3) for node in builder.nodes.values()] + [(n, 1) for n in builder.phi_nodes.values()]
     sensors = [(node, width, _state_sensors(mbs, node)) for node, width in recorded]
     mbs.Assemble()

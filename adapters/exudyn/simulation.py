@@ -12,13 +12,14 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import exudyn as exu
 import numpy as np
 
 from adapters.base import EngineFailure, Singular
+from adapters.exudyn.force_sensors import force_columns
 from adapters.exudyn.model import ExudynModel
 from adapters.lattice import check_grid, hermite, lattice_point, lattice_steps
 from scenarios.bodies import GROUND
@@ -53,6 +54,8 @@ class States:
     q: np.ndarray
     v: np.ndarray
     a: np.ndarray
+    forces: dict[str, np.ndarray] = field(default_factory=dict)
+    """Drivers' forces and joints' reactions where the integrator recorded them (force_sensors)."""
 
 
 @contextmanager
@@ -266,7 +269,8 @@ def _recorder(model: ExudynModel, times: np.ndarray, states: States, tolerance: 
 
 
 def _empty(n_times: int, n: int) -> States:
-    return States(*(np.full((n_times, n), np.nan) for _ in range(3)))
+    q, v, a = (np.full((n_times, n), np.nan) for _ in range(3))
+    return States(q, v, a)
 
 
 def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any) -> tuple[States, int]:
@@ -277,14 +281,37 @@ def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any)
     t0, h = float(times[0]), plan.dt
     steps = lattice_steps(t0, float(times[-1]), h)
     ti = settings.timeIntegration
-    ti.startTime, ti.endTime, ti.numberOfSteps = t0, t0 + steps * h, steps
     ti.generalizedAlpha.spectralRadius = plan.rho
-    ti.generalizedAlpha.computeInitialAccelerations = False  # the assembled start has them
     settings.solution.sensors.active = True
     settings.solution.sensors.writePeriod = 0.5 * h  # every step, once
     solver = DYNAMIC[plan.solver]
+    initial = _initial_forces(model, settings, solver, t0, h)
+    ti.startTime, ti.endTime, ti.numberOfSteps = t0, t0 + steps * h, steps
+    ti.generalizedAlpha.computeInitialAccelerations = False  # the assembled start has them
     _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
-    return _on_grid(_sensed(model, t0, h, steps), times, h), steps
+    states = _on_grid(_sensed(model, t0, h, steps), times, h)
+    states.forces = force_columns(model.mbs, model.force_sensors, times, h, initial)
+    return states, steps
+
+
+def _initial_forces(model: ExudynModel, settings: Any, solver: Any, t0: float, h: float) -> list[np.ndarray]:
+    """Each force sensor's value at t0: Exudyn records a start it did not solve as zero, so one step
+    is taken first with Exudyn's own initial-acceleration solve, whose multipliers are the start's
+    forces; the start is then restored (the run itself keeps the assembled accelerations)."""
+    if not model.force_sensors:
+        return []
+    data = model.mbs.systemData
+    kept = [
+        np.array(get(INITIAL))
+        for get in (data.GetODE2Coordinates, data.GetODE2Coordinates_t, data.GetODE2Coordinates_tt)
+    ]
+    ti = settings.timeIntegration
+    ti.startTime, ti.endTime, ti.numberOfSteps = t0, t0 + h, 1
+    ti.generalizedAlpha.computeInitialAccelerations = True
+    _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
+    found = [np.asarray(model.mbs.GetSensorStoredData(s.handle))[0, 1:].copy() for s in model.force_sensors]
+    write_initial(model, States(kept[0][None, :], kept[1][None, :], kept[2][None, :]))
+    return found
 
 
 def _sensed(model: ExudynModel, t0: float, h: float, steps: int) -> States:
@@ -373,6 +400,7 @@ def trajectory(model: ExudynModel, times: np.ndarray, states: States) -> Traject
     cols = [np.arange(model.index[b], model.index[b] + 3) for b in bodies]
     pick = [np.stack([level[:, c] for c in cols], axis=1) for level in (states.q, states.v, states.a)]
     extras = {name: states.q[:, i].copy() for name, i in model.phi_index.items()}
+    extras.update(states.forces)
     for name, (cam, follower, phi_of, guess) in model.phi_from_poses.items():
         extras[f"{name}.phi"] = _phi_series(model, states.q, cam, follower, phi_of, guess)
 

@@ -4,7 +4,10 @@ MuJoCo does not assemble a closed loop: it starts wherever qpos is and lets the 
 pull it shut, which is a transient, not the mechanism. So the start is solved on MuJoCo's rows:
 Newton on the equality and contact residuals (efc_pos) with their Jacobian (efc_J) for the
 positions, then the velocity rows J v = 0 for qvel, with the clocks held at their own values.
-Tolerances and the contact margin are sized by the mechanism (adapters.mujoco.scale).
+Tolerances and the contact margin are sized by the mechanism (adapters.mujoco.scale). A faceted cam
+is many pairs on one follower geom (a group): within the margin several facets have rows, and only
+the closest contact is the cam's (the distance to a convex polygon is the least of its facets'; a
+disc's two contacts, at the ends of its capsule, are one row twice).
 """
 
 from __future__ import annotations
@@ -18,11 +21,11 @@ import numpy as np
 from adapters.base import Singular
 from adapters.mujoco.scale import Scale, dof_sizes, row_tolerances
 
+FOLLOWER = "_follower"
+"""The suffix of a follower geom's name (adapters.mujoco.cams)."""
 CAM_MARGIN = 1.0
 """Contact detection distance while assembling, in characteristic lengths, so that a separated cam
 contact still has a row."""
-
-ROWS = (mujoco.mjtConstraint.mjCNSTR_EQUALITY, mujoco.mjtConstraint.mjCNSTR_CONTACT_FRICTIONLESS)
 
 
 @contextmanager
@@ -36,10 +39,43 @@ def _margin(m: mujoco.MjModel, scale: Scale) -> Iterator[None]:
         m.pair_margin[:] = margin
 
 
+def follower_geom(m: mujoco.MjModel, pair: int) -> int:
+    """The pair's follower geom (named '<cam>_follower'; MuJoCo may store it as either geom)."""
+    first = int(m.pair_geom1[pair])
+    return first if m.geom(first).name.endswith(FOLLOWER) else int(m.pair_geom2[pair])
+
+
+def pair_groups(m: mujoco.MjModel) -> dict[int, int]:
+    """Each pair's cam contact: the index of its follower geom among the pairs' follower geoms, in
+    the order of the pairs (the order of the scenario's cams)."""
+    geoms = [follower_geom(m, k) for k in range(m.npair)]
+    followers = list(dict.fromkeys(geoms))
+    return {k: followers.index(g) for k, g in enumerate(geoms)}
+
+
+def closest_contacts(m: mujoco.MjModel, d: mujoco.MjData) -> dict[int, int]:
+    """Per cam contact (pair group), the index in d.contact of its closest contact with a row."""
+    groups = pair_groups(m)
+    pairs = {frozenset((int(m.pair_geom1[k]), int(m.pair_geom2[k]))): k for k in range(m.npair)}
+    best: dict[int, tuple[float, int]] = {}
+    for i in range(d.ncon):
+        contact = d.contact[i]
+        k = pairs.get(frozenset((int(contact.geom1), int(contact.geom2))))
+        if k is None or contact.efc_address < 0:
+            continue
+        group, dist = groups[k], float(contact.dist)
+        if group not in best or dist < best[group][0]:
+            best[group] = (dist, i)
+    return {group: i for group, (_, i) in best.items()}
+
+
 def _rows(m: mujoco.MjModel, d: mujoco.MjData) -> tuple[np.ndarray, np.ndarray]:
-    """Residuals and their Jacobian (rows x dofs) of the equalities and contacts."""
+    """Residuals and their Jacobian (rows x dofs) of the equalities and of each cam's closest
+    contact."""
     mujoco.mj_forward(m, d)
-    keep = np.isin(d.efc_type, ROWS)
+    keep = d.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
+    for i in closest_contacts(m, d).values():
+        keep[d.contact[i].efc_address] = True
     jac = d.efc_J.reshape(d.nefc, m.nv)
     return d.efc_pos[keep].copy(), jac[keep].copy()
 
@@ -107,25 +143,13 @@ def clock_velocities(
 
 
 def contact_slopes(m: mujoco.MjModel, d: mujoco.MjData, scale: Scale) -> dict[int, np.ndarray]:
-    """For each contact pair (by index), the gradient of its distance over the dofs."""
+    """For each cam contact (pair group, by index), the gradient of its distance over the dofs."""
     with _margin(m, scale):
         mujoco.mj_forward(m, d)
         jac = d.efc_J.reshape(d.nefc, m.nv)
-        slopes: dict[int, np.ndarray] = {}
-        for i in range(d.ncon):
-            contact = d.contact[i]
-            pair = _pair_index(m, contact.geom1, contact.geom2)
-            if pair is not None and contact.efc_address >= 0:
-                slopes.setdefault(pair, jac[contact.efc_address].copy())
+        slopes = {group: jac[d.contact[i].efc_address].copy() for group, i in closest_contacts(m, d).items()}
     mujoco.mj_forward(m, d)
     return slopes
-
-
-def _pair_index(m: mujoco.MjModel, g1: int, g2: int) -> int | None:
-    for k in range(m.npair):
-        if {int(m.pair_geom1[k]), int(m.pair_geom2[k])} == {g1, g2}:
-            return k
-    return None
 
 
 def settle(

@@ -10,7 +10,8 @@ that model to stop being the cam while still producing a smooth trajectory:
   times the follower's largest inertial force (its mass times the profile's largest acceleration at
   the drive's speed), never below PRELOAD_FLOOR (a light preload chatters on the soft contact);
 - the contact can still open (a preload set by hand, a transient): `check_contacts` ends the run as
-  `failed` at the first grid time whose contact row is missing or carries no force.
+  `failed` at the first grid time whose contact row is missing or carries no force (a faceted cam's
+  follower may instead be off by less than its polygon's sagitta: it hops off convex vertices).
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ import mujoco
 import numpy as np
 
 from adapters.base import EngineFailure
+from adapters.mujoco.assembly import FOLLOWER, closest_contacts, follower_geom, pair_groups
 from scenarios.cam_profiles import EccentricDisc
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
 from scenarios.drivers import AbsoluteDriver
@@ -54,7 +56,7 @@ def pressure_angle(contact: KnifeEdgeCam) -> float:
 
 def knife_edge_reason(contact: CamContact) -> str | None:
     """Why the box-corner knife edge would not stay a knife edge on this profile, if it would not."""
-    if not isinstance(contact, KnifeEdgeCam) or not isinstance(contact.profile, EccentricDisc):
+    if not isinstance(contact, KnifeEdgeCam):
         return None
     psi = pressure_angle(contact)
     if psi <= MAX_EDGE_PRESSURE_ANGLE:
@@ -119,24 +121,66 @@ def preload(scenario: Scenario) -> float:
     return max(PRELOAD_FLOOR, PRELOAD_MARGIN * max(forces, default=0.0))
 
 
-def check_contacts(m: mujoco.MjModel, d: mujoco.MjData, load: float) -> None:
-    """Raise a `failed` EngineFailure if some cam pair has no contact row or no force now (after a
-    forward pass at the current state)."""
-    forces = np.zeros(m.npair)
-    found = np.zeros(m.npair, dtype=bool)
+def check_contacts(
+    m: mujoco.MjModel, d: mujoco.MjData, load: float, hops: dict[int, float] | None = None
+) -> None:
+    """Raise a `failed` EngineFailure if some cam (its pairs: one, or one per facet) has no contact
+    row or no force now (after a forward pass at the current state). `hops`: per faceted cam (pair
+    group), the gap it may show instead (`hop_allowances`): a follower is thrown off each convex
+    vertex, where its velocity turns and its contact's compression is released, and lands within a
+    few steps."""
+    groups = pair_groups(m)
+    count = max(groups.values(), default=-1) + 1
+    forces = np.zeros(count)
+    found = np.zeros(count, dtype=bool)
     pairs = {frozenset((int(m.pair_geom1[k]), int(m.pair_geom2[k]))): k for k in range(m.npair)}
     for i in range(d.ncon):
         contact = d.contact[i]
         k = pairs.get(frozenset((int(contact.geom1), int(contact.geom2))))
         if k is not None and contact.efc_address >= 0:
-            found[k] = True
-            forces[k] += d.efc_force[contact.efc_address]
-    for k in range(m.npair):
-        if not found[k] or forces[k] <= FORCE_FLOOR * load:
-            name = mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_PAIR, k) or str(k)
-            what = "no contact row" if not found[k] else f"force {forces[k]:.3g} N"
-            raise EngineFailure(
-                f"contact lost: cam '{name}' at t = {d.time:.6g} s ({what}; the follower left the "
-                f"cam, preload {load:.3g} N)",
-                float(d.time),
-            )
+            found[groups[k]] = True
+            forces[groups[k]] += d.efc_force[contact.efc_address]
+    for group in range(count):
+        if found[group] and forces[group] > FORCE_FLOOR * load:
+            continue
+        allowed = (hops or {}).get(group)
+        gap = _gap(m, d, [k for k, g in groups.items() if g == group], allowed) if allowed else None
+        if gap is not None:
+            continue
+        k = next(k for k, g in groups.items() if g == group)
+        follower = m.geom(follower_geom(m, k)).name
+        what = "no contact row" if not found[group] else f"force {forces[group]:.3g} N"
+        raise EngineFailure(
+            f"contact lost: cam '{follower.removesuffix(FOLLOWER)}' at t = {d.time:.6g} s "
+            f"({what}; the follower left the cam, preload {load:.3g} N)",
+            float(d.time),
+        )
+
+
+def hop_allowances(m: mujoco.MjModel, qpos: np.ndarray, sagittas: dict[int, float]) -> dict[int, float]:
+    """Per faceted cam: the larger of its polygon's sagitta and its contact's static penetration at
+    the start, the gap a hop off a vertex may open (both are errors the model has anyway)."""
+    d = mujoco.MjData(m)
+    d.qpos[:] = qpos
+    mujoco.mj_forward(m, d)
+    closest = closest_contacts(m, d)
+    depth = {group: max(0.0, -float(d.contact[i].dist)) for group, i in closest.items()}
+    return {group: max(sag, depth.get(group, 0.0)) for group, sag in sagittas.items()}
+
+
+def _gap(m: mujoco.MjModel, d: mujoco.MjData, pairs: list[int], within: float) -> float | None:
+    """The least distance between the follower and these pairs' cam geoms if below `within`."""
+    margins = m.pair_margin[pairs].copy()
+    m.pair_margin[pairs] = within
+    try:
+        mujoco.mj_collision(m, d)
+        geoms = {frozenset((int(m.pair_geom1[k]), int(m.pair_geom2[k]))) for k in pairs}
+        dists = [
+            float(d.contact[i].dist)
+            for i in range(d.ncon)
+            if frozenset((int(d.contact[i].geom1), int(d.contact[i].geom2))) in geoms
+        ]
+    finally:
+        m.pair_margin[pairs] = margins
+        mujoco.mj_forward(m, d)
+    return min(dists) if dists and min(dists) <= within else None

@@ -4,8 +4,15 @@ MuJoCo has no cam joint: the cam is real geometry and the follower is held on it
 spring, through a frictionless contact pair. The eccentric disc is a capsule whose axis is normal to
 the plane (its section in the plane is exactly the disc, and MuJoCo's capsule colliders are
 analytic); the roller is a sphere, the flat face the face of a box, the knife edge the edge of a box
-turned 45 degrees about its point. A spline or lobed profile would have to be a mesh, which MuJoCo
-collides as its convex hull with a general convex solver: not a faithful cam, so it is refused.
+turned 45 degrees about its point. Any other profile (a spline, a lobed cam) is a polygon of
+`cam_pieces` facets, thin capsules lying in the plane whose outer sides are the chords between
+profile points at equal angles (adapters.mujoco.cam_facets), one contact pair per facet: every
+collision stays analytic (capsule-sphere, capsule-box, as on the disc), the follower rides the chords
+(a sagitta of kappa c^2 / 8), and its velocity and acceleration carry the facets' kinks, smoothed by
+the soft contact (measured errors in cam_facets.DEFAULT_PIECES). A knife edge on
+such a polygon is refused (its velocity jumps at every vertex and it chatters), and so is a lobed cam
+(its follower chatters too; concave valleys the follower cannot follow are named:
+cam_facets.lobed_reason): only spline profiles with a roller or a flat face are built as facets.
 """
 
 from __future__ import annotations
@@ -15,11 +22,23 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from adapters.mujoco.cam_facets import DEFAULT_PIECES, extent, facets, lobed_reason
 from adapters.mujoco.tree import Tree, TreeError, rot
 from scenarios.bodies import Point
 from scenarios.cam_profiles import EccentricDisc, LobedProfile, SplineProfile
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
 
+KNIFE_ON_FACETS = (
+    "MuJoCo's model of it is a polygon of facets, and a knife edge's velocity jumps at each vertex: "
+    "the follower is thrown off every vertex and chatters (measured on cam_knife_edge/spline: "
+    "position error 3e-5..5e-5 m and acceleration 510 m/s^2, the preload over the mass, from 512 to "
+    "2048 facets, not converging)"
+)
+LOBES_ON_FACETS = (
+    "MuJoCo's model of it is a polygon of facets, on which the follower is thrown off the vertices "
+    "and chatters (measured on cam_roller with profile=lobed: acceleration 501 m/s^2, the preload "
+    "over the mass, against 36 m/s^2, at 512 and 2048 facets alike)"
+)
 HALF_HEIGHT = 0.2
 """Half-thickness of all cam geometry normal to the plane, in cam disc radii."""
 
@@ -34,14 +53,17 @@ class Geom:
     size: tuple[float, ...]
     pos: tuple[float, float] = (0.0, 0.0)
     angle: float = 0.0
+    fromto: tuple[float, float, float, float] | None = None
+    """A capsule lying in the plane from (x1, y1) to (x2, y2), instead of pos and angle."""
 
 
 @dataclass(frozen=True)
 class CamPair:
-    """The two geoms of one cam contact and the follower joint that carries the preload spring."""
+    """The geoms of one cam contact (the cam's: one capsule, or its facets) and the follower joint
+    that carries the preload spring."""
 
     name: str
-    cam: Geom
+    cam: tuple[Geom, ...]
     follower: Geom
     spring_joint: str
 
@@ -51,43 +73,42 @@ def unsupported_reason(contact: CamContact) -> str | None:
     profile = contact.profile
     if isinstance(profile, EccentricDisc):
         return None
-    mesh = (
-        "MuJoCo has no analytic collider for it and could only mesh it, and a mesh collides as the "
-        "convex hull of its vertices, a polygon of flat facets"
-    )
+    if isinstance(contact, KnifeEdgeCam):
+        return f"cam '{contact.name}' has a {_kind(profile)} profile: {KNIFE_ON_FACETS}"
     if isinstance(profile, SplineProfile):
-        return (
-            f"cam '{contact.name}' has a spline profile: {mesh}: the follower's velocity would be "
-            "piecewise constant and its acceleration impulsive, not the smooth spline's"
-        )
+        return None
     if isinstance(profile, LobedProfile):
-        concave = profile.valley_curvature_radius() < 0.0
-        hull = (
-            "; the hull would also fill its concave valleys, which the follower could never enter"
-            if concave
-            else ": the follower's velocity would be piecewise constant, not the smooth lobes'"
-        )
-        return f"cam '{contact.name}' has a lobed profile ({profile.lobes} lobes): {mesh}{hull}"
-    return f"cam '{contact.name}' has a {type(profile).__name__} profile: {mesh}"
+        return lobed_reason(contact) or f"cam '{contact.name}' has a lobed profile: {LOBES_ON_FACETS}"
+    return f"cam '{contact.name}' has a {type(profile).__name__} profile, which MuJoCo's model does not know"
 
 
-def cam_pairs(contacts: tuple[CamContact, ...], tree: Tree) -> list[CamPair]:
-    """The contact geometry of every cam contact, placed on the tree's authored poses."""
+def _kind(profile: object) -> str:
+    return {SplineProfile: "spline", LobedProfile: "lobed"}.get(type(profile), type(profile).__name__)
+
+
+def cam_pairs(contacts: tuple[CamContact, ...], tree: Tree, pieces: int = DEFAULT_PIECES) -> list[CamPair]:
+    """The contact geometry of every cam contact, placed on the tree's authored poses; a profile
+    other than a disc as `pieces` facets."""
     pairs = []
     for contact in contacts:
         reason = unsupported_reason(contact)
         if reason:
             raise TreeError(reason)
-        disc = contact.profile
-        assert isinstance(disc, EccentricDisc)
-        cam = Geom(
-            contact.cam,
-            f"{contact.name}_cam",
-            "capsule",
-            (disc.radius, HALF_HEIGHT * disc.radius),
-            (disc.eccentricity, 0.0),
-        )
-        follower = _follower(contact, tree, disc)
+        profile = contact.profile
+        name = f"{contact.name}_cam"
+        cam: tuple[Geom, ...]
+        if isinstance(profile, EccentricDisc):
+            size = (profile.radius, HALF_HEIGHT * profile.radius)
+            cam = (Geom(contact.cam, name, "capsule", size, (profile.eccentricity, 0.0)),)
+            radius, reach = profile.radius, profile.radius + profile.eccentricity
+        else:
+            radius = reach = extent(profile)[1]
+            thickness, segments = facets(profile, pieces)
+            cam = tuple(
+                Geom(contact.cam, f"{name}{k}", "capsule", (thickness,), fromto=ends)
+                for k, ends in enumerate(segments)
+            )
+        follower = _follower(contact, tree, radius, reach)
         joint = tree.joint_of(follower.body)
         if joint.kind == "fixed":
             raise TreeError(f"cam '{contact.name}': the follower is fixed, so it cannot be preloaded")
@@ -95,18 +116,20 @@ def cam_pairs(contacts: tuple[CamContact, ...], tree: Tree) -> list[CamPair]:
     return pairs
 
 
-def _follower(contact: CamContact, tree: Tree, disc: EccentricDisc) -> Geom:
+def _follower(contact: CamContact, tree: Tree, radius: float, reach: float) -> Geom:
+    """The follower's geom, sized by the cam's `radius` (R for a disc) and reaching past its
+    largest radius `reach` (R + e) on either side."""
     name = f"{contact.name}_follower"
-    reach = 2.0 * (disc.radius + disc.eccentricity)
+    reach = 2.0 * reach
     if isinstance(contact, RollerCam):
         return Geom(contact.centre.body, name, "sphere", (contact.roller_radius,), contact.centre.local)
     if isinstance(contact, FlatFaceCam):
         n = np.array(contact.normal, dtype=float)
         n /= np.linalg.norm(n)
-        thickness = 0.2 * disc.radius
+        thickness = 0.2 * radius
         centre = np.array(contact.face.local) - n * thickness
         tangent_angle = math.atan2(n[1], n[0]) + math.pi / 2
-        size = (reach, thickness, 2.0 * HALF_HEIGHT * disc.radius)
+        size = (reach, thickness, 2.0 * HALF_HEIGHT * radius)
         return Geom(contact.face.body, name, "box", size, (centre[0], centre[1]), tangent_angle)
     assert isinstance(contact, KnifeEdgeCam)
     # The edge points from the tip towards the cam's centre of rotation at the authored pose.
@@ -115,8 +138,8 @@ def _follower(contact: CamContact, tree: Tree, disc: EccentricDisc) -> Geom:
     follower_angle = tree.poses[tip.body][2]
     d = rot(follower_angle).T @ toward
     d /= np.linalg.norm(d)
-    half = 0.2 * disc.radius
+    half = 0.2 * radius
     centre = np.array(tip.local) - d * half * math.sqrt(2.0)
     edge_angle = math.atan2(d[1], d[0]) + math.pi / 4
-    size = (half, half, 2.0 * HALF_HEIGHT * disc.radius)
+    size = (half, half, 2.0 * HALF_HEIGHT * radius)
     return Geom(tip.body, name, "box", size, (centre[0], centre[1]), edge_angle)

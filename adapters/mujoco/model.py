@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 import mujoco
 import numpy as np
 
+from adapters.mujoco.forces import ForceMap
 from adapters.mujoco.kinematic import KinematicSolver
 from adapters.mujoco.laws import Clock
 from adapters.mujoco.loads import Loads
@@ -31,12 +32,16 @@ class Model:
     clocks: dict[int, Clock]
     preload: float = 0.0
     """The cam followers' preload (N); 0 without cams."""
+    hops: dict[int, float] = field(default_factory=dict)
+    """Per faceted cam (pair group): the gap its follower may show at a grid time (its sagitta)."""
     kinematic: KinematicSolver | None = None
     """The solver of the kinematic mode (None: MuJoCo's integrator)."""
     loads: Loads = field(default_factory=Loads)
     """The dynamic scene's loads, whose motors' controls simulate sets."""
     angles: Scenario | None = None
     """The scenario whose angle outputs the trajectory carries (None: none)."""
+    forces: ForceMap = field(default_factory=lambda: ForceMap((), ()))
+    """Where the drivers' forces and the joints' reactions are read (adapters.mujoco.forces)."""
 
 
 def evaluate(form: Affine, model: Model, qpos: np.ndarray) -> float:

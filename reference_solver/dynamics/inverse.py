@@ -18,7 +18,7 @@ from scenarios.scenario import Scenario
 def inverse_dynamics(scenario: Scenario, analysis: Analysis) -> dict[str, np.ndarray]:
     """Driver forces, joint reactions, kinetic and potential energy on the analysis grid."""
     system = ConstraintSystem(scenario)
-    mass = mass_diagonal(scenario, system.layout)
+    mass = mass_diagonal(scenario, system.layout, massless_contacts=True)
     loads = Loads(scenario, system.layout, mass)
     rows: list[dict[str, float]] = []
     for t, q, qd, qdd in zip(analysis.times, analysis.q, analysis.qd, analysis.qdd, strict=True):

@@ -45,3 +45,17 @@ def _compiled() -> tuple[ModuleType | None, str]:
             raise
         return None, f"numba cannot cache its compiled kernels anywhere writable ({error})"
     return path, ""
+
+
+@lru_cache(maxsize=1)
+def dense_kernels() -> tuple[ModuleType | None, str]:
+    """The dense kernels' module (forward dynamics), or None and why it cannot be used here."""
+    if not AVAILABLE:
+        return None, "numba is not installed"
+    try:
+        from reference_solver.fast import dense
+    except RuntimeError as error:  # as in _compiled
+        if "cannot cache" not in str(error):
+            raise
+        return None, f"numba cannot cache its compiled kernels anywhere writable ({error})"
+    return dense, ""

@@ -173,8 +173,8 @@ class _Rows:
                 ints[K_TERM_PHI_SLOT + k] = eq.phi_local
         self.patterns.append(_pattern(spec, eq, reals[X_LINEAR : X_LINEAR + WIDTH]))
 
-    def place(self, band: Band, row_scale: np.ndarray, col_scale: np.ndarray) -> None:
-        """Each pattern slot's position in the band store and its scale."""
+    def place(self, band: Band | DenseStore, row_scale: np.ndarray, col_scale: np.ndarray) -> None:
+        """Each pattern slot's position in the band (or dense) store and its scale."""
         for r, slots in enumerate(self.patterns):
             for s in slots:
                 col = int(self.ints[r, K_SLOT_COL + s])
@@ -182,23 +182,23 @@ class _Rows:
                 self.reals[r, X_SLOT_SCALE + s] = col_scale[col] / row_scale[r]
 
 
+class DenseStore:
+    """A row-major m x n store: where `evaluate` writes the unscaled C_q of a system that is not
+    square (forward dynamics), entry (row, col) at row * n + col."""
+
+    def __init__(self, columns: int) -> None:
+        self.columns = columns
+
+    def position(self, row: int, col: int) -> int:
+        return row * self.columns + col
+
+
 def compile_program(system: ConstraintSystem) -> Program:
     """The instruction table of a square constraint system; NotCompiled if it cannot have one."""
     m, n = system.size, system.unknowns
     if m != n or n == 0:
         raise NotCompiled(f"{m} constraint rows for {n} unknowns: not a square system")
-    rows = _Rows(m)
-    constraints = system.scenario.joints + system.scenario.drivers
-    r = 0
-    for constraint, eq in zip(constraints, system.equations, strict=True):
-        specs = rows_of(constraint)
-        assert len(specs) == eq.size, constraint
-        if eq.width > WIDTH:
-            raise NotCompiled(f"{eq.name} touches {eq.width} columns, more than {WIDTH}")
-        for number, spec in enumerate(specs):
-            previous = specs[number - 1] if number else None
-            rows.add(r, spec, eq, previous is not None and (previous.a, previous.b) == (spec.a, spec.b))
-            r += 1
+    rows = _instruction_rows(system)
     entries = [
         (row, int(rows.ints[row, K_SLOT_COL + s])) for row, slots in enumerate(rows.patterns) for s in slots
     ]
@@ -220,3 +220,42 @@ def compile_program(system: ConstraintSystem) -> Program:
         profiles=profiles,
         splines=splines,
     )
+
+
+def compile_dense(system: ConstraintSystem) -> Program:
+    """The instruction table of any constraint system with a DenseStore for its unscaled C_q (the
+    band fields empty); NotCompiled if it cannot have one."""
+    m, n = system.size, system.unknowns
+    if m == 0 or n == 0:
+        raise NotCompiled(f"{m} constraint rows for {n} unknowns: nothing to compile")
+    rows = _instruction_rows(system)
+    rows.ints[:, K_SLOT_POS : K_SLOT_POS + WIDTH] = -1  # a slot off the pattern is written nowhere
+    rows.place(DenseStore(n), np.ones(m), np.ones(n))
+    profiles, splines = profile_tables([cam.profile for cam in system.scenario.cams])
+    return Program(
+        ints=rows.ints,
+        reals=rows.reals,
+        scales=np.zeros((2, 0)),
+        perm=np.zeros((2, 0), np.int64),
+        sizes=np.array([n, len(system.layout.bodies), 0, 0, 0], np.int64),
+        parity=1.0,
+        profiles=profiles,
+        splines=splines,
+    )
+
+
+def _instruction_rows(system: ConstraintSystem) -> _Rows:
+    """Every constraint row of the system as instructions (their Jacobian slots not placed yet)."""
+    rows = _Rows(system.size)
+    constraints = system.scenario.joints + system.scenario.drivers
+    r = 0
+    for constraint, eq in zip(constraints, system.equations, strict=True):
+        specs = rows_of(constraint)
+        assert len(specs) == eq.size, constraint
+        if eq.width > WIDTH:
+            raise NotCompiled(f"{eq.name} touches {eq.width} columns, more than {WIDTH}")
+        for number, spec in enumerate(specs):
+            previous = specs[number - 1] if number else None
+            rows.add(r, spec, eq, previous is not None and (previous.a, previous.b) == (spec.a, spec.b))
+            r += 1
+    return rows

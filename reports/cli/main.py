@@ -26,6 +26,7 @@ from adapters.step_rule import RULE
 from reports.cli.usage import Parser, UsageError, pairs, scenario_argument
 from reports.harness import provenance, self_check, stop
 from reports.harness.atomic_write import atomic_output, atomic_path, output_target
+from reports.harness.common_start import common_start
 from reports.harness.gate import GateError
 from reports.harness.store_files import StoreDamaged
 from reports.harness.store_lock import StoreBusy
@@ -164,7 +165,7 @@ def solve_trajectory(
 def cmd_solve(args: argparse.Namespace) -> int:
     if args.out is not None:
         output_target(args.out)  # a device, FIFO or directory is refused before solving
-    scenario = load(args.scenario, pairs(args.set, "--set"))
+    scenario = common_start(load(args.scenario, pairs(args.set, "--set")))
     grid = (args.t_end, args.steps, args.dt)
     trajectory = solve_trajectory(scenario, args.engine, args.mode, args.setting, grid)
     if args.out is None:

@@ -287,6 +287,7 @@ BENCHMARKS = {
     "scaling": "benchmarks.chain_scaling",
     "sweep": "benchmarks.sweep_speed",
     "overhead": "benchmarks.run_overhead",
+    "dynamics": "benchmarks.dynamics_speed",
 }
 
 

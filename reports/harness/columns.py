@@ -66,9 +66,19 @@ DECLARED: tuple[Column, ...] = (
         "self_check", "", "'' or what drifted by the run's own figures, no truth used (harness.self_check)"
     ),
     Column(
+        "error_force",
+        math.nan,
+        "runs reporting forces: the larger of driver_force_error and reaction_error (harness.forces)",
+    ),
+    Column(
         "driver_force_error",
         math.nan,
-        "driven runs reporting driver forces: error against native inverse dynamics (harness.driver_forces)",
+        "runs reporting driver forces: error against the native solver's (harness.forces)",
+    ),
+    Column(
+        "reaction_error",
+        math.nan,
+        "runs reporting joint reactions: error against the native solver's (harness.forces)",
     ),
     Column("build_time", math.nan, "seconds to build the engine's model"),
     Column("run_time", math.nan, "seconds to simulate, minimum of repeats after a warm-up"),

@@ -1,6 +1,6 @@
 """One run set against its truth: the error metrics per level, the constraint residual, and what the
-scenario adds (energy drift in dynamics, driver forces where the run reports them), with a note on
-whatever could not be measured."""
+scenario adds (energy drift in dynamics, driving forces and reactions where the run reports them),
+with a note on whatever could not be measured."""
 
 from __future__ import annotations
 
@@ -8,12 +8,15 @@ import math
 
 from adapters.base import RunResult
 from reports.harness import self_check
-from reports.harness.driver_forces import driver_force_error, force_columns
 from reports.harness.energy_drift import energy_drift
+from reports.harness.forces import force_columns, force_errors
 from reports.harness.level_error import level_errors
 from reports.harness.metrics import Residual, compared_levels, error_metrics, residual_metrics
 from scenarios import Scenario
 from scenarios.trajectory import Trajectory
+
+NATIVE_ENGINE = "reference"
+"""The engine whose forces are the force level's truth (harness.truth.with_native_forces)."""
 
 
 class ComparisonError(Exception):
@@ -50,9 +53,13 @@ def compare(
             metrics["energy_change"] = self_check.energy_change(scenario, result.trajectory)
         except (ValueError, KeyError) as error:
             notes.append(f"energy drift not measured: {error}")
-    elif force_columns(result.trajectory):
-        try:
-            metrics["driver_force_error"] = driver_force_error(scenario, result.trajectory)
-        except Exception as error:  # the native analysis failing here is a note, never the run's failure
-            notes.append(f"driver forces not compared: {type(error).__name__}: {error}")
+    if force_columns(result.trajectory) and result.engine != NATIVE_ENGINE:  # never judged by itself
+        native = {c: truth.extras[c] for c in force_columns(truth)}
+        if not native:
+            notes.append("forces not compared: the truth carries none (harness.truth.with_native_forces)")
+        else:
+            try:
+                metrics.update(force_errors(scenario, result.trajectory, native))
+            except (ValueError, KeyError) as error:
+                notes.append(f"forces not compared: {error}")
     return metrics, levels, "; ".join(notes)

@@ -29,6 +29,7 @@ import tqdm
 import adapters
 from adapters.base import Adapter, RunResult, Setting
 from reports.harness import provenance, stop
+from reports.harness.common_start import common_start
 from reports.harness.comparison import compare
 from reports.harness.isolation import run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION
@@ -149,7 +150,7 @@ class Runner:
     # --- planning ---------------------------------------------------------------------------
     def _plan(self, name: str) -> list[Group]:
         try:
-            scenario = build_scenario(name)
+            scenario = common_start(build_scenario(name))
         except ScenarioError as error:
             raise ScenarioError(f"suite scenario {name} cannot be built: {error}") from error
         return [

@@ -7,15 +7,18 @@ lobed cam profiles, scenario files that are not a family's own mechanism) the tr
 solver solved on a grid REFINE times finer at tolerance TOLERANCE, sampled on the scenario's grid.
 A dynamic scenario (no closed form) takes the native forward dynamics at DYNAMIC_RTOL, tighter
 than any setting the native engine is measured at. Each truth carries its name, stored with every
-row measured against it.
+row measured against it. The force level's truth is always the native solver's: its inverse
+dynamics added to a kinematic truth, the multipliers a dynamic truth carries (harness.forces).
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 
+from reports.harness.forces import native_forces
 from scenarios import Scenario, Trajectory
 from scenarios.closed_form import NoClosedForm, exact
 
@@ -62,8 +65,21 @@ def independent_truth(scenario: Scenario, times: np.ndarray) -> NamedTruth:
         return NamedTruth(simulate(scenario, grid, DYNAMIC_RTOL).trajectory(), NATIVE_DYNAMIC)
     found = closed_form(scenario, grid)
     if found is not None:
-        return NamedTruth(found, CLOSED_FORM)
-    return NamedTruth(native_refined(scenario, grid), NATIVE)
+        return NamedTruth(with_native_forces(scenario, grid, found), CLOSED_FORM)
+    return NamedTruth(with_native_forces(scenario, grid, native_refined(scenario, grid)), NATIVE)
+
+
+def with_native_forces(scenario: Scenario, times: np.ndarray, truth: Trajectory) -> Trajectory:
+    """The truth with the native inverse dynamics' driving forces and reactions added as extras
+    (harness.forces), the force level's truth; unchanged where the native solver cannot give them
+    (a body without mass, no configuration on the grid)."""
+    from reference_solver.errors import SolverError  # on first use, as above
+
+    try:
+        forces = native_forces(scenario, times)
+    except SolverError:
+        return truth
+    return dataclasses.replace(truth, extras={**truth.extras, **forces})
 
 
 def named(value: Trajectory | NamedTruth, fallback: str) -> NamedTruth:

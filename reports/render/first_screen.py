@@ -20,7 +20,11 @@ NATIVE = "reference"
 BEST, WORST = -14.0, -1.0  # log10 error drawn fully green, fully red
 DRIFT_MARK = " ⚠"
 """Beside an ok run's errors when its own figures say it drifted (harness.self_check; no truth used)."""
-LEVEL_LETTERS = {"position": "pos", "velocity": "vel", "acceleration": "acc"}
+LEVEL_LETTERS = {"position": "pos", "velocity": "vel", "acceleration": "acc", "force": "force"}
+MATRIX_COLUMNS: dict[str, str] = {str(k): v for k, v in LEVEL_COLUMNS.items()} | {"force": "error_force"}
+"""The matrix's columns per engine: the three levels, then the forces (harness.forces), whose truth
+is always the native solver's."""
+SPAN = f'colspan="{len(MATRIX_COLUMNS)}"'
 
 
 def native_line(frame: pd.DataFrame) -> str:
@@ -62,8 +66,8 @@ def level_matrix(data: ReportData) -> str:
     """scenario x (engine, level) at each engine's default setting: the error coloured by its log,
     the status where the run was not ok, a dash for a level the engine does not produce."""
     engines = data.engines()
-    top = "".join(f'<th colspan="3">{markup.escape(e)}</th>' for e in engines)
-    sub = "".join(f"<th>{LEVEL_LETTERS[lv]}</th>" for _ in engines for lv in LEVEL_COLUMNS)
+    top = "".join(f"<th {SPAN}>{markup.escape(e)}</th>" for e in engines)
+    sub = "".join(_heading(lv) for _ in engines for lv in MATRIX_COLUMNS)
     body = []
     for scenario in data.scenarios():
         cells = []
@@ -79,23 +83,32 @@ def level_matrix(data: ReportData) -> str:
 def matrix_cells(row: pd.Series | None) -> list[str]:
     """One engine's three cells of a matrix row (one spanning cell where it did not run ok)."""
     if row is None:
-        return ['<td class="notrun" colspan="3">not run</td>']
+        return [f'<td class="notrun" {SPAN}>not run</td>']
     status = str(row["status"])
     if status != "ok":
         tip = markup.escape(f"{row['setting']}: {row['message']}")
-        return [f'<td class="{markup.escape(status)}" colspan="3" title="{tip}">{markup.escape(status)}</td>']
+        return [f'<td class="{markup.escape(status)}" {SPAN} title="{tip}">{markup.escape(status)}</td>']
     cells = []
     drift = str(row.get("self_check") or "")  # stored when the run was made (harness.self_check)
     mark, why = (DRIFT_MARK, f"; {drift}") if drift else ("", "")
-    for column in LEVEL_COLUMNS.values():
+    for level, column in MATRIX_COLUMNS.items():
         value = float(row[column]) if column in row and row[column] is not None else math.nan
+        force = ' class="force"' if level == "force" else ""
         if math.isnan(value):
-            cells.append('<td class="notrun" title="level not produced">–</td>')
+            missing = "no forces reported" if force else "level not produced"
+            cells.append(f'<td class="notrun{" force" if force else ""}" title="{missing}">–</td>')
         else:
             style = f'style="background:{cell_colour(value)}"'
             tip = markup.escape(f"{row['setting']}{why}")
-            cells.append(f'<td {style} title="{tip}">{value:.0e}{mark}</td>')
+            cells.append(f'<td{force} {style} title="{tip}">{value:.0e}{mark}</td>')
     return cells
+
+
+def _heading(level: str) -> str:
+    if level == "force":
+        tip = "driving forces and joint reactions against the native solver's (harness.forces)"
+        return f'<th class="force" title="{tip}">{LEVEL_LETTERS[level]}</th>'
+    return f"<th>{LEVEL_LETTERS[level]}</th>"
 
 
 def _truth_of(data: ReportData, scenario: str) -> str:

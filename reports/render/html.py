@@ -14,6 +14,7 @@ import os
 from typing import Any
 
 from reports.dynamics.cases import map_cells
+from reports.harness.forces import FORCE_DEFINITION
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.provenance import revision_label
 from reports.render import (
@@ -43,6 +44,7 @@ td.notrun { color: #999; }
 img { max-width: 100%; margin: 0.3em 0; } .muted { color: #666; font-size: 0.9em; }
 .wide { overflow-x: auto; }
 table.matrix td { min-width: 0; white-space: nowrap; padding: 0.15em 0.35em; }
+table.matrix .force { border-left: 2px solid #557; font-style: italic; }
 .plots { display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start; }
 """
 
@@ -127,7 +129,11 @@ def _subject(meta: dict[str, Any]) -> str:
 
 def _definitions(meta: dict[str, Any]) -> str:
     scales = meta.get("scales", SCALE_DEFINITION)
-    return f"{scales} The truth: {meta.get('truth', '')}."
+    return (
+        f"{scales} The truth: {meta.get('truth', '')}. The force column: {FORCE_DEFINITION}; its truth "
+        "is always the native solver's (inverse dynamics in a driven scenario, the dynamic truth's "
+        "multipliers in free dynamics)."
+    )
 
 
 def _provenance(meta: dict[str, Any]) -> str:

@@ -33,6 +33,7 @@ TABLE_COLUMNS = (
     "constraint_residual",
     "energy_drift",
     "driver_force_error",
+    "reaction_error",
     "build_time",
     "run_time",
     "steps",
@@ -51,6 +52,7 @@ HEADINGS = {
     "constraint_residual": "residual",
     "energy_drift": "energy drift",
     "driver_force_error": "driver force err",
+    "reaction_error": "reaction err",
     "build_time": "build [s]",
     "run_time": "run [s]",
 }

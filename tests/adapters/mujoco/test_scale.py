@@ -70,7 +70,6 @@ def test_the_clock_is_sized_by_the_inertia_it_drives() -> None:
     ("name", "kind"),
     [
         ("cam_roller/stress_undercut", "lobed"),
-        ("cam_roller/spline", "spline"),
         ("cam_knife_edge/spline", "spline"),
     ],
 )
@@ -80,5 +79,4 @@ def test_an_unsupported_cam_names_its_profile(name: str, kind: str) -> None:
     assert f"a {kind} profile" in reason
     other = {"lobed": "spline", "spline": "lobed"}[kind]
     assert other not in reason
-    if kind == "lobed":
-        assert "concave valleys" in reason
+    assert "chatters" in reason  # measured on MuJoCo's facets (tests/adapters/mujoco/test_cam_facets.py)

@@ -125,8 +125,8 @@ def test_list_is_a_table_of_what_each_engine_supports(capsys) -> None:  # type: 
     header = next(line for line in out.splitlines() if line.startswith("scenario"))
     assert header.split()[1:] == ["reference", "mujoco", "exudyn", "pinocchio"]
     assert rows["slider_crank"] == ["yes"] * 4
-    mujoco_spline = rows["cam_roller/spline"][1:3]
-    assert mujoco_spline[0] == "no" and f"{mujoco_spline[1]} mujoco on cam_roller/spline: " in out
+    mujoco_spline = rows["cam_knife_edge/spline"][1:3]
+    assert mujoco_spline[0] == "no" and f"{mujoco_spline[1]} mujoco on cam_knife_edge/spline: " in out
     assert "    crank_length=0.2  (a number in (0, 1e+06] m)" in out
     assert "stress_" not in out
     # every mode says what it measures: the engine's own solver, or an adapter loop with derived levels

@@ -35,6 +35,13 @@ def test_the_native_line_names_the_worst_error_per_level_and_the_other_truths() 
 
 def test_matrix_cells_show_status_and_leave_a_missing_level_out() -> None:
     cells = matrix_cells(pd.Series(row("a", "closed form", "ok", (1e-15, 2e-6, math.nan))))
-    assert len(cells) == 3 and "2e-06" in cells[1] and "level not produced" in cells[2]
+    assert len(cells) == 4 and "2e-06" in cells[1] and "level not produced" in cells[2]
+    assert "no forces reported" in cells[3]  # the row has no error_force
     failed = matrix_cells(pd.Series(row("a", "closed form", "diverged", (math.nan,) * 3)))
-    assert failed == [failed[0]] and 'colspan="3"' in failed[0] and ">diverged<" in failed[0]
+    assert failed == [failed[0]] and 'colspan="4"' in failed[0] and ">diverged<" in failed[0]
+
+
+def test_the_force_column_shows_the_force_error() -> None:
+    forces = pd.Series({**row("a", "closed form", "ok", (1e-15, 2e-6, 3e-4)), "error_force": 8e-5})
+    cells = matrix_cells(forces)
+    assert 'class="force"' in cells[3] and "8e-05" in cells[3]

@@ -15,7 +15,7 @@ import pytest
 from reports.cli.main import main
 from reports.harness.results_store import read_results
 
-SCENARIOS = ("slider_crank", "cam_roller/spline")
+SCENARIOS = ("slider_crank", "cam_knife_edge/spline")
 CHROMIUM = Path("/usr/bin/chromium")
 
 
@@ -41,7 +41,7 @@ def test_html_is_self_contained_with_its_plots(results: Path) -> None:
     assert not re.search(r'(src|href)="(https?:|//)', page), "the page must not load anything from outside"
     images = re.findall(r'<img class="plot" alt="([^"]+)" src="data:image/png;base64,([^"]+)"', page)
     kinds = [alt for alt, _ in images]
-    # the suite overview; slider_crank: work-precision and deviations; cam_roller/spline: nothing ran
+    # the suite overview; slider_crank: work-precision and deviations; cam_knife_edge/spline: nothing ran
     assert kinds == ["overview of error against run time", "work-precision plot", "deviations"]
     assert "no work-precision plot: no successful run to draw" in page
     assert "no stored truth trajectory: no deviations" in page
@@ -62,8 +62,8 @@ def test_markdown_summary_has_the_matrix_and_each_scenario(results: Path) -> Non
     for name in SCENARIOS:
         assert f"\n## {name}\n" in text
     unsupported = frame[frame["status"] == "unsupported"]
-    assert len(unsupported) == 1 and unsupported["scenario"].item() == "cam_roller/spline"
-    assert "| cam_roller/spline | unsupported |" in text and "| slider_crank | ok " in text
+    assert len(unsupported) == 1 and unsupported["scenario"].item() == "cam_knife_edge/spline"
+    assert "| cam_knife_edge/spline | unsupported |" in text and "| slider_crank | ok " in text
 
 
 def test_report_rerenders_from_stored_files_alone(results: Path, tmp_path: Path) -> None:

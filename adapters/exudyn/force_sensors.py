@@ -1,0 +1,88 @@
+"""Driving forces and joint reactions recorded by Exudyn's own object sensors.
+
+A driver built as one `ObjectConnectorCoordinate` (factor1 q[m1] - q[m0] - offset = 0 with the ground
+as m0) reports its Lagrange multiplier as `Force`; a revolute `ObjectJointRevolute2D` reports the
+force of its constraint in world axes (`ObjectJointPrismatic2D` has no Force output: no column).
+Each becomes the canonical column the native solver writes
+(reference_solver.dynamics.augmented.constraint_outputs): the force a driver applies along its
+coordinate, the force a joint applies to its first moving body.
+The signs were measured against the native inverse dynamics (tests/adapters/exudyn/test_forces.py).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import exudyn as exu
+import numpy as np
+from exudyn.itemInterface import SensorObject
+
+from adapters.lattice import lattice_point
+from scenarios.bodies import GROUND
+from scenarios.drivers import AbsoluteDriver
+from scenarios.joints import Revolute
+
+DRIVER_SIGN = -1.0
+"""Exudyn's coordinate multiplier is the force on the marker-1 coordinate with the opposite sign."""
+JOINT_SIGN = 1.0
+"""A 2D joint's force is the force on its marker-0 body."""
+
+
+@dataclass(frozen=True)
+class ForceSensor:
+    """One sensor and the columns it fills: (column, component, sign) per column."""
+
+    handle: Any
+    columns: tuple[tuple[str, int, float], ...]
+
+
+def add_force_sensors(mbs: Any, items: dict[str, tuple[object, list[int]]]) -> list[ForceSensor]:
+    """A Force sensor on every driver and joint built as one Exudyn object that reports its force;
+    `items` maps each scenario name to the item and the objects built for it."""
+    sensors = []
+    for name, (item, objects) in items.items():
+        if len(objects) != 1:
+            continue
+        kind = mbs.GetObject(objects[0])["objectType"]
+        if isinstance(item, AbsoluteDriver) and kind == "ConnectorCoordinate":
+            columns: tuple[tuple[str, int, float], ...] = ((f"{name}.force", 0, DRIVER_SIGN),)
+        elif isinstance(item, Revolute) and kind == "JointRevolute2D":
+            sign = JOINT_SIGN if item.p_i.body != GROUND else -JOINT_SIGN
+            columns = ((f"{name}.fx", 0, sign), (f"{name}.fy", 1, sign))
+        else:
+            continue
+        handle = mbs.AddSensor(
+            SensorObject(
+                objectNumber=objects[0],
+                storeInternal=True,
+                writeToFile=False,
+                outputVariableType=exu.OutputVariableType.Force,
+            )
+        )
+        sensors.append(ForceSensor(handle, columns))
+    return sensors
+
+
+def force_columns(
+    mbs: Any, sensors: list[ForceSensor], times: np.ndarray, h: float, initial: list[np.ndarray]
+) -> dict[str, np.ndarray]:
+    """Each sensor's columns on the output grid: the value stored at each lattice point t0 + k h
+    (adapters.lattice), `initial` at t0, linear between two lattice points for an output time
+    between them."""
+    t0 = float(times[0])
+    out: dict[str, np.ndarray] = {}
+    for sensor, first in zip(sensors, initial, strict=True):
+        data = np.asarray(mbs.GetSensorStoredData(sensor.handle))
+        k = np.rint((data[:, 0] - t0) / h).astype(int)
+        lattice = {int(j): row for j, row in zip(k, data[:, 1:], strict=True)}  # the last stored wins
+        lattice[0] = first
+        values = np.empty((len(times), data.shape[1] - 1))
+        for i, t in enumerate(times):
+            whole, rest = lattice_point(t0, float(t), h)
+            values[i] = lattice[whole]
+            if rest > 0.0:
+                values[i] += (rest / h) * (lattice[whole + 1] - lattice[whole])
+        for column, component, sign in sensor.columns:
+            out[column] = sign * values[:, component]
+    return out

@@ -1,0 +1,120 @@
+"""A non-circular cam profile as a chain of thin capsules lying in the plane: a polygon of flat facets
+MuJoCo collides analytically (capsule-sphere for a roller, capsule-box for a flat face: the
+colliders of the disc cam). Boxes were tried first: a box-box contact between a knife edge or a flat
+face and a facet takes the wrong face's normal, and the start does not assemble.
+
+The profile is sampled at `pieces` equally spaced angles; each facet is a capsule of radius
+THICKNESS times the smallest radius whose segment is the chord between two consecutive points moved
+inward by that radius, so its outer side is the chord; vertices are rounded by that small radius.
+The polygon deviates from the profile by the chord's sagitta, about kappa c^2 / 8 for a chord
+c = d dphi on a curvature kappa: second order in the piece count. A follower near a vertex touches
+the two facets that meet there, as two contact rows of one pair group (adapters.mujoco.assembly
+and cam_load group a cam's pairs by their follower geom), which stiffen the contact there.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from scenarios.cam_profiles import EccentricDisc, LobedProfile, Profile, profile_point
+from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
+from scenarios.scenario import Scenario
+
+DEFAULT_PIECES = 512
+"""Facets per turn by default. Measured on cam_roller/spline against the native solver (tests/adapters/
+mujoco/test_cam_facets.py): below 512 the vertices pass near the soft contact's own frequency and
+throw the follower off (position 5e-5..4e-4 m, accelerations 500 m/s^2); at 512 the sagitta is
+1.4e-6 m, below the contact's own penetration error (9e-6 m on the disc cam), and the follower's
+errors are 3.9e-6 m, 2.4e-3 m/s, 15 m/s^2, falling at order 0.6-0.8 to 2048 (1.3e-6 m, 1.0e-3 m/s,
+5.3 m/s^2) at 3.6 times the run time (0.75 s against 2.7 s)."""
+PIECES_HELP = (
+    "facets of a spline cam profile (chords between equally spaced profile points); default 512: the "
+    "fewest whose vertices pass above the soft contact's frequency, sagitta 1.4e-6 m below the "
+    "contact's own error; errors fall at order 0.6-0.8 beyond"
+)
+MIN_PIECES = 8
+MAX_PIECES = 8192
+THICKNESS = 0.01
+"""A facet capsule's radius as a fraction of the profile's smallest radius: small, so the rounding
+of the polygon's vertices is negligible, yet 20 times the contact's penetration at 100 N."""
+SAMPLES = 4096
+"""Profile angles sampled for the profile's extent and its smallest radius."""
+
+
+def extent(profile: Profile) -> tuple[float, float]:
+    """The profile's smallest and largest polar radius."""
+    phis = np.linspace(0.0, 2.0 * math.pi, SAMPLES, endpoint=False)
+    radii = np.array([profile.radii(float(p))[0] for p in phis])
+    return float(radii.min()), float(radii.max())
+
+
+def vertices(profile: Profile, pieces: int) -> np.ndarray:
+    """The polygon's vertices (pieces, 2) in the cam's frame: the profile at equal angles from 0."""
+    phis = 2.0 * math.pi * np.arange(pieces) / pieces
+    return np.array([profile_point(profile, float(p))[0] for p in phis])
+
+
+def facets(profile: Profile, pieces: int) -> tuple[float, list[tuple[float, float, float, float]]]:
+    """The facets' capsule radius and, per facet, its segment (x1, y1, x2, y2): the chord moved
+    inward by the radius, so that the capsule's outer side is the chord."""
+    points = vertices(profile, pieces)
+    radius = THICKNESS * extent(profile)[0]
+    ends = np.roll(points, -1, axis=0)
+    tangents = (ends - points) / np.linalg.norm(ends - points, axis=1)[:, None]
+    inward = np.stack([-tangents[:, 1], tangents[:, 0]], axis=1)  # counter-clockwise: left of travel
+    starts, stops = points + radius * inward, ends + radius * inward
+    pairs = zip(starts.tolist(), stops.tolist(), strict=True)
+    return radius, [(a[0], a[1], b[0], b[1]) for a, b in pairs]
+
+
+def sagitta(profile: Profile, pieces: int) -> float:
+    """The largest distance between the profile and the chord polygon, measured at each chord's
+    middle angle (the faceting's geometric error)."""
+    points = vertices(profile, pieces)
+    mids = 2.0 * math.pi * (np.arange(pieces) + 0.5) / pieces
+    worst = 0.0
+    for k, phi in enumerate(mids):
+        a, b = points[k], points[(k + 1) % pieces]
+        tangent = (b - a) / np.linalg.norm(b - a)
+        outward = np.array([tangent[1], -tangent[0]])
+        worst = max(worst, abs(float((profile_point(profile, float(phi))[0] - a) @ outward)))
+    return worst
+
+
+def lobed_reason(contact: CamContact) -> str | None:
+    """Why a lobed cam's concave valleys cannot be faceted for this follower, if they cannot."""
+    profile = contact.profile
+    if not isinstance(profile, LobedProfile):
+        return None
+    rho = profile.valley_curvature_radius()
+    if rho > 0.0:
+        return None
+    head = f"cam '{contact.name}' has a lobed profile ({profile.lobes} lobes) with concave valleys"
+    if isinstance(contact, RollerCam):
+        if contact.roller_radius < -rho:
+            return None
+        return (
+            f"{head} of radius {-rho:.4g} m, narrower than the {contact.roller_radius:.4g} m roller: "
+            "the roller would touch both flanks and undercut the profile"
+        )
+    if isinstance(contact, FlatFaceCam):
+        return f"{head}: a flat face bridges a concave valley and never touches its bottom"
+    assert isinstance(contact, KnifeEdgeCam)
+    return (
+        f"{head}: MuJoCo's knife edge is the corner of a box, whose sides would meet the valley's "
+        "flanks before its tip reaches the bottom"
+    )
+
+
+def faceted(scenario: Scenario) -> bool:
+    """Whether some cam of the scenario is built as facets (a profile other than a disc)."""
+    return any(not isinstance(c.profile, EccentricDisc) for c in scenario.cams)
+
+
+def hops(contacts: tuple[CamContact, ...], pieces: int) -> dict[int, float]:
+    """Per faceted cam (its index among the contacts): its polygon's sagitta, the gap its follower
+    may show where it hops off a vertex (adapters.mujoco.cam_load.check_contacts)."""
+    faceted = [(k, c.profile) for k, c in enumerate(contacts) if not isinstance(c.profile, EccentricDisc)]
+    return {k: sagitta(profile, pieces) for k, profile in faceted}

@@ -1,0 +1,87 @@
+"""The force level: a run's driving forces and joint reactions against the native solver's.
+
+A run may carry its drivers' forces (`<driver>.force`; `<driver>.x.force`, `<driver>.y.force` for a
+point's two rows) and its joints' reactions (`<joint>.fx`, `<joint>.fy`: the force the joint
+applies to its first moving body, world axes). They are set against the native solver's: in a
+driven scenario its inverse dynamics on its own kinematic analysis at tolerance 1e-12, in free
+dynamics the multipliers of its dynamic truth where the truth carries them. FORCE_DEFINITION says
+how the error is made one number.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from scenarios.drivers import AbsoluteDriver, RelativeRotationDriver
+from scenarios.scenario import Scenario
+from scenarios.trajectory import Trajectory
+
+DRIVER_SUFFIX = ".force"
+REACTION_SUFFIXES = (".fx", ".fy")
+FORCE_DEFINITION = (
+    "force error = the largest |F - F_native| over the drivers' forces and the joints' reactions on "
+    "the grid, over the mechanism's force scale S: the largest native reaction or driving force, a "
+    "torque counted as torque / L (L the characteristic length); a torque's error is divided by S L. "
+    "Absolute (N, N m) where the native forces are all zero"
+)
+
+
+def force_columns(result: Trajectory) -> list[str]:
+    """The driver-force and reaction columns the run carries."""
+    return [c for c in result.extras if c.endswith((DRIVER_SUFFIX, *REACTION_SUFFIXES))]
+
+
+def native_forces(scenario: Scenario, times: np.ndarray) -> dict[str, np.ndarray]:
+    """Every driver's force and joint's reaction from the native inverse dynamics on `times`."""
+    from reference_solver import analyse  # on first use: the native solver is slow to import
+    from reference_solver.dynamics import inverse_dynamics
+
+    found = inverse_dynamics(scenario, analyse(scenario, times, tolerance=1e-12))
+    return {k: v for k, v in found.items() if k.endswith((DRIVER_SUFFIX, *REACTION_SUFFIXES))}
+
+
+def force_errors(scenario: Scenario, result: Trajectory, native: dict[str, np.ndarray]) -> dict[str, float]:
+    """{driver_force_error, reaction_error, error_force} by FORCE_DEFINITION (NaN for a kind the
+    run does not carry); KeyError naming a column the native solver does not have."""
+    columns = force_columns(result)
+    unknown = [c for c in columns if c not in native]
+    if unknown:
+        raise KeyError(f"the native solver gives no {', '.join(unknown)} (known: {', '.join(native)})")
+    length = scenario.characteristic_length
+    torques = _torque_columns(scenario)
+    scale = max(
+        (float(np.max(np.abs(v))) / (length if k in torques else 1.0) for k, v in native.items()),
+        default=0.0,
+    )
+
+    def worst(kind: tuple[str, ...]) -> float:
+        picked = [c for c in columns if c.endswith(kind)]
+        if not picked:
+            return math.nan
+        errors = []
+        for c in picked:
+            unit = (scale * length if c in torques else scale) or 1.0
+            errors.append(float(np.max(np.abs(result.extras[c] - native[c]))) / unit)
+        return max(errors)
+
+    drivers, reactions = worst((DRIVER_SUFFIX,)), worst(REACTION_SUFFIXES)
+    both = [e for e in (drivers, reactions) if not math.isnan(e)]
+    return {
+        "driver_force_error": drivers,
+        "reaction_error": reactions,
+        "error_force": max(both) if both else math.nan,
+    }
+
+
+def _torque_columns(scenario: Scenario) -> set[str]:
+    """The driver-force columns that are torques (a driven angle)."""
+    found = set()
+    for driver in scenario.drivers:
+        angle = isinstance(driver, RelativeRotationDriver) or (
+            isinstance(driver, AbsoluteDriver) and driver.coordinate == "theta"
+        )
+        if angle:
+            found.add(f"{driver.name}{DRIVER_SUFFIX}")
+    return found
