@@ -32,7 +32,11 @@ def compile_model(
     mechanism is assembled at t = -run_in steps (stepping back from t = 0 so that Newton stays on the
     assembled branch; preloaded contacts settled) and run in to t = 0 (the steered clocks under
     their controls), so that the soft constraints start in their own steady state rather than in a
-    transient. `linear`: every law linear in its clock (the sizing model, see clock_armatures)."""
+    transient. The clocks keep the state the run-in leaves them in: under a first-order integrator
+    a harmonic clock is then off its law by its phase error (7e-6 m on the slider drive), but in
+    step with the joints it drives; set back onto its law alone it would violate its drive equality
+    at t = 0 and start the transient the run-in is there to avoid. `linear`: every law linear in
+    its clock (the sizing model, see clock_armatures)."""
     found = laws(scenario, tree, physics.steer)
     if linear:
         found = [law.linearised() for law in found]
@@ -54,8 +58,6 @@ def compile_model(
         with controls(m, d, physics.loads.motors, clock_dofs(m, found), before=0.0):
             advance(m, d, run_in)
         d.time = 0.0
-        for dof, (q, v) in clocks_at(m, found, 0.0).items():  # the clocks exactly at their start
-            d.qpos[dof], d.qvel[dof] = q, v
     xml = mjcf(scenario, tree, found, cams, physics, (d.qpos.copy(), d.qvel.copy()))
     outputs = scenario.output_bodies
     return Model(

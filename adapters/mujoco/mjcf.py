@@ -110,7 +110,9 @@ def mjcf(
         if law.clock is not None:
             armature = _armature(physics, law)
             clock = ET.SubElement(world, "body", name=law.clock.joint)
-            ET.SubElement(clock, "inertial", pos="0 0 0", mass="1", diaginertia=num(*[CLOCK_INERTIA] * 3))
+            ET.SubElement(
+                clock, "inertial", pos="0 0 0", mass="1", diaginertia=" ".join([f"{CLOCK_INERTIA:g}"] * 3)
+            )
             ET.SubElement(
                 clock,
                 "joint",
