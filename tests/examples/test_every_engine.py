@@ -48,7 +48,7 @@ OFF_LATTICE: dict[tuple[str, str], tuple[float, float, float]] = {
 never sets the step), Exudyn's positions there are interpolated from the two steps around them, no
 longer on the constraints to round-off."""
 POLYCOEF: dict[tuple[str, str], tuple[float, float, float]] = {
-    ("mujoco", "slider_crank_polynomial"): (2e-4, 2e-4, 7e-2),  # measured 3.7e-5, 5.2e-5, 5.5e-4
+    ("mujoco", "slider_crank_polynomial"): (1.1e-4, 1.6e-4, 1.7e-3),  # measured 3.7e-5, 5.2e-5, 5.5e-4
 }
 """MuJoCo carries a polynomial drive by its joint equality's polycoef, whose dJ/dt v term it leaves
 out: the crank lags by about P''(t) tc^2 (adapters.mujoco.adapter; with `polynomial=steered`
