@@ -1,7 +1,8 @@
 """The closed form of every example file, by file name: each body's (position, velocity,
 acceleration) arrays of shape (len(t), 3), derived independently of every engine (tests/examples/
 dyads.py for the linkages; the Whitworth's and the oscillators' in their own test modules; the
-slider-crank's is the family's, scenarios.closed_form; the polynomial slider-crank's by hand below)."""
+slider-crank's is the family's, scenarios.closed_form; the polynomial slider-crank's by hand below;
+the spline cam's on its pitch curve, tests/examples/spline_cam.py)."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ import numpy as np
 import scenarios
 from scenarios.closed_form import exact
 from tests.examples.dyads import Angle, Motion2, direction, dyad, fixed, frame, on_body
+from tests.examples.spline_cam import cam_roller_spline
 
 Expected = dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]]
 
@@ -197,5 +199,6 @@ CLOSED_FORMS: dict[str, Callable[[np.ndarray], Expected]] = {
     "slider_crank": slider_crank,
     "slider_crank_polynomial": slider_crank_polynomial,
     "damped_oscillators": damped_oscillators,
+    "cam_roller_spline": cam_roller_spline,
 }
 """Every example file's closed form, by its file name."""
