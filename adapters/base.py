@@ -38,7 +38,7 @@ import numpy as np
 
 from adapters.modes import Mode, measures_of
 from adapters.timing import fastest
-from scenarios.family import in_range, range_text
+from scenarios.family import declared_value, range_text
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -104,22 +104,18 @@ class Option:
 
     def check(self, engine: str, value: OptionValue) -> OptionValue:
         """`value` as the option's type; SettingError with the range otherwise."""
-        problem = SettingError(f"{engine}: option {self.name} must be {self.describe()}, got {value!r}")
-        if self.kind is str:
-            if str(value) not in self.choices:
-                raise problem
-            return str(value)
-        try:
-            number = float(value)
-        except (TypeError, ValueError):
-            raise problem from None
-        if not in_range(number, self.low, self.high, self.low_open):
-            raise problem
-        if self.kind is int:
-            if number != int(number):
-                raise problem
-            return int(number)
-        return number
+        typed = declared_value(
+            value,
+            text=self.kind is str,
+            integer=self.kind is int,
+            low=self.low,
+            high=self.high,
+            low_open=self.low_open,
+            choices=self.choices,
+        )
+        if typed is None:
+            raise SettingError(f"{engine}: option {self.name} must be {self.describe()}, got {value!r}")
+        return typed
 
 
 @dataclass(frozen=True)

@@ -5,7 +5,7 @@ from) on the same grid.
     python -m benchmarks.dynamics_speed [--repeats N]      (or: mbxval bench dynamics)
 
 Right-hand sides per second are printed for the plain constraints (`simulate`'s default)
-and the compiled ones (`fast=True`, reference_solver.dynamics.compiled_system), with their ratio;
+and the compiled ones (`fast=True`, reference_solver.compiled_system), with their ratio;
 the dynamics column is the compiled path.
 
 Forward dynamics: coordinate partitioning with DOP853 at rtol 1e-12 (truth quality); its cost per
@@ -19,6 +19,7 @@ from __future__ import annotations
 import argparse
 import time
 from collections.abc import Callable
+from functools import partial
 
 import scenarios
 from reference_solver import analyse
@@ -58,16 +59,16 @@ def main(argv: list[str] | None = None) -> None:
         scenario = scenarios.build(name, overrides={"steps": POINTS} if name != "stiff_spring" else {})
         grid = scenario.times(steps=POINTS)
         evaluations = simulate(scenario, grid, fast=True).evaluations
-        dynamic = best(lambda s=scenario, g=grid: simulate(s, g, fast=True), args.repeats) / (POINTS + 1)
-        unfast = best(lambda s=scenario, g=grid: simulate(s, g), args.repeats) / (POINTS + 1)
+        dynamic = best(partial(simulate, scenario, grid, fast=True), args.repeats) / (POINTS + 1)
+        unfast = best(partial(simulate, scenario, grid), args.repeats) / (POINTS + 1)
         per_point = evaluations / (POINTS + 1)
         rates = f"{per_point / unfast:13.0f}{per_point / dynamic:10.0f}{unfast / dynamic:7.1f}"
         plain = fast = "-"
         if kinematic is not None:
             driven = scenarios.build(kinematic)
             kgrid = driven.times(steps=POINTS)
-            slow = best(lambda d=driven, g=kgrid: analyse(d, g, fast=False), args.repeats)
-            quick = best(lambda d=driven, g=kgrid: analyse(d, g), args.repeats)
+            slow = best(partial(analyse, driven, kgrid, fast=False), args.repeats)
+            quick = best(partial(analyse, driven, kgrid), args.repeats)
             plain, fast = f"{1e6 * slow / (POINTS + 1):12.0f}", f"{1e6 * quick / (POINTS + 1):10.0f}"
         size = 3 * len(scenario.bodies)
         print(

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from reference_solver.compiled_system import CompiledSystem, constraint_system
 from reference_solver.layout import Layout
 from reference_solver.system import equation_for
 from scenarios.scenario import Scenario
@@ -15,14 +16,39 @@ def constraint_residual(scenario: Scenario, trajectory: Trajectory) -> np.ndarra
     trajectory's positions, lengths in units of the characteristic length.
 
     Cam contacts count only when the trajectory carries their parameter as the extra `<name>.phi`.
-    The trajectory must have positions of every body of the scenario.
+    The trajectory must have positions of every body of the scenario. Where the scenario compiles
+    (no cams), the compiled rows evaluate C (about 2 us a time point instead of about 100 us);
+    `plain_constraint_residual` is the same measure on the plain rows, which checks it.
     """
+    _check(scenario, trajectory)
+    system = constraint_system(scenario) if not scenario.cams else None
+    if not isinstance(system, CompiledSystem):
+        return plain_constraint_residual(scenario, trajectory)
+    layout = system.layout
+    order = [trajectory.bodies.index(b) for b in layout.bodies]
+    q = np.zeros(layout.size)
+    out = np.zeros(len(trajectory.times))
+    assert trajectory.position is not None
+    for k, t in enumerate(trajectory.times):
+        q[: 3 * len(order)] = trajectory.position[k, order, :].ravel()
+        values, _, _ = system.evaluate(q, float(t))
+        out[k] = float(np.max(np.abs(values / system.row_scales), initial=0.0))
+    return out
+
+
+def _check(scenario: Scenario, trajectory: Trajectory) -> None:
     if trajectory.position is None:
         raise ValueError("the trajectory has no positions")
-    layout = Layout.of(scenario)
-    missing = [b for b in layout.bodies if b not in trajectory.bodies]
+    missing = [b for b in Layout.of(scenario).bodies if b not in trajectory.bodies]
     if missing:
         raise ValueError(f"the trajectory lacks bodies {', '.join(missing)}")
+
+
+def plain_constraint_residual(scenario: Scenario, trajectory: Trajectory) -> np.ndarray:
+    """`constraint_residual` on the plain constraint rows."""
+    _check(scenario, trajectory)
+    assert trajectory.position is not None
+    layout = Layout.of(scenario)
     known_phi = {c for c in layout.contacts if f"{c}.phi" in trajectory.extras}
     constraints = [
         c for c in scenario.joints + scenario.drivers if c not in scenario.cams or c.name in known_phi

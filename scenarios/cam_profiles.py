@@ -24,24 +24,7 @@ class EccentricDisc:
 
     def radii(self, phi: float) -> tuple[float, float, float, float]:
         """d(phi) and its first three derivatives."""
-        e, r = self.eccentricity, self.radius
-        s2, c2 = math.sin(2.0 * phi), math.cos(2.0 * phi)
-        sn = math.sin(phi)
-        cs = math.cos(phi)
-        s = r * r - e * e * sn * sn
-        s1 = -e * e * s2
-        s2d = -2.0 * e * e * c2
-        s3d = 4.0 * e * e * s2
-        g = math.sqrt(s)
-        g1 = s1 / (2.0 * g)
-        g2 = s2d / (2.0 * g) - s1 * s1 / (4.0 * g**3)
-        g3 = (
-            s3d / (2.0 * g)
-            - s2d * g1 / (2.0 * g * g)
-            - s1 * s2d / (2.0 * g**3)
-            + 3.0 * s1 * s1 * g1 / (4.0 * g**4)
-        )
-        return e * cs + g, -e * sn + g1, -e * cs + g2, e * sn + g3
+        return disc_radii(self.radius, self.eccentricity, phi)
 
 
 @dataclass(frozen=True)
@@ -107,9 +90,7 @@ class LobedProfile:
 
     def radii(self, phi: float) -> tuple[float, float, float, float]:
         """d(phi) and its first three derivatives."""
-        a, n = self.amplitude, self.lobes
-        c, s = math.cos(n * phi), math.sin(n * phi)
-        return self.radius + a * c, -a * n * s, -a * n * n * c, a * n**3 * s
+        return lobed_radii(self.radius, self.amplitude, self.lobes, phi)
 
     def valley_curvature_radius(self) -> float:
         """The radius of curvature at a valley's bottom: positive if convex, negative if concave."""
@@ -135,3 +116,33 @@ def profile_point(profile: Profile, phi: float) -> np.ndarray:
             (d3 - 3.0 * d1) * radial + (3.0 * d2 - d0) * normal,
         ]
     )
+
+
+def disc_radii(r: float, e: float, phi: float) -> tuple[float, float, float, float]:
+    """An eccentric disc's d(phi) and its first three derivatives (radius r, eccentricity e). Plain
+    float arithmetic, so that the compiled path (reference_solver.fast.evaluate) compiles this very
+    function instead of restating it."""
+    s2, c2 = math.sin(2.0 * phi), math.cos(2.0 * phi)
+    sn = math.sin(phi)
+    cs = math.cos(phi)
+    s = r * r - e * e * sn * sn
+    s1 = -e * e * s2
+    s2d = -2.0 * e * e * c2
+    s3d = 4.0 * e * e * s2
+    g = math.sqrt(s)
+    g1 = s1 / (2.0 * g)
+    g2 = s2d / (2.0 * g) - s1 * s1 / (4.0 * g**3)
+    g3 = (
+        s3d / (2.0 * g)
+        - s2d * g1 / (2.0 * g * g)
+        - s1 * s2d / (2.0 * g**3)
+        + 3.0 * s1 * s1 * g1 / (4.0 * g**4)
+    )
+    return e * cs + g, -e * sn + g1, -e * cs + g2, e * sn + g3
+
+
+def lobed_radii(r: float, a: float, n: float, phi: float) -> tuple[float, float, float, float]:
+    """A lobed cam's d(phi) = r + a cos(n phi) and its first three derivatives (compiled as is by
+    the fast path, like disc_radii)."""
+    c, s = math.cos(n * phi), math.sin(n * phi)
+    return r + a * c, -a * n * s, -a * n * n * c, a * n**3 * s

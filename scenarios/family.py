@@ -31,6 +31,34 @@ def in_range(number: float, low: float, high: float, low_open: bool) -> bool:
     return math.isfinite(number) and above_low and number <= high
 
 
+def declared_value(
+    value: object,
+    *,
+    text: bool,
+    integer: bool,
+    low: float,
+    high: float,
+    low_open: bool,
+    choices: tuple[str, ...] = (),
+    nonzero: bool = False,
+) -> str | float | int | None:
+    """`value` as its declaration's type (a text among `choices` when there are choices, an integer,
+    or a float in the range, 0 excluded if `nonzero`), or None if it is not one: the one check behind
+    a family's parameters and an engine's options."""
+    if text:
+        word = str(value)
+        return word if not choices or word in choices else None
+    try:
+        number = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        return None
+    if not in_range(number, low, high, low_open) or (nonzero and number == 0):
+        return None
+    if integer:
+        return int(number) if number == int(number) else None
+    return number
+
+
 @dataclass(frozen=True)
 class Parameter:
     """One family parameter: its default (whose type is the parameter's type), unit and range.
@@ -63,22 +91,19 @@ class Parameter:
 
     def check(self, family: str, key: str, value: ParameterValue) -> ParameterValue:
         """`value` converted to the parameter's type; ScenarioError naming the limit otherwise."""
-        if isinstance(self.default, str):
-            text = str(value)
-            if self.choices and text not in self.choices:
-                raise ScenarioError(f"{family}: {key} must be {self.describe()}, got {value!r}")
-            return text
-        try:
-            number = float(value)
-        except (TypeError, ValueError):
-            raise ScenarioError(f"{family}: {key} must be {self.describe()}, got {value!r}") from None
-        if not in_range(number, self.low, self.high, self.low_open) or (self.nonzero and number == 0):
+        typed = declared_value(
+            value,
+            text=isinstance(self.default, str),
+            integer=self.kind == "integer",
+            low=self.low,
+            high=self.high,
+            low_open=self.low_open,
+            choices=self.choices,
+            nonzero=self.nonzero,
+        )
+        if typed is None:
             raise ScenarioError(f"{family}: {key} must be {self.describe()}, got {value!r}")
-        if self.kind == "integer":
-            if number != int(number):
-                raise ScenarioError(f"{family}: {key} must be an integer, got {value!r}")
-            return int(number)
-        return number
+        return typed
 
 
 def length(default: float) -> Parameter:

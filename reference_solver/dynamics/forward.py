@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from reference_solver.compiled_system import constraint_system
 from reference_solver.dynamics.augmented import accelerations, constraint_outputs
-from reference_solver.dynamics.compiled_system import constraint_system
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.partition import Partitioned, State, choose_independent

@@ -40,6 +40,7 @@ from reference_solver.fast.program import (
     X_TERM_U,
 )
 from reference_solver.fast.rows import COMPONENT_X, COMPONENT_Y, DIRECTION, INNER, POINT, PROFILE_POINT
+from scenarios.cam_profiles import disc_radii, lobed_radii
 
 COS, SIN, VECTOR, ROW = 0, 1, 2, 4
 """Rows of evaluate's scratch `work`: VECTOR and VECTOR + 1 hold vectors A and B."""
@@ -58,31 +59,17 @@ def motion(kind: int, p0: float, p1: float, p2: float, p3: float, t: float) -> t
     return 0.0, 0.0, 0.0
 
 
+_disc_radii = njit(cache=True, error_model="numpy", inline="always")(disc_radii)
+_lobed_radii = njit(cache=True, error_model="numpy", inline="always")(lobed_radii)
+
+
 @njit(cache=True, error_model="numpy", inline="always")
 def radii(profiles, splines, contact, phi):  # type: ignore[no-untyped-def]
     """d(phi) and its first three derivatives of the contact's profile (scenarios.cam_profiles)."""
     if profiles[contact, 0] == DISC:
-        r, e = profiles[contact, 3], profiles[contact, 4]
-        s2, c2 = math.sin(2.0 * phi), math.cos(2.0 * phi)
-        sn, cs = math.sin(phi), math.cos(phi)
-        s = r * r - e * e * sn * sn
-        s1 = -e * e * s2
-        s2d = -2.0 * e * e * c2
-        s3d = 4.0 * e * e * s2
-        g = math.sqrt(s)
-        g1 = s1 / (2.0 * g)
-        g2 = s2d / (2.0 * g) - s1 * s1 / (4.0 * g**3)
-        g3 = (
-            s3d / (2.0 * g)
-            - s2d * g1 / (2.0 * g * g)
-            - s1 * s2d / (2.0 * g**3)
-            + 3.0 * s1 * s1 * g1 / (4.0 * g**4)
-        )
-        return e * cs + g, -e * sn + g1, -e * cs + g2, e * sn + g3
+        return _disc_radii(profiles[contact, 3], profiles[contact, 4], phi)
     if profiles[contact, 0] == LOBED:
-        n, r, a = profiles[contact, 1], profiles[contact, 3], profiles[contact, 4]
-        c, s = math.cos(n * phi), math.sin(n * phi)
-        return r + a * c, -a * n * s, -a * n * n * c, a * n**3 * s
+        return _lobed_radii(profiles[contact, 3], profiles[contact, 4], profiles[contact, 1], phi)
     period = 2.0 * math.pi
     p = np.fmod(phi, period)
     if p < 0.0:

@@ -54,7 +54,7 @@ def truth_rtol(scenario: Scenario) -> float:
 
 def truth(scenario: Scenario, times: Any) -> NamedTruth:
     """The native forward dynamics at the scenario's truth tolerance, on the compiled constraints
-    (reference_solver.dynamics.compiled_system); on the plain ones through a singular passage, where
+    (reference_solver.compiled_system); on the plain ones through a singular passage, where
     round-off picks the outcome: at rtol 1e-12 n_four_bar holds its energy to 9e-9 on the plain path
     and loses it (0.53) on the compiled one."""
     from reference_solver.dynamics import simulate  # on first use: the native solver is slow to import

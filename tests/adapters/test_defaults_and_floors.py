@@ -1,6 +1,6 @@
-"""Each engine's default by the settings rule and the floor of its sweep, held two-sided: an error
-more than FACTOR away from the value measured when the rule landed (either way) fails, so a change
-in the rule, an adapter or an engine shows. Round-off values are held from above only.
+"""Each engine's default by the settings rule and the floor of its sweep, held two-sided
+(tests.support.bounds: within a factor 3 of the value measured when the rule landed, either way), so
+a change in the rule, an adapter or an engine shows. Round-off values are held from above only.
 
 Measured on the 2-core machine with mujoco 4.0.0, exudyn 1.13.6 and pin 4.1.0 against the harness
 truth (closed forms, the native forward dynamics), as the runner measures them
@@ -17,9 +17,8 @@ from adapters.base import Setting
 from adapters.step_rule import at_step
 from reports.harness.level_error import level_errors
 from reports.harness.truth import independent_truth
+from tests.support.bounds import held
 
-FACTOR = 3.0
-ROUND_OFF = 1e-12
 LEVELS = ("error_position", "error_velocity", "error_acceleration")
 
 
@@ -34,51 +33,50 @@ def errors(name: str, engine: str, setting: Setting | None = None, **overrides: 
     return tuple(float(found[level]) for level in LEVELS)
 
 
-def held(found: tuple[float, ...], measured: tuple[float, ...]) -> None:
-    for level, value, expected in zip(LEVELS, found, measured, strict=True):
-        if expected <= ROUND_OFF:
-            assert value < 10 * ROUND_OFF, (level, value, expected)
-        else:
-            assert expected / FACTOR < value < expected * FACTOR, (level, value, expected)
+KINEMATIC_DEFAULTS: dict[tuple[str, str], tuple[float, float, float]] = {
+    # RK4 at 1/2000 of the turn, tc 4 steps (before: tc 2 steps at 1e-4 s, A 4.0e-3)
+    ("slider_crank", "mujoco"): (7.3e-8, 1.9e-6, 2.2e-4),
+    ("four_bar", "mujoco"): (1.3e-7, 3.8e-6, 4.4e-4),
+    ("cam_roller", "mujoco"): (1.6e-8, 2.8e-7, 3.3e-5),
+    # GA3 at 1/2000 of the turn: positions to Newton's tolerance, accelerations the start-up
+    ("slider_crank", "exudyn"): (1.1e-15, 1.6e-6, 6.1e-3),
+    ("four_bar", "exudyn"): (1.4e-15, 8.7e-6, 5.7e-2),
+    ("cam_roller", "exudyn"): (1.8e-15, 1.9e-7, 1.6e-3),
+}
+"""(scenario, engine): its errors per level at the engine's default setting, measured."""
+DYNAMIC_DEFAULTS: dict[tuple[str, str], tuple[float, float, float]] = {
+    ("four_bar_gravity", "mujoco"): (7.9e-8, 3.7e-6, 3.5e-3),
+    ("four_bar_gravity", "exudyn"): (1.6e-5, 8.2e-5, 9.2e-4),
+    ("four_bar_gravity", "pinocchio"): (1.3e-9, 6.8e-9, 8.1e-8),
+    ("andrews_squeezer", "mujoco"): (1.4e-6, 3.6e-6, 1.8e-3),
+    ("andrews_squeezer", "exudyn"): (4.5e-5, 1.1e-4, 1.1e-3),
+    ("andrews_squeezer", "pinocchio"): (1.5e-8, 3.8e-8, 3.5e-7),
+    # the 9-link pendulum; MuJoCo no more Euler at 5e-3 s above 8 bodies (then 9.9e-2 / 1.3e-1 / 8.7e-1)
+    ("compound_pendulum", "mujoco"): (4.0e-12, 2.8e-11, 3.6e-10),
+    ("compound_pendulum", "exudyn"): (2.7e-6, 1.8e-5, 1.9e-4),
+    ("compound_pendulum", "pinocchio"): (6.3e-11, 4.4e-10, 5.8e-9),
+}
+"""(scenario, engine): its errors per level at the engine's default in free dynamics, measured
+against the native forward dynamics (the compound pendulum with 9 links)."""
+OVERRIDES: dict[str, dict[str, float]] = {"compound_pendulum": {"links": 9}}
+FLOORS: dict[tuple[str, str], tuple[float, float, float]] = {
+    ("slider_crank", "mujoco"): (2.6e-9, 2.2e-8, 1.2e-5),
+    ("andrews_squeezer", "pinocchio"): (1.3e-12, 2.3e-12, 2.0e-11),
+    ("slider_crank", "exudyn"): (1.1e-15, 1.6e-8, 5.4e-6),
+}
+"""(scenario, engine): the errors at the floor of the engine's sweep (each test below says which
+setting that is), measured."""
 
 
-@pytest.mark.parametrize(
-    ("name", "engine", "measured"),
-    [
-        # RK4 at 1/2000 of the turn, tc 4 steps (before: tc 2 steps at 1e-4 s, A 4.0e-3)
-        ("slider_crank", "mujoco", (7.3e-8, 1.9e-6, 2.2e-4)),
-        ("four_bar", "mujoco", (1.3e-7, 3.8e-6, 4.4e-4)),
-        ("cam_roller", "mujoco", (1.6e-8, 2.8e-7, 3.3e-5)),
-        # GA3 at 1/2000 of the turn: positions to Newton's tolerance, accelerations the start-up
-        ("slider_crank", "exudyn", (1.1e-15, 1.6e-6, 6.1e-3)),
-        ("four_bar", "exudyn", (1.4e-15, 8.7e-6, 5.7e-2)),
-        ("cam_roller", "exudyn", (1.8e-15, 1.9e-7, 1.6e-3)),
-    ],
-)
-def test_kinematic_default(name: str, engine: str, measured: tuple[float, ...]) -> None:
-    held(errors(name, engine), measured)
+@pytest.mark.parametrize(("name", "engine"), list(KINEMATIC_DEFAULTS))
+def test_kinematic_default(name: str, engine: str) -> None:
+    held(errors(name, engine), KINEMATIC_DEFAULTS[(name, engine)])
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize(
-    ("name", "engine", "measured", "overrides"),
-    [
-        ("four_bar_gravity", "mujoco", (7.9e-8, 3.7e-6, 3.5e-3), {}),
-        ("four_bar_gravity", "exudyn", (1.6e-5, 8.2e-5, 9.2e-4), {}),
-        ("four_bar_gravity", "pinocchio", (1.3e-9, 6.8e-9, 8.1e-8), {}),
-        ("andrews_squeezer", "mujoco", (1.4e-6, 3.6e-6, 1.8e-3), {}),
-        ("andrews_squeezer", "exudyn", (4.5e-5, 1.1e-4, 1.1e-3), {}),
-        ("compound_pendulum", "exudyn", (2.7e-6, 1.8e-5, 1.9e-4), {"links": 9}),
-        ("compound_pendulum", "pinocchio", (6.3e-11, 4.4e-10, 5.8e-9), {"links": 9}),
-        ("andrews_squeezer", "pinocchio", (1.5e-8, 3.8e-8, 3.5e-7), {}),
-        # no more Euler at 5e-3 s above 8 bodies (before: 9.9e-2 / 1.3e-1 / 8.7e-1)
-        ("compound_pendulum", "mujoco", (4.0e-12, 2.8e-11, 3.6e-10), {"links": 9}),
-    ],
-)
-def test_dynamic_default(
-    name: str, engine: str, measured: tuple[float, ...], overrides: dict[str, float]
-) -> None:
-    held(errors(name, engine, **overrides), measured)
+@pytest.mark.parametrize(("name", "engine"), list(DYNAMIC_DEFAULTS))
+def test_dynamic_default(name: str, engine: str) -> None:
+    held(errors(name, engine, **OVERRIDES.get(name, {})), DYNAMIC_DEFAULTS[(name, engine)])
 
 
 def test_mujoco_s_acceleration_floor_is_the_impedance_s() -> None:
@@ -89,7 +87,7 @@ def test_mujoco_s_acceleration_floor_is_the_impedance_s() -> None:
     finer = at_step(default, float(default["dt"]) / 10)
     floor = finer.replace(tc=8 * float(finer["dt"]))
     assert floor in adapter.sweep(scenarios.load("slider_crank"))
-    held(errors("slider_crank", "mujoco", floor), (2.6e-9, 2.2e-8, 1.2e-5))
+    held(errors("slider_crank", "mujoco", floor), FLOORS[("slider_crank", "mujoco")])
 
 
 @pytest.mark.slow
@@ -99,7 +97,7 @@ def test_pinocchio_s_floor_on_andrews_squeezer() -> None:
     scenario = scenarios.load("andrews_squeezer")
     finest = adapter.free_setting(scenario, "dynamic", 10000)
     assert finest in adapter.sweep(scenario)
-    held(errors("andrews_squeezer", "pinocchio", finest), (1.3e-12, 2.3e-12, 2.0e-11))
+    held(errors("andrews_squeezer", "pinocchio", finest), FLOORS[("andrews_squeezer", "pinocchio")])
 
 
 @pytest.mark.slow
@@ -110,4 +108,4 @@ def test_exudyn_s_floor_on_the_slider_crank() -> None:
     scenario = scenarios.load("slider_crank")
     finest = adapter.sweep(scenario)[4]
     assert finest.mode == "GA3"
-    held(errors("slider_crank", "exudyn", finest), (1.1e-15, 1.6e-8, 5.4e-6))
+    held(errors("slider_crank", "exudyn", finest), FLOORS[("slider_crank", "exudyn")])

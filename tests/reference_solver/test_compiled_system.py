@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from reference_solver.compiled_system import CompiledSystem, constraint_system
 from reference_solver.dynamics import simulate
-from reference_solver.dynamics.compiled_system import CompiledSystem, constraint_system
 from reference_solver.system import ConstraintSystem
 from scenarios import load
 
