@@ -3,7 +3,9 @@ shortest period of the scenario's motion, never a function of the output grid.
 
 The shortest period is the smallest of
 - each driver motion's period (constant speed: one turn, 2 pi / |rate|; harmonic: 2 pi / |omega|;
-  a tabulated law: its shortest knot interval);
+  a tabulated law: its shortest knot interval; a polynomial sum ck t^k: the shortest time any of
+  its terms alone takes to advance by 2 pi, (2 pi / |ck|)^(1/k), which for k = 1 is constant
+  speed's turn and needs no horizon);
 - in free dynamics (where forces move the bodies):
   - each load's period (a harmonic torque or force);
   - each spring's mode, 2 pi sqrt(m / k), with m the lightest body it holds (the inertia for a
@@ -28,7 +30,7 @@ from adapters.base import Setting
 from scenarios.bodies import GROUND
 from scenarios.drivers import PointPathDriver, RelativeDisplacementDriver
 from scenarios.forces import AppliedForce, AppliedTorque, RotationalSpringDamper, SpringDamper
-from scenarios.motion_laws import TabulatedLaw
+from scenarios.motion_laws import Polynomial, TabulatedLaw
 from scenarios.motions import ConstantSpeed, Harmonic, Motion
 from scenarios.scenario import Scenario
 
@@ -117,6 +119,9 @@ def _motion_period(motion: Motion) -> float:
         return _turn(motion.omega)
     if isinstance(motion, TabulatedLaw) and len(motion.times) > 1:
         return min(b - a for a, b in zip(motion.times, motion.times[1:], strict=False))
+    if isinstance(motion, Polynomial):
+        terms = [(k, abs(c)) for k, c in enumerate(motion.coefficients) if k and c]
+        return min(((2.0 * math.pi / c) ** (1.0 / k) for k, c in terms), default=math.inf)
     return math.inf
 
 

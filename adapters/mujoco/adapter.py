@@ -15,7 +15,9 @@ Settings: mode RK4 (default), implicitfast, Euler or implicit; dt, the engine st
 rule's, adapters.step_rule and adapters.mujoco.settings; the output grid never changes it: outputs
 between steps are reached by a side step, adapters.lattice); tc, the solref time constant in
 seconds (tc_steps, in steps, is the older form); impedance, solimp of the equalities; for cams
-preload (N), contact_impedance and, for a profile other than a disc, cam_pieces (its facets).
+preload (N), contact_impedance and, for a profile other than a disc, cam_pieces (its facets);
+polynomial, how a polynomial drive of degree 2 to 4 is carried (adapters.mujoco.laws: polycoef,
+the default, or a steered clock).
 """
 
 from __future__ import annotations
@@ -32,7 +34,8 @@ from adapters.mujoco.cam_facets import DEFAULT_PIECES, MAX_PIECES, MIN_PIECES, P
 from adapters.mujoco.cam_load import check_contacts, hop_allowances, knife_edge_reason, preload
 from adapters.mujoco.cams import cam_pairs
 from adapters.mujoco.compile import assembled_poses, clock_armatures, compile_model, follower_springs
-from adapters.mujoco.dynamics import DYNAMIC_MODES, angle_columns, closes_loops, controls
+from adapters.mujoco.controls import controls
+from adapters.mujoco.dynamics import DYNAMIC_MODES, angle_columns, closes_loops
 from adapters.mujoco.kinematic import KinematicSolver
 from adapters.mujoco.laws import laws
 from adapters.mujoco.loads import loads_of
@@ -61,6 +64,13 @@ RUN_IN = 50
 DYNAMIC_CAM_REASON = (
     "a cam contact in MuJoCo needs a preload spring on the follower, a force the scenario does not have"
 )
+POLYCOEF, STEERED = "polycoef", "steered"
+"""A polynomial drive of degree 2 to 4: MuJoCo's quartic equality on a unit-rate clock (the
+default), or a clock steered along f(t) by its motor (adapters.mujoco.controls). MuJoCo leaves
+out the dJ/dt v term of joint and tendon equalities (doc/computation: it computes it for connect
+and weld only), so polycoef's curvature P''(c) c'^2 is made up by the position feedback alone: the
+drive lags by about P'' tc^2 (5e-5 rad on a slider-crank at the rule's step), where the steered
+clock's equality is linear."""
 SOLIMP_WIDTH = 0.005
 """solimp's transition width in characteristic lengths (0.001 m on the nominal 0.2 m crank)."""
 
@@ -117,6 +127,12 @@ class MujocoAdapter(Adapter):
             "cam_model", str, choices=CAM_MODELS, help="disc cams as their equivalent linkage, or as contacts"
         ),
         Option("cam_pieces", int, MIN_PIECES, MAX_PIECES, help=PIECES_HELP),
+        Option(
+            "polynomial",
+            str,
+            choices=(POLYCOEF, STEERED),
+            help="polynomial drives of degree 2 to 4 through polycoef, or by a steered clock",
+        ),
     )
 
     def version(self) -> str:
@@ -160,6 +176,11 @@ class MujocoAdapter(Adapter):
                 s.replace(**contact, preload=preload(scenario, time_constant(s, float(s["dt"]))))
                 for s in ladders
             ]
+        if _polycoef_drives(scenario):  # the same drives by steered clocks: RK4's step ladder
+            ladder = [
+                s for s in settings if s.mode == "RK4" and s["impedance"] == base["impedance"] and _at_tc(s)
+            ]
+            settings += [s.replace(polynomial=STEERED) for s in ladder]
         return settings
 
     def build(self, scenario: Scenario, setting: Setting) -> Model:
@@ -193,17 +214,18 @@ class MujocoAdapter(Adapter):
             _solimp(float(setting.get("impedance", 0.9999)), scenario.characteristic_length),
             _solimp(float(setting.get("contact_impedance", 0.99)), scenario.characteristic_length),
             cam_pieces=int(setting.get("cam_pieces", DEFAULT_PIECES)),
+            steer=setting.get("polynomial", POLYCOEF) == STEERED,
         )
         run_in = 0 if kinematic or dynamic else RUN_IN
         scale = scale_of(scenario)
         guessed = plan_tree(scenario)
         physics = Physics(**{**physics.__dict__, "loads": loads_of(scenario, guessed)})
-        first = compile_model(scenario, guessed, physics, 0, scale)
+        first = compile_model(scenario, guessed, physics, 0, scale, linear=True)
         poses = assembled_poses(scenario, guessed, first)
         tree = plan_tree(scenario, poses)
         load = float(setting.get("preload", preload(scenario, time_constant(setting, dt))))
         springs = follower_springs(scenario, first, tree, load, scale, physics.cam_pieces)
-        armatures = clock_armatures(scenario, guessed, first, scale)
+        armatures = clock_armatures(scenario, guessed, first, scale, physics.steer)
         loads = loads_of(scenario, tree)
         sized = Physics(
             **{**physics.__dict__, "springs": springs, "clock_armature": armatures, "loads": loads}
@@ -233,7 +255,7 @@ class MujocoAdapter(Adapter):
         columns = model.forces.columns()
         forces = np.empty((n, len(columns)))
         done = 0  # whole steps from t = 0: the lattice every output time is read from
-        with controls(m, d, model.loads.motors):
+        with controls(m, d, model.loads.motors, model.clocks):
             mujoco.mj_forward(m, d)
             for i, t in enumerate(grid):
                 whole, rest = lattice_point(0.0, float(t), dt)
@@ -269,6 +291,14 @@ class MujocoAdapter(Adapter):
         built = self.build(scenario, setting)
         with open(path, "w", encoding="utf-8") as stream:
             stream.write(built.xml)
+
+
+def _polycoef_drives(scenario: Scenario) -> bool:
+    """Whether a drive of the scenario goes through polycoef by default."""
+    try:
+        return any(not law.linear for law in laws(scenario, plan_tree(scenario)))
+    except TreeError:
+        return False
 
 
 def _at_tc(setting: Setting) -> bool:

@@ -12,9 +12,10 @@ import numpy as np
 from adapters.base import Unsupported
 from adapters.mujoco.assembly import assemble, clock_velocities, contact_slopes, settle
 from adapters.mujoco.cams import CamPair, cam_pairs
+from adapters.mujoco.controls import controls
 from adapters.mujoco.dynamics import rate_velocities
 from adapters.mujoco.forces import force_map
-from adapters.mujoco.laws import Law, laws
+from adapters.mujoco.laws import Clock, Law, laws
 from adapters.mujoco.mjcf import Physics, mjcf
 from adapters.mujoco.model import Model, evaluate
 from adapters.mujoco.scale import Scale, clock_armature
@@ -24,12 +25,21 @@ from scenarios.bodies import Pose
 from scenarios.scenario import Scenario
 
 
-def compile_model(scenario: Scenario, tree: Tree, physics: Physics, run_in: int, scale: Scale) -> Model:
+def compile_model(
+    scenario: Scenario, tree: Tree, physics: Physics, run_in: int, scale: Scale, linear: bool = False
+) -> Model:
     """Compile the model for `tree` and find its start at t = 0, kept as the key 'start': the
     mechanism is assembled at t = -run_in steps (stepping back from t = 0 so that Newton stays on the
-    assembled branch; preloaded contacts settled) and run in to t = 0, so
-    that the soft constraints start in their own steady state rather than in a transient."""
-    found = laws(scenario, tree)
+    assembled branch; preloaded contacts settled) and run in to t = 0 (the steered clocks under
+    their controls), so that the soft constraints start in their own steady state rather than in a
+    transient. The clocks keep the state the run-in leaves them in: under a first-order integrator
+    a harmonic clock is then off its law by its phase error (7e-6 m on the slider drive), but in
+    step with the joints it drives; set back onto its law alone it would violate its drive equality
+    at t = 0 and start the transient the run-in is there to avoid. `linear`: every law linear in
+    its clock (the sizing model, see clock_armatures)."""
+    found = laws(scenario, tree, physics.steer)
+    if linear:
+        found = [law.linearised() for law in found]
     cams = cam_pairs(scenario.cams, tree, physics.cam_pieces)
     m = mujoco.MjModel.from_xml_string(mjcf(scenario, tree, found, cams, physics))
     d = mujoco.MjData(m)
@@ -45,7 +55,8 @@ def compile_model(scenario: Scenario, tree: Tree, physics: Physics, run_in: int,
         rate_velocities(m, d, sites, np.array([b.rate for b in scenario.bodies], dtype=float))
     if run_in:
         d.time = -run_in * physics.timestep
-        advance(m, d, run_in)
+        with controls(m, d, physics.loads.motors, clock_dofs(m, found), before=0.0):
+            advance(m, d, run_in)
         d.time = 0.0
     xml = mjcf(scenario, tree, found, cams, physics, (d.qpos.copy(), d.qvel.copy()))
     outputs = scenario.output_bodies
@@ -60,15 +71,19 @@ def compile_model(scenario: Scenario, tree: Tree, physics: Physics, run_in: int,
         sites=[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE, b) for b in outputs],
         theta=[angle(tree, b) for b in outputs],
         joint_ids={m.joint(j).name: m.jnt_dofadr[j] for j in range(m.njnt)},
-        clocks={int(m.jnt_dofadr[m.joint(law.clock.joint).id]): law.clock for law in found if law.clock},
+        clocks=clock_dofs(m, found),
         forces=force_map(scenario, tree, found, m),
     )
 
 
+def clock_dofs(m: mujoco.MjModel, found: list[Law]) -> dict[int, Clock]:
+    """Each clock by its dof."""
+    return {int(m.jnt_dofadr[m.joint(law.clock.joint).id]): law.clock for law in found if law.clock}
+
+
 def clocks_at(m: mujoco.MjModel, found: list[Law], t: float) -> dict[int, tuple[float, float]]:
     """Each clock's dof and its (qpos, qvel) at time t."""
-    clocks = [law.clock for law in found if law.clock is not None]
-    return {int(m.jnt_dofadr[m.joint(c.joint).id]): c.at(t) for c in clocks}
+    return {dof: clock.at(t) for dof, clock in clock_dofs(m, found).items()}
 
 
 def assembled_poses(scenario: Scenario, tree: Tree, model: Model) -> dict[str, Pose]:
@@ -84,16 +99,34 @@ def assembled_poses(scenario: Scenario, tree: Tree, model: Model) -> dict[str, P
     return poses
 
 
-def clock_armatures(scenario: Scenario, tree: Tree, model: Model, scale: Scale) -> dict[str, float]:
-    """Each clock's armature, sized by the inertia it drives at the assembled start."""
-    names = [law.clock.joint for law in laws(scenario, tree) if law.clock is not None]
+def clock_armatures(
+    scenario: Scenario, tree: Tree, model: Model, scale: Scale, steer: bool = False
+) -> dict[str, float]:
+    """Each clock's armature, sized by the inertia it drives at the assembled start. `model` is the
+    sizing model (compile_model's `linear`), where a unit clock rate moves each driven coordinate at
+    unit rate; a polynomial's clock runs at unit rate and moves its coordinate at P'(t), so the
+    inertia it drives is that times the largest P'(t)^2 over the horizon."""
+    found = [law for law in laws(scenario, tree, steer) if law.clock is not None]
+    names = [law.clock.joint for law in found if law.clock is not None]
     m = model.model
     d = mujoco.MjData(m)
     d.qpos[:], d.qvel[:] = model.qpos0, model.qvel0
     mujoco.mj_forward(m, d)
     dofs = [model.joint_ids[name] for name in names]
     speeds = clock_velocities(m, d, dofs, scale)
-    return {name: clock_armature(m, d, qvel, dofs) for name, qvel in zip(names, speeds, strict=True)}
+    gains = [_gain(law.powers, scenario.t_end) for law in found]
+    return {
+        name: clock_armature(m, d, qvel * gain, dofs)
+        for name, qvel, gain in zip(names, speeds, gains, strict=True)
+    }
+
+
+def _gain(powers: tuple[float, ...], t_end: float) -> float:
+    """The largest |P'(t)| over [0, t_end] (sampled finely; 1 for a law linear in its clock)."""
+    if powers == (1.0,):
+        return 1.0
+    slope = np.polynomial.Polynomial([k * p for k, p in enumerate(powers, start=1)])
+    return max(float(np.abs(slope(np.linspace(0.0, t_end, 1001))).max()), 1e-300)
 
 
 def follower_springs(

@@ -8,16 +8,11 @@ The settings, the same rule as in kinematics, are adapters.mujoco.settings'.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-from contextlib import contextmanager
-
 import mujoco
 import numpy as np
 
 from adapters.base import Singular
-from adapters.mujoco.loads import Motor
 from adapters.mujoco.tree import TreeError, plan_tree
-from scenarios.motions import Constant
 from scenarios.scenario import Scenario
 
 DYNAMIC_MODES = ("RK4", "implicit", "implicitfast", "Euler")
@@ -47,31 +42,6 @@ def rate_velocities(m: mujoco.MjModel, d: mujoco.MjData, sites: list[int], rates
     if residual > 1e-9 * max(1.0, float(np.abs(rates).max(initial=0.0))):
         raise Singular(f"the bodies' start rates are not one joint velocity (residual {residual:.3g})", 0.0)
     mujoco.mj_forward(m, d)
-
-
-@contextmanager
-def controls(m: mujoco.MjModel, d: mujoco.MjData, motors: tuple[Motor, ...]) -> Iterator[None]:
-    """The motors' controls: constant ones set once; time-varying ones evaluated by MuJoCo's control
-    callback at every stage's time (RK4 calls it at its stage times), removed afterwards."""
-    ids = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, motor.name) for motor in motors]
-    varying = [
-        (i, motor.law) for i, motor in zip(ids, motors, strict=True) if not isinstance(motor.law, Constant)
-    ]
-    for i, motor in zip(ids, motors, strict=True):
-        d.ctrl[i] = motor.law.f(d.time)
-    if not varying:
-        yield
-        return
-
-    def control(_: mujoco.MjModel, data: mujoco.MjData) -> None:
-        for i, law in varying:
-            data.ctrl[i] = law.f(data.time)
-
-    mujoco.set_mjcb_control(control)
-    try:
-        yield
-    finally:
-        mujoco.set_mjcb_control(None)
 
 
 def angle_columns(scenario: Scenario, bodies: tuple[str, ...], theta: np.ndarray) -> dict[str, np.ndarray]:

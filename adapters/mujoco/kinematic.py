@@ -5,7 +5,8 @@ are nevertheless the exact kinematics of its model. Here the clocks are set to t
 at each grid time and the other dofs are solved on those rows: positions by Newton (warm-started
 from the previous time), velocities from J v = 0 with the clocks' rates, accelerations from
 J a = -(dJ/dt) v, the bias dJ/dt v read from MuJoCo itself (the site accelerations of each
-connect at qacc = 0; joint and tendon equalities are linear and have none). What this measures is
+connect at qacc = 0) or, for a joint or tendon equality y = P(x) with a quartic P (a polynomial
+drive), -P''(x) x'^2 from its polycoef and MuJoCo's x and x' (linear ones have none). What this measures is
 MuJoCo's kinematics, solved by a loop in the adapter: the levels above position are adapter solves.
 """
 
@@ -34,10 +35,7 @@ def check_rows(m: mujoco.MjModel) -> str | None:
         kind = int(m.eq_type[k])
         if kind == CONNECT and m.eq_objtype[k] != int(mujoco.mjtObj.mjOBJ_SITE):
             return "a body-anchored connect (the kinematic mode reads site accelerations)"
-        linear = kind in (JOINT, TENDON)
-        if linear and np.any(m.eq_data[k, 2:5] != 0.0):
-            return "a nonlinear joint or tendon equality (its bias acceleration is not read)"
-        if not linear and kind != CONNECT:
+        if kind not in (JOINT, TENDON, CONNECT):
             return f"an equality of MuJoCo type {kind}"
     return None
 
@@ -63,7 +61,7 @@ class KinematicSolver:
         for i, dof in enumerate(self.fixed):
             clock = self.clocks[int(dof)]
             d.qpos[dof], d.qvel[dof] = clock.at(t)
-            clock_acc[i] = -clock.omega2 * d.qpos[dof]
+            clock_acc[i] = clock.acc(t)
         jac = self._positions(d, t)
         d.qvel[self.free] = _solve(jac[:, self.free], -jac[:, self.fixed] @ d.qvel[self.fixed])
         mujoco.mj_fwdVelocity(m, d)
@@ -90,18 +88,36 @@ class KinematicSolver:
 
     def _bias(self, d: mujoco.MjData) -> np.ndarray:
         """dJ/dt v of each equality row: for a site connect, the difference of the two sites'
-        accelerations at qacc = 0 (d.cacc computed at qacc = 0); 0 for the linear equalities."""
+        accelerations at qacc = 0 (d.cacc computed at qacc = 0); for a joint or tendon equality
+        y - a0 - a1 x - ... - a4 x^4 (x measured from its reference), -P''(x) x'^2."""
         m = self.m
         rows = np.flatnonzero(d.efc_type == EQUALITY)
         bias = np.zeros(len(rows))
         done: set[int] = set()
         for i, row in enumerate(rows):
             eq = int(d.efc_id[row])
-            if int(m.eq_type[eq]) != CONNECT or eq in done:
+            if int(m.eq_type[eq]) in (JOINT, TENDON):
+                bias[i] = self._polynomial_bias(d, eq)
+                continue
+            if eq in done:
                 continue
             done.add(eq)
             bias[i : i + 3] = self._site_acc(d, m.eq_obj1id[eq]) - self._site_acc(d, m.eq_obj2id[eq])
         return bias
+
+    def _polynomial_bias(self, d: mujoco.MjData, eq: int) -> float:
+        """-P''(x) x'^2 of a joint or tendon equality (0 without a second joint or tendon)."""
+        m = self.m
+        a, second = m.eq_data[eq, :5], int(m.eq_obj2id[eq])
+        if second < 0 or not np.any(a[2:] != 0.0):
+            return 0.0
+        if int(m.eq_type[eq]) == JOINT:
+            x = d.qpos[m.jnt_qposadr[second]] - m.qpos0[m.jnt_qposadr[second]]
+            rate = d.qvel[m.jnt_dofadr[second]]
+        else:
+            x, rate = d.ten_length[second] - m.tendon_length0[second], d.ten_velocity[second]
+        curvature = 2.0 * a[2] + 6.0 * a[3] * x + 12.0 * a[4] * x * x
+        return float(-curvature * rate * rate)
 
     def _site_acc(self, d: mujoco.MjData, site: int) -> np.ndarray:
         mujoco.mj_objectAcceleration(self.m, d, mujoco.mjtObj.mjOBJ_SITE, site, self.six, 0)

@@ -3,7 +3,7 @@
 Bodies sit at the canonical body frames (a site named after each body marks it), hinges turn about
 z, slides move in the plane, loops close with site-based `connect`, laws become `joint` equalities
 (or a fixed tendon and a `tendon` equality when more than two joints take part), clocks are extra
-rotors, cams are contact pairs. Every number is written to full precision.
+rotors (a steered clock with a motor), cams are contact pairs. Every number is written to full precision.
 """
 
 from __future__ import annotations
@@ -16,17 +16,21 @@ import numpy as np
 
 from adapters.mujoco.cam_facets import DEFAULT_PIECES
 from adapters.mujoco.cams import CamPair, Geom
+from adapters.mujoco.equalities import equalities, num
 from adapters.mujoco.laws import Law
 from adapters.mujoco.loads import WORLD_SITE, Loads, site_name
 from adapters.mujoco.tree import Tree, rot
 from scenarios.bodies import GROUND, Point
 from scenarios.gears import GearPair, RackPinion
+from scenarios.motions import Motion
 from scenarios.scenario import Scenario
 
 MASSLESS = 1e-9
 """A body without mass or inertia gets this fraction of the heaviest body's (MuJoCo needs both)."""
 CLOCK_ARMATURE = 1.0e9
 """A clock's armature where the inertia it drives is not known (adapters.mujoco.scale sizes it)."""
+CLOCK_INERTIA = 1.0
+"""The clock body's own moment of inertia about its axis (its dof's inertia is this plus the armature)."""
 
 
 @dataclass(frozen=True)
@@ -48,10 +52,8 @@ class Physics:
     """Gravity, actuators, tendons and hinge springs of a dynamic scene (adapters.mujoco.loads)."""
     cam_pieces: int = DEFAULT_PIECES
     """Facets of a cam profile other than a disc (adapters.mujoco.cam_facets)."""
-
-
-def num(*values: float) -> str:
-    return " ".join(repr(float(v)) for v in values)
+    steer: bool = False
+    """Polynomial drives of degree 2 to 4 by steered clocks too, rather than through polycoef."""
 
 
 def mjcf(
@@ -106,9 +108,11 @@ def mjcf(
             body.insert(0, ET.Element("joint", attrs))
     for law in laws:
         if law.clock is not None:
-            armature = physics.clock_armature.get(law.clock.joint, 0.0) or CLOCK_ARMATURE
+            armature = _armature(physics, law)
             clock = ET.SubElement(world, "body", name=law.clock.joint)
-            ET.SubElement(clock, "inertial", pos="0 0 0", mass="1", diaginertia="1 1 1")
+            ET.SubElement(
+                clock, "inertial", pos="0 0 0", mass="1", diaginertia=" ".join([f"{CLOCK_INERTIA:g}"] * 3)
+            )
             ET.SubElement(
                 clock,
                 "joint",
@@ -121,8 +125,10 @@ def mjcf(
     for pair in cams:
         for geom in (*pair.cam, pair.follower):
             _geom(elements[geom.body], geom, contact=True)
-    _equalities(root, elements, tree, laws)
+    equalities(root, elements, tree, laws)
     _loads(root, elements, physics.loads)
+    steered = [law for law in laws if law.clock is not None and law.clock.law is not None]
+    _clock_motors(root, steered, physics)
     if cams:
         contact = ET.SubElement(root, "contact")
         for pair in cams:
@@ -141,10 +147,38 @@ def mjcf(
         key = ET.SubElement(ET.SubElement(root, "keyframe"), "key", name="start")
         key.set("qpos", num(*keyframe[0]))
         key.set("qvel", num(*keyframe[1]))
-        if physics.loads.motors:  # the motors' controls at t = 0 (constant ones hold throughout)
-            key.set("ctrl", num(*(motor.law.f(0.0) for motor in physics.loads.motors)))
+        # the controls at t = 0 (constant ones hold throughout): the motors', then the steered clocks'
+        ctrl = [motor.law.f(0.0) for motor in physics.loads.motors]
+        ctrl += [_law_of(law).ddf(0.0) for law in steered]
+        if ctrl:
+            key.set("ctrl", num(*ctrl))
     ET.indent(root)
     return ET.tostring(root, encoding="unicode")
+
+
+def _armature(physics: Physics, law: Law) -> float:
+    assert law.clock is not None
+    return physics.clock_armature.get(law.clock.joint, 0.0) or CLOCK_ARMATURE
+
+
+def _law_of(law: Law) -> Motion:
+    assert law.clock is not None and law.clock.law is not None
+    return law.clock.law
+
+
+def _clock_motors(root: ET.Element, steered: list[Law], physics: Physics) -> None:
+    """A motor on each steered clock's joint, named after it, geared by the clock's inertia: its
+    control is the clock's acceleration (adapters.mujoco.controls), well inside MuJoCo's bound on
+    controls (1e10) where the torque would not be."""
+    if not steered:
+        return
+    actuator = root.find("actuator")
+    if actuator is None:
+        actuator = ET.SubElement(root, "actuator")
+    for law in steered:
+        assert law.clock is not None
+        gear = num(_armature(physics, law) + CLOCK_INERTIA)
+        ET.SubElement(actuator, "motor", name=law.clock.joint, joint=law.clock.joint, gear=gear)
 
 
 def _body(parent: ET.Element, scenario: Scenario, tree: Tree, name: str, physics: Physics) -> ET.Element:
@@ -202,40 +236,6 @@ def _geom(body: ET.Element, geom: Geom, contact: bool) -> None:
     colour = "0.9 0.5 0.3 1" if contact else "0.6 0.7 0.8 1"
     attrs = {"name": geom.name, "type": geom.kind, "size": num(*geom.size), **place, "rgba": colour}
     ET.SubElement(body, "geom", attrs)
-
-
-def _site(elements: dict[str, ET.Element], tree: Tree, point: Point, name: str) -> str:
-    ET.SubElement(elements[point.body], "site", name=name, pos=num(*point.local, 0.0))
-    return name
-
-
-def _equalities(root: ET.Element, elements: dict[str, ET.Element], tree: Tree, laws: list[Law]) -> None:
-    equality = ET.SubElement(root, "equality")
-    tendons: ET.Element | None = None
-    for loop in tree.loops:
-        site1 = _site(elements, tree, loop.p_i, f"{loop.name}_i")
-        site2 = _site(elements, tree, loop.p_j, f"{loop.name}_j")
-        ET.SubElement(equality, "connect", name=loop.name, site1=site1, site2=site2)
-    for law in laws:
-        terms = law.terms()
-        const = law.form.const
-        if len(terms) <= 2:
-            (joint1, c1), *rest = terms
-            attrs = {"name": law.name, "joint1": joint1}
-            a1 = 0.0
-            if rest:
-                attrs["joint2"] = rest[0][0]
-                a1 = -rest[0][1] / c1
-            attrs["polycoef"] = num(-const / c1, a1, 0.0, 0.0, 0.0)
-            ET.SubElement(equality, "joint", attrs)
-            continue
-        if tendons is None:
-            tendons = ET.Element("tendon")
-            root.insert(list(root).index(equality), tendons)
-        fixed = ET.SubElement(tendons, "fixed", name=law.name)
-        for joint, coef in terms:
-            ET.SubElement(fixed, "joint", joint=joint, coef=num(coef))
-        ET.SubElement(equality, "tendon", name=law.name, tendon1=law.name, polycoef=num(-const, 0, 0, 0, 0))
 
 
 def _loads(root: ET.Element, elements: dict[str, ET.Element], loads: Loads) -> None:

@@ -23,6 +23,24 @@ def test_a_driven_mechanism_s_period_is_one_turn_of_its_crank() -> None:
     assert rule_step(scenario, 1000) == pytest.approx(2 * math.pi / 20.0 / 1000, rel=1e-15)
 
 
+def test_a_polynomial_drive_s_period_is_its_fastest_term_s_turn() -> None:
+    """f = 0.3 + 20 t + 400 t^2: the linear term turns in 2 pi / 20 s, the quadratic one alone
+    advances 2 pi in sqrt(2 pi / 400) s, the shorter; a pure constant speed is its turn."""
+    base = scenarios.build("slider_crank")
+    drive = base.drivers[0]
+
+    def period(*coefficients: float) -> float:
+        motion = scenarios.Polynomial(coefficients)
+        return shortest_period(
+            dataclasses.replace(base, drivers=(dataclasses.replace(drive, motion=motion),))
+        )
+
+    assert period(0.3, 20.0, 400.0) == pytest.approx(math.sqrt(2 * math.pi / 400.0), rel=1e-15)
+    assert period(0.3, -20.0) == pytest.approx(2 * math.pi / 20.0, rel=1e-15)
+    assert period(0.3, 0.0, 0.0, -8.0) == pytest.approx((2 * math.pi / 8.0) ** (1 / 3), rel=1e-15)
+    assert period(0.3) == FALLBACK_PERIOD
+
+
 def test_a_free_spring_s_period_is_its_mode() -> None:
     scenario = scenarios.load("stiff_spring/k1e4_dt1e-3")
     (body,) = scenario.bodies

@@ -1,7 +1,8 @@
 """The closed form of every example file, by file name: each body's (position, velocity,
 acceleration) arrays of shape (len(t), 3), derived independently of every engine (tests/examples/
 dyads.py for the linkages; the Whitworth's and the oscillators' in their own test modules; the
-slider-crank's is the family's, scenarios.closed_form)."""
+slider-crank's is the family's, scenarios.closed_form; the polynomial slider-crank's by hand below;
+the spline cam's on its pitch curve, tests/examples/spline_cam.py)."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ import numpy as np
 import scenarios
 from scenarios.closed_form import exact
 from tests.examples.dyads import Angle, Motion2, direction, dyad, fixed, frame, on_body
+from tests.examples.spline_cam import cam_roller_spline
 
 Expected = dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]]
 
@@ -98,6 +100,36 @@ def slider_crank(t: np.ndarray) -> Expected:
     return {body: tuple(lv[:, k, :] for lv in levels) for k, body in enumerate(truth.bodies)}  # type: ignore[index,misc]
 
 
+# The slider-crank under a quartic crank law (examples/slider_crank_polynomial.toml).
+QUARTIC = (0.3, 50.0, 200.0, -1000.0, 5000.0)
+CRANK, ROD = 0.2, 0.4
+
+
+def slider_crank_polynomial(t: np.ndarray) -> Expected:
+    """Crank pin A from the crank angle; the slider B on y = 0 to the right of A, B_x = A_x + h with
+    h = sqrt(l^2 - A_y^2), h' = -A_y A_y' / h, h'' = -(A_y'^2 + A_y A_y'' + h'^2) / h."""
+    law = np.polynomial.Polynomial(QUARTIC)
+    crank = Angle(law(t), law.deriv()(t), law.deriv(2)(t))
+    origin = fixed((0.0, 0.0), t.size)
+    a = on_body(origin, crank, (CRANK, 0.0))
+    y, dy, ddy = a.p[:, 1], a.v[:, 1], a.a[:, 1]
+    h = np.sqrt(ROD**2 - y**2)
+    dh = -y * dy / h
+    ddh = -(dy**2 + y * ddy + dh**2) / h
+    zero = np.zeros_like(t)
+    b = Motion2(
+        np.column_stack([a.p[:, 0] + h, zero]),
+        np.column_stack([a.v[:, 0] + dh, zero]),
+        np.column_stack([a.a[:, 0] + ddh, zero]),
+    )
+    rod = direction(a, b)
+    return {
+        "crank": frame(on_body(origin, crank, (CRANK / 2, 0.0)), crank),
+        "rod": frame(on_body(a, rod, (ROD / 2, 0.0)), rod),
+        "slider": frame(b, Angle(zero, zero, zero)),
+    }
+
+
 # The Whitworth quick-return (derivation: tests/examples/test_whitworth.py).
 R, D, OMEGA = 0.1, 0.05, 10.0
 
@@ -165,6 +197,8 @@ CLOSED_FORMS: dict[str, Callable[[np.ndarray], Expected]] = {
     "peaucellier_lipkin": peaucellier_lipkin,
     "crank_rocker_from_rocker": crank_rocker_from_rocker,
     "slider_crank": slider_crank,
+    "slider_crank_polynomial": slider_crank_polynomial,
     "damped_oscillators": damped_oscillators,
+    "cam_roller_spline": cam_roller_spline,
 }
 """Every example file's closed form, by its file name."""
