@@ -49,7 +49,7 @@ KEY = ("scenario", "engine", "setting")
 TRUTH = "truth"
 REQUIRED = frozenset((*KEY, "engine_version", "mode", "options", "is_default", "status", "error"))
 """Columns every store has had; a declared column added since is filled with its empty value."""
-CAP = {RESULTS: 20_000, TRAJECTORIES: 200}
+CAP = {RESULTS: 10_000, TRAJECTORIES: 100}
 """Entries from which a part is sealed (merged no further; store_parts): rows, trajectories."""
 Key = tuple[str, str, str]
 

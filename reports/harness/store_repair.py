@@ -75,6 +75,9 @@ class Repair:
         why = unverifiable(self.home / name, self.root)
         if why is None:
             self.good[name] = (self.home / name / SIDECAR).read_bytes()
+            for part in unlisted_parts(self.home / name):
+                label = f"{name}-{part.parent.name}-{part.name}"
+                self._aside(part, label, f"generation {name}: {part.parent.name}/{part.name} is not listed")
         else:
             self._aside(self.home / name, name, f"generation {name} does not verify ({why})")
 
@@ -174,6 +177,13 @@ def unverifiable(folder: Path, root: Path) -> str | None:
         return getattr(error, "what", str(error))
     missing = missing_rows(meta, absent)
     return None if missing is None else f"{missing} is missing"
+
+
+def unlisted_parts(generation: Path) -> list[Path]:
+    """Files in a verified generation's table folders that its sidecar does not list (never read)."""
+    listed = set(read_sidecar(generation, generation.parent.parent).get("files") or {})
+    folders = [generation / t for t in (RESULTS, TRAJECTORIES) if (generation / t).is_dir()]
+    return sorted(p for f in folders for p in f.iterdir() if f"{f.name}/{p.name}" not in listed)
 
 
 def _sidecar_or_empty(folder: Path) -> dict[str, object]:
