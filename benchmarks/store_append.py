@@ -13,7 +13,8 @@ synced, checksummed; the sidecar; the generation switched), compaction included:
 worst. The old way is the save of the mbxval before parts, kept here only to compare: the table
 built from every row, written whole as one file, checksummed, committed. Beside them, the cost of
 a load (read_results: every part read and its SHA-256 verified) and of the verification alone.
-`--grow N` then builds a store of N rows by batches of `batch`, as a sweep does, both ways.
+`--grow N` then builds a store of N rows by batches of `batch`, as a sweep does, both ways: the
+total and the slowest save (the new way's slowest is a save that merges parts).
 """
 
 from __future__ import annotations
@@ -146,18 +147,18 @@ def load_costs(directory: Path) -> tuple[float, float]:
     return timed(lambda: read_results(directory)), timed(lambda: verify(generation, directory, meta))
 
 
-def grow(total: int, batch: int, folder: Path) -> tuple[float, float]:
-    """Seconds to build a store of `total` rows by saves of `batch` rows (a sweep): old, new."""
+def grow(total: int, batch: int, folder: Path) -> tuple[list[float], list[float]]:
+    """Seconds of each save building a store of `total` rows by `batch` rows (a sweep): old, new."""
     old_rows: dict[Any, dict[str, Any]] = {}
     store = ResultsStore(folder / "grow-new")
-    old = new = 0.0
+    old, new = [], []
     for start in range(0, total, batch):
         rows = realistic_rows(min(batch, total - start), start=start)
         old_rows.update({key_of(r): r for r in rows})
-        old += timed(lambda: old_save(folder / "grow-old", old_rows))
+        old.append(timed(lambda: old_save(folder / "grow-old", old_rows)))
         for row in rows:
             store.add(row)
-        new += timed(lambda: store.save(dict(META)))
+        new.append(timed(lambda: store.save(dict(META))))
     return old, new
 
 
@@ -187,11 +188,12 @@ def main(argv: list[str] | None = None) -> None:
                 f"{statistics.median(new):8.3f} {max(new):9.3f} {ratio:8.1f} {load:7.3f} {digest:7.3f}"
             )
         if args.grow:
-            old_total, new_total = grow(args.grow, args.batch, folder)
+            old, new = grow(args.grow, args.batch, folder)
             saves = math.ceil(args.grow / args.batch)
             print(
                 f"a sweep of {args.grow} rows saved every {args.batch} ({saves} saves): "
-                f"old {old_total:.2f} s, new {new_total:.2f} s, ratio {old_total / new_total:.1f}"
+                f"old {sum(old):.2f} s, new {sum(new):.2f} s, ratio {sum(old) / sum(new):.1f}; "
+                f"slowest save: old {max(old):.3f} s, new {max(new):.3f} s (a merge of parts)"
             )
 
 

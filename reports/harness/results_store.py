@@ -42,14 +42,17 @@ from reports.harness.store_tables import (
 from scenarios.trajectory import Trajectory
 
 SCHEMA_VERSION = 1
-"""The rows' schema (the gate's baselines share it). The layout is told by the sidecar: a list of
-`parts` (tables as folders of parts), or none (one file per table, as mbxval wrote before parts)."""
+"""The rows' schema (the gate's baselines share it)."""
+STORE_VERSION = 2
+"""The sidecar's schema_version: 2 for tables as folders of parts (an mbxval from before parts
+refuses it in one line, "schema version 2, this mbxval reads 1"), 1 for one file per table."""
+READS = (1, STORE_VERSION)
 RESULTS, SIDECAR, TRAJECTORIES = "results.parquet", "results.json", "trajectories.parquet"
 KEY = ("scenario", "engine", "setting")
 TRUTH = "truth"
 REQUIRED = frozenset((*KEY, "engine_version", "mode", "options", "is_default", "status", "error"))
 """Columns every store has had; a declared column added since is filled with its empty value."""
-CAP = {RESULTS: 10_000, TRAJECTORIES: 100}
+CAP = {RESULTS: 5_000, TRAJECTORIES: 100}
 """Entries from which a part is sealed (merged no further; store_parts): rows, trajectories."""
 Key = tuple[str, str, str]
 
@@ -118,7 +121,7 @@ class ResultsStore:
         """Commit what changed since the store was read or last saved, as new parts beside the
         stored ones, with the sidecar (`meta`, the schema version, the parts and the checksums).
         The caller holds the store's writer lock (reports.harness.store_lock)."""
-        self.meta = {**meta, "schema_version": SCHEMA_VERSION}
+        self.meta = {**meta, "schema_version": STORE_VERSION}
         tables: dict[str, Changes[Key, Any]] = {RESULTS: self._rows, TRAJECTORIES: self._trajectories}
         lost = {TRAJECTORIES} if self.lost_trajectories else set()
         plans = {
@@ -157,7 +160,7 @@ class ResultsStore:
         self.lost_trajectories = False
 
     def _write_rows(self, keys: list[Key], path: Path) -> None:
-        write_part(rows_frame(self._rows[k] for k in keys), path)
+        write_part(pd.DataFrame([self._rows[k] for k in keys], columns=list(COLUMNS)), path)
 
     def _write_trajectories(self, keys: list[Key], path: Path) -> None:
         _trajectory_frame({k: self._trajectories[k] for k in keys}).to_parquet(path, index=False)
@@ -184,10 +187,15 @@ EMPTY_TYPES = {str: pa.string(), bool: pa.bool_(), int: pa.int64(), float: pa.fl
 
 
 def write_part(frame: pd.DataFrame, path: Path) -> None:
-    """The rows as a part stores them: the declared columns (the opt_ columns are derived from
-    `options` and not stored); a column without any value gets its declared column's type, so that
-    the parts of a table read together as one dataset (`pd.read_parquet(DIR/results.parquet)`)."""
+    """The rows as a part stores them: the declared columns (the opt_ columns of `rows_frame` are
+    derived from `options` and not stored); a column without any value gets its declared column's
+    type, so that the parts of a table read together as one dataset (`pd.read_parquet` of the
+    folder)."""
     frame = frame[[c for c in COLUMNS if c in frame.columns]]
+    empty = [c for c in frame.columns if frame[c].dtype == object and frame[c].isna().all()]
+    if not empty:
+        frame.to_parquet(path, index=False)
+        return
     schema = pa.Schema.from_pandas(frame, preserve_index=False)
     for column in DECLARED:
         index = schema.get_field_index(column.name)
@@ -228,8 +236,9 @@ def _committed(path: str | os.PathLike[str]) -> tuple[Path, Path, dict[str, Any]
     assert generation is not None
     meta = store_files.read_sidecar(generation, root)
     absent = store_files.verify(generation, root, meta)
-    if meta.get("schema_version", SCHEMA_VERSION) != SCHEMA_VERSION:
-        raise damaged(root, f"schema version {meta['schema_version']}, this mbxval reads {SCHEMA_VERSION}")
+    if meta.get("schema_version", 1) not in READS:
+        versions = " and ".join(map(str, READS))
+        raise damaged(root, f"schema version {meta['schema_version']}, this mbxval reads {versions}")
     return root, generation, meta, absent
 
 

@@ -51,7 +51,7 @@ def write_schema_1(directory: Path, source: Path, generations: bool = True) -> P
     frame, meta = read_results(source)
     meta = {k: v for k, v in meta.items() if k not in ("files", "parts")} | {
         "schema_version": 1
-    }  # the rows' schema, unchanged
+    }
     folder = directory / ".generations" / "g000001" if generations else directory
     folder.mkdir(parents=True)
     rows_frame(frame.to_dict("records")).to_parquet(folder / "results.parquet", index=False)
