@@ -23,13 +23,12 @@ from pathlib import Path
 from typing import Any
 
 import pandas as pd
-import pyarrow as pa
 
 from reports.harness import store_files
 from reports.harness.columns import COLUMNS, DECLARED
 from reports.harness.store_changes import ChangedRows, Changes
 from reports.harness.store_layout import CURRENT, damaged
-from reports.harness.store_parts import Part, plan_save
+from reports.harness.store_parts import plan_save
 from reports.harness.store_tables import (
     PART_COLUMN,
     PARTS,
@@ -38,6 +37,7 @@ from reports.harness.store_tables import (
     live_rows,
     members_of,
     part_frames,
+    write_part,
 )
 from scenarios.trajectory import Trajectory
 
@@ -153,9 +153,7 @@ class ResultsStore:
             self.directory, writers, self.meta, carried, public=(RESULTS, TRAJECTORIES)
         )
         for name, changes in tables.items():
-            self.tables[name] = _stored_after(
-                self.tables[name], plans[name].parts, plans[name].writes, changes
-            )
+            self.tables[name] = self.tables[name].after(plans[name].parts, plans[name].writes, changes)
             changes.settle()
         self.lost_trajectories = False
 
@@ -164,45 +162,6 @@ class ResultsStore:
 
     def _write_trajectories(self, keys: list[Key], path: Path) -> None:
         _trajectory_frame({k: self._trajectories[k] for k in keys}).to_parquet(path, index=False)
-
-
-def _stored_after(
-    before: StoredTable, parts: tuple[Part, ...], writes: Mapping[str, list[Key]], changes: Changes[Key, Any]
-) -> StoredTable:
-    """What the generation just committed holds of a table: the written parts' keys, and the kept
-    parts' keys less those that changed or were removed."""
-    moved = changes.changed | changes.removed
-    members = {}
-    for part in parts:
-        if part.file in writes:
-            members[part.file] = set(writes[part.file])
-        else:
-            kept = before.members.get(part.file, set())
-            kept.difference_update(moved)
-            members[part.file] = kept
-    return StoredTable(parts, members)
-
-
-EMPTY_TYPES = {str: pa.string(), bool: pa.bool_(), int: pa.int64(), float: pa.float64()}
-
-
-def write_part(frame: pd.DataFrame, path: Path) -> None:
-    """The rows as a part stores them: the declared columns (the opt_ columns of `rows_frame` are
-    derived from `options` and not stored); a column without any value gets its declared column's
-    type, so that the parts of a table read together as one dataset (`pd.read_parquet` of the
-    folder)."""
-    frame = frame[[c for c in COLUMNS if c in frame.columns]]
-    empty = [c for c in frame.columns if frame[c].dtype == object and frame[c].isna().all()]
-    if not empty:
-        frame.to_parquet(path, index=False)
-        return
-    schema = pa.Schema.from_pandas(frame, preserve_index=False)
-    for column in DECLARED:
-        index = schema.get_field_index(column.name)
-        if index >= 0 and pa.types.is_null(schema.field(index).type):
-            kind = EMPTY_TYPES.get(type(column.empty), pa.string())
-            schema = schema.set(index, pa.field(column.name, kind))
-    frame.to_parquet(path, index=False, schema=schema)
 
 
 def rows_frame(rows: Iterable[dict[str, Any]]) -> pd.DataFrame:

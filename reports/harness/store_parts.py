@@ -83,11 +83,11 @@ def plan_save(
     store holds now (`live`) and what changed. `parts` None (a new store, one read from the single
     file of an older mbxval, or a table replaced whole) writes every live key as one part;
     otherwise the `changed` keys become a new part with the stored keys of `removed`, and the parts
-    are compacted. Its cost is that of the batch and of the parts it merges, not of the store."""
+    are compacted. Its cost is that of the batch and of the parts it merges, not of the store. A
+    plan whose parts would not hold every live key exactly once (what changed was not all recorded)
+    falls back to writing every key, so that no row is ever lost to a merge."""
     if parts is None:
-        file = f"part-{1:06d}.parquet"
-        everything = sorted(live)
-        return Plan((Part(file, len(everything)),), {file: everything})
+        return _whole(live, 1)
     batch = {k for k in changed if k in live}
     stored = {k: f for k in {*batch, *removed} for f in _holders(members, k)}
     gone = tuple(sorted(k for k in set(removed) if k in stored and k not in live))
@@ -124,7 +124,17 @@ def plan_save(
         if fresh in olds:
             keys |= batch
         writes[file] = sorted(keys)
+    accounted = sum(map(len, writes.values())) + sum(counts[p.file] for p in new if p.file not in writes)
+    if accounted != len(live):  # the parts would not hold every live key once: write them all
+        return _whole(live, counter + 1)
     return Plan(tuple(new), writes)
+
+
+def _whole(live: Collection[Key], counter: int) -> Plan:
+    """Every live key written as one part."""
+    file = f"part-{counter:06d}.parquet"
+    everything = sorted(live)
+    return Plan((Part(file, len(everything)),), {file: everything})
 
 
 def _holders(members: Mapping[str, set[Key]], key: Key) -> list[str]:

@@ -1,5 +1,5 @@
-"""Reading a stored table from the committed generation: its parts, or the single file an
-older mbxval wrote, and which entry of each key is live.
+"""A stored table in the committed generation: its parts, or the single file an older mbxval
+wrote; which entry of each key is live; and a part written so that the parts read as one dataset.
 
 A generation with parts lists each table's parts in its sidecar, oldest first ("parts"), beside the
 size and SHA-256 of every file ("files", as `table/part-NNNNNN.parquet`). Only listed parts are
@@ -16,7 +16,10 @@ from pathlib import Path
 from typing import Any
 
 import pandas as pd
+import pyarrow as pa
 
+from reports.harness.columns import COLUMNS, DECLARED
+from reports.harness.store_changes import Changes
 from reports.harness.store_layout import damaged
 from reports.harness.store_parts import Key, Part
 
@@ -31,6 +34,22 @@ class StoredTable:
 
     parts: tuple[Part, ...] | None = None
     members: dict[str, set[Key]] = field(default_factory=dict)
+
+    def after(
+        self, parts: tuple[Part, ...], writes: Mapping[str, list[Key]], changes: Changes[Key, Any]
+    ) -> StoredTable:
+        """What the generation a save just committed holds: the written parts' keys, and the kept
+        parts' keys less those that changed or were removed."""
+        moved = changes.changed | changes.removed
+        members = {}
+        for part in parts:
+            if part.file in writes:
+                members[part.file] = set(writes[part.file])
+            else:
+                kept = self.members.get(part.file, set())
+                kept.difference_update(moved)  # in place: the cost of the batch, not of the part
+                members[part.file] = kept
+        return StoredTable(parts, members)
 
 
 def listed_parts(root: Path, meta: Mapping[str, Any], table: str) -> tuple[Part, ...] | None:
@@ -99,3 +118,25 @@ def members_of(keys: list[Key], indices: list[int], parts: tuple[Part, ...]) -> 
     for key, index in zip(keys, indices, strict=True):
         members[parts[index].file].add(key)
     return members
+
+
+EMPTY_TYPES = {str: pa.string(), bool: pa.bool_(), int: pa.int64(), float: pa.float64()}
+
+
+def write_part(frame: pd.DataFrame, path: Path) -> None:
+    """The rows as a part stores them: the declared columns (the opt_ columns of `rows_frame` are
+    derived from `options` and not stored); a column without any value gets its declared column's
+    type, so that the parts of a table read together as one dataset (`pd.read_parquet` of the
+    folder)."""
+    frame = frame[[c for c in COLUMNS if c in frame.columns]]
+    empty = [c for c in frame.columns if frame[c].dtype == object and frame[c].isna().all()]
+    if not empty:
+        frame.to_parquet(path, index=False)
+        return
+    schema = pa.Schema.from_pandas(frame, preserve_index=False)
+    for column in DECLARED:
+        index = schema.get_field_index(column.name)
+        if index >= 0 and pa.types.is_null(schema.field(index).type):
+            kind = EMPTY_TYPES.get(type(column.empty), pa.string())
+            schema = schema.set(index, pa.field(column.name, kind))
+    frame.to_parquet(path, index=False, schema=schema)
