@@ -49,9 +49,7 @@ def write_schema_1(directory: Path, source: Path, generations: bool = True) -> P
     from reports.harness.store_layout import checksum
 
     frame, meta = read_results(source)
-    meta = {k: v for k, v in meta.items() if k not in ("files", "parts")} | {
-        "schema_version": 1
-    }
+    meta = {k: v for k, v in meta.items() if k not in ("files", "parts")} | {"schema_version": 1}
     folder = directory / ".generations" / "g000001" if generations else directory
     folder.mkdir(parents=True)
     rows_frame(frame.to_dict("records")).to_parquet(folder / "results.parquet", index=False)
