@@ -117,10 +117,12 @@ class ResultsStore:
     def frame(self) -> pd.DataFrame:
         return rows_frame(self.rows.values())
 
-    def save(self, meta: dict[str, Any]) -> None:
+    def save(self, meta: dict[str, Any], clean: bool = False) -> None:
         """Commit what changed since the store was read or last saved, as new parts beside the
         stored ones, with the sidecar (`meta`, the schema version, the parts and the checksums).
-        The caller holds the store's writer lock (reports.harness.store_lock)."""
+        `clean` (the last save of a run) leaves no replaced or deleted entry in any part, so that a
+        direct Parquet read sees each row once. The caller holds the store's writer lock
+        (reports.harness.store_lock)."""
         self.meta = {**meta, "schema_version": STORE_VERSION}
         tables: dict[str, Changes[Key, Any]] = {RESULTS: self._rows, TRAJECTORIES: self._trajectories}
         lost = {TRAJECTORIES} if self.lost_trajectories else set()
@@ -132,6 +134,7 @@ class ResultsStore:
                 changes.changed,
                 changes.removed,
                 CAP[name],
+                clean,
             )
             for name, changes in tables.items()
         }

@@ -78,6 +78,7 @@ def plan_save(
     changed: Iterable[Key],
     removed: Iterable[Key],
     cap: int,
+    clean: bool = False,
 ) -> Plan:
     """The parts after a save, from the live keys each stored part holds (`members`), the keys the
     store holds now (`live`) and what changed. `parts` None (a new store, one read from the single
@@ -85,7 +86,9 @@ def plan_save(
     otherwise the `changed` keys become a new part with the stored keys of `removed`, and the parts
     are compacted. Its cost is that of the batch and of the parts it merges, not of the store. A
     plan whose parts would not hold every live key exactly once (what changed was not all recorded)
-    falls back to writing every key, so that no row is ever lost to a merge."""
+    falls back to writing every key, so that no row is ever lost to a merge. `clean` (a run's last
+    save) writes every key as one part if any stored part still holds a replaced or deleted entry,
+    so that a direct read of the folder sees each key once."""
     if parts is None:
         return _whole(live, 1)
     batch = {k for k in changed if k in live}
@@ -126,6 +129,8 @@ def plan_save(
         writes[file] = sorted(keys)
     accounted = sum(map(len, writes.values())) + sum(counts[p.file] for p in new if p.file not in writes)
     if accounted != len(live):  # the parts would not hold every live key once: write them all
+        return _whole(live, counter + 1)
+    if clean and sum(p.entries for p in new) != len(live):
         return _whole(live, counter + 1)
     return Plan(tuple(new), writes)
 

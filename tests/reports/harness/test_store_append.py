@@ -114,6 +114,22 @@ def test_the_results_folder_reads_as_one_dataset_once_compacted(store: ResultsSt
     assert len(direct) == len(store.rows) and not direct.duplicated(["scenario", "engine", "setting"]).any()
 
 
+def test_a_clean_save_leaves_no_replaced_or_deleted_row_for_a_direct_read(store: ResultsStore) -> None:
+    """A run's last save is clean: after a rerun of one row and the deletion of another, pandas
+    reading the folder directly sees the store's rows, each once, without the old entries."""
+    keys = sorted(store.rows)
+    store.save(dict(META))
+    store.add({**store.rows[keys[0]], "status": "failed"})  # a rerun: the old entry stays in its part
+    del store.rows[keys[1]]
+    store.save(dict(META))
+    assert len(pd.read_parquet(store.directory / RESULTS)) > len(store.rows)  # a plain save appends
+    store.save(dict(META), clean=True)
+    direct = pd.read_parquet(store.directory / RESULTS)
+    assert len(direct) == len(store.rows) == len(keys) - 1
+    assert not direct.duplicated(["scenario", "engine", "setting"]).any()
+    assert direct.set_index(["scenario", "engine", "setting"]).loc[keys[0], "status"] == "failed"
+
+
 def test_a_part_the_sidecar_does_not_list_is_ignored_and_moved_aside_by_repair(
     store: ResultsStore, capsys: pytest.CaptureFixture[str]
 ) -> None:
