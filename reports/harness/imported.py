@@ -97,4 +97,4 @@ def add_to_store(store: ResultsStore, scenario: Scenario, scored: Score) -> None
     }
     meta["imported"] = {**meta.get("imported", {}), scored.row["engine"]: scored.imported.source}
     meta["revisions"] = sorted({str(r.get("revision") or "unknown") for r in store.rows.values()})
-    store.save(meta)
+    store.save(meta, clean=True)

@@ -1,11 +1,16 @@
 """Stored results: tidy rows in results.parquet, a JSON sidecar results.json, and the trajectories
 the report draws (each engine's default-setting run and the reference truth) in trajectories.parquet.
 
-One row per run, keyed by (scenario, engine, setting). A save commits all three files together as
-a new generation with their checksums (reports.harness.store_files); a load verifies them, and a
-store that does not verify, or whose rows lack the columns every row has, is refused as damaged
-(StoreDamaged), never read or copied forward. A lost trajectories file is not damage: its rows
-stay, and `lost_trajectories` tells a resume to rebuild what the report draws.
+One row per run, keyed by (scenario, engine, setting). results.parquet and trajectories.parquet are
+folders of Parquet parts (a pyarrow dataset each; reports.harness.store_parts): a save writes what
+changed since the last one as a new part and lists the older parts again, unread and unchanged, in
+a new generation with every file's checksum (reports.harness.store_files); so a save costs its batch.
+A load reads the parts the sidecar lists, verified, and resolves them (the newest entry of a key
+wins; reports.harness.store_tables) into the same table a single file held before. A store that does
+not verify, or whose rows lack the columns every row has, is refused as damaged (StoreDamaged), never
+read or copied forward. A lost trajectories part is not damage: the rows stay, and
+`lost_trajectories` tells a resume to rebuild what the report draws. A store an older mbxval wrote
+(one results.parquet file, no parts) is read as it is and written whole, as parts, by its next save.
 """
 
 from __future__ import annotations
@@ -13,7 +18,7 @@ from __future__ import annotations
 import json
 import math
 import os
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -21,38 +26,79 @@ import pandas as pd
 
 from reports.harness import store_files
 from reports.harness.columns import COLUMNS, DECLARED
-from reports.harness.store_layout import damaged
+from reports.harness.store_changes import ChangedRows, Changes
+from reports.harness.store_layout import CURRENT, damaged
+from reports.harness.store_parts import plan_save
+from reports.harness.store_tables import (
+    PART_COLUMN,
+    PARTS,
+    StoredTable,
+    listed_parts,
+    live_rows,
+    members_of,
+    part_frames,
+    write_part,
+)
 from scenarios.trajectory import Trajectory
 
 SCHEMA_VERSION = 1
+"""The rows' schema (the gate's baselines share it)."""
+STORE_VERSION = 2
+"""The sidecar's schema_version: 2 for tables as folders of parts (an mbxval from before parts
+refuses it in one line, "schema version 2, this mbxval reads 1"), 1 for one file per table."""
+READS = (1, STORE_VERSION)
 RESULTS, SIDECAR, TRAJECTORIES = "results.parquet", "results.json", "trajectories.parquet"
 KEY = ("scenario", "engine", "setting")
 TRUTH = "truth"
 REQUIRED = frozenset((*KEY, "engine_version", "mode", "options", "is_default", "status", "error"))
 """Columns every store has had; a declared column added since is filled with its empty value."""
+CAP = {RESULTS: 5_000, TRAJECTORIES: 100}
+"""Entries from which a part is sealed (merged no further; store_parts): rows, trajectories."""
 Key = tuple[str, str, str]
 
 
-def key_of(row: dict[str, Any]) -> Key:
+def key_of(row: Mapping[str, Any]) -> Key:
     return (str(row["scenario"]), str(row["engine"]), str(row["setting"]))
 
 
 class ResultsStore:
-    """The rows and trajectories of one output directory, read at creation, written by `save`."""
+    """The rows and trajectories of one output directory, read at creation, written by `save`.
+    `rows` and `trajectories` record what changes (reports.harness.store_changes), so that a save
+    writes only that; assigning either whole replaces the table."""
 
     def __init__(self, directory: str | os.PathLike[str], fresh: bool = False) -> None:
         self.directory = Path(directory)
-        self.rows: dict[Key, dict[str, Any]] = {}
-        self.trajectories: dict[Key, Trajectory] = {}
+        self._rows: ChangedRows[Key] = ChangedRows()
+        self._trajectories: Changes[Key, Trajectory] = Changes()
+        self.tables = {RESULTS: StoredTable(), TRAJECTORIES: StoredTable()}
+        self.files: dict[str, dict[str, Any]] = {}  # the sidecar's files of the generation read
         self.meta: dict[str, Any] = {}
         self.lost_trajectories = False
         if not fresh and store_files.committed(self.directory) is not None:
-            frame, self.meta = read_results(self.directory)
-            self.rows = {key_of(r): r for r in frame.to_dict("records")}
+            frame, self.meta, self.tables[RESULTS] = _read_rows(self.directory)
+            self.files = dict(self.meta.get("files") or {})
+            self._rows = ChangedRows({key_of(r): r for r in frame.to_dict("records")})
             try:
-                self.trajectories = read_trajectories(self.directory)
+                trajectories, self.tables[TRAJECTORIES] = _read_trajectories(self.directory)
+                self._trajectories = Changes(trajectories)
             except FileNotFoundError:
                 self.lost_trajectories = True
+
+    @property
+    def rows(self) -> ChangedRows[Key]:
+        return self._rows
+
+    @rows.setter
+    def rows(self, rows: Mapping[Key, dict[str, Any]]) -> None:
+        self._rows = ChangedRows(rows, replaced=True)
+
+    @property
+    def trajectories(self) -> Changes[Key, Trajectory]:
+        return self._trajectories
+
+    @trajectories.setter
+    def trajectories(self, trajectories: Mapping[Key, Trajectory]) -> None:
+        self._trajectories = Changes(trajectories, replaced=True)
 
     def has(self, key: Key) -> bool:
         return key in self.rows
@@ -71,17 +117,54 @@ class ResultsStore:
     def frame(self) -> pd.DataFrame:
         return rows_frame(self.rows.values())
 
-    def save(self, meta: dict[str, Any]) -> None:
-        """Commit every file of the store at once (the sidecar gets `meta`, the schema version and
-        the checksums). The caller holds the store's writer lock (reports.harness.store_lock)."""
-        self.meta = {**meta, "schema_version": SCHEMA_VERSION}
-        frame, trajectories = self.frame(), _trajectory_frame(self.trajectories)
-        writers = {
-            RESULTS: lambda path: frame.to_parquet(path, index=False),
-            TRAJECTORIES: lambda path: trajectories.to_parquet(path, index=False),
+    def save(self, meta: dict[str, Any], clean: bool = False) -> None:
+        """Commit what changed since the store was read or last saved, as new parts beside the
+        stored ones, with the sidecar (`meta`, the schema version, the parts and the checksums).
+        `clean` (the last save of a run) leaves no replaced or deleted entry in any part, so that a
+        direct Parquet read sees each row once. The caller holds the store's writer lock
+        (reports.harness.store_lock)."""
+        self.meta = {**meta, "schema_version": STORE_VERSION}
+        tables: dict[str, Changes[Key, Any]] = {RESULTS: self._rows, TRAJECTORIES: self._trajectories}
+        lost = {TRAJECTORIES} if self.lost_trajectories else set()
+        plans = {
+            name: plan_save(
+                None if changes.replaced or name in lost else self.tables[name].parts,
+                self.tables[name].members,
+                changes,
+                changes.changed,
+                changes.removed,
+                CAP[name],
+                clean,
+            )
+            for name, changes in tables.items()
         }
-        store_files.commit(self.directory, writers, self.meta)
+        write = {RESULTS: self._write_rows, TRAJECTORIES: self._write_trajectories}
+        writers = {
+            f"{name}/{file}": (lambda path, w=write[name], k=keys: w(k, path))
+            for name, plan in plans.items()
+            for file, keys in plan.writes.items()
+        }
+        carried = {
+            f"{name}/{p.file}": self.files[f"{name}/{p.file}"]
+            for name, plan in plans.items()
+            for p in plan.parts
+            if p.file not in plan.writes
+        }
+        parts = {name: [p.to_json() for p in plan.parts] for name, plan in plans.items()}
+        self.meta[PARTS] = parts
+        self.files = store_files.commit(
+            self.directory, writers, self.meta, carried, public=(RESULTS, TRAJECTORIES)
+        )
+        for name, changes in tables.items():
+            self.tables[name] = self.tables[name].after(plans[name].parts, plans[name].writes, changes)
+            changes.settle()
         self.lost_trajectories = False
+
+    def _write_rows(self, keys: list[Key], path: Path) -> None:
+        write_part(pd.DataFrame([self._rows[k] for k in keys], columns=list(COLUMNS)), path)
+
+    def _write_trajectories(self, keys: list[Key], path: Path) -> None:
+        _trajectory_frame({k: self._trajectories[k] for k in keys}).to_parquet(path, index=False)
 
 
 def rows_frame(rows: Iterable[dict[str, Any]]) -> pd.DataFrame:
@@ -101,7 +184,7 @@ def rows_frame(rows: Iterable[dict[str, Any]]) -> pd.DataFrame:
 def results_directory(path: str | os.PathLike[str]) -> Path:
     """The directory of stored results, given it or its results.parquet."""
     target = Path(path)
-    if target.name == RESULTS and not target.is_dir():
+    if target.name == RESULTS and not (target / SIDECAR).exists() and not (target / CURRENT).is_symlink():
         target = target.parent
     if store_files.committed(target) is None:
         raise FileNotFoundError(f"no {RESULTS} in {target}")
@@ -115,44 +198,101 @@ def _committed(path: str | os.PathLike[str]) -> tuple[Path, Path, dict[str, Any]
     assert generation is not None
     meta = store_files.read_sidecar(generation, root)
     absent = store_files.verify(generation, root, meta)
-    if meta.get("schema_version", SCHEMA_VERSION) != SCHEMA_VERSION:
-        raise damaged(root, f"schema version {meta['schema_version']}, this mbxval reads {SCHEMA_VERSION}")
+    if meta.get("schema_version", 1) not in READS:
+        versions = " and ".join(map(str, READS))
+        raise damaged(root, f"schema version {meta['schema_version']}, this mbxval reads {versions}")
     return root, generation, meta, absent
 
 
 def read_results(path: str | os.PathLike[str]) -> tuple[pd.DataFrame, dict[str, Any]]:
     """The rows (without the derived opt_ columns) and the sidecar of stored results, verified:
     StoreDamaged for files that do not match their checksums or rows that lack required columns."""
+    frame, meta, _ = _read_rows(path)
+    return frame, meta
+
+
+def _read_rows(path: str | os.PathLike[str]) -> tuple[pd.DataFrame, dict[str, Any], StoredTable]:
+    """The rows, the sidecar and what the generation holds of the rows' table."""
     root, generation, meta, absent = _committed(path)
-    if RESULTS in absent or not (generation / RESULTS).is_file():
-        raise damaged(root, f"{RESULTS} is missing")
-    try:
-        frame = pd.read_parquet(generation / RESULTS)
-    except Exception as error:  # pyarrow's errors have no common base worth naming
-        raise damaged(root, f"{RESULTS} cannot be read: {type(error).__name__}") from error
-    lacking = sorted(REQUIRED - set(frame.columns))
-    if lacking:
-        raise damaged(root, f"{RESULTS} lacks the columns {', '.join(lacking)}")
-    if frame["status"].isna().any() or frame[list(KEY)].isna().any().any():
-        raise damaged(root, f"{RESULTS} has rows without a status or key")
+    parts = listed_parts(root, meta, RESULTS)
+    if parts is None:
+        if RESULTS in absent or not (generation / RESULTS).is_file():
+            raise damaged(root, f"{RESULTS} is missing")
+        frames = [_checked(root, RESULTS, _read_file(root, generation / RESULTS, RESULTS))]
+        frame, table = frames[0], StoredTable()
+    else:
+        try:
+            frames = [
+                _checked(root, f"{RESULTS}/{p.file}", f)
+                for p, f in zip(parts, part_frames(root, generation, RESULTS, parts), strict=True)
+            ]
+        except FileNotFoundError as lost:
+            raise damaged(root, str(lost).split(" has lost ")[-1] + " is missing") from None
+        frame = live_rows(frames, parts, KEY)
+        keys = [(str(a), str(b), str(c)) for a, b, c in zip(*(frame[k] for k in KEY), strict=True)]
+        table = StoredTable(parts, members_of(keys, frame[PART_COLUMN].tolist(), parts))
+        frame = frame.drop(columns=[PART_COLUMN])
+        if len(frames) > 1:
+            frame = frame.sort_values(list(KEY), kind="stable")
+        frame = frame.reset_index(drop=True)
     for column in DECLARED:
         if column.name not in frame.columns:
             frame[column.name] = column.empty
     frame = frame[[c for c in COLUMNS if c in frame.columns]]
-    return frame, meta
+    return frame, meta, table
+
+
+def missing_rows(meta: Mapping[str, Any], absent: set[str]) -> str | None:
+    """The file of the rows a generation lists but lacks (its single file, or a part), or None."""
+    if meta.get(PARTS) is None:
+        return RESULTS if RESULTS in absent else None
+    return next((n for n in sorted(absent) if n.startswith(f"{RESULTS}/")), None)
+
+
+def _read_file(root: Path, file: Path, name: str) -> pd.DataFrame:
+    try:
+        return pd.read_parquet(file)
+    except Exception as error:  # pyarrow's errors have no common base worth naming
+        raise damaged(root, f"{name} cannot be read: {type(error).__name__}") from error
+
+
+def _checked(root: Path, name: str, frame: pd.DataFrame) -> pd.DataFrame:
+    """The rows of one file, refused when they lack a required column, a status or a key."""
+    lacking = sorted(REQUIRED - set(frame.columns))
+    if lacking:
+        raise damaged(root, f"{name} lacks the columns {', '.join(lacking)}")
+    if frame["status"].isna().any() or frame[list(KEY)].isna().any().any():
+        raise damaged(root, f"{name} has rows without a status or key")
+    return frame
 
 
 def read_trajectories(path: str | os.PathLike[str]) -> dict[Key, Trajectory]:
     """Every stored trajectory by (scenario, engine, setting); the truth under engine TRUTH.
-    FileNotFoundError when the store has lost its trajectories file (a resume rebuilds it)."""
-    root, generation, _, _ = _committed(path)
-    file = generation / TRAJECTORIES
-    if not file.is_file():
-        raise FileNotFoundError(f"{root} has lost {TRAJECTORIES}")
-    try:
-        frame = pd.read_parquet(file)
-    except Exception as error:
-        raise damaged(root, f"{TRAJECTORIES} cannot be read: {type(error).__name__}") from error
+    FileNotFoundError when the store has lost its trajectories (a resume rebuilds them)."""
+    return _read_trajectories(path)[0]
+
+
+def _read_trajectories(path: str | os.PathLike[str]) -> tuple[dict[Key, Trajectory], StoredTable]:
+    root, generation, meta, _ = _committed(path)
+    parts = listed_parts(root, meta, TRAJECTORIES)
+    if parts is None:
+        file = generation / TRAJECTORIES
+        if not file.is_file():
+            raise FileNotFoundError(f"{root} has lost {TRAJECTORIES}")
+        return _trajectories_of(_read_file(root, file, TRAJECTORIES)), StoredTable()
+    stored: dict[Key, Trajectory] = {}
+    homes: dict[Key, int] = {}
+    for index, frame in enumerate(part_frames(root, generation, TRAJECTORIES, parts)):
+        for key in parts[index].removed:
+            stored.pop(key, None)
+            homes.pop(key, None)
+        found = _trajectories_of(frame)
+        stored.update(found)
+        homes.update(dict.fromkeys(found, index))
+    return stored, StoredTable(parts, members_of(list(homes), list(homes.values()), parts))
+
+
+def _trajectories_of(frame: pd.DataFrame) -> dict[Key, Trajectory]:
     stored: dict[Key, Trajectory] = {}
     for key, part in frame.groupby(list(KEY), sort=False):
         columns = part.drop(columns=list(KEY)).dropna(axis=1, how="all").reset_index(drop=True)

@@ -123,7 +123,7 @@ class Runner:
         try:
             self._execute([(g, pending[id(g)]) for g in groups if id(g) not in kept])
         finally:
-            self._save()
+            self._save(clean=True)
 
     def _execute(self, groups: list[tuple[Group, list[tuple[Setting, bool]]]]) -> None:
         """Run each group's pending jobs here, one after another (unavailable groups left out)."""
@@ -173,7 +173,7 @@ class Runner:
         self.store.add(row, trajectory)
         self.made[str(row["status"])] += 1
 
-    def _save(self) -> None:
+    def _save(self, clean: bool = False) -> None:
         versions = {
             name: (a if isinstance(a, str) else a._safe_version()) for name, a in self.adapters.items()
         }
@@ -194,7 +194,7 @@ class Runner:
             "headline": HEADLINE_DEFINITION,
             "scales": SCALE_DEFINITION,
         }
-        self.store.save(meta)
+        self.store.save(meta, clean)
 
 
 def _pair(group: Group) -> tuple[str, str]:

@@ -19,6 +19,7 @@ older ones; leftovers of interrupted saves (tmp-*) are removed. A store written 
 
 from __future__ import annotations
 
+import errno
 import json
 import os
 import shutil
@@ -54,12 +55,24 @@ def committed(directory: str | os.PathLike[str]) -> Path | None:
     return inspect(directory).committed()
 
 
-def commit(directory: str | os.PathLike[str], writers: Mapping[str, Writer], meta: Mapping[str, Any]) -> Path:
-    """Write a new generation (each writer fills its file, then the sidecar with `meta` and the
-    checksums) and make it the committed one. Nothing of it is left behind if this is interrupted
-    before the switch; the old generation stays committed until then."""
+def commit(
+    directory: str | os.PathLike[str],
+    writers: Mapping[str, Writer],
+    meta: Mapping[str, Any],
+    carried: Mapping[str, Mapping[str, Any]] | None = None,
+    public: Iterable[str] = (),
+) -> dict[str, dict[str, Any]]:
+    """Write a new generation and make it the committed one: each writer fills its file (a name
+    may be inside a folder: `results.parquet/part-000007.parquet`), each `carried` file (with its
+    recorded size and checksum) is linked from the committed generation unchanged, then the sidecar
+    gets `meta` and every file's size and checksum. Nothing of it is left behind if this is
+    interrupted before the switch; the old generation stays committed until then. Returns the
+    files the sidecar lists. `public` names the links DIR/name -> current/name to make."""
     root = Path(directory)
-    inspect(root).committed()  # refuses a store whose state is not understood, before any change
+    committed_now = inspect(root).committed()  # refuses a store not understood, before any change
+    carried = dict(carried or {})
+    if carried:
+        _check_carried(root, committed_now, carried)
     home = root / GENERATIONS
     home.mkdir(parents=True, exist_ok=True)
     remove_leftovers(root, home)
@@ -67,12 +80,21 @@ def commit(directory: str | os.PathLike[str], writers: Mapping[str, Writer], met
     generation: Path | None = None
     switched = False
     try:
-        files = {}
+        files: dict[str, dict[str, Any]] = {}
+        folders = sorted({Path(n).parent for n in [*writers, *carried]} - {Path(".")}, key=str)
+        for folder in folders:
+            (work / folder).mkdir(parents=True)
         for name, write in writers.items():
             write(work / name)
             _sync(work / name)
             size, digest = checksum(work / name)
             files[name] = {"bytes": size, "sha256": digest}
+        for name, recorded in carried.items():
+            assert committed_now is not None
+            _link_or_copy(committed_now / name, work / name)
+            files[name] = dict(recorded)
+        for folder in folders:
+            _sync(work / folder)
         text = json.dumps({**meta, "files": files}, indent=2, sort_keys=True, default=str)
         (work / SIDECAR).write_text(text + "\n")
         _sync(work / SIDECAR)
@@ -88,9 +110,29 @@ def commit(directory: str | os.PathLike[str], writers: Mapping[str, Writer], met
         if generation is not None and not switched and generation.exists():
             _discard(generation)  # renamed but never committed: the old one stays current
         raise
-    link_public(root, [*writers, SIDECAR])
+    link_public(root, [*(public or writers), SIDECAR])
     collect(home)
-    return generation
+    return files
+
+
+def _check_carried(root: Path, committed_now: Path | None, carried: Mapping[str, Mapping[str, Any]]) -> None:
+    """The files a save links unchanged must be those the committed generation lists, with the
+    same checksums: the store was read from it (a writer holds the lock, so it cannot change)."""
+    listed = (read_sidecar(committed_now, root).get("files") or {}) if committed_now is not None else {}
+    for name, recorded in carried.items():
+        if listed.get(name) != dict(recorded):
+            raise damaged(root, f"{name} is not the file this save read (the store changed under it)")
+
+
+def _link_or_copy(source: Path, target: Path) -> None:
+    """A hard link (the file is shared by the generations that list it, never copied), or a copy
+    where the file system has no hard links."""
+    try:
+        os.link(source, target)
+    except OSError as error:
+        if error.errno not in (errno.EPERM, errno.EXDEV, errno.EMLINK, errno.ENOTSUP, errno.EOPNOTSUPP):
+            raise
+        shutil.copy2(source, target)
 
 
 def next_name(home: Path) -> str:
@@ -120,10 +162,20 @@ def link_public(root: Path, names: Iterable[str]) -> None:
         temp.unlink(missing_ok=True)
         try:
             os.symlink(target, temp)
+            if path.is_dir() and not path.is_symlink():  # a table's folder, copied: now committed
+                _discard_folder(path)
             os.replace(temp, path)
         except BaseException:
             temp.unlink(missing_ok=True)
             raise
+
+
+def _discard_folder(folder: Path) -> None:
+    """Remove a plain folder whose files a committed generation holds (renamed first, so that a
+    reader never meets half of it)."""
+    gone = folder.parent / f".{folder.name}.{os.getpid()}.gone.link"
+    os.rename(folder, gone)
+    shutil.rmtree(gone, ignore_errors=True)
 
 
 def remove_leftovers(root: Path, home: Path) -> None:

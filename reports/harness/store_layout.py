@@ -24,7 +24,7 @@ from typing import Any
 from scenarios.files.bounded_read import MiB, read_bounded_text
 
 GENERATIONS, CURRENT, SIDECAR = ".generations", "current", "results.json"
-LEGACY = "results.parquet"  # the file a store from before generations holds in DIR itself
+LEGACY = "results.parquet"  # what a store from before generations (or a plain copy) holds in DIR
 GENERATION = re.compile(r"g\d{6,}")
 TEMPORARY = "tmp-"  # an unfinished save, or a generation being collected: never read
 QUARANTINE = "quarantine-"  # what repair moved aside: never read, never collected
@@ -94,7 +94,7 @@ def inspect(directory: str | os.PathLike[str]) -> StoreState:
     current, problem = _current(root, generations)
     if problem is None:
         problem = next(filter(None, (_unaccounted(root, name) for name in generations)), None)
-    legacy = current is None and problem is None and (root / LEGACY).is_file()
+    legacy = current is None and problem is None and (root / LEGACY).exists()
     return StoreState(root, tuple(generations), current, legacy, problem)
 
 

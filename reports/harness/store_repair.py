@@ -22,10 +22,8 @@ import shutil
 import time
 from pathlib import Path
 
-import pyarrow.parquet as pq
-
 from reports.harness import store_files
-from reports.harness.results_store import RESULTS, TRAJECTORIES
+from reports.harness.results_store import RESULTS, TRAJECTORIES, missing_rows, read_results
 from reports.harness.store_layout import (
     CURRENT,
     GENERATIONS,
@@ -69,7 +67,7 @@ class Repair:
         store_files.link_public(self.root, PUBLIC)
         kept = ", ".join(sorted(self.good, key=number))
         done = "" if self.lines else "nothing to repair: "
-        rows = _rows(self.home / current)
+        rows = len(read_results(self.root)[0])
         self.lines.append(f"{done}{CURRENT} -> {current} ({rows} rows); generations kept: {kept}")
         return self.lines
 
@@ -77,6 +75,9 @@ class Repair:
         why = unverifiable(self.home / name, self.root)
         if why is None:
             self.good[name] = (self.home / name / SIDECAR).read_bytes()
+            for part in unlisted_parts(self.home / name):
+                label = f"{name}-{part.parent.name}-{part.name}"
+                self._aside(part, label, f"generation {name}: {part.parent.name}/{part.name} is not listed")
         else:
             self._aside(self.home / name, name, f"generation {name} does not verify ({why})")
 
@@ -100,7 +101,7 @@ class Repair:
         """Plain files where DIR's links belong (a copy that followed the links): adopted when
         their sidecar verifies them, else moved aside; a store from before generations is left
         (LEGACY)."""
-        plain = [n for n in PUBLIC if (self.root / n).is_file() and not (self.root / n).is_symlink()]
+        plain = [n for n in PUBLIC if (self.root / n).exists() and not (self.root / n).is_symlink()]
         if not plain:
             return None
         if not self.good and "files" not in _sidecar_or_empty(self.root):
@@ -109,7 +110,12 @@ class Repair:
         folder = self.home / f"{TEMPORARY}adopt-{self.stamp}"  # copies: the originals stay until
         folder.mkdir()  # their generation is committed, so a repair stopped here loses nothing
         for name in plain:
-            shutil.copy2(self.root / name, folder / name)
+            if (self.root / name).is_dir():  # a table's parts
+                shutil.copytree(self.root / name, folder / name)
+                for part in (folder / name).iterdir():
+                    store_files.sync_path(part)
+            else:
+                shutil.copy2(self.root / name, folder / name)
             store_files.sync_path(folder / name)
         self._adopt(folder, "files", "the plain files in the store's directory")
         return None
@@ -169,9 +175,15 @@ def unverifiable(folder: Path, root: Path) -> str | None:
         absent = verify(folder, root, meta)
     except (StoreDamaged, OSError) as error:
         return getattr(error, "what", str(error))
-    if RESULTS in absent:
-        return f"{RESULTS} is missing"
-    return None
+    missing = missing_rows(meta, absent)
+    return None if missing is None else f"{missing} is missing"
+
+
+def unlisted_parts(generation: Path) -> list[Path]:
+    """Files in a verified generation's table folders that its sidecar does not list (never read)."""
+    listed = set(read_sidecar(generation, generation.parent.parent).get("files") or {})
+    folders = [generation / t for t in (RESULTS, TRAJECTORIES) if (generation / t).is_dir()]
+    return sorted(p for f in folders for p in f.iterdir() if f"{f.name}/{p.name}" not in listed)
 
 
 def _sidecar_or_empty(folder: Path) -> dict[str, object]:
@@ -179,7 +191,3 @@ def _sidecar_or_empty(folder: Path) -> dict[str, object]:
         return read_sidecar(folder, folder)
     except StoreDamaged:
         return {}
-
-
-def _rows(generation: Path) -> int:
-    return int(pq.read_metadata(generation / RESULTS).num_rows)

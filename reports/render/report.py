@@ -6,6 +6,7 @@ import os
 from pathlib import Path
 
 from reports.harness.atomic_write import atomic_output
+from reports.harness.results_store import results_directory
 from reports.render import html as html_report
 from reports.render import markdown as markdown_report
 from reports.render.report_data import ReportData
@@ -17,9 +18,7 @@ def render_reports(results: str | os.PathLike[str], out: str | os.PathLike[str] 
     """Write index.html and summary.md for the results in `results` into `out` (default: the same
     directory); returns the HTML file's path."""
     data = ReportData.load(results)
-    target = Path(out) if out is not None else Path(results)
-    if target.is_file():
-        target = target.parent
+    target = Path(out) if out is not None else results_directory(results)  # DIR, given its results.parquet
     target.mkdir(parents=True, exist_ok=True)
     with atomic_output(target / HTML) as stream:
         stream.write(html_report.render(data))

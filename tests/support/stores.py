@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import shutil
 from collections.abc import Callable
 from pathlib import Path
@@ -21,3 +22,45 @@ def doctor(source: Path, target: Path, edit: Callable[[pd.DataFrame], None]) -> 
     store.rows = {key_of(r): r for r in frame.to_dict("records")}
     store.save(store.meta)
     return target
+
+
+def table_files(folder: Path, table: str) -> list[Path]:
+    """The data files of a stored table in a generation (or a store's directory): its parts, or
+    the single file a store from before parts holds."""
+    path = folder / table
+    return sorted(path.resolve().iterdir()) if path.is_dir() else [path.resolve()]
+
+
+def copy_entry(source: Path, target: Path) -> None:
+    """Copy a store's public entry as a copy that follows links makes it: a file, or a folder."""
+    if source.is_dir():
+        shutil.copytree(source, target)
+    else:
+        shutil.copy(source, target)
+
+
+def write_schema_1(directory: Path, source: Path, generations: bool = True) -> Path:
+    """The rows and trajectories of the store `source` written as the mbxval before parts wrote
+    them (no parts): one results.parquet (every row, sorted by key, with the opt_ columns) and one
+    trajectories.parquet; in a generation with the checksums in its sidecar, `current` and the
+    public links (`generations`), or as plain files in DIR with a sidecar without checksums (the
+    store from before generations)."""
+    from reports.harness.results_store import _trajectory_frame, read_trajectories, rows_frame
+    from reports.harness.store_layout import checksum
+
+    frame, meta = read_results(source)
+    meta = {k: v for k, v in meta.items() if k not in ("files", "parts")} | {"schema_version": 1}
+    folder = directory / ".generations" / "g000001" if generations else directory
+    folder.mkdir(parents=True)
+    rows_frame(frame.to_dict("records")).to_parquet(folder / "results.parquet", index=False)
+    _trajectory_frame(read_trajectories(source)).to_parquet(folder / "trajectories.parquet", index=False)
+    if generations:
+        names = ("results.parquet", "trajectories.parquet")
+        sums = {n: dict(zip(("bytes", "sha256"), checksum(folder / n), strict=True)) for n in names}
+        meta["files"] = sums
+    (folder / "results.json").write_text(json.dumps(meta, indent=2, sort_keys=True, default=str) + "\n")
+    if generations:
+        (directory / "current").symlink_to(Path(".generations") / "g000001")
+        for name in ("results.parquet", "results.json", "trajectories.parquet"):
+            (directory / name).symlink_to(Path("current") / name)
+    return directory

@@ -13,6 +13,7 @@ import pytest
 from reports.harness.results_store import TRUTH, ResultsStore, read_results, read_trajectories
 from reports.harness.runner import HOOK_TRUTH, Runner, RunOptions
 from tests.support.fake_engine import BAD, GOOD, fake_loader, fake_truth
+from tests.support.stores import copy_entry
 
 SCENARIO = "slider_crank"
 OPTIONS = RunOptions(repeats=2, warmup=1, timeout=1.5)
@@ -106,7 +107,7 @@ def test_a_resumed_run_redoes_only_the_missing_rows(first_run, tmp_path: Path) -
     directory = tmp_path / "resumed"
     directory.mkdir()
     for file in source.glob("*.parquet"):
-        (directory / file.name).write_bytes(file.read_bytes())
+        copy_entry(file, directory / file.name)
     (directory / "results.json").write_text((source / "results.json").read_text())
     frame, meta = read_results(directory)
     store = ResultsStore(directory)
@@ -127,7 +128,7 @@ def test_a_later_plan_reconciles_the_stored_rows(first_run, tmp_path: Path) -> N
     directory = tmp_path / "later"
     directory.mkdir()
     for file in source.glob("results.*"):
-        (directory / file.name).write_bytes(file.read_bytes())
+        copy_entry(file, directory / file.name)
     available = fake_loader(log)
 
     def loader(name: str):  # type: ignore[no-untyped-def]

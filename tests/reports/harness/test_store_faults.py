@@ -31,6 +31,7 @@ POINTS: list[tuple[object, str]] = [
     (os, "symlink"),
     (os, "mkdir"),
     (os, "chmod"),
+    (os, "link"),
     (pd.DataFrame, "to_parquet"),
     (Path, "write_text"),
     (shutil, "copy2"),

@@ -17,6 +17,7 @@ from reports.harness import store_files
 from reports.harness.results_store import RESULTS, ResultsStore
 from reports.harness.store_files import GENERATIONS, KEEP, StoreDamaged
 from tests.reports.test_reliability import copy, fake_run, one_line_error, rows
+from tests.support.stores import copy_entry, table_files
 
 
 @pytest.fixture(scope="module")
@@ -100,7 +101,7 @@ def test_copied_files_that_are_a_newer_generation_are_adopted(saved_often: Path,
     newest = out / GENERATIONS / generations(out)[-1]
     for name in ("results.parquet", "results.json", "trajectories.parquet"):
         (out / name).unlink()
-        shutil.copy(newest / name, out / name)
+        copy_entry(newest / name, out / name)
     shutil.rmtree(newest)
     (out / "current").unlink()
     assert main(["store", "repair", str(out)]) == 0
@@ -112,8 +113,9 @@ def test_a_generation_that_does_not_verify_is_moved_aside_and_the_newest_good_on
 ) -> None:
     out = copy(saved_often, tmp_path / "out")
     good = generations(out)
-    newest = out / GENERATIONS / good[-1] / RESULTS
-    newest.write_bytes(newest.read_bytes()[:-10])  # truncated: its size no longer matches
+    newest = table_files(out / GENERATIONS / good[-1], RESULTS)[-1]
+    newest.unlink()  # a part shared with the older generations by a hard link: truncate a copy
+    newest.write_bytes((out / GENERATIONS / good[-2] / RESULTS / newest.name).read_bytes()[:-10])
     assert main(["report", str(out)]) == 2
     one_line_error(capsys, f"generation {good[-1]}", "store repair")
     (out / "current").unlink()
@@ -129,7 +131,8 @@ def test_a_generation_that_does_not_verify_is_moved_aside_and_the_newest_good_on
 def test_repair_with_nothing_that_verifies_deletes_nothing(saved_often: Path, tmp_path: Path, capsys) -> None:
     out = copy(saved_often, tmp_path / "out")
     for name in generations(out):
-        (out / GENERATIONS / name / RESULTS).write_bytes(b"PAR1")
+        for part in table_files(out / GENERATIONS / name, RESULTS):
+            part.write_bytes(b"PAR1")
     assert main(["store", "repair", str(out)]) == 2
     one_line_error(capsys, "no generation", "verifies", "nothing was deleted")
     assert len([p for p in (out / GENERATIONS).iterdir() if p.name.startswith("quarantine-")]) == KEEP
