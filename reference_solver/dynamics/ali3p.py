@@ -11,8 +11,8 @@ positive definite whatever the rank of C_q: the method needs no independent coor
 passes configurations where C_q loses rank. The converged q'' and q' are then projected
 (P-orthogonally) onto C_q q' + C_t = 0 and C_q q'' = Q_d (projection.py).
 
-W is a preconditioner only: every residual is evaluated at the current iterate, so a factorization
-kept over many steps (refreshed when Newton slows) changes the iteration count, never the answer.
+W is a preconditioner only: every residual is evaluated at the current iterate, so W, factored
+once per step at the predictor (tangent.py), changes the iteration count, never the answer.
 """
 
 from __future__ import annotations
@@ -20,25 +20,23 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import lu_factor, lu_solve
 
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.partition import State, driver_power
 from reference_solver.dynamics.projection import project
+from reference_solver.dynamics.tangent import Tangent
 from reference_solver.errors import ConvergenceError
 from reference_solver.system import ConstraintSystem
 
-PENALTY = 1e3
-"""The largest ratio, over the coordinates, of the penalty's share of W's diagonal to the mass's,
-h^2/4 alpha (C_q^T C_q)_kk / M_kk. Larger speeds the multipliers' convergence but amplifies the
-round-off of C (alpha C enters the residual) into the lightest coordinates by about as much."""
+PENALTY = 1e8
+"""The penalty of each constraint row relative to the inertia it acts on: alpha_i = PENALTY 4/h^2 /
+(C_q M^-1 C_q^T)_ii, so h^2/4 alpha_i C_q M^-1 C_q^T has unit-PENALTY diagonal and the augmented
+Lagrangian contracts by about 1/PENALTY per iteration along each row, whatever its units."""
 NEWTON_STEPS = 40
 TOLERANCE = 1e-13
 """Newton stops when the scaled update and the scaled constraint residual are below TOLERANCE, or
 when below STALLED an update no longer halves (round-off reached)."""
-STALLED = 1e-11
-SLOW = 6
-"""Newton iterations beyond which W is refactored at the next step."""
+STALLED = 1e-10
 DIFFERENCE = 1e-7
 """Relative step of the finite differences giving K and D (only scenarios with force elements)."""
 
@@ -63,28 +61,24 @@ class Ali3p:
     def __init__(self, system: ConstraintSystem, mass: np.ndarray, loads: Loads, h: float) -> None:
         self.system, self.mass, self.loads, self.h = system, mass, loads, h
         self.stiff = bool(system.scenario.forces)
-        self.factors: tuple[np.ndarray, np.ndarray] | None = None
+        self.tangent = Tangent(system, dense_weight=self.stiff)
         self.weight = np.diag(mass)
-        self.alpha = 0.0
+        self.alpha = np.zeros(0)
         self.evaluations = 0
-        self.refactor = True
 
-    def _tangent(self, q: np.ndarray, qd: np.ndarray, t: float, jac: np.ndarray) -> None:
-        """Factor W at (q, qd, t); alpha is fixed at the first factorization."""
+    def _factor(self, q: np.ndarray, qd: np.ndarray, t: float, jac: np.ndarray) -> None:
+        """Factor W at (q, qd, t); the penalties alpha are fixed at the first factorization."""
         h = self.h
-        if self.alpha == 0.0:
-            columns = np.einsum("ij,ij->j", jac, jac)
-            used = columns > 0
-            ratio = float(np.min(self.mass[used] / columns[used])) if np.any(used) else 1.0
-            self.alpha = PENALTY * ratio / (h * h / 4)
-        weight = np.diag(self.mass)
-        if self.stiff:
-            stiffness, damping = self._load_derivatives(q, qd, t)
-            weight = weight + h / 2 * damping + h * h / 4 * stiffness
-        self.weight = weight
-        tangent = weight + h * h / 4 * self.alpha * (jac.T @ jac)
-        self.factors = lu_factor(tangent, check_finite=False)
-        self.refactor = False
+        if self.alpha.size == 0:
+            inertia = np.einsum("ij,j,ij->i", jac, 1 / self.mass, jac)
+            typical = float(np.max(inertia, initial=0.0)) or 1.0
+            self.alpha = PENALTY * 4 / (h * h) / np.maximum(inertia, 1e-12 * typical)
+        if not self.stiff:
+            self.tangent.factor(self.mass if self.tangent.banded else self.weight, jac, self.alpha, h * h / 4)
+            return
+        stiffness, damping = self._load_derivatives(q, qd, t)
+        self.weight = np.diag(self.mass) + h / 2 * damping + h * h / 4 * stiffness
+        self.tangent.factor(self.weight, jac, self.alpha, h * h / 4)
 
     def _load_derivatives(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[np.ndarray, np.ndarray]:
         """K = -dQ_e/dq and D = -dQ_e/dq' by central differences."""
@@ -92,38 +86,41 @@ class Ali3p:
         stiffness, damping = np.zeros((n, n)), np.zeros((n, n))
         scales = self.system.column_scales
         for k in range(n):
-            dq = DIFFERENCE * scales[k]
             e = np.zeros(n)
-            e[k] = dq
-            stiffness[:, k] = -(self.loads(q + e, qd, t).generalized - self.loads(q - e, qd, t).generalized) / (2 * dq)
-            dv = DIFFERENCE * max(scales[k], float(np.abs(qd[k])))
-            e[k] = dv
-            damping[:, k] = -(self.loads(q, qd + e, t).generalized - self.loads(q, qd - e, t).generalized) / (2 * dv)
+            e[k] = dq = DIFFERENCE * scales[k]
+            plus, minus = self.loads(q + e, qd, t).generalized, self.loads(q - e, qd, t).generalized
+            stiffness[:, k] = -(plus - minus) / (2 * dq)
+            e[k] = dv = DIFFERENCE * max(scales[k], float(np.abs(qd[k])))
+            plus, minus = self.loads(q, qd + e, t).generalized, self.loads(q, qd - e, t).generalized
+            damping[:, k] = -(plus - minus) / (2 * dv)
         return stiffness, damping
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
-        assert self.factors is not None
-        return lu_solve(self.factors, rhs, check_finite=False)
+        return self.tangent.solve(rhs)
+
+    def weigh(self, x: np.ndarray) -> np.ndarray:
+        """P x."""
+        return self.weight @ x if self.stiff else self.mass * x
 
     def step(self, s: StepState) -> StepState:
-        """The state at s.t + h: Newton with multiplier updates on the trapezoidal equations, then
-        the projections of the rates."""
+        """The state at s.t + h: Newton with multiplier updates on the trapezoidal equations (W
+        factored at the predictor), then the projections of the rates."""
         h, mass, system = self.h, self.mass, self.system
         t = s.t + h
-        if self.refactor or self.factors is None:
-            self._tangent(s.q, s.qd, s.t, s.jac)
         hat_v = -(2 / h * s.q + s.qd)
         hat_a = -(4 / (h * h) * s.q + 4 / h * s.qd + s.qdd)
         q = s.q + h * s.qd + h * h / 2 * s.qdd
         multipliers = s.multipliers.copy()
         cols, rows = system.column_scales, system.row_scales
-        previous, iterations = np.inf, 0
-        for iterations in range(1, NEWTON_STEPS + 1):  # noqa: B007 - the count is reported
+        previous, size, violation = np.inf, np.inf, np.inf
+        for iterations in range(1, NEWTON_STEPS + 1):
             c, jac, _ = system.evaluate(q, t)
             self.evaluations += 1
-            if iterations > 1:
-                multipliers += self.alpha * c
             qd, qdd = 2 / h * q + hat_v, 4 / (h * h) * q + hat_a
+            if iterations == 1:
+                self._factor(q, qd, t, jac)
+            else:
+                multipliers += self.alpha * c
             load = self.loads(q, qd, t).generalized
             residual = h * h / 4 * (mass * qdd + jac.T @ (self.alpha * c + multipliers) - load)
             update = -self.solve(residual)
@@ -133,8 +130,6 @@ class Ali3p:
             if (size <= TOLERANCE and violation <= TOLERANCE) or (size < STALLED and size > 0.5 * previous):
                 break
             previous = size
-            if iterations == 2 * SLOW:  # far slower than W promises: refactor here and go on
-                self._tangent(q, qd, t, jac)
         else:
             raise ConvergenceError(
                 f"{system.scenario.name}: ALI3-P's Newton iteration did not converge at t={t:.6g} "
@@ -142,21 +137,30 @@ class Ali3p:
                 time=t,
                 q=q,
             )
-        if iterations > SLOW:
-            self.refactor = True
         jac = system.jacobian(q, t)
         qd, qdd = 2 / h * q + hat_v, 4 / (h * h) * q + hat_a
-        qd = project(self, jac, qd, -system.c_t(t))
-        qdd = project(self, jac, qdd, system.q_d(q, qd, t))
+        qd, _ = project(self, jac, qd, -system.c_t(t))
+        qdd, _ = project(self, jac, qdd, system.q_d(q, qd, t))
         return StepState(t, q, qd, qdd, multipliers, jac, iterations)
+
+    def multipliers(self, s: StepState, load: np.ndarray) -> np.ndarray:
+        """The Lagrange multipliers at the state (q, q'): M q'' + C_q^T lambda = Q_e with
+        C_q q'' = Q_d, as the partitioned method computes them (lambda* carries the augmented
+        Lagrangian's round-off, alpha times that of C). With P = M they are the multipliers of the
+        M-orthogonal projection of M^-1 Q_e (so also defined, minimum-norm, at a singular
+        configuration); with force elements, least squares on the projected q''."""
+        q_d = self.system.q_d(s.q, s.qd, s.t)
+        if not self.stiff:
+            return project(self, s.jac, load / self.mass, q_d)[1]
+        return np.linalg.lstsq(s.jac.T, load - self.mass * s.qdd, rcond=None)[0]
 
 
 def integrate(
     system: ConstraintSystem, mass: np.ndarray, loads: Loads, start: State, grid: np.ndarray, step: float
 ) -> tuple[list[State], np.ndarray, int]:
     """ALI3-P from `start` over `grid`, each output interval cut into equal steps of at most `step`:
-    the states at the grid's times (multipliers by least squares from the projected q'', so they
-    are defined at a singular configuration too: the minimum-norm ones there), the work integrals
+    the states at the grid's times (with the multipliers at each state, Ali3p.multipliers), the work
+    integrals
     (trapezoidal quadrature of the powers) and the number of constraint evaluations."""
     states, works = [start], [np.zeros(3)]
     current = StepState(start.t, start.q, start.qd, start.qdd, start.lam.copy(), start.jac)
@@ -173,22 +177,18 @@ def integrate(
             stepper.evaluations = evaluations
         for _ in range(count):
             current = stepper.step(current)
-            state = _state(system, mass, loads, current)
-            now = _powers(system, state)
+            now = _powers(system, _state(loads, current, current.multipliers))
             work = work + h / 2 * (power + now)
             power = now
-        states.append(_state(system, mass, loads, current, output=True))
+        load = loads(current.q, current.qd, current.t)
+        states.append(_state(loads, current, stepper.multipliers(current, load.generalized)))
         works.append(work.copy())
     return states, np.array(works), stepper.evaluations if stepper is not None else 0
 
 
-def _state(system: ConstraintSystem, mass: np.ndarray, loads: Loads, s: StepState, output: bool = False) -> State:
-    """The kinematic State of a step; at an output point with least-squares multipliers."""
-    load = loads(s.q, s.qd, s.t)
-    lam = s.multipliers
-    if output:
-        lam = np.linalg.lstsq(s.jac.T, load.generalized - mass * s.qdd, rcond=None)[0]
-    return State(s.t, s.q, s.qd, s.qdd, lam, s.jac, load)
+def _state(loads: Loads, s: StepState, lam: np.ndarray) -> State:
+    """The kinematic State of a step with multipliers `lam`."""
+    return State(s.t, s.q, s.qd, s.qdd, lam, s.jac, loads(s.q, s.qd, s.t))
 
 
 def _powers(system: ConstraintSystem, s: State) -> np.ndarray:

@@ -15,25 +15,29 @@ from typing import Protocol
 
 import numpy as np
 
-PROJECTION_STEPS = 12
+PROJECTION_STEPS = 30
 SETTLED = 1e-15
-STALLED = 1e-11
+STALLED = 1e-13
 """The projection stops when an iteration moves the rates by less than SETTLED relative to their
 largest, or, below STALLED, no longer halves its move (round-off)."""
 
 
 class Stepper(Protocol):
-    """What a projection needs of the time step: h, alpha, P and the factored W."""
+    """What a projection needs of the time step: h, alpha, P x and W^-1 x."""
 
     h: float
-    alpha: float
-    weight: np.ndarray
+    alpha: np.ndarray
+
+    def weigh(self, x: np.ndarray) -> np.ndarray: ...
 
     def solve(self, rhs: np.ndarray) -> np.ndarray: ...
 
 
-def project(stepper: Stepper, jac: np.ndarray, rates: np.ndarray, target: np.ndarray) -> np.ndarray:
-    """The P-orthogonal projection of `rates` onto C_q x = target."""
+def project(
+    stepper: Stepper, jac: np.ndarray, rates: np.ndarray, target: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The P-orthogonal projection x of `rates` onto C_q x = target, and its multipliers mu:
+    P (x - rates) + C_q^T mu = 0."""
     factor = stepper.h * stepper.h / 4
     x = rates.copy()
     sigma = np.zeros(target.size)
@@ -41,7 +45,7 @@ def project(stepper: Stepper, jac: np.ndarray, rates: np.ndarray, target: np.nda
     scale = max(float(np.max(np.abs(rates))), 1e-300)
     previous = np.inf
     for _ in range(PROJECTION_STEPS):
-        residual = stepper.weight @ (x - rates) + factor * (jac.T @ (stepper.alpha * gap + sigma))
+        residual = stepper.weigh(x - rates) + factor * (jac.T @ (stepper.alpha * gap + sigma))
         move = stepper.solve(residual)
         x -= move
         gap = jac @ x - target
@@ -50,4 +54,4 @@ def project(stepper: Stepper, jac: np.ndarray, rates: np.ndarray, target: np.nda
         if size <= SETTLED or (size < STALLED and size > 0.5 * previous):
             break
         previous = size
-    return x
+    return x, factor * sigma
