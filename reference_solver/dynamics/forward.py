@@ -124,9 +124,10 @@ def simulate(
     """Forward dynamics of `scenario` on `times` (default: the scenario's grid, starting at t0), by
     coordinate partitioning integrated by `method` (one of METHODS) at `rtol`, or by ALI3-P
     (`method="ali3p"`, ali3p.py) at the fixed `step` (default ALI3P_STEP, cut to divide each output
-    interval; `rtol` is not used there); `fast` evaluates the constraints on the compiled path (compiled_system), which callers ask for
-    where no singular passage lets round-off pick the motion (n_four_bar at rtol 1e-12 loses its
-    energy on it, 0.53, and holds it to 9e-9 on the plain path)."""
+    interval; `rtol` is not used there). `fast` evaluates the constraints on the compiled path
+    (compiled_system), which callers of the partitioned method ask for where no singular passage
+    lets round-off pick the motion (n_four_bar at rtol 1e-12 loses its energy on it, 0.53, and holds
+    it to 9e-9 on the plain path); ALI3-P passes it on either."""
     if method not in (*METHODS, ALI3P):
         raise SolverError(f"unknown integrator '{method}' (known: {', '.join((*METHODS, ALI3P))})")
     if step is not None and not (np.isfinite(step) and step > 0):
@@ -145,8 +146,8 @@ def simulate(
     energy_scale = max(abs(kinetic0) + abs(state.loads.potential), float(mass.sum()) * length**2 / span**2)
 
     if method == ALI3P:
-        states, ali3p_works, evaluations = integrate(system, mass, loads, state, grid, step or ALI3P_STEP)
-        return _result(system, mass, grid, states, ali3p_works, energy0, evaluations, 0)
+        stepped, ali3p_works, steps = integrate(system, mass, loads, state, grid, step or ALI3P_STEP)
+        return _result(system, mass, grid, stepped, ali3p_works, energy0, steps, 0)
     states: list[State] = [state]
     works: list[np.ndarray] = [np.zeros(3)]
     evaluations, partitions, work = 0, 0, np.zeros(3)

@@ -60,5 +60,5 @@ class Tangent:
         if not self.banded:
             return lu_solve(self.factors, rhs, check_finite=False)  # type: ignore[no-any-return]
         lu, pivots = self.factors
-        x, info = lapack.dgbtrs(lu, self.width, self.width, rhs, pivots)
+        x, _ = lapack.dgbtrs(lu, self.width, self.width, rhs, pivots)
         return x  # type: ignore[no-any-return]
