@@ -22,7 +22,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from reference_solver.dynamics.loads import Loads
-from reference_solver.dynamics.partition import State, driver_power
 from reference_solver.dynamics.projection import project
 from reference_solver.dynamics.tangent import Tangent
 from reference_solver.errors import ConvergenceError
@@ -153,43 +152,3 @@ class Ali3p:
         if not self.stiff:
             return project(self, s.jac, load / self.mass, q_d)[1]
         return np.linalg.lstsq(s.jac.T, load - self.mass * s.qdd, rcond=None)[0]
-
-
-def integrate(
-    system: ConstraintSystem, mass: np.ndarray, loads: Loads, start: State, grid: np.ndarray, step: float
-) -> tuple[list[State], np.ndarray, int]:
-    """ALI3-P from `start` over `grid`, each output interval cut into equal steps of at most `step`:
-    the states at the grid's times (with the multipliers at each state, Ali3p.multipliers), the work
-    integrals
-    (trapezoidal quadrature of the powers) and the number of constraint evaluations."""
-    states, works = [start], [np.zeros(3)]
-    current = StepState(start.t, start.q, start.qd, start.qdd, start.lam.copy(), start.jac)
-    power = _powers(system, start)
-    work = np.zeros(3)
-    stepper: Ali3p | None = None
-    for end in grid[1:]:
-        span = float(end) - current.t
-        count = max(1, int(np.ceil(span / step * (1 - 1e-12))))
-        h = span / count
-        if stepper is None or not np.isclose(stepper.h, h, rtol=1e-9, atol=0.0):
-            evaluations = stepper.evaluations if stepper is not None else 0
-            stepper = Ali3p(system, mass, loads, h)
-            stepper.evaluations = evaluations
-        for _ in range(count):
-            current = stepper.step(current)
-            now = _powers(system, _state(loads, current, current.multipliers))
-            work = work + h / 2 * (power + now)
-            power = now
-        load = loads(current.q, current.qd, current.t)
-        states.append(_state(loads, current, stepper.multipliers(current, load.generalized)))
-        works.append(work.copy())
-    return states, np.array(works), stepper.evaluations if stepper is not None else 0
-
-
-def _state(loads: Loads, s: StepState, lam: np.ndarray) -> State:
-    """The kinematic State of a step with multipliers `lam`."""
-    return State(s.t, s.q, s.qd, s.qdd, lam, s.jac, loads(s.q, s.qd, s.t))
-
-
-def _powers(system: ConstraintSystem, s: State) -> np.ndarray:
-    return np.array([s.loads.applied_power, s.loads.dissipation, driver_power(system, s)])

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from reference_solver.dynamics.ali3p import integrate
+from reference_solver.dynamics.ali3p_grid import integrate
 from reference_solver.dynamics.augmented import accelerations, constraint_outputs
 from reference_solver.dynamics.compiled_system import constraint_system
 from reference_solver.dynamics.loads import Loads
