@@ -33,9 +33,13 @@ PENALTY = 1e8
 Lagrangian contracts by about 1/PENALTY per iteration along each row, whatever its units."""
 NEWTON_STEPS = 40
 TOLERANCE = 1e-13
-"""Newton stops when the scaled update and the scaled constraint residual are below TOLERANCE, or
-when below STALLED an update no longer halves (round-off reached)."""
-STALLED = 1e-10
+"""Newton stops when the scaled constraint residual is below TOLERANCE and so is the scaled update,
+or the update, below STALLED, no longer halves: round-off, or a step ending next to a singular
+configuration, where the multipliers converge slowly along the freedoms C_q is about to lose (the
+constraints hold them only to second order there)."""
+STALLED = 1e-9
+SLOW = 0.9
+"""An update below STALLED that shrinks by less than this factor has stalled."""
 DIFFERENCE = 1e-7
 """Relative step of the finite differences giving K and D (only scenarios with force elements)."""
 
@@ -126,7 +130,7 @@ class Ali3p:
             q = q + update
             size = float(np.max(np.abs(update / cols)))
             violation = float(np.max(np.abs(c / rows), initial=0.0))
-            if (size <= TOLERANCE and violation <= TOLERANCE) or (size < STALLED and size > 0.5 * previous):
+            if violation <= TOLERANCE and (size <= TOLERANCE or STALLED > size > SLOW * previous):
                 break
             previous = size
         else:

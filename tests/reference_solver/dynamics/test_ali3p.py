@@ -31,7 +31,7 @@ RICHARDSON = {
     "andrews_squeezer": (6.17e-13, 7.84e-11, 1.18e-06, 3.48e-13),
 }
 FACTOR = 3.0
-A02_REDUCED = (9.18e-08, 3.35e-09, 4.92e-08)
+A02_REDUCED = (8.57e-08, 1.43e-12, 4.54e-08)
 """2 loops over 0.8 s (one passage) at h = 1e-4: energy drift over the largest kinetic energy, the
 largest rocker-to-crank angle, the crank's distance to the reduced equation (rad)."""
 
@@ -114,12 +114,25 @@ def test_a_reduced_a02_passes_its_singular_position_at_second_order() -> None:
     assert len(reduced.t_events[0]) == 1  # type: ignore[attr-defined]
     coarse = _a02_errors(simulate(scenario, grid, method="ali3p", step=2e-4, fast=True), reduced)
     fine = _a02_errors(simulate(scenario, grid, method="ali3p", step=1e-4, fast=True), reduced)
-    order = np.log2(np.array(coarse) / np.array(fine))
-    # the rocker angle and the crank at order 2; the energy drift approaches it from above (measured
-    # ratios 10, 5.7, 4.4 from h = 4e-4 to 5e-5)
-    assert 1.8 < order[1] < 2.2 and 1.8 < order[2] < 2.5 and 2.0 < order[0] < 2.8, order
+    order = np.log2(np.array(coarse[::2]) / np.array(fine[::2]))  # energy drift and crank angle
+    assert np.all((order > 1.8) & (order < 2.3)), order
     measured = np.array(A02_REDUCED)
     assert np.all((np.array(fine) < FACTOR * measured) & (np.array(fine) > measured / FACTOR)), fine
+
+
+@pytest.mark.parametrize(("count", "measured"), [(8000, 1.43e-12), (8005, 3.60e-9)])
+def test_the_rockers_leave_the_crank_by_what_the_step_s_phase_at_the_passage_allows(
+    count: int, measured: float
+) -> None:
+    """The rocker-to-crank angle is not a smooth function of h: it depends on where the singular
+    instant falls within a step. 8000 steps over 0.8 s put it at 0.55 of a step, 8005 steps at 0.02
+    (a step ends next to the singular configuration, where C_q holds the chain's extra freedoms only
+    to second order): measured 1.4e-12 and 3.6e-9 (at 0.34, 0.23, 0.81 of a step: 1.4e-11, 2.0e-11,
+    2.4e-10; at h = 5e-5 with the instant at 0.11 and 0.004 of a step: 1.2e-9, 8.4e-10)."""
+    scenario, grid, reduced = _chain(2, 0.8)
+    analysis = simulate(scenario, grid, method="ali3p", step=0.8 / count * (1 + 1e-9), fast=True)
+    parallel = _a02_errors(analysis, reduced)[1]
+    assert measured / FACTOR < parallel < FACTOR * measured
 
 
 def test_unknown_method_and_bad_step_are_refused() -> None:
