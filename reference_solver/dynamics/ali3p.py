@@ -30,11 +30,15 @@ from reference_solver.system import ConstraintSystem
 PENALTY = 1e8
 """The penalty of each constraint row relative to the inertia it acts on: alpha_i = PENALTY 4/h^2 /
 (C_q M^-1 C_q^T)_ii, so h^2/4 alpha_i C_q M^-1 C_q^T has unit-PENALTY diagonal and the augmented
-Lagrangian contracts by about 1/PENALTY per iteration along each row, whatever its units."""
+Lagrangian contracts by 1/(1 + PENALTY s^2) per iteration along a direction whose singular value in
+those units is s, whatever the rows' units. Large, since s is small along a long chain (A02's
+smallest is 0.014 at 30 degrees from its singular position) and vanishes at a singular one; the
+price is lambda* carrying alpha times C's round-off, so the output multipliers are recomputed at
+each state (Ali3p.multipliers)."""
 NEWTON_STEPS = 40
 TOLERANCE = 1e-13
 """Newton stops when the scaled constraint residual is below TOLERANCE and so is the scaled update,
-or the update, below STALLED, no longer halves: round-off, or a step ending next to a singular
+or the update, below STALLED, shrinks by less than SLOW: round-off, or a step ending next to a singular
 configuration, where the multipliers converge slowly along the freedoms C_q is about to lose (the
 constraints hold them only to second order there)."""
 STALLED = 1e-9
