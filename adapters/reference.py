@@ -4,7 +4,9 @@ Kinematic scenarios (mode newton): its one knob is the Newton-Raphson tolerance 
 |C|, relative to the scenario's characteristic length); its sweep traces the native solver's own
 work-precision curve. `inverse_dynamics=1` adds the drivers' forces, the joints' reactions and the
 energies as extra columns. Dynamic scenarios (modes DOP853 and Radau, coordinate partitioning):
-the knob is the integrator's relative tolerance `rtol`.
+the knob is the integrator's relative tolerance `rtol`; mode ali3p, the second native method (index-3
+augmented Lagrangian with projections, which passes singular configurations), takes the step `dt`
+instead, so that each native method can check the other.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ from adapters.base import Adapter, EngineFailure, Option, Setting, Singular
 from adapters.modes import ENGINE, Mode
 from reference_solver import SingularConfigurationError, SolverError, analyse
 from reference_solver.dynamics import inverse_dynamics, simulate
-from reference_solver.dynamics.forward import METHODS
+from reference_solver.dynamics.forward import ALI3P, ALI3P_STEP, METHODS
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -33,6 +35,7 @@ class ReferenceModel:
     tolerance: float
     mode: str = "newton"
     inverse: bool = False
+    step: float | None = None
 
 
 class ReferenceAdapter(Adapter):
@@ -52,11 +55,18 @@ class ReferenceAdapter(Adapter):
             Mode(method, ENGINE, f"the native forward dynamics (index-1 ODE) integrated by SciPy's {method}")
             for method in METHODS
         ),
+        Mode(
+            ALI3P,
+            ENGINE,
+            "the native forward dynamics by the index-3 augmented Lagrangian with projections "
+            "(trapezoidal rule at a fixed step)",
+        ),
     )
-    modes = ("newton", *METHODS)
+    modes = ("newton", *METHODS, ALI3P)
     options = (
         Option("tolerance", float, 0.0, 0.1, low_open=True, help="Newton tolerance, scaled units"),
         Option("rtol", float, 0.0, 0.1, low_open=True, help="integrator relative tolerance (dynamics)"),
+        Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="ALI3-P's largest step (dynamics)"),
         Option("inverse_dynamics", int, 0, 1, help="1: add driver forces, reactions and energies"),
     )
     dynamics = True
@@ -79,16 +89,22 @@ class ReferenceAdapter(Adapter):
 
     def build(self, scenario: Scenario, setting: Setting) -> ReferenceModel:
         dynamic = scenario.analysis == "dynamic"
-        if (setting.mode in METHODS) != dynamic:
-            known = ", ".join(METHODS) if dynamic else "newton"
+        if (setting.mode in (*METHODS, ALI3P)) != dynamic:
+            known = ", ".join((*METHODS, ALI3P)) if dynamic else "newton"
             raise EngineFailure(f"mode '{setting.mode}' does not apply to {scenario.name} (known: {known})")
         tolerance = float(setting.get("rtol" if dynamic else "tolerance", 1e-12))
-        return ReferenceModel(scenario, tolerance, setting.mode, bool(setting.get("inverse_dynamics", 0)))
+        step = float(setting.get("dt", ALI3P_STEP)) if setting.mode == ALI3P else None
+        return ReferenceModel(
+            scenario, tolerance, setting.mode, bool(setting.get("inverse_dynamics", 0)), step
+        )
 
     def simulate(self, model: ReferenceModel, times: np.ndarray) -> Trajectory:
         try:
             if model.scenario.analysis == "dynamic":
-                dynamic = simulate(model.scenario, times, model.tolerance, model.mode)
+                fast = (
+                    model.mode == ALI3P
+                )  # the compiled constraints: ALI3-P evaluates them at every iteration
+                dynamic = simulate(model.scenario, times, model.tolerance, model.mode, fast, model.step)
                 self.count_steps(dynamic.evaluations)
                 return dynamic.trajectory()
             analysis = analyse(model.scenario, times, model.tolerance)

@@ -15,6 +15,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from reference_solver.compiled_system import constraint_system
+from reference_solver.dynamics.ali3p_grid import integrate
 from reference_solver.dynamics.augmented import accelerations, constraint_outputs
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
@@ -30,6 +31,11 @@ REPARTITION = 0.1
 """Repartition when the dependent block's reciprocal condition number falls below this fraction of
 its value when the partition was chosen."""
 METHODS = ("DOP853", "Radau")
+ALI3P = "ali3p"
+"""The second native method: index-3 augmented Lagrangian with projections (ali3p.py), at a fixed
+step; it passes singular configurations, where the partitioned method cannot."""
+ALI3P_STEP = 1e-4
+"""ALI3-P's default largest step (s)."""
 
 
 @dataclass(frozen=True)
@@ -113,13 +119,19 @@ def simulate(
     rtol: float = 1e-12,
     method: str = "DOP853",
     fast: bool = False,
+    step: float | None = None,
 ) -> DynamicAnalysis:
-    """Forward dynamics of `scenario` on `times` (default: the scenario's grid, starting at t0);
-    `fast` evaluates the constraints on the compiled path (compiled_system), which callers ask for
-    where no singular passage lets round-off pick the motion (n_four_bar at rtol 1e-12 loses its
-    energy on it, 0.53, and holds it to 9e-9 on the plain path)."""
-    if method not in METHODS:
-        raise SolverError(f"unknown integrator '{method}' (known: {', '.join(METHODS)})")
+    """Forward dynamics of `scenario` on `times` (default: the scenario's grid, starting at t0), by
+    coordinate partitioning integrated by `method` (one of METHODS) at `rtol`, or by ALI3-P
+    (`method="ali3p"`, ali3p.py) at the fixed `step` (default ALI3P_STEP, cut to divide each output
+    interval; `rtol` is not used there). `fast` evaluates the constraints on the compiled path
+    (compiled_system), which callers of the partitioned method ask for where no singular passage
+    lets round-off pick the motion (n_four_bar at rtol 1e-12 loses its energy on it, 0.53, and holds
+    it to 9e-9 on the plain path); ALI3-P passes it on either."""
+    if method not in (*METHODS, ALI3P):
+        raise SolverError(f"unknown integrator '{method}' (known: {', '.join((*METHODS, ALI3P))})")
+    if step is not None and not (np.isfinite(step) and step > 0):
+        raise SolverError(f"ALI3-P's step must be a positive number of seconds, not {step}")
     grid = np.asarray(scenario.times() if times is None else times, dtype=float)
     system = constraint_system(scenario, fast)
     mass = mass_diagonal(scenario, system.layout)
@@ -133,6 +145,9 @@ def simulate(
     span = float(grid[-1] - grid[0]) or 1.0
     energy_scale = max(abs(kinetic0) + abs(state.loads.potential), float(mass.sum()) * length**2 / span**2)
 
+    if method == ALI3P:
+        stepped, ali3p_works, steps = integrate(system, mass, loads, state, grid, step or ALI3P_STEP)
+        return _result(system, mass, grid, stepped, ali3p_works, energy0, steps, 0)
     states: list[State] = [state]
     works: list[np.ndarray] = [np.zeros(3)]
     evaluations, partitions, work = 0, 0, np.zeros(3)
