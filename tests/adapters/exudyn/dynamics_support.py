@@ -14,6 +14,7 @@ from reference_solver.dynamics import simulate
 from reports.harness.level_error import level_errors
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
+from tests.support.truths import compiled
 
 ADAPTER = ExudynAdapter()
 
@@ -26,7 +27,7 @@ def scenario(name: str, **overrides: float) -> Scenario:
 @cache
 def truth(s: Scenario, rtol: float = 1e-12) -> Trajectory:
     """The native truth on the scenario's grid (cached: the tests only read it)."""
-    return simulate(s, s.times(), rtol=rtol).trajectory()
+    return simulate(s, s.times(), rtol=rtol, fast=compiled(s)).trajectory()
 
 
 def run(s: Scenario, setting: Setting | None = None) -> Trajectory:

@@ -21,6 +21,7 @@ from adapters.pinocchio import PinocchioAdapter
 from reference_solver.dynamics import simulate
 from scenarios.trajectory import Trajectory
 from tests.support.bounds import held
+from tests.support.truths import compiled
 
 pytestmark = pytest.mark.slow
 
@@ -39,7 +40,7 @@ over the whole scenario, measured 2026-11-25, held two-sided (tests.support.boun
 @functools.cache
 def truth(name: str) -> Trajectory:
     scenario = scenarios.load(name)
-    return simulate(scenario, scenario.times(), rtol=1e-13).trajectory()
+    return simulate(scenario, scenario.times(), rtol=1e-13, fast=compiled(scenario)).trajectory()
 
 
 def largest(found: Trajectory, expected: Trajectory, level: str) -> float:
