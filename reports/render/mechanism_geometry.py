@@ -177,6 +177,12 @@ def _gear_shapes(scenario: Scenario, at: Locator) -> list[Shape]:
                 centre = _gear_centre(scenario, at, gear, j.carrier)
                 kind = "ring" if ring else "gear"
                 shapes += _gear(gear, centre, radius, at.pose(gear)[2], kind, j.name)
+            c_i, c_j = (_gear_centre(scenario, at, g, j.carrier) for g in (j.gear_i, j.gear_j))
+            toward = (c_j[0] - c_i[0], c_j[1] - c_i[1]) if not j.internal else (c_i[0] - c_j[0], c_i[1] - c_j[1])
+            norm = math.hypot(*toward) or 1.0
+            pitch = (c_i[0] + j.radius_i * toward[0] / norm, c_i[1] + j.radius_i * toward[1] / norm)
+            title = f"gear mesh {j.name}: {j.gear_i} on {j.gear_j}, pitch point {point_text(pitch)}"
+            shapes.append(Shape("mesh", j.name, (pitch,), title=title, label=j.name))
         elif isinstance(j, RackPinion):
             pose = at.pose(j.centre.body)
             shapes += _gear(j.centre.body, at.point(j.centre), j.radius, pose[2], "gear", j.name)
@@ -184,6 +190,10 @@ def _gear_shapes(scenario: Scenario, at: Locator) -> list[Shape]:
             p = at.point(j.rack)
             half = 3.0 * max(j.radius, at.size)
             ends = ((p[0] - half * u[0], p[1] - half * u[1]), (p[0] + half * u[0], p[1] + half * u[1]))
+            c = at.point(j.centre)
+            pitch = (c[0] + j.radius * u[1], c[1] - j.radius * u[0])  # the pinion lies left of u
+            text = f"rack and pinion {j.name}: pitch point {point_text(pitch)}"
+            shapes.append(Shape("mesh", j.name, (pitch,), title=text, label=j.name))
             rack_pose = at.pose(j.rack.body)
             title = f"rack {j.rack.body}: {pose_text(rack_pose)}"
             shapes.append(Shape("rack", j.rack.body, ends, title=title, label=j.rack.body))
@@ -233,7 +243,7 @@ def _joint_shapes(scenario: Scenario, at: Locator) -> list[Shape]:
             shapes += [Shape("revolute", j.name, (e,), title=f"{j.name} end: {point_text(e)}") for e in ends]
         elif isinstance(j, Ground):
             centre = (j.pose[0], j.pose[1])
-            shapes.append(Shape("ground_pivot", j.name, (centre,), title=f"{j.body} fixed by {j.name}"))
+            shapes.append(Shape("ground_pivot", j.name, (centre,), title=f"{j.body} fixed by {j.name}", label=j.name))
     return shapes
 
 

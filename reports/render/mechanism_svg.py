@@ -46,6 +46,7 @@ text{font-family:sans-serif;fill:#222}
 .knife{stroke:#222;stroke-width:1}
 .roller{stroke-width:2.5;fill:#fff}
 .contact{fill:#d62728;stroke:none}
+.mesh{fill:#fff;stroke:#d62728;stroke-width:1.5}
 .revolute{fill:#fff;stroke:#222;stroke-width:2}
 .support{fill:#fff;stroke:#222;stroke-width:1.5}
 .guide{stroke:#444;stroke-width:1.5;stroke-dasharray:6 4;fill:none}
@@ -170,8 +171,8 @@ def element(shape: Shape, view: View, colour: str) -> str:
         body = _line(kind, *pts, f' stroke="{colour}"') + _line("teeth", *pts, f' stroke="{colour}"')
     elif kind == "revolute":
         body = f'<circle class="revolute" data-joint={quoteattr(shape.name)} cx="{num(pts[0][0])}" cy="{num(pts[0][1])}" r="{PIN}"/>'
-    elif kind == "contact":
-        body = f'<circle class="contact" cx="{num(pts[0][0])}" cy="{num(pts[0][1])}" r="3.5"/>'
+    elif kind in ("contact", "mesh"):
+        body = f'<circle class="{kind}" cx="{num(pts[0][0])}" cy="{num(pts[0][1])}" r="3.5"/>'
     elif kind == "ground_pivot":
         x, y = pts[0]
         body = _polygon("support", [(x, y), (x - 11, y + 17), (x + 11, y + 17)])
@@ -227,7 +228,7 @@ def anchor(shape: Shape, view: View) -> tuple[tuple[float, float], float]:
     if shape.kind in CIRCLES:
         r = max(shape.radius * view.scale, SMALLEST)
         return (pts[0][0] + 0.7 * r, pts[0][1] - 0.7 * r), 4.0
-    if shape.kind in ("revolute", "contact"):
+    if shape.kind in ("revolute", "contact", "mesh", "ground_pivot"):
         return pts[0], PIN + 2
     if shape.kind in ("driver_arc", "torque"):
         return pts[0], 26.0
