@@ -21,7 +21,9 @@ def _frames(text: str) -> int:
     try:
         value = int(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"must be a whole number in [1, {MAX_FRAMES}], got '{text}'") from None
+        raise argparse.ArgumentTypeError(
+            f"must be a whole number in [1, {MAX_FRAMES}], got '{text}'"
+        ) from None
     if not 1 <= value <= MAX_FRAMES:
         raise argparse.ArgumentTypeError(f"must be in [1, {MAX_FRAMES}], got {value}")
     return value

@@ -85,7 +85,9 @@ def solve(scenario: Scenario, times: np.ndarray) -> Trajectory:
     engine = adapters.load("reference")
     result = engine.run(common_start(scenario), native_setting(scenario), times)
     if result.status != "ok" or result.trajectory is None:
-        raise DrawingError(f"the native solver could not pose {scenario.name}: {result.status}: {result.message}")
+        raise DrawingError(
+            f"the native solver could not pose {scenario.name}: {result.status}: {result.message}"
+        )
     return result.trajectory
 
 
@@ -95,7 +97,9 @@ def instants(scenario: Scenario, trajectory: Trajectory, indices: list[int]) -> 
         raise DrawingError(f"the trajectory of {scenario.name} has no positions")
     found = []
     for k in indices:
-        poses = {b: tuple(float(v) for v in trajectory.position[k, i]) for i, b in enumerate(trajectory.bodies)}
+        poses = {
+            b: tuple(float(v) for v in trajectory.position[k, i]) for i, b in enumerate(trajectory.bodies)
+        }
         extras = {name: float(values[k]) for name, values in trajectory.extras.items()}
         found.append(instant(scenario, float(trajectory.times[k]), poses, extras))  # type: ignore[arg-type]
     return found

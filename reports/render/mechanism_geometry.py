@@ -16,17 +16,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from reports.render.mechanism_drivers import driver_shapes, spring_shapes
 from reports.render.mechanism_parts import (
     BLOCK_SIZE,
     Locator,
     Shape,
     body_points,
     cam_shapes,
-    driver_shapes,
     follower_body,
     point_text,
     pose_text,
-    spring_shapes,
 )
 from scenarios import GROUND, Scenario
 from scenarios.bodies import Pose, Vec2
@@ -134,7 +133,9 @@ def _body_shapes(scenario: Scenario, at: Locator) -> list[Shape]:
         if body.name in sliding and body.name not in followers:
             shapes.append(_block(body.name, pose, sliding[body.name], at, title))
             if len(outline) >= 2 and _span(outline) > BLOCK_SIZE * at.size:
-                shapes.append(Shape("bar" if len(outline) == 2 else "plate", body.name, tuple(outline), title=title))
+                shapes.append(
+                    Shape("bar" if len(outline) == 2 else "plate", body.name, tuple(outline), title=title)
+                )
         elif len(outline) >= 2:
             kind = "bar" if len(outline) == 2 else "plate"
             shapes.append(Shape(kind, body.name, tuple(outline), title=title, label=body.name))
@@ -142,7 +143,9 @@ def _body_shapes(scenario: Scenario, at: Locator) -> list[Shape]:
             centre = (pose[0], pose[1])
             radius = 0.25 * BLOCK_SIZE * at.size
             shapes.append(Shape("disc", body.name, (centre,), radius=radius, title=title, label=body.name))
-            shapes.append(Shape("spoke", body.name, (centre, at.local(body.name, (radius, 0.0))), title=title))
+            shapes.append(
+                Shape("spoke", body.name, (centre, at.local(body.name, (radius, 0.0))), title=title)
+            )
     return shapes
 
 
@@ -159,7 +162,8 @@ def _block(name: str, pose: Pose, joint: Prismatic, at: Locator, title: str) -> 
     corners = tuple(
         (pose[0] + dx, pose[1] + dy)
         for dx, dy in (
-            rotate(angle, (sx * half_long, sy * half_short)) for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))
+            rotate(angle, (sx * half_long, sy * half_short))
+            for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))
         )
     )
     return Shape("block", name, corners, title=title, label=name)
@@ -178,7 +182,9 @@ def _gear_shapes(scenario: Scenario, at: Locator) -> list[Shape]:
                 kind = "ring" if ring else "gear"
                 shapes += _gear(gear, centre, radius, at.pose(gear)[2], kind, j.name)
             c_i, c_j = (_gear_centre(scenario, at, g, j.carrier) for g in (j.gear_i, j.gear_j))
-            toward = (c_j[0] - c_i[0], c_j[1] - c_i[1]) if not j.internal else (c_i[0] - c_j[0], c_i[1] - c_j[1])
+            toward = (
+                (c_j[0] - c_i[0], c_j[1] - c_i[1]) if not j.internal else (c_i[0] - c_j[0], c_i[1] - c_j[1])
+            )
             norm = math.hypot(*toward) or 1.0
             pitch = (c_i[0] + j.radius_i * toward[0] / norm, c_i[1] + j.radius_i * toward[1] / norm)
             title = f"gear mesh {j.name}: {j.gear_i} on {j.gear_j}, pitch point {point_text(pitch)}"
@@ -214,7 +220,10 @@ def _gear_centre(scenario: Scenario, at: Locator, gear: str, carrier: str) -> Ve
 
 def _gear(name: str, centre: Vec2, radius: float, angle: float, kind: str, mesh: str) -> list[Shape]:
     label = f"{name} (fixed gear)" if name == GROUND else name
-    title = f"gear {label} ({mesh}): pitch radius {radius:.6g} m, centre {point_text(centre)}, θ = {angle:.6g} rad"
+    title = (
+        f"gear {label} ({mesh}): pitch radius {radius:.6g} m, centre {point_text(centre)}, "
+        f"θ = {angle:.6g} rad"
+    )
     tip = (centre[0] + radius * math.cos(angle), centre[1] + radius * math.sin(angle))
     return [
         Shape(kind, name, (centre,), radius=radius, title=title, label=label),
@@ -243,7 +252,9 @@ def _joint_shapes(scenario: Scenario, at: Locator) -> list[Shape]:
             shapes += [Shape("revolute", j.name, (e,), title=f"{j.name} end: {point_text(e)}") for e in ends]
         elif isinstance(j, Ground):
             centre = (j.pose[0], j.pose[1])
-            shapes.append(Shape("ground_pivot", j.name, (centre,), title=f"{j.body} fixed by {j.name}", label=j.name))
+            shapes.append(
+                Shape("ground_pivot", j.name, (centre,), title=f"{j.body} fixed by {j.name}", label=j.name)
+            )
     return shapes
 
 
@@ -258,8 +269,11 @@ def _guide(j: Prismatic, at: Locator) -> Shape:
     title = f"prismatic {j.name}: guide through {point_text(base)} along ({u[0]:.4g}, {u[1]:.4g})"
     at_slider = at.point(j.p_j if j.p_i.body == GROUND else j.p_i)
     if grounded:  # the line through base along u, labelled where the slider is
-        ends = (base, (base[0] + u[0], base[1] + u[1]), at_slider)
-        return Shape("ground_guide", j.name, ends, title=title, label=j.name)
+        line = (base, (base[0] + u[0], base[1] + u[1]), at_slider)
+        return Shape("ground_guide", j.name, line, title=title, label=j.name)
     half = 1.5 * BLOCK_SIZE * at.size
-    ends = ((at_slider[0] - half * u[0], at_slider[1] - half * u[1]), (at_slider[0] + half * u[0], at_slider[1] + half * u[1]))
+    ends = (
+        (at_slider[0] - half * u[0], at_slider[1] - half * u[1]),
+        (at_slider[0] + half * u[0], at_slider[1] + half * u[1]),
+    )
     return Shape("guide", j.name, ends, title=title, label=j.name)

@@ -1,6 +1,6 @@
-"""The parts of a mechanism drawing that are not plain links and pins: the shape record itself,
-the points a body carries, cams with their followers, drivers, springs and applied loads (world
-coordinates, metres; reports.render.mechanism_geometry assembles them)."""
+"""The parts of a mechanism drawing every other part uses: the shape record, the locator of body
+points at one instant, the points a body carries; and cams with their followers (world coordinates,
+metres; reports.render.mechanism_geometry assembles the drawing)."""
 
 from __future__ import annotations
 
@@ -15,16 +15,13 @@ from scenarios.bodies import Point, Pose, Vec2
 from scenarios.cam_profiles import LobedProfile, Profile, SplineProfile
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
 from scenarios.drivers import (
-    AbsoluteDriver,
     PointPathDriver,
     RelativeDisplacementDriver,
-    RelativeRotationDriver,
 )
-from scenarios.forces import AppliedForce, AppliedTorque, SpringDamper
+from scenarios.forces import AppliedForce, SpringDamper
 from scenarios.gears import RackPinion
 from scenarios.geometry import rotate, world_point
 from scenarios.joints import Prismatic, Revolute, RevoluteRevolute
-from scenarios.motions import ConstantSpeed, Harmonic, Motion
 
 BLOCK_SIZE = 0.25
 """A slider's block is this many characteristic lengths long (and 0.6 of that wide)."""
@@ -76,12 +73,12 @@ def point_text(p: Vec2) -> str:
     return f"x = {p[0]:.6g} m, y = {p[1]:.6g} m"
 
 
-def _unit(v: Vec2) -> Vec2:
+def unit(v: Vec2) -> Vec2:
     norm = math.hypot(*v)
     return (1.0, 0.0) if norm == 0.0 else (v[0] / norm, v[1] / norm)
 
 
-def _along(p: Vec2, u: Vec2, length: float) -> Vec2:
+def along(p: Vec2, u: Vec2, length: float) -> Vec2:
     return (p[0] + length * u[0], p[1] + length * u[1])
 
 
@@ -144,27 +141,35 @@ def cam_shapes(contact: CamContact, at: Locator, phi: float | None) -> list[Shap
     """The cam's profile, its follower (stem with knife edge, roller or flat face) and the contact
     point at the contact parameter `phi` (none when not known)."""
     profile = contact.profile
-    local = [(r * math.cos(a), r * math.sin(a)) for a in _samples(profile) for r in [profile.radii(float(a))[0]]]
+    local = [
+        (r * math.cos(a), r * math.sin(a)) for a in _samples(profile) for r in [profile.radii(float(a))[0]]
+    ]
     outline = tuple(at.local(contact.cam, p) for p in local)
     reach = max(math.hypot(*p) for p in local)
     cam_pose = at.pose(contact.cam)
     centre = (cam_pose[0], cam_pose[1])
-    shapes = [Shape("cam", contact.cam, outline, title=f"cam {contact.cam}: {pose_text(cam_pose)}", label=contact.cam)]
+    shapes = [
+        Shape(
+            "cam", contact.cam, outline, title=f"cam {contact.cam}: {pose_text(cam_pose)}", label=contact.cam
+        )
+    ]
     follower = follower_body(contact)
     feature = at.point(_feature(contact))
     title = f"follower {follower}: {pose_text(at.pose(follower))}"
-    away = _unit((feature[0] - centre[0], feature[1] - centre[1]))
-    guides = [j for j in at.scenario.joints if isinstance(j, Prismatic) and follower in (j.p_i.body, j.p_j.body)]
+    away = unit((feature[0] - centre[0], feature[1] - centre[1]))
+    guides = [
+        j for j in at.scenario.joints if isinstance(j, Prismatic) and follower in (j.p_i.body, j.p_j.body)
+    ]
     for j in guides:  # a translating follower's stem lies along its guide
-        u = _unit(at.direction(j.p_i.body, j.axis))
+        u = unit(at.direction(j.p_i.body, j.axis))
         sense = 1.0 if u[0] * away[0] + u[1] * away[1] >= 0 else -1.0
         away = (sense * u[0], sense * u[1])
     if isinstance(contact, FlatFaceCam):
-        n = _unit(at.direction(follower, contact.normal))
+        n = unit(at.direction(follower, contact.normal))
         tangent = (-n[1], n[0])
         foot = (centre[0] - feature[0]) * tangent[0] + (centre[1] - feature[1]) * tangent[1]
-        middle = _along(feature, tangent, foot)
-        ends = (_along(middle, tangent, -1.1 * reach), _along(middle, tangent, 1.1 * reach))
+        middle = along(feature, tangent, foot)
+        ends = (along(middle, tangent, -1.1 * reach), along(middle, tangent, 1.1 * reach))
         shapes.append(Shape("face", follower, ends, title=title))
         away = (-n[0], -n[1])
         start = feature
@@ -174,13 +179,13 @@ def cam_shapes(contact: CamContact, at: Locator, phi: float | None) -> list[Shap
     else:
         w = 0.12 * reach
         side = (-away[1], away[0])
-        base = _along(feature, away, 2.0 * w)
-        knife = (feature, _along(base, side, w), _along(base, side, -w))
+        base = along(feature, away, 2.0 * w)
+        knife = (feature, along(base, side, w), along(base, side, -w))
         shapes.append(Shape("knife", follower, knife, title=title))
         start = base
-    shapes.append(Shape("stem", follower, (start, _along(start, away, reach)), title=title, label=follower))
+    shapes.append(Shape("stem", follower, (start, along(start, away, reach)), title=title, label=follower))
     for j in guides:  # its guide: a sleeve about the stem's far half
-        sleeve = (_along(start, away, 0.55 * reach), _along(start, away, 0.95 * reach))
+        sleeve = (along(start, away, 0.55 * reach), along(start, away, 0.95 * reach))
         text = f"prismatic {j.name}: the follower's guide, along ({away[0]:.4g}, {away[1]:.4g})"
         kind = "sleeve" if GROUND in (j.p_i.body, j.p_j.body) else "guide"
         shapes.append(Shape(kind, j.name, sleeve, title=text, label=j.name))
@@ -189,79 +194,4 @@ def cam_shapes(contact: CamContact, at: Locator, phi: float | None) -> list[Shap
         touch = at.local(contact.cam, (d * math.cos(phi), d * math.sin(phi)))
         text = f"cam contact {contact.name}: φ = {phi:.6g} rad, {point_text(touch)}"
         shapes.append(Shape("contact", contact.name, (touch,), title=text, label=contact.name))
-    return shapes
-
-
-def _sense(motion: Motion, t: float) -> float:
-    """+1 or -1 for a motion that keeps one sense, 0 (both) for one that goes back and forth."""
-    if isinstance(motion, ConstantSpeed):
-        return math.copysign(1.0, motion.rate) if motion.rate else 0.0
-    if isinstance(motion, Harmonic):
-        return 0.0
-    rate = motion.df(t)
-    return 0.0 if rate == 0.0 else math.copysign(1.0, rate)
-
-
-def _pivot(at: Locator, body_i: str, body_j: str) -> Vec2:
-    """Where bodies i and j are pinned together; body i's frame origin when they are not."""
-    for j in at.scenario.joints:
-        if isinstance(j, Revolute) and {j.p_i.body, j.p_j.body} == {body_i, body_j}:
-            return at.point(j.p_i)
-    pose = at.pose(body_i)
-    return (pose[0], pose[1])
-
-
-def driver_shapes(scenario: Scenario, at: Locator) -> list[Shape]:
-    """An arc on a driven angle, an arrow on a driven position, a ring on a driven point."""
-    shapes: list[Shape] = []
-    for d in scenario.drivers:
-        if isinstance(d, AbsoluteDriver):
-            value = d.motion.f(at.t)
-            title = f"driver {d.name}: {d.body}.{d.coordinate} = {value:.6g} at t = {at.t:.6g} s"
-            if d.coordinate == "theta":
-                centre = _pivot(at, d.body, GROUND)
-                shapes.append(Shape("driver_arc", d.name, (centre,), value=_sense(d.motion, at.t), title=title, label=d.name))
-            else:
-                pose = at.pose(d.body)
-                u = (1.0, 0.0) if d.coordinate == "x" else (0.0, 1.0)
-                ends = ((pose[0], pose[1]), _along((pose[0], pose[1]), u, 0.5 * at.size))
-                shapes.append(Shape("driver_line", d.name, ends, value=_sense(d.motion, at.t), title=title, label=d.name))
-        elif isinstance(d, RelativeRotationDriver):
-            title = f"driver {d.name}: θ({d.body_i}) - θ({d.body_j}) = {d.motion.f(at.t):.6g} rad"
-            centre = _pivot(at, d.body_i, d.body_j)
-            shapes.append(Shape("driver_arc", d.name, (centre,), value=_sense(d.motion, at.t), title=title, label=d.name))
-        elif isinstance(d, PointPathDriver):
-            p = at.point(d.point)
-            shapes.append(Shape("driver_point", d.name, (p,), title=f"driver {d.name}: path point at {point_text(p)}", label=d.name))
-        else:
-            ends = (at.point(d.p_j), at.point(d.p_i))
-            shapes.append(Shape("driver_line", d.name, ends, value=0.0, title=f"driver {d.name}: relative displacement", label=d.name))
-    return shapes
-
-
-def spring_shapes(scenario: Scenario, at: Locator) -> list[Shape]:
-    """Spring-dampers as zigzags between their points, applied forces as arrows, torques as arcs."""
-    shapes: list[Shape] = []
-    for f in scenario.forces:
-        if isinstance(f, SpringDamper):
-            ends = (at.point(f.p_i), at.point(f.p_j))
-            length = math.dist(*ends)
-            title = f"spring-damper {f.name}: length {length:.6g} m, k = {f.stiffness:.6g} N/m"
-            shapes.append(Shape("spring", f.name, ends, title=title, label=f.name))
-            for p in (f.p_i, f.p_j):
-                if p.body == GROUND:
-                    shapes.append(Shape("anchor", f.name, (at.point(p),), title=f"{f.name} anchored to the ground"))
-        elif isinstance(f, AppliedForce):
-            p = at.point(f.point)
-            force = (f.fx.f(at.t), f.fy.f(at.t))
-            if math.hypot(*force) > 0:
-                title = f"force {f.name}: ({force[0]:.6g}, {force[1]:.6g}) N at {point_text(p)}"
-                tip = _along(p, _unit(force), 0.4 * at.size)
-                shapes.append(Shape("force", f.name, (p, tip), value=1.0, title=title, label=f.name))
-        elif isinstance(f, AppliedTorque):
-            pose = at.pose(f.body)
-            torque = f.torque.f(at.t)
-            title = f"torque {f.name} on {f.body}: {torque:.6g} N m"
-            sense = 0.0 if torque == 0 else math.copysign(1.0, torque)
-            shapes.append(Shape("torque", f.name, ((pose[0], pose[1]),), value=sense, title=title, label=f.name))
     return shapes

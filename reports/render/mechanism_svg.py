@@ -110,13 +110,19 @@ def _colour(name: str, bodies: Sequence[str]) -> str:
 
 
 def _line(kind: str, a: tuple[float, float], b: tuple[float, float], extra: str = "") -> str:
-    return f'<line class="{kind}" x1="{num(a[0])}" y1="{num(a[1])}" x2="{num(b[0])}" y2="{num(b[1])}"{extra}/>'
+    return (
+        f'<line class="{kind}" x1="{num(a[0])}" y1="{num(a[1])}" x2="{num(b[0])}" y2="{num(b[1])}"{extra}/>'
+    )
 
 
 def _polygon(kind: str, points: Sequence[tuple[float, float]], extra: str = "", closed: bool = True) -> str:
     tag = "polygon" if closed else "polyline"
     text = " ".join(f"{num(x)},{num(y)}" for x, y in points)
     return f'<{tag} class="{kind}" points="{text}"{extra}/>'
+
+
+def _circle(kind: str, c: tuple[float, float], r: float, extra: str = "") -> str:
+    return f'<circle class="{kind}" cx="{num(c[0])}" cy="{num(c[1])}" r="{num(r)}"{extra}/>'
 
 
 def _arc(kind: str, c: tuple[float, float], sense: float, radius: float = 22.0) -> str:
@@ -161,18 +167,19 @@ def element(shape: Shape, view: View, colour: str) -> str:
     kind, title = shape.kind, f"<title>{escape(shape.title)}</title>" if shape.title else ""
     if kind in CIRCLES:
         r = max(shape.radius * view.scale, SMALLEST)
-        fill = "" if kind == "roller" else paint
-        body = f'<circle class="{kind}" cx="{num(pts[0][0])}" cy="{num(pts[0][1])}" r="{num(r)}"{fill or " stroke=" + quoteattr(colour)}/>'
+        body = _circle(kind, pts[0], r, f" stroke={quoteattr(colour)}" if kind == "roller" else paint)
     elif kind in ("bar", "stem", "face", "spoke"):
         body = _polygon(kind, pts, f' stroke="{colour}"', closed=False)
     elif kind in ("plate", "block", "cam", "knife"):
         body = _polygon(kind, pts, paint if kind != "knife" else ' fill="#444"')
     elif kind == "rack":
-        body = _line(kind, *pts, f' stroke="{colour}"') + _line("teeth", *pts, f' stroke="{colour}"')
+        body = _line(kind, pts[0], pts[1], f' stroke="{colour}"') + _line(
+            "teeth", pts[0], pts[1], f' stroke="{colour}"'
+        )
     elif kind == "revolute":
-        body = f'<circle class="revolute" data-joint={quoteattr(shape.name)} cx="{num(pts[0][0])}" cy="{num(pts[0][1])}" r="{PIN}"/>'
+        body = _circle("revolute", pts[0], PIN, f" data-joint={quoteattr(shape.name)}")
     elif kind in ("contact", "mesh"):
-        body = f'<circle class="{kind}" cx="{num(pts[0][0])}" cy="{num(pts[0][1])}" r="3.5"/>'
+        body = _circle(kind, pts[0], 3.5)
     elif kind == "ground_pivot":
         x, y = pts[0]
         body = _polygon("support", [(x, y), (x - 11, y + 17), (x + 11, y + 17)])
@@ -190,10 +197,10 @@ def element(shape: Shape, view: View, colour: str) -> str:
         for side in (9.0, -9.0):
             near = [(p[0] + side * n[0], p[1] + side * n[1]) for p in (a, b)]
             far = [(p[0] + 1.8 * side * n[0], p[1] + 1.8 * side * n[1]) for p in (a, b)]
-            body += _polygon("hatch", [near[0], near[1], far[1], far[0]]) + _line("ground", *near)
+            body += _polygon("hatch", [near[0], near[1], far[1], far[0]]) + _line("ground", near[0], near[1])
     elif kind in ("ground_guide", "guide"):
         if kind == "guide":
-            body = _line("guide", *pts)
+            body = _line("guide", pts[0], pts[1])
         else:
             u = (pts[1][0] - pts[0][0], pts[1][1] - pts[0][1])  # pts[2]: the slider, for the label
             a, b = _clip(view, pts[0], u)
@@ -214,7 +221,7 @@ def element(shape: Shape, view: View, colour: str) -> str:
         heads = ' marker-end="url(#arrow)"' + ("" if shape.value else ' marker-start="url(#arrow)"')
         body = _line("driver" if kind == "driver_line" else "load", a, b, heads)
     elif kind == "driver_point":
-        body = f'<circle class="driver" cx="{num(pts[0][0])}" cy="{num(pts[0][1])}" r="10" stroke-dasharray="4 3"/>'
+        body = _circle("driver", pts[0], 10.0, ' stroke-dasharray="4 3"')
     elif kind == "spring":
         body = _polygon("spring", _zigzag(*pts), closed=False)
     else:

@@ -77,7 +77,10 @@ def _check_frame(scenario: Scenario, root: ET.Element, frame: ET.Element, row: p
     scale = float(root.get("data-scale", "nan"))
     ox, oy = float(root.get("data-origin-x", "nan")), float(root.get("data-origin-y", "nan"))
     drawn = {
-        c.get("data-joint"): ((float(c.get("cx", "nan")) - ox) / scale, (oy - float(c.get("cy", "nan"))) / scale)
+        c.get("data-joint"): (
+            (float(c.get("cx", "nan")) - ox) / scale,
+            (oy - float(c.get("cy", "nan"))) / scale,
+        )
         for c in frame.iter(f"{SVG}circle")
         if c.get("class") == "revolute"
     }
@@ -100,7 +103,9 @@ def _check_frame(scenario: Scenario, root: ET.Element, frame: ET.Element, row: p
 
 @pytest.mark.parametrize("name", _names())
 @pytest.mark.parametrize("where", ["start", "middle"])
-def test_every_scenario_draws_labelled_with_its_joints_where_the_solver_puts_them(name: str, where: str) -> None:
+def test_every_scenario_draws_labelled_with_its_joints_where_the_solver_puts_them(
+    name: str, where: str
+) -> None:
     scenario = _scenario(name)
     before = copy.deepcopy(scenario)
     t = 0.0 if where == "start" else scenario.t_end / 2
