@@ -118,11 +118,9 @@ def spring_shapes(scenario: Scenario, at: Locator) -> list[Shape]:
                 tip = along(where, unit(force), 0.4 * at.size)
                 shapes.append(Shape("force", f.name, (where, tip), value=1.0, title=title, label=f.name))
         elif isinstance(f, AppliedTorque):
-            pose = at.pose(f.body)
+            centre = _pivot(at, f.body, f.reaction)
             torque = f.torque.f(at.t)
             title = f"torque {f.name} on {f.body}: {torque:.6g} N m"
             sense = 0.0 if torque == 0 else math.copysign(1.0, torque)
-            shapes.append(
-                Shape("torque", f.name, ((pose[0], pose[1]),), value=sense, title=title, label=f.name)
-            )
+            shapes.append(Shape("torque", f.name, (centre,), value=sense, title=title, label=f.name))
     return shapes

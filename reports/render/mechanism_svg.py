@@ -14,6 +14,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from xml.sax.saxutils import escape, quoteattr
 
+import numpy as np
+
 from reports.render.mechanism_geometry import Instant, Shape
 from reports.render.mechanism_labels import FONT_SIZE, Box, place
 
@@ -24,6 +26,9 @@ TOP = 46.0
 BOTTOM = 40.0
 PIN = 5.0
 """A pin's radius in pixels (pins, pivots and arrows keep their size on the page at any scale)."""
+PIN_SPACING = 90.0
+"""Pins are drawn this many pixels apart at least, typically (the page grows, up to LARGEST pixels)."""
+LARGEST = 6000.0
 SMALLEST = 4.0
 """A circle is drawn at least this many pixels in radius, so that a small gear stays visible."""
 PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2")
@@ -100,9 +105,23 @@ def fit(instants: Sequence[Instant], size: float) -> View:
     x0, x1, y0, y1 = x0 - grow_x, x1 + grow_x, y0 - grow_y, y1 + grow_y
     inner_w, inner_h = WIDTH - 2 * MARGIN, MAX_HEIGHT - TOP - BOTTOM - 2 * MARGIN
     scale = min(inner_w / (x1 - x0), inner_h / (y1 - y0))
+    crowded = min(PIN_SPACING / _typical_pin_gap(instants[0]), (LARGEST - 2 * MARGIN) / max(x1 - x0, y1 - y0))
+    scale = max(scale, crowded)  # a long chain of small loops: a larger page, so labels fit
+    width = max(WIDTH, 2 * MARGIN + scale * (x1 - x0))
     height = TOP + BOTTOM + 2 * MARGIN + scale * (y1 - y0)
-    ox = MARGIN + (inner_w - scale * (x1 - x0)) / 2 - scale * x0
-    return View(scale, ox, TOP + MARGIN + scale * y1, WIDTH, height)
+    ox = MARGIN + (width - 2 * MARGIN - scale * (x1 - x0)) / 2 - scale * x0
+    return View(scale, ox, TOP + MARGIN + scale * y1, width, height)
+
+
+def _typical_pin_gap(instant: Instant) -> float:
+    """The median over the pins of the distance to the nearest other pin not at the same place
+    (inf for fewer than two places): small for a long chain of small loops."""
+    points = np.unique(np.array([s.points[0] for s in instant.shapes if s.kind == "revolute"]), axis=0)
+    if len(points) < 2:
+        return math.inf
+    gaps = np.linalg.norm(points[:, None, :] - points[None, :, :], axis=2)
+    gaps[gaps <= 1e-9 * float(np.max(gaps))] = math.inf
+    return float(np.median(np.min(gaps, axis=1)))
 
 
 def _colour(name: str, bodies: Sequence[str]) -> str:
