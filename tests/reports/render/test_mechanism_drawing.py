@@ -54,7 +54,8 @@ n_four_bar, is drawn at mid-horizon too)."""
 def _cases() -> list[object]:
     cases: list[object] = []
     for name in catalogue(include_dynamic=True) + LOBED + EXAMPLES:
-        cases.append(pytest.param(name, "start", id=f"{name}-start"))
+        marks = [pytest.mark.slow] if name in NOT_AT_MIDDLE else []  # its one step takes 15 s
+        cases.append(pytest.param(name, "start", marks=marks, id=f"{name}-start"))
         if name not in NOT_AT_MIDDLE:
             marks = [pytest.mark.slow] if name in SLOW else []
             cases.append(pytest.param(name, "middle", marks=marks, id=f"{name}-middle"))
