@@ -10,6 +10,7 @@ never changed.
 
 from __future__ import annotations
 
+import hashlib
 import math
 from xml.sax.saxutils import escape
 
@@ -19,7 +20,18 @@ import adapters
 from adapters.base import Setting
 from reports.harness.common_start import common_start
 from reports.render.mechanism_geometry import Instant, instant
-from reports.render.mechanism_svg import BOTTOM, DEFS, MARGIN, STYLE, View, fit, frame, num
+from reports.render.mechanism_svg import (
+    BOTTOM,
+    DEFS,
+    MARGIN,
+    SCOPE,
+    View,
+    fit,
+    frame,
+    num,
+    scoped_style,
+    unique_ids,
+)
 from scenarios import Scenario
 from scenarios.drivers import AbsoluteDriver, RelativeRotationDriver
 from scenarios.motions import ConstantSpeed, Harmonic
@@ -163,16 +175,18 @@ def svg_document(scenario: Scenario, found: list[Instant]) -> str:
     else:
         heading = f"{scenario.name}: one cycle ({cycle(scenario):.6g} s) in {len(found)} frames"
     description = escape(scenario.description) if scenario.description else ""
+    ids = "mbx-" + hashlib.sha1(f"{scenario.name} {heading} {found[0].t!r}".encode()).hexdigest()[:10]
     head = (
-        f'<svg xmlns="http://www.w3.org/2000/svg" width="{num(view.width)}" height="{num(view.height)}" '
+        f'<svg xmlns="http://www.w3.org/2000/svg" class="{SCOPE}" '
+        f'width="{num(view.width)}" height="{num(view.height)}" '
         f'viewBox="0 0 {num(view.width)} {num(view.height)}" data-scale="{view.scale!r}" '
         f'data-origin-x="{view.ox!r}" data-origin-y="{view.oy!r}">'
     )
-    return "\n".join(
+    text = "\n".join(
         [
             head,
             f"<title>{escape(heading)}</title>",
-            f"<style>{STYLE}</style>",
+            f"<style>{scoped_style(ids)}</style>",
             DEFS,
             '<rect width="100%" height="100%" fill="#fff"/>',
             f'<text class="title" x="{num(MARGIN / 2)}" y="22">{escape(heading)}</text>',
@@ -183,3 +197,4 @@ def svg_document(scenario: Scenario, found: list[Instant]) -> str:
             "",
         ]
     )
+    return unique_ids(text, ids)

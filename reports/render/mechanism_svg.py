@@ -62,6 +62,31 @@ text{font-family:sans-serif;fill:#222}
 .spring{stroke:#555;stroke-width:1.5;fill:none}
 .scale{stroke:#222;stroke-width:2;fill:none}
 """
+SCOPE = "mechanism-drawing"
+"""The root's class: every style rule is scoped under it, so that drawings inline in a page neither
+take nor give styles."""
+
+
+def scoped_style(ids: str) -> str:
+    """STYLE with each rule under the root's class, its pattern named with the drawing's `ids`."""
+    rules = []
+    for line in STYLE.strip().splitlines():
+        selectors, _, body = line.partition("{")
+        scoped = ",".join(f".{SCOPE} {sel}" for sel in selectors.split(","))
+        rules.append(scoped + "{" + body.replace("#hatch", f"#{ids}-hatch"))
+    return "\n".join(rules)
+
+
+def unique_ids(text: str, ids: str) -> str:
+    """The drawing's marker and pattern named with `ids`, so that several drawings can sit inline in
+    one page without their ids clashing."""
+    for name in ("hatch", "arrow"):
+        text = text.replace(f'id="{name}"', f'id="{ids}-{name}"').replace(
+            f"url(#{name})", f"url(#{ids}-{name})"
+        )
+    return text
+
+
 DEFS = """<defs>
 <pattern id="hatch" width="6" height="6" patternUnits="userSpaceOnUse" patternTransform="rotate(45)">
 <line x1="0" y1="0" x2="0" y2="6" stroke="#222" stroke-width="1.5"/></pattern>

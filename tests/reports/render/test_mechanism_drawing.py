@@ -13,6 +13,7 @@ from __future__ import annotations
 import copy
 import glob
 import math
+import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -185,3 +186,20 @@ def test_a_time_outside_the_horizon_is_refused(t: float, frames: int, message: s
 def test_a_frame_count_out_of_range_is_refused(frames: int) -> None:
     with pytest.raises(DrawingError, match="frames must be in"):
         draw_svg(load("four_bar"), 0.0, frames)
+
+
+def test_drawings_inline_in_one_page_share_no_ids_and_scope_their_styles() -> None:
+    """Each drawing names its marker and pattern apart, every reference finds its target in the
+    same drawing, and every style rule applies under the drawing's own root class only."""
+    texts = [draw_svg(load("four_bar"), t) for t in (0.0, 0.05)]
+    ids = []
+    for text in texts:
+        root = ET.fromstring(text)
+        defined = {e.get("id") for e in root.iter() if e.get("id")}
+        referenced = set(re.findall(r"url\(#([^)]+)\)", text))
+        assert referenced and referenced <= defined
+        ids.append(defined)
+        style = root.findtext(f"{SVG}style") or ""
+        rules = [line for line in style.strip().splitlines() if line]
+        assert rules and all(line.startswith(f".{root.get('class')} ") for line in rules)
+    assert ids[0].isdisjoint(ids[1])
