@@ -160,8 +160,10 @@ def _line(kind: str, a: tuple[float, float], b: tuple[float, float], extra: str 
 
 
 def _polygon(kind: str, points: Sequence[tuple[float, float]], extra: str = "", closed: bool = True) -> str:
+    """Outlines to 0.01 px (a cam's profile has hundreds of points in every frame); pins, whose
+    places are read back, keep num's precision."""
     tag = "polygon" if closed else "polyline"
-    text = " ".join(f"{num(x)},{num(y)}" for x, y in points)
+    text = " ".join(f"{x:.2f},{y:.2f}" for x, y in points)
     return f'<{tag} class="{kind}" points="{text}"{extra}/>'
 
 
