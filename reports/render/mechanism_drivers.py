@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import math
 
-from reports.render.mechanism_parts import Locator, Shape, along, point_text, unit
+from reports.render.mechanism_parts import BLOCK_SIZE, Locator, Shape, along, point_text, unit
 from scenarios import GROUND, Scenario
 from scenarios.bodies import Vec2
 from scenarios.drivers import AbsoluteDriver, PointPathDriver, RelativeRotationDriver
@@ -56,7 +56,11 @@ def driver_shapes(scenario: Scenario, at: Locator) -> list[Shape]:
             else:
                 pose = at.pose(d.body)
                 u = (1.0, 0.0) if d.coordinate == "x" else (0.0, 1.0)
-                ends = ((pose[0], pose[1]), along((pose[0], pose[1]), u, 0.5 * at.size))
+                origin = (pose[0], pose[1])  # the arrow starts clear of a slider's block
+                ends = (
+                    along(origin, u, BLOCK_SIZE * at.size),
+                    along(origin, u, (BLOCK_SIZE + 0.5) * at.size),
+                )
                 shapes.append(
                     Shape(
                         "driver_line", d.name, ends, value=_sense(d.motion, at.t), title=title, label=d.name
