@@ -18,6 +18,7 @@ import numpy as np
 
 import adapters
 import reports.cli.compare_command as compare_command
+import reports.cli.draw_command as draw_command
 import reports.cli.schema_command as schema_command
 import reports.cli.store_command as store_command
 import reports.cli.suite_commands as suite_commands
@@ -268,6 +269,7 @@ def parser() -> argparse.ArgumentParser:
 
     suite_commands.add_parsers(sub)
     compare_command.add_parser(sub)
+    draw_command.add_parser(sub)
     schema_command.add_parser(sub)
     store_command.add_parser(sub)
     for name, subparser in sub.choices.items():
@@ -314,6 +316,13 @@ GUIDE: dict[str, tuple[str, str]] = {
         "report shows it beside the engines.",
         "mbxval compare slider_crank my_tool.csv --label my_tool --out mbxval-report",
     ),
+    "draw": (
+        "Draw the mechanism as one self-contained SVG: bodies, joints, gears, cams and drivers, "
+        "labelled, posed by the native solver at time t; with --frames N, one cycle animated in a "
+        "browser. Hover a body or joint for its name and position.",
+        "mbxval draw examples/watt_six_bar.toml --t 0.3 --out six_bar.svg\n"
+        "  mbxval draw cam_roller --set profile=lobed --frames 48 --out cam.svg",
+    ),
     "schema": (
         "Print the JSON Schema of the scenario file format, so that editors complete and check "
         "scenario files (TOML editors such as Taplo read a `#:schema FILE` first line).",
@@ -338,6 +347,7 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "export": cmd_export,
     **suite_commands.COMMANDS,
     **compare_command.COMMANDS,
+    **draw_command.COMMANDS,
     **schema_command.COMMANDS,
     **store_command.COMMANDS,
 }
