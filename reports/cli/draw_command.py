@@ -1,5 +1,5 @@
 """`mbxval draw SCENARIO --out fig.svg`: the mechanism drawn at a time t, or one cycle animated
-(reports.render.mechanism_drawing), as one self-contained SVG.
+(reports.drawing.drawing), as one self-contained SVG.
 
 Everything is checked before anything is written: the output path, the scenario, t within [0,
 t_end], the frame count; the file is written whole or not at all (the atomic writer).
@@ -11,8 +11,8 @@ import argparse
 from collections.abc import Callable
 
 from reports.cli.usage import UsageError, pairs, scenario_argument
+from reports.drawing.drawing import MAX_FRAMES, DrawingError, draw_svg
 from reports.harness.atomic_write import atomic_output, output_target
-from reports.render.mechanism_drawing import MAX_FRAMES, DrawingError, draw_svg
 from scenarios import load
 
 

@@ -1,4 +1,4 @@
-"""A mechanism drawing as one self-contained SVG: the shapes of reports.render.mechanism_geometry
+"""A mechanism drawing as one self-contained SVG: the shapes of reports.drawing.geometry
 mapped to the page (equal axes, world y up), labelled, with a scale bar in metres and a title; with
 several instants, one frame each, played in a loop by SMIL (no script).
 
@@ -16,8 +16,8 @@ from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
-from reports.render.mechanism_geometry import Instant, Shape
-from reports.render.mechanism_labels import FONT_SIZE, Box, place
+from reports.drawing.geometry import Instant, Shape
+from reports.drawing.labels import FONT_SIZE, Box, place
 
 WIDTH = 900.0
 MAX_HEIGHT = 700.0

@@ -18,9 +18,8 @@ import numpy as np
 
 import adapters
 from adapters.base import Setting
-from reports.harness.common_start import common_start
-from reports.render.mechanism_geometry import Instant, instant
-from reports.render.mechanism_svg import (
+from reports.drawing.geometry import Instant, instant
+from reports.drawing.svg import (
     BOTTOM,
     DEFS,
     MARGIN,
@@ -32,6 +31,7 @@ from reports.render.mechanism_svg import (
     scoped_style,
     unique_ids,
 )
+from reports.harness.common_start import common_start
 from scenarios import Scenario
 from scenarios.drivers import AbsoluteDriver, RelativeRotationDriver
 from scenarios.motions import ConstantSpeed, Harmonic

@@ -1,6 +1,6 @@
 """The parts of a mechanism drawing every other part uses: the shape record, the locator of body
 points at one instant, the points a body carries; and cams with their followers (world coordinates,
-metres; reports.render.mechanism_geometry assembles the drawing)."""
+metres; reports.drawing.geometry assembles the drawing)."""
 
 from __future__ import annotations
 
@@ -29,7 +29,7 @@ BLOCK_SIZE = 0.25
 
 @dataclass(frozen=True)
 class Shape:
-    """One drawn element: its `kind` says how it is drawn (reports.render.mechanism_svg), `name` is
+    """One drawn element: its `kind` says how it is drawn (reports.drawing.svg), `name` is
     the body, joint, driver or load it belongs to, `points` are world points (a circle's centre,
     a line's ends, a polygon's corners), `value` a kind's own number (an arrow's sense: +1, -1 or 0
     for both), `title` the hover text and `label` the text written beside it ('' for none)."""

@@ -5,7 +5,7 @@ link as a bar or plate through its joint points, a slider as a block, a gear as 
 cam as its profile, a follower as its stem with its knife edge, roller or flat face), every joint
 (a revolute as a pin, a prismatic as its guide line, ground pivots hatched), the drivers (an arc or
 an arrow on the driven coordinate) and the springs. Geometry only: how shapes look on a page is
-reports.render.mechanism_svg's. The scenario is read, never changed.
+reports.drawing.svg's. The scenario is read, never changed.
 """
 
 from __future__ import annotations
@@ -16,8 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from reports.render.mechanism_drivers import driver_shapes, spring_shapes
-from reports.render.mechanism_parts import (
+from reports.drawing.drivers import driver_shapes, spring_shapes
+from reports.drawing.parts import (
     BLOCK_SIZE,
     Locator,
     Shape,

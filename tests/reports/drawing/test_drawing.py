@@ -1,4 +1,4 @@
-"""The mechanism drawing (reports.render.mechanism_drawing): every family and every example file
+"""The mechanism drawing (reports.drawing.drawing): every family and every example file
 draws at t = 0 and at mid-horizon as well-formed SVG with every body and joint labelled, and each
 revolute joint is drawn where the native solver puts it.
 
@@ -22,7 +22,7 @@ import pandas as pd
 import pytest
 
 import mbxval
-from reports.render.mechanism_drawing import (
+from reports.drawing.drawing import (
     DYNAMIC_RTOL,
     DrawingError,
     draw_svg,

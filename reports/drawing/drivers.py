@@ -1,12 +1,12 @@
 """Drivers, springs and applied loads in a mechanism drawing: an arc on a driven angle, an arrow on a
-driven position, a zigzag for a spring-damper (world coordinates; reports.render.mechanism_geometry
+driven position, a zigzag for a spring-damper (world coordinates; reports.drawing.geometry
 assembles them)."""
 
 from __future__ import annotations
 
 import math
 
-from reports.render.mechanism_parts import BLOCK_SIZE, Locator, Shape, along, point_text, unit
+from reports.drawing.parts import BLOCK_SIZE, Locator, Shape, along, point_text, unit
 from scenarios import GROUND, Scenario
 from scenarios.bodies import Vec2
 from scenarios.drivers import AbsoluteDriver, PointPathDriver, RelativeRotationDriver
