@@ -9,7 +9,7 @@ import os
 import re
 import tempfile
 from collections import Counter
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -23,7 +23,7 @@ from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import Runner, RunOptions
 from reports.harness.store_lock import WriterLock
 from reports.harness.suites import Suite
-from scenarios import limits
+from scenarios import Scenario, limits
 from scenarios import load as build_scenario
 from scenarios.loading import is_scenario_file
 
@@ -166,7 +166,16 @@ def run_selection(selection: Selection, out: Path, progress: bool) -> Counter[st
             ResultsStore(out), selection.engines, selection.options, **arguments, **vars(backend)
         )
     runner.run(selection.names)
+    _draw(out, runner.planned.values())
     return runner.made
+
+
+def _draw(out: Path, planned: Iterable[Scenario]) -> None:
+    """The run's mechanisms drawn beside its results for the report (reports.drawing.files),
+    imported when needed: it poses them with the native solver."""
+    from reports.drawing.files import write_drawings
+
+    write_drawings(out, planned)
 
 
 def run_summary(made: Counter[str], out: Path, page: Path | None) -> str:

@@ -1,8 +1,8 @@
 """Draw a scenario's mechanism at a time t, or as a looping animation over one cycle: one
 self-contained SVG (`draw_svg`), the bodies posed by the native solver.
 
-The one module of reports.render that solves: a drawing shows the scenario itself, not a stored
-run. The native solver marches from t = 0 to t on a grid as fine as the scenario's own (so that it
+It solves (hence a package apart from reports.render): a drawing shows the scenario itself, not a
+stored run. The native solver marches from t = 0 to t on a grid as fine as the scenario's own (so that it
 follows the scenario's assembly branch), with its default setting for kinematics and a relative
 tolerance of DYNAMIC_RTOL for forward dynamics (a drawing needs no more). The scenario is read,
 never changed.

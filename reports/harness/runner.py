@@ -98,6 +98,8 @@ class Runner:
         self.adapters: dict[str, Adapter | str] = {}
         self.made: Counter[str] = Counter()
         """The rows this runner made, by status: what one run did, apart from the store's total."""
+        self.planned: dict[str, Scenario] = {}
+        """The scenarios of the last `run`, by name (as built for it: a file's, with its sets)."""
         self.revision = provenance.git_revision()
         self.policy = ResumePolicy(options.rerun, options.keep_failures, options.keep_stale)
         self.stored = StoredRuns(store, self.revision, self.policy)
@@ -113,6 +115,7 @@ class Runner:
     def run(self, scenario_names: Sequence[str]) -> None:
         """Plan every group, then run what is not stored yet, saving after each group."""
         groups = [g for name in scenario_names for g in self._plan(name)]
+        self.planned = {g.scenario.name: g.scenario for g in groups}
         stored = self.stored = StoredRuns(self.store, self.revision, self.policy)
         kept = {id(g) for g in groups if g.adapter is None and stored.keeps_unavailable(*_pair(g))}
         pending = {

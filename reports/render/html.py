@@ -9,6 +9,7 @@ at the three levels side by side, and the table of runs.
 
 from __future__ import annotations
 
+import base64
 import multiprocessing
 import os
 from typing import Any
@@ -46,6 +47,7 @@ img { max-width: 100%; margin: 0.3em 0; } .muted { color: #666; font-size: 0.9em
 table.matrix td { min-width: 0; white-space: nowrap; padding: 0.15em 0.35em; }
 table.matrix .force { border-left: 2px solid #557; font-style: italic; }
 .plots { display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start; }
+figure.drawing { margin: 0.5em 0; } img.drawing { max-height: 340px; width: auto; }
 """
 
 WORKERS = 2
@@ -241,6 +243,20 @@ def _forked_section(scenario: str) -> str:
     return _scenario_section(_FORKED["data"], scenario)
 
 
+def _drawing(data: ReportData, scenario: str) -> str:
+    """The mechanism at t = 0 as the run drew it (reports.drawing), or nothing. Embedded as an image,
+    never as markup: a results directory may come from anywhere, and an image runs no script."""
+    svg = data.drawings.get(scenario, "")
+    if not svg.lstrip().startswith("<svg"):
+        return ""
+    source = "data:image/svg+xml;base64," + base64.b64encode(svg.encode("utf-8")).decode("ascii")
+    caption = "the mechanism at t = 0, posed by the native solver (`mbxval draw` draws any t, or animates)"
+    return (
+        f'<figure class="drawing"><img class="drawing" src="{source}" alt="the mechanism of '
+        f'{markup.escape(scenario)}"><figcaption class="muted">{markup.escape(caption)}</figcaption></figure>'
+    )
+
+
 def _scenario_section(data: ReportData, scenario: str) -> str:
     rows = data.rows(scenario)
     length, rate = data.characteristic_length(scenario), first_screen.scenario_rate(data, scenario)
@@ -258,6 +274,7 @@ def _scenario_section(data: ReportData, scenario: str) -> str:
             f'<p class="muted">truth: {markup.escape(truth_name)}; characteristic length {number(length)} m, '
             f"characteristic rate {number(rate)} rad/s; "
             f"{int(rows['grid_points'].iloc[0])} grid points over {number(rows['t_end'].iloc[0])} s</p>",
+            _drawing(data, scenario),
             f'<div class="plots">{"".join(figures)}</div>',
             f'<p class="muted">{markup.escape(timing_note(rows))}</p>',
             f'<div class="wide">{shown.to_html(index=False, escape=True, border=0)}</div>',

@@ -6,13 +6,14 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import pandas as pd
 
 import adapters
 from reports.harness.results_store import TRUTH, Key, read_results, read_trajectories
+from reports.render.drawings import read_drawings
 from scenarios import ScenarioError, catalogue, load
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -63,6 +64,8 @@ class ReportData:
     frame: pd.DataFrame
     meta: dict[str, Any]
     trajectories: dict[Key, Trajectory]
+    drawings: dict[str, str] = field(default_factory=dict)
+    """{scenario: SVG} of the mechanisms the run drew beside its results (reports.render.drawings)."""
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> ReportData:
@@ -71,7 +74,7 @@ class ReportData:
             trajectories = read_trajectories(path)
         except FileNotFoundError:  # lost: the report draws no curves until a resume rebuilds them
             trajectories = {}
-        return cls(frame, meta, trajectories)
+        return cls(frame, meta, trajectories, read_drawings(path))
 
     def scenarios(self) -> list[str]:
         """Scenarios in catalogue order, unknown ones after them."""
@@ -111,13 +114,11 @@ class ReportData:
 
     def unswept(self) -> ReportData:
         """The results without the points of parameter sweeps (drawn as maps, not one by one)."""
-        return ReportData(self.frame[~is_swept(self.frame)], self.meta, self.trajectories)
+        return replace(self, frame=self.frame[~is_swept(self.frame)])
 
     def without(self, scenarios: Iterable[str]) -> ReportData:
         """The results without the rows of `scenarios` (drawn elsewhere, such as map cells)."""
-        return ReportData(
-            self.frame[~self.frame["scenario"].isin(set(scenarios))], self.meta, self.trajectories
-        )
+        return replace(self, frame=self.frame[~self.frame["scenario"].isin(set(scenarios))])
 
     def status_counts(self) -> dict[str, int]:
         return {str(k): int(v) for k, v in self.frame["status"].value_counts().items()}

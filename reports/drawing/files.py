@@ -1,0 +1,58 @@
+"""Each scenario of a run drawn at t = 0 and left beside its results (DIR/drawings/), so that the
+report shows the mechanism without drawing it (reports.render.drawings reads them)."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import warnings
+from collections.abc import Iterable
+from pathlib import Path
+
+from reports.drawing.drawing import draw_svg
+from reports.harness.atomic_write import atomic_output
+from reports.render.drawings import DRAWINGS, INDEX
+from scenarios import Scenario
+
+MAX_BODIES = 30
+"""A scenario with more bodies is not drawn for the report (n_four_bar/spec's 81 take about a
+minute to pose); `mbxval draw` still draws it."""
+
+
+def file_name(scenario: str) -> str:
+    """A file name for a scenario's drawing: its name's letters, and a digest that keeps names
+    that differ only in other characters apart."""
+    plain = "".join(c if c.isalnum() else "_" for c in scenario)[:60]
+    return f"{plain}-{hashlib.sha256(scenario.encode()).hexdigest()[:10]}.svg"
+
+
+def write_drawings(out: Path, scenarios: Iterable[Scenario]) -> dict[str, str]:
+    """Draw each scenario at t = 0 into out/drawings/ and add them to its index (the drawings of
+    earlier runs into `out` stay); a scenario that cannot be drawn is left out with a warning, never
+    failing the run. Returns the index, {scenario: file name}."""
+    folder = out / DRAWINGS
+    folder.mkdir(exist_ok=True)
+    index = {s: folder.joinpath(n).name for s, n in _stored_index(folder).items()}
+    for scenario in scenarios:
+        if len(scenario.bodies) > MAX_BODIES:
+            continue
+        try:
+            text = draw_svg(scenario)
+        except Exception as error:  # a picture is never worth a run: say why and go on
+            warnings.warn(f"{scenario.name}: not drawn ({error})", RuntimeWarning, stacklevel=2)
+            continue
+        name = file_name(scenario.name)
+        with atomic_output(folder / name) as stream:
+            stream.write(text)
+        index[scenario.name] = name
+    with atomic_output(folder / INDEX) as stream:
+        stream.write(json.dumps(index, indent=1, sort_keys=True))
+    return index
+
+
+def _stored_index(folder: Path) -> dict[str, str]:
+    try:
+        found = json.loads((folder / INDEX).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    return {str(k): str(v) for k, v in found.items()} if isinstance(found, dict) else {}

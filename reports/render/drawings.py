@@ -1,0 +1,40 @@
+"""The mechanism drawings a run leaves beside its results (DIR/drawings/, written by
+reports.drawing.files when the run is made), read for the report: the page shows them as stored and
+never draws."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+from reports.harness.results_store import results_directory
+
+DRAWINGS = "drawings"
+"""The folder of a results directory that holds the drawings."""
+INDEX = "index.json"
+"""In that folder: {scenario name: its SVG file's name}."""
+MAX_BYTES = 1 << 20
+"""A drawing larger than this (1 MiB) is not embedded."""
+
+
+def read_drawings(results: str | os.PathLike[str]) -> dict[str, str]:
+    """{scenario: SVG text} of the drawings stored beside `results` (empty when there are none, or
+    when the index cannot be read: a report never fails for want of a picture)."""
+    try:
+        folder = results_directory(results) / DRAWINGS
+    except FileNotFoundError:  # no store there (yet): the folder as given
+        folder = Path(results) / DRAWINGS
+    try:
+        index = json.loads((folder / INDEX).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    found: dict[str, str] = {}
+    for scenario, name in index.items() if isinstance(index, dict) else ():
+        path = folder / Path(str(name)).name  # a bare file name inside the folder, nothing else
+        try:
+            if path.is_file() and not path.is_symlink() and path.stat().st_size <= MAX_BYTES:
+                found[str(scenario)] = path.read_text(encoding="utf-8")
+        except OSError:
+            continue
+    return found
