@@ -65,7 +65,7 @@ def test_the_caption_stays_inside_the_figure_and_clear_of_the_panels(truth: str)
     caption = figure.get_suptitle()
     assert caption.startswith("error against run time over the suite") and caption.endswith(")")
     assert (truth in " ".join(caption.split("\n"))) == (truth != LONG_TRUTH * 4)  # too long: shortened
-    box = figure._suptitle.get_window_extent(renderer)  # type: ignore[union-attr]
+    box = next(t for t in figure.texts if t.get_text() == caption).get_window_extent(renderer)
     width, height = figure.bbox.width, figure.bbox.height
     assert box.x0 > 0 and box.x1 < width and box.y1 < height, (box, width, height)
     for axes in figure.axes[:3]:
