@@ -24,6 +24,8 @@ from scenarios.closed_form import NoClosedForm, exact
 
 TOLERANCE = 1e-12
 REFINE = 4
+ATTEMPTS = 3
+"""How often the native solve is cut short at the time the solver stopped before giving up."""
 CLOSED_FORM = "closed form"
 NATIVE = f"native, tolerance {TOLERANCE:g}, grid refined {REFINE}x"
 DYNAMIC_RTOL = 1e-13
@@ -50,9 +52,53 @@ def closed_form(scenario: Scenario, times: np.ndarray) -> Trajectory | None:
 def native_refined(scenario: Scenario, times: np.ndarray) -> Trajectory:
     """The native solver on a grid REFINE times finer at TOLERANCE, sampled on `times` (NaN from
     where it finds no configuration)."""
-    from reports.stress.truth import partial_truth  # on first use: the native solver is slow to import
-
     return partial_truth(scenario, np.asarray(times, dtype=float), REFINE)
+
+
+def partial_truth(scenario: Scenario, times: np.ndarray, refine: int = 1) -> Trajectory:
+    """The native solution on `times` at TOLERANCE, solved on a grid `refine` times finer; NaN from
+    where the solver stops (a singular configuration, no configuration beyond). An empty prefix (no
+    assembly) raises the solver's error."""
+    import reference_solver  # on first use: the native solver is slow to import
+
+    fine = _refined(times, refine)
+    end = fine.size
+    for _ in range(ATTEMPTS):
+        try:
+            solved = reference_solver.solve(scenario, fine[:end], tolerance=TOLERANCE)
+            break
+        except reference_solver.SolverError as error:
+            if error.time is None:
+                raise
+            end = int(np.searchsorted(fine, error.time, side="left"))
+            if end == 0:
+                raise
+    else:
+        raise RuntimeError(f"{scenario.name}: the reference solver kept failing before its last stop")
+    return _pad(solved, times, refine)
+
+
+def _refined(times: np.ndarray, refine: int) -> np.ndarray:
+    if refine <= 1 or times.size < 2:
+        return times
+    steps = np.linspace(0.0, 1.0, refine + 1)[:-1]
+    inner = (times[:-1, None] + np.diff(times)[:, None] * steps[None, :]).ravel()
+    return np.append(inner, times[-1])
+
+
+def _pad(solved: Trajectory, times: np.ndarray, refine: int) -> Trajectory:
+    """Every `refine`-th point of `solved`, NaN for the grid times it did not reach."""
+    count = times.size
+
+    def sample(values: np.ndarray) -> np.ndarray:
+        picked = values[::refine]
+        out = np.full((count, *values.shape[1:]), np.nan)
+        out[: len(picked)] = picked
+        return out
+
+    levels = {lv: None if (v := solved.level(lv)) is None else sample(v) for lv in solved.levels}
+    extras = {name: sample(values) for name, values in solved.extras.items()}
+    return Trajectory(times.copy(), solved.bodies, extras=extras, **levels)  # type: ignore[arg-type]
 
 
 def independent_truth(scenario: Scenario, times: np.ndarray) -> NamedTruth:

@@ -13,6 +13,7 @@ no place on a time axis and is left off it (`untimed`), never put at the time li
 from __future__ import annotations
 
 import math
+import textwrap
 from typing import Any
 
 import matplotlib.pyplot as plt
@@ -21,13 +22,20 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from reports.harness.level_error import LEVEL_COLUMNS
-from reports.render.level_plots import finish
+from reports.render.level_plots import MARGINS, finish
 from reports.render.plots import FLOOR, MARKERS, colour
 
 SHIFT_TIME = 1e-3  # s
 SHIFT_ERROR = 1e-15  # dimensionless: double precision
 FAILED_ERROR = 1.0
 STEP_KEYS = ("dt", "tol", "tolerance")
+TITLE_CHARACTERS = 140
+"""The longest title line: centred over the 13.5 in figure at 10 pt it stays inside both edges (a
+longer one, such as a suite's many truth names, is wrapped, never cut off at the edges)."""
+TITLE_LINES = 3
+"""At most this many title lines (a longer title ends in '...'; the full truth names are in the tables)."""
+TITLE_LINE = 0.045
+"""The height of one title line, as a fraction of the 3.9 in figure."""
 DEFINITION = (
     "Each point is one engine-mode at its k-th step size (or tolerance) from the coarsest, over "
     f"the scenarios it ran with a shifted geometric mean (shift {SHIFT_ERROR:g} on errors, "
@@ -147,5 +155,8 @@ def overview_figure(table: pd.DataFrame, truth: str) -> Figure | None:
         f"error against run time over the suite (shifted geometric mean; truth: {truth}; "
         "ringed: the default on most scenarios; (n): scenarios)"
     )
-    finish(figure, axes_row, title)
+    lines = textwrap.wrap(title, TITLE_CHARACTERS, max_lines=TITLE_LINES, placeholder=" ...)")
+    finish(figure, axes_row, "\n".join(lines))
+    # each line past the first takes its height from the panels, which keep their titles clear of it
+    figure.subplots_adjust(top=MARGINS["top"] - TITLE_LINE * (len(lines) - 1))
     return figure

@@ -5,7 +5,8 @@ with) and declares:
 - `probes`: what it stresses, in a few words (shown in the stability map);
 - `singular`: the closed-form time of its first singular configuration, where it has one;
 - `similar`: the nominal scenario it is an exact similarity of (lengths scaled by `length`, time run
-  `speed` times faster), so that its truth is the nominal truth mapped, independent of the scale;
+  `speed` times faster), against whose errors the map sets its errors (its truth, like every
+  family mechanism's, is the closed form: reports.stress.truth);
 - `refine`: the truth is solved on a grid this many times finer (near-singular cases, where the
   solver's predictor could jump to another branch on the scenario's own grid);
 - `settings`: each engine's settings for the case (the first is the default), or None for the
@@ -31,7 +32,7 @@ NOMINAL_SPEED = 50.0
 
 @dataclass(frozen=True)
 class Similar:
-    """The case's truth is `nominal`'s at time speed * t, lengths times `length`."""
+    """The case is `nominal` at time speed * t, lengths times `length`."""
 
     nominal: str
     length: float = 1.0

@@ -1,14 +1,17 @@
-"""The stress suite's truth: the reference solver, made to say where it has no answer.
+"""The stress suite's truth: the family's closed form wherever the case is a family's mechanism, the
+native solver, made to say where it has no answer, elsewhere.
 
-- A case that is an exact similarity of a nominal scenario (reports.stress.cases.Similar) takes the
-  nominal truth, mapped: lengths scaled, time stretched. It is then independent of the scale and
-  speed the native solver is tested at, so the native solver's own error there is measured too.
-- A case may ask for a finer grid (`refine`): the truth is solved there and sampled on the
-  scenario's grid, so that the truth follows the branch where the scenario's grid would let the
-  solver's predictor jump.
-- Where the reference solver stops (a singular configuration, no configuration beyond), the truth
-  holds the solution up to that time and NaN after it: no truth exists there, and no error is
+- A case that is a family's own mechanism with its parameters (scenarios.closed_form.exact: the
+  speed, scale, link-ratio, mass, long and singular variants of slider_crank and four_bar, the gear
+  ratio, the eccentric disc cams) takes the closed form, labelled CLOSED_FORM like the default
+  suite's rows, so that the native solver is measured there as every engine is.
+- A declared singular case (reports.stress.cases: `singular`) has its closed form up to its singular
+  time and NaN from there on: no truth exists past a singular configuration, and no error is
   measured there.
+- Elsewhere (spline and lobed cams, a scenario file that takes a case's name) the truth is the native
+  solver (reports.harness.truth.partial_truth), on a grid `refine` times finer where the case asks,
+  so that it follows the branch where the scenario's grid would let the solver's predictor jump;
+  where it stops (a singular configuration, no configuration beyond), it is NaN from that time.
 """
 
 from __future__ import annotations
@@ -17,21 +20,19 @@ import dataclasses
 
 import numpy as np
 
-import reference_solver
-from reports.stress.cases import Similar, StressCase, case
-from scenarios import build
+from reports.harness.truth import CLOSED_FORM, TOLERANCE, closed_form, partial_truth
+from reports.stress.cases import StressCase, case
 from scenarios.identity import family_twin
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
-TOLERANCE = 1e-12
-ATTEMPTS = 3
+__all__ = ["declared_case", "partial_truth", "stress_truth", "stress_truth_name"]
 
 
 def declared_case(scenario: Scenario) -> StressCase:
     """The stress case `scenario` is: its name's declaration when it is that built-in mechanism
     (by digest), a bare case otherwise (a file that takes a case's name is another mechanism, and
-    never gets the truth of a nominal scenario it is not a similarity of)."""
+    never gets a singular time it may not have)."""
     return case(scenario.name) if family_twin(scenario) is not None else StressCase(scenario.name, "")
 
 
@@ -39,75 +40,33 @@ def stress_truth(scenario: Scenario, times: np.ndarray) -> Trajectory:
     """The truth of `scenario` on `times` (the runner's truth hook for the stress suite)."""
     declared = declared_case(scenario)
     grid = np.asarray(times, dtype=float)
-    if declared.similar is not None:
-        return similar_truth(declared.similar, grid)
-    return partial_truth(scenario, grid, declared.refine)
+    with np.errstate(invalid="ignore", divide="ignore"):  # past a singular time: NaN, cut below
+        exact = closed_form(scenario, grid)
+    if exact is None:
+        return partial_truth(scenario, grid, declared.refine)
+    singular = declared.singular_time()
+    return exact if singular is None else _until(exact, grid < singular)
 
 
 def stress_truth_name(scenario: Scenario) -> str:
-    """What the stress truth of `scenario` is, for the rows measured against it."""
-    declared = declared_case(scenario)
-    native = f"native, tolerance {TOLERANCE:g}"
-    if declared.similar is not None:
-        return f"{native} on {declared.similar.nominal}, scaled"
-    return native + (f", grid refined {declared.refine}x" if declared.refine > 1 else "")
+    """What the stress truth of `scenario` is, for the rows measured against it: CLOSED_FORM, or the
+    native solve with its tolerance and refinement."""
+    if closed_form(scenario, np.zeros(1)) is not None:
+        return CLOSED_FORM
+    refine = declared_case(scenario).refine
+    return f"native, tolerance {TOLERANCE:g}" + (f", grid refined {refine}x" if refine > 1 else "")
 
 
-def similar_truth(similar: Similar, times: np.ndarray) -> Trajectory:
-    """The nominal scenario's truth at speed * t, lengths times `length`, rates scaled to match."""
-    nominal = partial_truth(build(similar.nominal), similar.speed * times, 1)
-    s, k = similar.length, similar.speed
+def _until(truth: Trajectory, known: np.ndarray) -> Trajectory:
+    """`truth` where `known`, NaN elsewhere (every level and extra)."""
 
-    def scaled(values: np.ndarray | None, length: float, angle: float) -> np.ndarray | None:
-        return None if values is None else values * np.array([length, length, angle])
-
-    return dataclasses.replace(
-        nominal,
-        times=times.copy(),
-        position=scaled(nominal.position, s, 1.0),
-        velocity=scaled(nominal.velocity, s * k, k),
-        acceleration=scaled(nominal.acceleration, s * k * k, k * k),
-    )
-
-
-def partial_truth(scenario: Scenario, times: np.ndarray, refine: int = 1) -> Trajectory:
-    """The reference solution on `times`, solved on a grid `refine` times finer; NaN from where the
-    solver stops. An empty prefix (no assembly) raises the solver's error."""
-    fine = _refined(times, refine)
-    end = fine.size
-    for _ in range(ATTEMPTS):
-        try:
-            solved = reference_solver.solve(scenario, fine[:end], tolerance=TOLERANCE)
-            break
-        except reference_solver.SolverError as error:
-            if error.time is None:
-                raise
-            end = int(np.searchsorted(fine, error.time, side="left"))
-            if end == 0:
-                raise
-    else:
-        raise RuntimeError(f"{scenario.name}: the reference solver kept failing before its last stop")
-    return _pad(solved, times, refine)
-
-
-def _refined(times: np.ndarray, refine: int) -> np.ndarray:
-    if refine <= 1 or times.size < 2:
-        return times
-    steps = np.linspace(0.0, 1.0, refine + 1)[:-1]
-    inner = (times[:-1, None] + np.diff(times)[:, None] * steps[None, :]).ravel()
-    return np.append(inner, times[-1])
-
-
-def _pad(solved: Trajectory, times: np.ndarray, refine: int) -> Trajectory:
-    """Every `refine`-th point of `solved`, NaN for the grid times it did not reach."""
-    count = times.size
-
-    def sample(values: np.ndarray) -> np.ndarray:
-        picked = values[::refine]
-        out = np.full((count, *values.shape[1:]), np.nan)
-        out[: len(picked)] = picked
+    def cut(values: np.ndarray | None) -> np.ndarray | None:
+        if values is None:
+            return None
+        out = np.array(values, dtype=float)
+        out[~known] = np.nan
         return out
 
-    levels = {lv: None if (v := solved.level(lv)) is None else sample(v) for lv in solved.levels}
-    extras = {name: sample(values) for name, values in solved.extras.items()}
-    return Trajectory(times.copy(), solved.bodies, extras=extras, **levels)  # type: ignore[arg-type]
+    levels = {level: cut(truth.level(level)) for level in truth.levels}
+    extras = {name: cut(values) for name, values in truth.extras.items()}
+    return dataclasses.replace(truth, extras=extras, **levels)  # type: ignore[arg-type]

@@ -120,18 +120,18 @@ def test_a_changed_grid_is_still_the_family_mechanism() -> None:
     assert math.isclose(float(exact(scenario).times[-1]), 0.5)
 
 
-def test_a_file_taking_a_stress_case_name_gets_no_similarity_truth(tmp_path: Path) -> None:
+def test_a_file_taking_a_stress_case_name_gets_no_closed_form_truth(tmp_path: Path) -> None:
     from reports.stress.truth import stress_truth_name
 
     name = "slider_crank/stress_speed_1e1"
     built = scenarios.build(name)
-    assert stress_truth_name(built).endswith("on slider_crank, scaled")
+    assert stress_truth_name(built) == "closed form"
     path = tmp_path / "fast.toml"
     path.write_text(scenario_toml(built).replace("mass = 0.5\n", "mass = 0.25\n", 1))
     assert "mass = 0.25" in path.read_text()
     edited = read_scenario(path)
     assert edited.name == name
-    assert "scaled" not in stress_truth_name(edited)
+    assert stress_truth_name(edited) == "native, tolerance 1e-12"
 
 
 # --- compare's numbers ---------------------------------------------------------------------------

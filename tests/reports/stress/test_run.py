@@ -50,7 +50,7 @@ def test_the_native_solver_through_the_stress_suite(tmp_path: Path) -> None:
     jump = found["four_bar/stress_near_change_point"]
     assert jump.verdict == "singular detected" and "truth goes on regular" in jump.detail
     scaled = found["slider_crank/stress_scale_1e-4"]
-    assert scaled.verdict == "ok" and scaled.error < 1e-13  # against the mapped nominal truth
+    assert scaled.verdict == "ok" and scaled.error < 1e-13  # against the closed form
     summary = (tmp_path / "summary.md").read_text()
     assert "## Stability map" in summary and "singular detected @0.03142 s" in summary
     assert 'id="stability-map"' in (tmp_path / "index.html").read_text()
