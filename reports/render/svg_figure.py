@@ -1,0 +1,76 @@
+"""A figure as inline SVG for the one self-contained page: text kept as text (crisp at any zoom,
+no embedded glyphs), coordinates rounded to 0.01 pt, ids made unique per figure (many figures share
+one HTML document), and a hover title on every point a plot registered with `hover`.
+
+Why SVG and not Plotly: measured on the same results (two scenarios, every engine), the page with
+inline SVG is smaller than with base64 PNG at 90 dpi, and Plotly's script alone (about 3.5 MB
+minified) is most of today's whole page before any figure."""
+
+from __future__ import annotations
+
+import hashlib
+import io
+import re
+import weakref
+import xml.etree.ElementTree as ElementTree
+from collections.abc import Sequence
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+from matplotlib.artist import Artist
+from matplotlib.figure import Figure
+
+SVG = "http://www.w3.org/2000/svg"
+XLINK = "http://www.w3.org/1999/xlink"
+ElementTree.register_namespace("", SVG)
+ElementTree.register_namespace("xlink", XLINK)
+_TITLES: weakref.WeakKeyDictionary[Figure, dict[str, list[str]]] = weakref.WeakKeyDictionary()
+_GEOMETRY = re.compile(r'\s(?:d|x|y|points|transform)="[^"]*"')
+_LONG_DECIMALS = re.compile(r"(\d\.\d\d)\d+")
+_IDS = re.compile(r'(id="|url\(#|href="#)([^")]+)')
+
+
+def hover(artist: Artist, titles: Sequence[str]) -> None:
+    """Give each point (marker) of `artist`, in data order, its hover title in the SVG."""
+    figure = artist.get_figure()
+    if figure is None or not titles:
+        return
+    registered = _TITLES.setdefault(figure, {})  # type: ignore[arg-type]
+    gid = f"hover{len(registered)}"
+    artist.set_gid(gid)
+    registered[gid] = list(titles)
+
+
+def svg(figure: Figure, alt: str) -> str:
+    """The figure as an inline <svg class="plot"> element (and the figure closed)."""
+    buffer = io.StringIO()
+    with plt.rc_context({"svg.fonttype": "none", "svg.hashsalt": "mbxval", "path.simplify_threshold": 0.5}):
+        figure.savefig(buffer, format="svg", metadata={"Date": None, "Creator": None})
+    titles = _TITLES.pop(figure, {})
+    plt.close(figure)
+    text = _GEOMETRY.sub(lambda m: _LONG_DECIMALS.sub(r"\1", m.group(0)), buffer.getvalue())
+    root = ElementTree.fromstring(text)
+    for element in root.iter():
+        gid = element.get("id", "")
+        if gid in titles:
+            _titled_points(element, titles[gid])
+    root.set("class", "plot")
+    root.set("role", "img")
+    root.set("aria-label", alt)
+    text = ElementTree.tostring(root, encoding="unicode")
+    prefix = "f" + hashlib.sha1(text.encode()).hexdigest()[:6] + "-"
+    return _IDS.sub(lambda m: m.group(1) + prefix + m.group(2), text)
+
+
+def _titled_points(group: ElementTree.Element, titles: list[str]) -> None:
+    """Wrap each marker (<use>) of the group in a <g> with its <title>, in drawing order."""
+    parents = [(parent, child) for parent in group.iter() for child in parent if child.tag == f"{{{SVG}}}use"]
+    for (parent, use), title in zip(parents, titles, strict=False):
+        index = list(parent).index(use)
+        wrapper = ElementTree.Element(f"{{{SVG}}}g")
+        ElementTree.SubElement(wrapper, f"{{{SVG}}}title").text = title
+        wrapper.append(use)
+        parent.remove(use)
+        parent.insert(index, wrapper)
