@@ -29,6 +29,7 @@ ElementTree.register_namespace("xlink", XLINK)
 _TITLES: weakref.WeakKeyDictionary[Figure, dict[str, list[str]]] = weakref.WeakKeyDictionary()
 _GEOMETRY = re.compile(r'\s(?:d|x|y|points|transform)="[^"]*"')
 _LONG_DECIMALS = re.compile(r"(\d\.\d\d)\d+")
+_REFERENCES = re.compile(r'(?:url\(#|href="#)([^")]+)')
 _IDS = re.compile(r'(id="|url\(#|href="#)([^")]+)')
 
 
@@ -56,6 +57,7 @@ def svg(figure: Figure, alt: str) -> str:
         gid = element.get("id", "")
         if gid in titles:
             _titled_points(element, titles[gid])
+    _drop_bare_groups(root, set(_REFERENCES.findall(text)))
     root.set("role", "img")
     root.set("aria-label", alt)
     text = ElementTree.tostring(root, encoding="unicode")
@@ -74,3 +76,20 @@ def _titled_points(group: ElementTree.Element, titles: list[str]) -> None:
         wrapper.append(use)
         parent.remove(use)
         parent.insert(index, wrapper)
+
+
+def _drop_bare_groups(element: ElementTree.Element, referenced: set[str]) -> None:
+    """Ids nothing refers to removed, and the <g> left without attributes (matplotlib wraps every
+    tick, text and line in one) replaced by its children: a third of the page's elements, which the
+    browser builds and lays out, for nothing. A titled point's <g> stays (its title is its child)."""
+    children: list[ElementTree.Element] = []
+    for child in element:
+        if child.get("id") is not None and child.get("id") not in referenced:
+            del child.attrib["id"]
+        _drop_bare_groups(child, referenced)
+        bare = child.tag == f"{{{SVG}}}g" and not child.attrib
+        if bare and not any(grand.tag == f"{{{SVG}}}title" for grand in child):
+            children.extend(child)
+        else:
+            children.append(child)
+    element[:] = children
