@@ -58,6 +58,8 @@ def svg(figure: Figure, alt: str) -> str:
         if gid in titles:
             _titled_points(element, titles[gid])
     _drop_bare_groups(root, set(_REFERENCES.findall(text)))
+    for metadata in root.findall(f"{{{SVG}}}metadata"):  # matplotlib's RDF block: bytes for no reader
+        root.remove(metadata)
     root.set("role", "img")
     root.set("aria-label", alt)
     text = ElementTree.tostring(root, encoding="unicode")
