@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 import xml.etree.ElementTree as ElementTree
 
+import matplotlib.pyplot as plt
 import pandas as pd
 import pytest
 
@@ -114,3 +115,10 @@ def test_settings_sort_by_their_numeric_value() -> None:
     settings = list(shown["setting"])
     assert settings[:2] == ["RK4 dt=0.0001", "RK4 dt=0.001"]
     assert settings[2:] == [f"newton tolerance={t:g}" for t in sorted(TOLERANCES)]
+
+
+def test_a_line_without_markers_has_one_title_for_the_whole_line() -> None:
+    figure, axes = plt.subplots()
+    (line,) = axes.plot([0.0, 1.0, 2.0], [1.0, 3.0, 2.0])
+    svg_figure.hover(line, ["reference default run: largest 3"])
+    assert titles(svg_figure.svg(figure, "a line")) == ["reference default run: largest 3"]
