@@ -73,9 +73,9 @@ def _titled_points(group: ElementTree.Element, titles: list[str]) -> None:
     without markers gets the first title as its own."""
     parents = [(parent, child) for parent in group.iter() for child in parent if child.tag == f"{{{SVG}}}use"]
     if not parents:  # a line without markers: one title for the whole line
-        title = ElementTree.Element(f"{{{SVG}}}title")
-        title.text = titles[0]
-        group.insert(0, title)
+        whole = ElementTree.Element(f"{{{SVG}}}title")
+        whole.text = titles[0]
+        group.insert(0, whole)
     for (parent, use), title in zip(parents, titles, strict=False):
         index = list(parent).index(use)
         wrapper = ElementTree.Element(f"{{{SVG}}}g")

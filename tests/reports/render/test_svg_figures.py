@@ -10,6 +10,7 @@ import xml.etree.ElementTree as ElementTree
 import matplotlib.pyplot as plt
 import pandas as pd
 import pytest
+from matplotlib.figure import Figure
 
 from reports.render import level_plots, overview, svg_figure
 from reports.render.report_data import table
@@ -46,6 +47,11 @@ def engine_rows() -> list[dict[str, object]]:
 IMPORTED = row("my_tool", "imported", "", (1e-7, 1e-6, 1e-5), math.nan)
 
 
+def drawn(figure: Figure | None, alt: str) -> str:
+    assert figure is not None
+    return svg_figure.svg(figure, alt)
+
+
 def titles(svg: str) -> list[str]:
     root = ElementTree.fromstring(svg)  # the figure parses as XML
     assert root.tag == f"{SVG}svg"
@@ -54,7 +60,7 @@ def titles(svg: str) -> list[str]:
 
 def test_every_plotted_run_has_a_hover_title_with_its_engine_and_values() -> None:
     frame = pd.DataFrame([*engine_rows(), IMPORTED])
-    shown = titles(svg_figure.svg(level_plots.work_precision(frame, "closed form"), "work-precision"))
+    shown = titles(drawn(level_plots.work_precision(frame, "closed form"), "work-precision"))
     expected = []
     for _, run in frame.iterrows():
         for level, column in (("position", "error_position"), ("velocity", "error_velocity")):
@@ -104,7 +110,7 @@ def test_a_narrow_run_time_axis_has_at_least_two_tick_labels() -> None:
 def test_the_overview_points_have_hover_titles() -> None:
     frame = pd.DataFrame([*engine_rows(), IMPORTED])
     summary = overview.summary(frame, timeout=60.0)
-    shown = titles(svg_figure.svg(overview.overview_figure(summary, "closed form"), "overview"))
+    shown = titles(drawn(overview.overview_figure(summary, "closed form"), "overview"))
     assert len(shown) == 3 * 4 + 2 * 2  # newton: 4 points at 3 levels; RK4: 2 points at 2 levels
     assert not any("my_tool" in t for t in shown)  # imported rows are not summarised on a time axis
     assert all(t.startswith(("reference newton, step", "mujoco RK4, step")) for t in shown)
