@@ -2,9 +2,10 @@
 no embedded glyphs), coordinates rounded to 0.01 pt, ids made unique per figure (many figures share
 one HTML document), and a hover title on every point a plot registered with `hover`.
 
-Why SVG and not Plotly: measured on the same results (two scenarios, every engine), the page with
-inline SVG is smaller than with base64 PNG at 90 dpi, and Plotly's script alone (about 3.5 MB
-minified) is most of today's whole page before any figure."""
+Why SVG and not Plotly: measured on the same results, the page with inline SVG is smaller than
+with base64 PNG at 90 dpi (the default suite's page 4.45 MB to 2.79 MB), while Plotly's offline
+script alone (plotly.min.js of plotly 7.1.0: 4.82 MB) is larger than the whole PNG page before
+a single figure is added."""
 
 from __future__ import annotations
 
