@@ -1,6 +1,7 @@
 #!/bin/sh
 # Open an mbxval HTML report in a real headless browser (Debian's chromium package) and check that
-# it loads and that every plot decodes; leave a screenshot (screenshot.png) next to the report.
+# it loads and that every plot (inline SVG, or a PNG in older reports) is laid out; leave a screenshot
+# (screenshot.png) next to the report.
 #
 # Usage: scripts/check_report_in_browser.sh [REPORT_DIR]
 #   REPORT_DIR defaults to ./mbxval-report; when it has no index.html, a small report is rendered

@@ -1,4 +1,4 @@
-"""The self-contained HTML report: everything inline (CSS, base64 PNG plots), no network needed.
+"""The self-contained HTML report: everything inline (CSS, SVG plots), no network needed.
 
 Up front (reports.render.first_screen): the native solver's agreement with the closed forms in one
 line, the scenario x engine matrix at every level, the error against run time over the whole suite
@@ -25,8 +25,8 @@ from reports.render import (
     level_plots,
     markup,
     overview,
-    plots,
     stability_render,
+    svg_figure,
     sweep_render,
 )
 from reports.render.report_data import ReportData, number, table, timing_note
@@ -42,7 +42,7 @@ td:last-child { white-space: normal; max-width: 30em; overflow-wrap: anywhere; }
 td.ok { background: #e6f4e6; } td.unsupported { background: #eeeeee; color: #666; }
 td.failed, td.diverged, td.singular, td.timeout { background: #fbe3e3; }
 td.notrun { color: #999; }
-img { max-width: 100%; margin: 0.3em 0; } .muted { color: #666; font-size: 0.9em; }
+img, svg.plot { max-width: 100%; height: auto; margin: 0.3em 0; } .muted { color: #666; font-size: 0.9em; }
 .wide { overflow-x: auto; }
 table.matrix td { min-width: 0; white-space: nowrap; padding: 0.15em 0.35em; }
 table.matrix .force { border-left: 2px solid #557; font-style: italic; }
@@ -56,8 +56,10 @@ _FORKED: dict[str, ReportData] = {}
 # Lets a headless browser (scripts/check_report_in_browser.sh) confirm every plot decoded.
 CHECK = """
 window.addEventListener('load', function () {
-  var images = document.querySelectorAll('img.plot');
-  var good = Array.prototype.filter.call(images, function (i) { return i.complete && i.naturalWidth > 0; });
+  var images = document.querySelectorAll('img.plot, svg.plot');
+  var good = Array.prototype.filter.call(images, function (i) {
+    return i.tagName === 'IMG' ? i.complete && i.naturalWidth > 0 : i.getBoundingClientRect().width > 0;
+  });
   document.body.setAttribute('data-plots-loaded', good.length + '/' + images.length);
 });
 """
@@ -220,8 +222,7 @@ def _image(figure: Any, alt: str, why: str = "no successful run to draw") -> str
     """The figure inline (drawn with its own fixed margins), or why there is none."""
     if figure is None:
         return _muted(f"no {alt}: {why}")
-    encoded = plots.png(figure, tight=False)
-    return f'<img class="plot" alt="{markup.escape(alt)}" src="data:image/png;base64,{encoded}">'
+    return svg_figure.svg(figure, alt)
 
 
 def _sections(data: ReportData) -> list[str]:

@@ -13,43 +13,59 @@ import numpy as np
 import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.patches import Rectangle
 from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator
 
 from reports.harness.level_error import LEVEL_COLUMNS, level_series
 from reports.render.markup import figure_text
-from reports.render.plots import FLOOR, MARKERS, colour, legend_entries
+from reports.render.plots import FLOOR, MARKERS, colour, legend_entries, swept_value, untimed, value_text
+from reports.render.svg_figure import hover
 from scenarios.trajectory import Trajectory
 
 PEAK_POINTS = 400
 PLAIN_DECADE = FuncFormatter(lambda value, _: f"{value:.0e}")  # plain text: no mathtext to parse
+NARROW = 1.5  # decades: an axis narrower than this is labelled at 1, 2 and 5 of each decade
+STRIP = 0.04  # height of the imported rows' strip, in axes coordinates
+IMPORTED = "imported: no run time"
+FOOT = 0.15  # the run-time axis's margin, as a fraction of its data range (the strip fits below)
 MARGINS = {"left": 0.06, "right": 0.84, "bottom": 0.17, "top": 0.84, "wspace": 0.18}
 
 
 def work_precision(rows: pd.DataFrame, truth: str) -> Figure | None:
-    """Run time against error at each level, one line per engine and mode, default ringed."""
-    ok = rows[(rows["status"] == "ok") & rows["run_time"].notna()]
-    if ok.empty:
+    """Run time against error at each level, one line per engine and mode, default ringed, each
+    curve's ends labelled with their swept value; imported rows (no run time) in a strip of their
+    own at the foot of each panel, outside the time axis and its limits. Every point's hover title
+    gives its engine, setting, scenario, error and run time."""
+    ok = rows[rows["status"] == "ok"]
+    imported = ok[untimed(ok)]
+    ok = ok[~untimed(ok)]
+    if ok.empty:  # nothing timed: no time axis to draw (the imported rows are in the tables)
         return None
     figure, axes_row = plt.subplots(1, 3, figsize=(13.5, 3.6), sharey=True)
     drawn = False
-    for axes, (level, column) in zip(axes_row, LEVEL_COLUMNS.items(), strict=True):
+    for panel, (axes, (level, column)) in enumerate(zip(axes_row, LEVEL_COLUMNS.items(), strict=True)):
         present = ok[ok[column].notna()] if column in ok else ok.iloc[0:0]
         for k, ((engine, mode), curve) in enumerate(present.groupby(["engine", "mode"], sort=True)):
             curve = curve.sort_values("run_time")
             errors = np.maximum(curve[column].to_numpy(float), FLOOR)
             times = curve["run_time"].to_numpy(float)
-            axes.plot(
+            (line,) = axes.plot(
                 errors,
                 times,
                 marker=MARKERS[k % len(MARKERS)],
                 color=colour(engine),
                 label=f"{engine} {mode}",
             )
+            hover(line, [_point_title(row, level, column) for _, row in curve.iterrows()])
             default = curve["is_default"].to_numpy(bool)
             axes.scatter(errors[default], times[default], s=150, facecolors="none", edgecolors=colour(engine))
+            if panel == 0:  # once per figure: three panels of labels would hide the points
+                _label_ends(axes, curve, errors, times)
             drawn = True
+        drawn = _imported_strip(axes, imported, level, column) or drawn
         axes.set_xscale("log")
         axes.set_yscale("log")
+        axes.margins(y=FOOT)  # room under the lowest run for the imported rows' strip, with or without them
         axes.set_xlabel(f"{level} error (dimensionless)")
         axes.set_title(level, fontsize=10)
         axes.grid(True, which="major", alpha=0.3)
@@ -59,6 +75,47 @@ def work_precision(rows: pd.DataFrame, truth: str) -> Figure | None:
     axes_row[0].set_ylabel("run time [s]")
     finish(figure, axes_row, f"work-precision against the truth ({truth}); ringed: default setting")
     return figure
+
+
+def _point_title(row: pd.Series, level: str, column: str) -> str:
+    time = float(row["run_time"])
+    when = f"run time {value_text(time)} s" if math.isfinite(time) else "imported: no run time"
+    return (
+        f"{row['engine']} {row['setting']} on {row['scenario']}\n"
+        f"{level} error {value_text(float(row[column]))}, {when}"
+    )
+
+
+def _label_ends(axes: Axes, curve: pd.DataFrame, errors: np.ndarray, times: np.ndarray) -> None:
+    """The swept value beside a curve's first and last point (every point's on hover)."""
+    ends = {0, len(curve) - 1}
+    for k in sorted(ends):
+        text = figure_text(swept_value(str(curve["setting"].iloc[k])))
+        axes.annotate(text, (errors[k], times[k]), xytext=(4, 3), textcoords="offset points", fontsize=6)
+
+
+def _imported_strip(axes: Axes, imported: pd.DataFrame, level: str, column: str) -> bool:
+    """Imported rows at their error, in a strip at the foot of the panel (y in axes coordinates,
+    so the run-time axis neither holds nor scales to them); True when any is drawn."""
+    present = imported[imported[column].notna()] if column in imported else imported.iloc[0:0]
+    if present.empty:
+        return False
+    errors = np.maximum(present[column].to_numpy(float), FLOOR)
+    (line,) = axes.plot(
+        errors,
+        np.full(len(errors), STRIP),
+        ls="",
+        marker="X",
+        color="#555555",
+        markeredgecolor="white",
+        ms=8,
+        transform=axes.get_xaxis_transform(),
+        label=IMPORTED,
+    )
+    hover(line, [_point_title(row, level, column) for _, row in present.iterrows()])
+    strip = Rectangle((0, 0), 1, 2 * STRIP, transform=axes.transAxes, color="#eeeeee", zorder=0)
+    axes.add_patch(strip)
+    return True
 
 
 def deviations(
@@ -76,7 +133,11 @@ def deviations(
             if series is None:
                 continue
             values = np.maximum(series, FLOOR)
-            axes.plot(*peaks(truth.times, values), color=colour(engine), lw=1.1, label=engine)
+            (line,) = axes.plot(*peaks(truth.times, values), color=colour(engine), lw=1.1, label=engine)
+            hover(
+                line,
+                [f"{engine} default run, {level}: largest |run − truth| {value_text(np.nanmax(values))}"],
+            )
             if np.any(np.isfinite(values)):
                 lows.append(float(np.nanmin(values)))
             drawn = True
@@ -109,12 +170,16 @@ def finish(figure: Figure, axes_row: Sequence[Axes], title: str) -> None:
 
 def light_log_axes(axes: Axes) -> None:
     """Log-log axes with a few decades labelled in plain text (1e-06): many-decade ranges otherwise
-    label, typeset and measure dozens of ticks per panel, most of a report's render time."""
-    for axis in (axes.xaxis, axes.yaxis):
-        if axis.get_scale() == "log":
-            axis.set_major_locator(LogLocator(numticks=6))
-            axis.set_minor_locator(NullLocator())
-            axis.set_major_formatter(PLAIN_DECADE)
+    label, typeset and measure dozens of ticks per panel, most of a report's render time. An axis
+    spanning less than NARROW decades (a sweep's run times) is labelled at 1, 2 and 5 of each decade,
+    so that it carries at least two labels."""
+    for axis, (low, high) in ((axes.xaxis, axes.get_xlim()), (axes.yaxis, axes.get_ylim())):
+        if axis.get_scale() != "log":
+            continue
+        narrow = low > 0 and high > 0 and abs(math.log10(high / low)) < NARROW
+        axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0) if narrow else (1.0,), numticks=6))
+        axis.set_minor_locator(NullLocator())
+        axis.set_major_formatter(PLAIN_DECADE)
 
 
 def peaks(times: np.ndarray, values: np.ndarray, points: int = PEAK_POINTS) -> tuple[np.ndarray, np.ndarray]:

@@ -23,7 +23,8 @@ from matplotlib.figure import Figure
 
 from reports.harness.level_error import LEVEL_COLUMNS
 from reports.render.level_plots import MARGINS, finish
-from reports.render.plots import FLOOR, MARKERS, colour
+from reports.render.plots import FLOOR, MARKERS, colour, untimed, value_text
+from reports.render.svg_figure import hover
 
 SHIFT_TIME = 1e-3  # s
 SHIFT_ERROR = 1e-15  # dimensionless: double precision
@@ -70,12 +71,6 @@ def sweep_points(runs: pd.DataFrame) -> pd.Series:
     steps = pd.Series([step_of(str(s)) for s in runs["setting"]], index=runs.index).fillna(0.0)
     keys = [runs["scenario"], runs["engine"], runs["mode"]]
     return steps.groupby(keys).rank(method="dense", ascending=False).astype(int)
-
-
-def untimed(frame: pd.DataFrame) -> pd.Series:
-    """The rows that ended ok without a run time (imported trajectories): off every time axis."""
-    times = pd.to_numeric(frame["run_time"], errors="coerce") if "run_time" in frame else np.nan
-    return (frame["status"] == "ok") & ~np.isfinite(pd.Series(times, index=frame.index, dtype=float))
 
 
 def untimed_note(frame: pd.DataFrame) -> str:
@@ -139,7 +134,10 @@ def overview_figure(table: pd.DataFrame, truth: str) -> Figure | None:
             errors = np.maximum(curve[column].to_numpy(float), FLOOR)
             times = curve["run_time"].to_numpy(float)
             label = f"{engine} {mode} ({int(curve['scenarios'].max())})"
-            axes.plot(errors, times, marker=MARKERS[k % len(MARKERS)], color=colour(engine), label=label)
+            (line,) = axes.plot(
+                errors, times, marker=MARKERS[k % len(MARKERS)], color=colour(engine), label=label
+            )
+            hover(line, [_point_title(row, level, column) for _, row in curve.iterrows()])
             default = curve["default"].to_numpy(bool)
             axes.scatter(errors[default], times[default], s=150, facecolors="none", edgecolors=colour(engine))
         axes.set_xscale("log")
@@ -160,3 +158,12 @@ def overview_figure(table: pd.DataFrame, truth: str) -> Figure | None:
     # each line past the first takes its height from the panels, which keep their titles clear of it
     figure.subplots_adjust(top=MARGINS["top"] - TITLE_LINE * (len(lines) - 1))
     return figure
+
+
+def _point_title(row: pd.Series, level: str, column: str) -> str:
+    """The hover text of one overview point: what it summarises and its values."""
+    return (
+        f"{row['engine']} {row['mode']}, step {int(row['point'])} from the coarsest, over "
+        f"{int(row['scenarios'])} scenarios ({int(row['not_ok'])} not ok)\n"
+        f"{level} error {value_text(float(row[column]))}, run time {value_text(float(row['run_time']))} s"
+    )

@@ -1,19 +1,15 @@
 """What every figure of the report shares: engine colours, markers, the floor of log axes, and the
-base64 PNG encoding for a self-contained page (the figures: reports.render.level_plots, overview)."""
+rows without a run time, and a setting's swept value (the figures: reports.render.level_plots,
+overview; drawn as SVG by reports.render.svg_figure)."""
 
 from __future__ import annotations
 
-import base64
-import io
 from collections.abc import Iterable
 from typing import Any
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
 from matplotlib.axes import Axes
-from matplotlib.figure import Figure
 
 from reports.render.markup import figure_text
 
@@ -42,10 +38,24 @@ def legend_entries(panels: Iterable[Axes]) -> tuple[list[Any], list[str]]:
     return handles, [figure_text(label) for label in labels]
 
 
-def png(figure: Figure, tight: bool = True) -> str:
-    """The figure as base64 PNG text (and the figure closed); `tight` False keeps the figure's own
-    margins, which saves measuring every text of a many-panel figure again."""
-    buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=90, bbox_inches="tight" if tight else None)
-    plt.close(figure)
-    return base64.b64encode(buffer.getvalue()).decode("ascii")
+def untimed(frame: pd.DataFrame) -> pd.Series:
+    """The rows that ended ok without a run time (imported trajectories, `mbxval compare`): drawn
+    in a strip of their own, off every time axis and its limits."""
+    times = pd.to_numeric(frame["run_time"], errors="coerce") if "run_time" in frame else np.nan
+    return (frame["status"] == "ok") & ~np.isfinite(pd.Series(times, index=frame.index, dtype=float))
+
+
+def swept_value(setting: str) -> str:
+    """The first value a setting label sets, numbers to three digits (`RK4 dt=6.28319e-05 tc=0.1`
+    gives `dt=6.28e-05`); the mode itself for a setting without values."""
+    parts = str(setting).split(" ")
+    first = next((p for p in parts[1:] if "=" in p), parts[0])
+    key, _, value = first.partition("=")
+    try:
+        return f"{key}={float(value):.3g}"
+    except ValueError:
+        return first
+
+
+def value_text(value: float) -> str:
+    return "0" if value == 0 else f"{value:.3g}"

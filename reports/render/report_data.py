@@ -177,11 +177,20 @@ def number(value: Any) -> str:
 
 
 def table(rows: pd.DataFrame) -> pd.DataFrame:
-    """The per-scenario table: TABLE_COLUMNS, numbers as compact text, sorted by engine and setting."""
+    """The per-scenario table: TABLE_COLUMNS, numbers as compact text, sorted by engine, mode and
+    setting (numerically: setting_key)."""
     for column in TABLE_COLUMNS:  # results written before a column existed
         if column not in rows:
             rows = rows.assign(**{column: math.nan})
-    shown = rows.sort_values(["engine", "mode", "error"], kind="stable")[list(TABLE_COLUMNS)].copy()
+    order = sorted(
+        range(len(rows)),
+        key=lambda k: (
+            str(rows["engine"].iloc[k]),
+            str(rows["mode"].iloc[k]),
+            setting_key(rows["setting"].iloc[k]),
+        ),
+    )
+    shown = rows.iloc[order][list(TABLE_COLUMNS)].copy()
     for column in TABLE_COLUMNS:
         if column not in ("engine", "setting", "status", "message", "steps"):
             shown[column] = [number(v) for v in shown[column]]
@@ -192,3 +201,16 @@ def table(rows: pd.DataFrame) -> pd.DataFrame:
 def _ordered(values: Any, preferred: list[str]) -> list[str]:
     present = [str(v) for v in values]
     return [v for v in preferred if v in present] + sorted(v for v in present if v not in preferred)
+
+
+def setting_key(setting: object) -> tuple[tuple[str, int, float, str], ...]:
+    """A setting label's sort key: its words in order, each `key=value` by the value's number where
+    it is one (1e-08 before 1e-06 before 0.0001), by its text otherwise (after the numbers)."""
+    words: list[tuple[str, int, float, str]] = []
+    for word in str(setting).split(" "):
+        key, _, value = word.partition("=")
+        try:
+            words.append((key, 0, float(value), ""))
+        except ValueError:
+            words.append((key, 1, 0.0, value))
+    return tuple(words)

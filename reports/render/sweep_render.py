@@ -15,11 +15,12 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
+from matplotlib.axes import Axes
 from matplotlib.colors import Normalize, to_rgba
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from reports.render import markup, plots
+from reports.render import markup, plots, svg_figure
 from reports.render.first_screen import BEST, WORST
 from reports.render.markdown_table import markdown_table
 from reports.render.report_data import ReportData, number
@@ -75,6 +76,26 @@ def _image(swept: SweptMap, engine: str, fixed: dict[int, int]) -> tuple[np.ndar
     return image, seen
 
 
+def _hover_cells(axes: Axes, swept: SweptMap, engine: str, fixed: dict[int, int]) -> None:
+    """An invisible square on every cell of the panel whose hover title gives the swept values, the
+    verdict and the error (the colours alone do not say them)."""
+    cells = [c for c in swept.cells if c.engine == engine and all(c.index[k] == v for k, v in fixed.items())]
+    if not cells:
+        return
+    xs = [c.index[0] for c in cells]
+    ys = [c.index[1] if len(swept.axes) > 1 else 0 for c in cells]
+    (squares,) = axes.plot(xs, ys, ls="", marker="s", ms=6, alpha=0.0)
+    titles = []
+    for cell in cells:
+        where = ", ".join(
+            f"{name}={_label(swept.values[k][i])}"
+            for k, (name, i) in enumerate(zip(swept.axes, cell.index, strict=True))
+        )
+        error = f", error {plots.value_text(cell.error)}" if math.isfinite(cell.error) else ""
+        titles.append(f"{engine} on {swept.base} at {where}: {cell.verdict}{error}")
+    svg_figure.hover(squares, titles)
+
+
 def figure(swept: SweptMap, fixed: dict[int, int]) -> Figure:
     """One panel per engine; `fixed` holds the value index of each axis beyond the second."""
     nx = len(swept.values[0])
@@ -89,6 +110,7 @@ def figure(swept: SweptMap, fixed: dict[int, int]) -> Figure:
         image, drawn = _image(swept, engine, fixed)
         seen |= drawn
         axes.imshow(image, origin="lower", aspect="auto", interpolation="nearest")
+        _hover_cells(axes, swept, engine, fixed)
         if singular:
             xs = [i[0] for i in singular]
             ys = [i[1] if len(swept.axes) > 1 else 0 for i in singular]
@@ -149,10 +171,9 @@ def html_fragment(data: ReportData) -> str:
     for swept in maps:
         parts.append(f"<p><strong>{markup.escape(swept.base)}</strong>: {markup.escape(_summary(swept))}</p>")
         for fixed in combinations(swept):
-            encoded = plots.png(figure(swept, fixed), tight=False)
-            alt = markup.escape(_title(swept, fixed))
-            image = f'<img class="plot" alt="{alt}" src="data:image/png;base64,{encoded}">'
-            parts.append(f'<p class="muted">{alt}</p>{image}')
+            title = _title(swept, fixed)
+            image = svg_figure.svg(figure(swept, fixed), title)
+            parts.append(f'<p class="muted">{markup.escape(title)}</p>{image}')
     return "\n".join(parts)
 
 

@@ -32,7 +32,7 @@ def test_the_page_says_dynamics_and_has_its_section(page: str) -> None:
     assert "planar multibody dynamics across engines" in page
     for heading in ("Dynamics: drift and stability", "Stability map", "Energy drift over time"):
         assert heading in page
-    assert 'alt="stability map"' in page and 'alt="energy drift"' in page
+    assert 'aria-label="stability map"' in page and 'aria-label="energy drift"' in page
 
 
 def test_the_native_runs_are_stable_in_every_cell(results: Path) -> None:

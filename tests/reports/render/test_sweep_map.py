@@ -5,6 +5,7 @@ cell, at the time the closed form gives, and ok cells elsewhere."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -70,7 +71,11 @@ def test_the_heat_map_colours_that_cell(data: ReportData) -> None:
 def test_the_report_sections_name_the_singular_points(data: ReportData) -> None:
     fragment = sweep_render.html_fragment(data)
     assert "Native solver singular at (0.08, 10), (0.08, 50)." in fragment
-    assert fragment.count('<img class="plot"') == 1
+    assert fragment.count('<svg class="plot"') == 1
+    # every cell says its swept values, verdict and error on hover (2 x 2 points, one engine)
+    titles = re.findall(r"<title>(reference on four_bar at [^<]*)</title>", fragment)
+    assert len(titles) == 4
+    assert "reference on four_bar at crank_length=0.08, omega=50: singular detected" in " ".join(titles)
     summary = markdown.render(data)
     assert "| four_bar[crank_length=0.08,omega=10] | singular detected @0.5815 s |" in summary
     assert "## four_bar[" not in summary  # swept points are in the sweep's table, not sections
