@@ -270,7 +270,9 @@ def test_a_hostile_name_and_label_render_as_text_in_the_page(hostile_store: Path
     assert page.tags.count("script") == 1  # the page's own plot check, nothing injected
     assert not [name for name, _ in page.attributes if name.startswith("on")]
     assert not [v for name, v in page.attributes if name == "x" and not re.fullmatch(r"-?[0-9.]+", v or "")]
-    assert "img" not in page.tags  # the plots are inline SVG: no image is loaded from anywhere
+    sources = [value or "" for name, value in page.attributes if name == "src"]
+    assert page.tags.count("img") == len(sources) == 1  # the one image: the mechanism's drawing
+    assert all(s.startswith("data:image/svg+xml;base64,") for s in sources)  # embedded, loaded from nowhere
     ids = [value or "" for name, value in page.attributes if name == "id"]
     hrefs = [value or "" for name, value in page.attributes if name == "href"]
     links = [href[1:] for href in hrefs if href.startswith("#")]
