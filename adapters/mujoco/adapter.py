@@ -157,8 +157,7 @@ class MujocoAdapter(Adapter):
         if scenario.cams and scenario.analysis != "dynamic":
             setting = setting.replace(cam_model=default_cam_model(scenario))
             if setting["cam_model"] == "contact":
-                load = preload(scenario, time_constant(setting, float(setting["dt"])))
-                setting = setting.replace(preload=load, contact_impedance=0.99)
+                setting = setting.replace(preload=preload(scenario), contact_impedance=0.99)
             if faceted(scenario):
                 setting = setting.replace(cam_pieces=DEFAULT_PIECES)
         return setting
@@ -170,12 +169,13 @@ class MujocoAdapter(Adapter):
         extra = {k: v for k, v in base.options if k not in ("dt", "tc", "impedance")}
         settings = [s.replace(**extra) if extra else s for s in swept]
         if base.get("cam_model") == "linkage":  # MuJoCo's own cam contact: its step ladders
-            contact: dict[str, OptionValue] = {"cam_model": "contact", "contact_impedance": 0.99}
+            contact: dict[str, OptionValue] = {
+                "cam_model": "contact",
+                "preload": preload(scenario),
+                "contact_impedance": 0.99,
+            }
             ladders = [s for s in settings if s["impedance"] == base["impedance"] and _at_tc(s)]
-            settings += [
-                s.replace(**contact, preload=preload(scenario, time_constant(s, float(s["dt"]))))
-                for s in ladders
-            ]
+            settings += [s.replace(**contact) for s in ladders]
         if _polycoef_drives(scenario):  # the same drives by steered clocks: RK4's step ladder
             ladder = [
                 s for s in settings if s.mode == "RK4" and s["impedance"] == base["impedance"] and _at_tc(s)
@@ -223,7 +223,7 @@ class MujocoAdapter(Adapter):
         first = compile_model(scenario, guessed, physics, 0, scale, linear=True)
         poses = assembled_poses(scenario, guessed, first)
         tree = plan_tree(scenario, poses)
-        load = float(setting.get("preload", preload(scenario, time_constant(setting, dt))))
+        load = float(setting.get("preload", preload(scenario)))
         springs = follower_springs(scenario, first, tree, load, scale, physics.cam_pieces)
         armatures = clock_armatures(scenario, guessed, first, scale, physics.steer)
         loads = loads_of(scenario, tree)
