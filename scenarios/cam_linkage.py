@@ -18,7 +18,7 @@ import numpy as np
 
 from scenarios.bodies import Body, Point
 from scenarios.cam_profiles import EccentricDisc
-from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
+from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam, follower_body
 from scenarios.gears import GearPair, RackPinion
 from scenarios.joints import Joint, Prismatic, Revolute
 from scenarios.scenario import Scenario
@@ -81,7 +81,7 @@ def _link(scenario: Scenario, contact: CamContact) -> tuple[Body, list[Joint]]:
     assert isinstance(disc, EccentricDisc)
     centre, c_world = _centre(scenario, contact)
     name = f"{contact.name}_link"
-    mass = LINK_MASS * scenario.body(_follower(contact)).mass
+    mass = LINK_MASS * scenario.body(follower_body(contact)).mass
     inertia = mass * disc.radius**2 / 12.0
     if isinstance(contact, FlatFaceCam):
         # the link keeps the follower's angle; its origin is C, sliding along the line parallel to
@@ -113,12 +113,6 @@ def _link(scenario: Scenario, contact: CamContact) -> tuple[Body, list[Joint]]:
         Revolute(f"{name}_hinge", Point(name), centre),
         Revolute(f"{name}_pin", Point(name, (length, 0.0)), tip),
     ]
-
-
-def _follower(contact: CamContact) -> str:
-    if isinstance(contact, FlatFaceCam):
-        return contact.face.body
-    return contact.tip.body if isinstance(contact, KnifeEdgeCam) else contact.centre.body
 
 
 CAM_MODELS = ("linkage", "contact")

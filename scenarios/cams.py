@@ -46,3 +46,13 @@ class FlatFaceCam:
 
 
 CamContact = KnifeEdgeCam | RollerCam | FlatFaceCam
+
+
+def follower_body(contact: CamContact) -> str:
+    """The body that carries a cam's follower: the knife edge's tip, the roller's centre or the
+    flat face's body."""
+    if isinstance(contact, KnifeEdgeCam):
+        return contact.tip.body
+    if isinstance(contact, RollerCam):
+        return contact.centre.body
+    return contact.face.body

@@ -24,7 +24,7 @@ import numpy as np
 from adapters.base import EngineFailure
 from adapters.mujoco.assembly import FOLLOWER, closest_contacts, follower_geom, pair_groups
 from scenarios.cam_profiles import EccentricDisc
-from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
+from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam, follower_body
 from scenarios.drivers import AbsoluteDriver
 from scenarios.scenario import Scenario
 
@@ -111,18 +111,10 @@ def _cam_rates(scenario: Scenario, cam: str) -> tuple[float, float]:
     return 0.0, 0.0
 
 
-def follower_of(contact: CamContact) -> str:
-    if isinstance(contact, RollerCam):
-        return contact.centre.body
-    if isinstance(contact, FlatFaceCam):
-        return contact.face.body
-    return contact.tip.body
-
-
 def preload(scenario: Scenario) -> float:
     """The follower preload (N): PRELOAD_MARGIN times the largest inertial force over the cams,
     at least PRELOAD_FLOOR."""
-    forces = [scenario.body(follower_of(c)).mass * largest_acceleration(scenario, c) for c in scenario.cams]
+    forces = [scenario.body(follower_body(c)).mass * largest_acceleration(scenario, c) for c in scenario.cams]
     return max(PRELOAD_FLOOR, PRELOAD_MARGIN * max(forces, default=0.0))
 
 

@@ -23,12 +23,12 @@ from reports.drawing.parts import (
     Shape,
     body_points,
     cam_shapes,
-    follower_body,
     point_text,
     pose_text,
 )
 from scenarios import GROUND, Scenario
 from scenarios.bodies import Pose, Vec2
+from scenarios.cams import follower_body
 from scenarios.geometry import rotate
 from scenarios.joints import Ground, Prismatic, Revolute, RevoluteRevolute
 

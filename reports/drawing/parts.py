@@ -13,7 +13,7 @@ import numpy as np
 from scenarios import GROUND, Scenario
 from scenarios.bodies import Point, Pose, Vec2
 from scenarios.cam_profiles import LobedProfile, Profile, SplineProfile
-from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
+from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam, follower_body
 from scenarios.drivers import (
     PointPathDriver,
     RelativeDisplacementDriver,
@@ -80,15 +80,6 @@ def unit(v: Vec2) -> Vec2:
 
 def along(p: Vec2, u: Vec2, length: float) -> Vec2:
     return (p[0] + length * u[0], p[1] + length * u[1])
-
-
-def follower_body(contact: CamContact) -> str:
-    """The body that carries a cam's follower."""
-    if isinstance(contact, KnifeEdgeCam):
-        return contact.tip.body
-    if isinstance(contact, RollerCam):
-        return contact.centre.body
-    return contact.face.body
 
 
 def _feature(contact: CamContact) -> Point:
