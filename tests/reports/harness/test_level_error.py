@@ -67,7 +67,9 @@ def test_levels_not_asked_are_nan_even_when_both_trajectories_carry_them() -> No
     truth = fake_truth(scenario, np.asarray(scenario.times()))
     velocity = present(truth.velocity)
     velocity[:, 0, 2] += 0.5
-    errors = level_errors(scenario, dataclasses.replace(truth, velocity=velocity), truth, levels=("position",))
+    errors = level_errors(
+        scenario, dataclasses.replace(truth, velocity=velocity), truth, levels=("position",)
+    )
     assert errors["error_position"] == 0.0
     assert math.isnan(errors["error_velocity"]) and math.isnan(errors["error_acceleration"])
 

@@ -142,7 +142,7 @@ def test_a_level_missing_from_either_trajectory_is_refused_by_name() -> None:
     reference = truth()
     no_velocity = dataclasses.replace(reference, velocity=None)
     for result, ref in ((no_velocity, reference), (reference, no_velocity)):
-        with pytest.raises(ValueError, match="^level velocity is missing from one of the trajectories$"):
+        with pytest.raises(ValueError, match=r"^level velocity is missing from one of the trajectories$"):
             level_errors(result, ref, "velocity")
 
 
@@ -151,7 +151,7 @@ def test_the_grid_and_the_bodies_must_match_exactly() -> None:
     reference = truth()
     times = reference.times.copy()
     times[0] += 1e-10
-    with pytest.raises(ValueError, match="^the trajectory and the reference are not on the same time grid$"):
+    with pytest.raises(ValueError, match=r"^the trajectory and the reference are not on the same time grid$"):
         level_errors(dataclasses.replace(reference, times=times), reference, "position")
     with pytest.raises(ValueError, match=r"^bodies differ: \('slider', 'crank', 'rod'\) against"):
         level_errors(reference.select(("slider", "crank", "rod")), reference, "position")
