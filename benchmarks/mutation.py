@@ -37,6 +37,7 @@ PACKAGES = (
 MODULES: dict[str, tuple[str, ...]] = {
     "scenarios/closed_form.py": (
         "tests/scenarios/test_closed_form.py",
+        "tests/scenarios/test_closed_form_refusals.py",
         "tests/scenarios/test_four_bar_chain.py",
         "tests/scenarios/test_cam_linkage.py",
         "tests/reference_solver/test_closed_forms.py",
