@@ -1,7 +1,7 @@
 """Closed forms where the mutation run (docs/mutation.md) found them unchecked: the refusals' whole
-reasons, and the disc cams' contact parameter on the branch of a cam started past half a turn
-(its 2 pi shift is then not zero). The expected values are the native solver's (reference_solver),
-an independent construction from the constraint equations."""
+reasons, the disc cams' contact parameter on the branch of a cam started past half a turn (its
+2 pi shift is then not zero), and a four-bar started at theta = 0 exactly. The expected values are
+the native solver's (reference_solver), an independent construction from the constraint equations."""
 
 from __future__ import annotations
 
@@ -17,10 +17,13 @@ from scenarios.closed_form import NoClosedForm, exact
 
 
 def test_the_refusals_give_their_whole_reason() -> None:
-    with pytest.raises(NoClosedForm, match="^closed forms exist for the eccentric disc profile only$"):
+    with pytest.raises(NoClosedForm, match=r"^closed forms exist for the eccentric disc profile only$"):
         exact(scenarios.build("cam_roller/spline"))
     base = scenarios.build("slider_crank")
-    reason = f"{base.name}: no closed form: not the mechanism the family slider_crank builds from the parameters it records"
+    reason = (
+        f"{base.name}: no closed form: not the mechanism the family slider_crank builds "
+        "from the parameters it records"
+    )
     with pytest.raises(NoClosedForm, match=f"^{re.escape(reason)}$"):
         exact(dataclasses.replace(base, drivers=()))
 
@@ -34,3 +37,11 @@ def test_a_disc_cam_started_past_half_a_turn_keeps_the_native_contact_branch(
     np.testing.assert_allclose(
         exact(scenario).extras["contact.phi"], solve(scenario).extras["contact.phi"], atol=1e-10
     )
+
+
+def test_a_four_bar_started_at_zero_matches_the_native_solver() -> None:
+    """At theta = 0 exactly sin(theta) is exactly 0: a closed form dividing by it is NaN there."""
+    scenario = scenarios.build("four_bar", overrides={"theta0": 0.0, "steps": 24})
+    solved, expected = solve(scenario), exact(scenario)
+    for level in ("position", "velocity", "acceleration"):
+        np.testing.assert_allclose(getattr(solved, level), getattr(expected, level), atol=1e-9, err_msg=level)
