@@ -75,6 +75,14 @@ EXPLAINED: dict[str, str] = {
         "a body's `turns` False -> None: it is only tested for truth, and None is false too"
     ),
     **dict.fromkeys(
+        tuple(
+            f"scenarios.closed_form.x_disc_cam__mutmut_{k}" for k in (126, 128, 129, 135, 136, 137, 138, 139)
+        ),
+        "the contact angle's 2 pi shift: its argument is pi/2 minus the contact point's polar angle, within "
+        "pi/2 for a contact above the cam's axis (where the follower is), so round() and the shift are 0; "
+        "these mutants scale the 0, or move the argument by less than pi/2",
+    ),
+    **dict.fromkeys(
         (
             "scenarios.closed_form.x_four_bar__mutmut_122",
             "scenarios.closed_form.x_four_bar__mutmut_123",

@@ -1,7 +1,8 @@
 """Closed forms where the mutation run (docs/mutation.md) found them unchecked: the refusals' whole
-reasons, the disc cams' contact parameter on the branch of a cam started past half a turn (its
-2 pi shift is then not zero), and a four-bar started at theta = 0 exactly. The expected values are
-the native solver's (reference_solver), an independent construction from the constraint equations."""
+reasons, the disc cams' contact parameter for a cam started past half a turn (its branch is then
+chosen from a start angle and a contact angle far from 0), and a four-bar started at theta = 0
+exactly. The expected values are the native solver's (reference_solver), an independent
+construction from the constraint equations."""
 
 from __future__ import annotations
 
