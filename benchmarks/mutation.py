@@ -46,6 +46,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reports/harness/metrics.py": ("tests/reports/harness/test_metrics.py",),
     "reports/harness/level_error.py": ("tests/reports/harness/test_level_error.py",),
     "reference_solver/newton.py": (
+        "tests/reference_solver/test_newton.py",
         "tests/reference_solver/test_failures.py",
         "tests/reference_solver/test_closed_forms.py",
     ),
