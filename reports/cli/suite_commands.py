@@ -298,6 +298,7 @@ BENCHMARKS = {
     "overhead": "benchmarks.run_overhead",
     "dynamics": "benchmarks.dynamics_speed",
     "store": "benchmarks.store_append",
+    "mutation": "benchmarks.mutation",
 }
 
 
@@ -354,7 +355,8 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         default="speed",
         help="speed: cost per time point per family; scaling: cost against chain size; "
         "sweep: a 200-point sweep serial against --workers; overhead: wall time against the measured work; "
-        "store: a save of 100 rows onto stores of 1k, 10k and 100k rows, whole rewrite against append",
+        "store: a save of 100 rows onto stores of 1k, 10k and 100k rows, whole rewrite against append; "
+        "mutation: mutmut over a module with its own tests (--module PATH)",
     )
     bench.add_argument("options", nargs=argparse.REMAINDER, help="passed to the benchmark (see its --help)")
 

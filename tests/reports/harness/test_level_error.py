@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 
 import numpy as np
 import pytest
 
 import scenarios
-from reports.harness.level_error import characteristic_rate, level_errors
+from reports.harness.level_error import characteristic_rate, largest, level_errors, level_series
 from tests.support.fake_engine import fake_truth
 
 
@@ -59,3 +60,37 @@ def test_undefined_truth_times_are_not_scored() -> None:
         scenario, dataclasses.replace(truth, position=run_position), dataclasses.replace(truth, position=cut)
     )
     assert errors["error_position"] == pytest.approx(1e-6)
+
+
+def test_levels_not_asked_are_nan_even_when_both_trajectories_carry_them() -> None:
+    scenario = scenarios.build("slider_crank")
+    truth = fake_truth(scenario, np.asarray(scenario.times()))
+    velocity = present(truth.velocity)
+    velocity[:, 0, 2] += 0.5
+    errors = level_errors(
+        scenario, dataclasses.replace(truth, velocity=velocity), truth, levels=("position",)
+    )
+    assert errors["error_position"] == 0.0
+    assert math.isnan(errors["error_velocity"]) and math.isnan(errors["error_acceleration"])
+
+
+def test_no_defined_time_is_nan_and_a_shape_mismatch_is_refused_by_name() -> None:
+    assert math.isnan(largest(np.full(4, np.nan)))
+    assert math.isnan(largest(None))
+    scenario = scenarios.build("slider_crank")
+    truth = fake_truth(scenario, np.asarray(scenario.times()))
+    short = fake_truth(scenario, np.asarray(scenario.times())[:5])
+    with pytest.raises(ValueError, match=r"^position: shapes differ, \(5, 3, 3\) against \("):
+        level_series(short, truth, "position", 0.2, 50.0)
+
+
+def test_an_overflowing_difference_is_an_infinite_error_without_a_warning() -> None:
+    scenario = scenarios.build("slider_crank")
+    truth = fake_truth(scenario, np.asarray(scenario.times()))
+    position = present(truth.position)
+    position[3, 0, 0], position[3, 0, 2] = 1.5e308, 1.5e308
+    far = dataclasses.replace(truth, position=-position)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        series = level_series(dataclasses.replace(truth, position=position), far, "position", 0.2, 50.0)
+    assert series is not None and series[3] == math.inf

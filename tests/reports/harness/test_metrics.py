@@ -4,12 +4,21 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 
 import numpy as np
 import pytest
 
 import reference_solver
-from reports.harness.metrics import METRIC_COLUMNS, error_metrics, headline_series, residual_metrics
+from reports.harness.metrics import (
+    METRIC_COLUMNS,
+    error_metrics,
+    headline,
+    headline_series,
+    level_errors,
+    residual_metrics,
+    summarise,
+)
 from scenarios import Trajectory, build
 
 SCENARIO = build("slider_crank")  # bodies crank, rod, slider; characteristic length 0.2
@@ -122,10 +131,47 @@ def test_constraint_residual_sees_a_known_gap() -> None:
 
 def test_a_truth_that_stops_is_compared_where_it_exists() -> None:
     """A stress truth is NaN past a singular time: the statistics cover the times before it."""
-    from reports.harness.metrics import summarise
-
     series = np.array([1e-9, 3e-9, 2e-9, np.nan, np.nan])
     stats = summarise(series)
     assert stats["max"] == 3e-9 and stats["final"] == 2e-9
     assert stats["rms"] == pytest.approx(np.sqrt((1 + 9 + 4) / 3) * 1e-9)
     assert all(np.isnan(v) for v in summarise(np.full(3, np.nan)).values())
+
+
+def test_a_level_missing_from_either_trajectory_is_refused_by_name() -> None:
+    reference = truth()
+    no_velocity = dataclasses.replace(reference, velocity=None)
+    for result, ref in ((no_velocity, reference), (reference, no_velocity)):
+        with pytest.raises(ValueError, match=r"^level velocity is missing from one of the trajectories$"):
+            level_errors(result, ref, "velocity")
+
+
+def test_the_grid_and_the_bodies_must_match_exactly() -> None:
+    """The grids agree to 1e-12 absolute: at t = 0 no relative slack applies, so 1e-10 is refused."""
+    reference = truth()
+    times = reference.times.copy()
+    times[0] += 1e-10
+    with pytest.raises(ValueError, match=r"^the trajectory and the reference are not on the same time grid$"):
+        level_errors(dataclasses.replace(reference, times=times), reference, "position")
+    with pytest.raises(ValueError, match=r"^bodies differ: \('slider', 'crank', 'rod'\) against"):
+        level_errors(reference.select(("slider", "crank", "rod")), reference, "position")
+
+
+def test_statistics_name_their_columns_and_an_overflow_is_infinite_silently() -> None:
+    assert sorted(summarise(np.full(3, np.nan))) == ["final", "max", "rms"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        stats = summarise(np.array([1e200, 2e200]))
+    assert stats == {"max": 2e200, "rms": math.inf, "final": 2e200}
+
+
+def test_the_headline_needs_both_position_quantities() -> None:
+    assert headline({"position_length_max": 0.1, "position_angle_max": 0.3}, 0.2) == 0.5
+    assert math.isnan(headline({"position_length_max": 0.1, "position_angle_max": math.nan}, 0.2))
+    assert math.isnan(headline({"position_length_max": math.nan, "position_angle_max": 0.1}, 0.2))
+
+
+def test_an_empty_residual_is_nan_under_both_names() -> None:
+    empty = residual_metrics(SCENARIO, truth(), lambda scenario, result: np.empty(0))
+    assert sorted(empty) == ["constraint_residual", "constraint_residual_final"]
+    assert all(math.isnan(v) for v in empty.values())

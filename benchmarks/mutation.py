@@ -1,0 +1,191 @@
+"""Mutation testing, run the same way every time: mutmut over one module with only the tests that
+concern it, in a scratch copy of the sources (so runs never collide with the work tree or each other).
+
+    mbxval bench mutation [--module PATH ...] [--keep DIR]
+
+Each module of MODULES is mutated alone against its own test files (`-m "not slow"`, `-x`), one
+worker, under `nice -n 19`. The table gives mutants total / killed / survived / timeout and lists
+every survivor, marked "explained" when EXPLAINED gives the reason it cannot or need not be killed
+(docs/mutation.md keeps the counts and the reasons). Mutant names are mutmut's (function and
+ordinal), stable for a given source and mutmut version, which pyproject pins.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+PACKAGES = (
+    "mbxval",
+    "scenarios",
+    "reference_solver",
+    "adapters",
+    "reports",
+    "benchmarks",
+    "tests",
+    "examples",
+)
+
+MODULES: dict[str, tuple[str, ...]] = {
+    "scenarios/closed_form.py": (
+        "tests/scenarios/test_closed_form.py",
+        "tests/scenarios/test_closed_form_edges.py",
+        "tests/scenarios/test_four_bar_chain.py",
+        "tests/scenarios/test_cam_linkage.py",
+        "tests/reference_solver/test_closed_forms.py",
+        "tests/reports/harness/test_truth.py",
+    ),
+    "reports/harness/metrics.py": ("tests/reports/harness/test_metrics.py",),
+    "reports/harness/level_error.py": ("tests/reports/harness/test_level_error.py",),
+    "reference_solver/newton.py": (
+        "tests/reference_solver/test_newton.py",
+        "tests/reference_solver/test_failures.py",
+        "tests/reference_solver/test_closed_forms.py",
+    ),
+}
+
+_STRICT_ZIP = "zip of two 2-tuples: strict or not, the pairs are the same"
+_DTYPE = "the values are floats already: asarray(..., dtype=float) and asarray(...) are the same array"
+EXPLAINED: dict[str, str] = {
+    "reports.harness.metrics.x_error_metrics__mutmut_25": _STRICT_ZIP,
+    "reports.harness.metrics.x_error_metrics__mutmut_28": _STRICT_ZIP,
+    "reports.harness.metrics.x_error_metrics__mutmut_29": _STRICT_ZIP,
+    "reports.harness.metrics.x_residual_metrics__mutmut_4": _DTYPE
+    + " (a residual is float; float() ends it)",
+    "reports.harness.metrics.x_residual_metrics__mutmut_6": _DTYPE
+    + " (a residual is float; float() ends it)",
+    "reports.harness.level_error.x_level_series__mutmut_35": _DTYPE + " (fmax of float arrays)",
+    "reports.harness.level_error.x_level_series__mutmut_37": _DTYPE + " (fmax of float arrays)",
+    **dict.fromkeys(
+        (
+            "scenarios.closed_form.x__e__mutmut_7",
+            "scenarios.closed_form.x_four_bar_chain__mutmut_48",
+            "scenarios.closed_form.x_four_bar_chain__mutmut_57",
+        ),
+        "stack(..., axis=-1) -> axis=+1: the angles are 1-D (one per grid time), so both axes are the last",
+    ),
+    "scenarios.closed_form.x_four_bar_chain__mutmut_108": (
+        "a body's `turns` False -> None: it is only tested for truth, and None is false too"
+    ),
+    **dict.fromkeys(
+        tuple(
+            f"scenarios.closed_form.x_disc_cam__mutmut_{k}" for k in (126, 128, 129, 135, 136, 137, 138, 139)
+        ),
+        "the contact angle's 2 pi shift: its argument is pi/2 minus the contact point's polar angle, within "
+        "pi/2 for a contact above the cam's axis (where the follower is), so round() and the shift are 0; "
+        "these mutants scale the 0, or move the argument by less than pi/2",
+    ),
+    **dict.fromkeys(
+        (
+            "scenarios.closed_form.x_four_bar__mutmut_122",
+            "scenarios.closed_form.x_four_bar__mutmut_123",
+            "scenarios.closed_form.x_slider_crank__mutmut_39",
+            "scenarios.closed_form.x_slider_crank__mutmut_46",
+            "scenarios.closed_form.x_disc_cam__mutmut_145",
+        ),
+        "a term times the driver's angular acceleration, exactly 0: every closed form's driver turns at "
+        "constant speed (_constant_speed), so the term is 0 whatever its sign, or a factor / cos(theta) "
+        "instead of * (cos of a float angle is never exactly 0)",
+    ),
+}
+
+KILLED, SURVIVED = 1, 0
+TIMEOUTS = {-24, 24, 152}  # SIGXCPU, as mutmut reports a mutant that outran its time limit
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """The result of one module's mutation run."""
+
+    module: str
+    total: int
+    killed: int
+    timeout: int
+    survivors: tuple[str, ...]
+    other: int  # mostly 'no tests': no selected test runs the mutated function
+
+    @property
+    def unexplained(self) -> tuple[str, ...]:
+        return tuple(name for name in self.survivors if name not in EXPLAINED)
+
+
+def _scratch_copy(module: str, where: Path) -> None:
+    """The sources and tests under `where`, with a mutmut configuration for `module` alone."""
+    for package in PACKAGES:
+        shutil.copytree(
+            ROOT / package, where / package, ignore=shutil.ignore_patterns("__pycache__", "*.pyc")
+        )
+    config = (ROOT / "pyproject.toml").read_text()
+    tests = ", ".join(json.dumps(t) for t in MODULES[module])
+    also = ", ".join(json.dumps(p) for p in PACKAGES)
+    config += (
+        f'\n[tool.mutmut]\nsource_paths = ["{module}"]\npytest_add_cli_args_test_selection = [{tests}]\n'
+        f"also_copy = [{also}]\n"
+        'pytest_add_cli_args = ["-p", "no:cacheprovider", "-x", "-q", "-m", "not slow"]\n'
+    )
+    (where / "pyproject.toml").write_text(config)
+
+
+def _outcome(module: str, where: Path) -> Outcome:
+    meta = json.loads((where / "mutants" / f"{module}.meta").read_text())
+    codes: dict[str, int | None] = meta["exit_code_by_key"]
+    survivors = tuple(sorted(name for name, code in codes.items() if code == SURVIVED))
+    killed = sum(code == KILLED for code in codes.values())
+    timeout = sum(code in TIMEOUTS for code in codes.values())
+    other = len(codes) - killed - timeout - len(survivors)
+    return Outcome(module, len(codes), killed, timeout, survivors, other)
+
+
+def run(module: str, keep: Path | None = None) -> Outcome:
+    """Mutate `module` (a key of MODULES) in a scratch copy, one worker at the lowest priority."""
+    if module not in MODULES:
+        raise ValueError(f"no mutation setup for {module}: one of {', '.join(MODULES)}")
+    mutmut = Path(sys.executable).with_name("mutmut")
+    with tempfile.TemporaryDirectory(prefix="mbxval-mutation-") as scratch:
+        where = keep if keep is not None else Path(scratch)
+        where.mkdir(parents=True, exist_ok=True)
+        _scratch_copy(module, where)
+        env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
+        subprocess.run(
+            ["nice", "-n", "19", str(mutmut), "run", "--max-children", "1"],
+            cwd=where,
+            env=env,
+            check=True,
+            stdout=subprocess.DEVNULL,
+        )
+        return _outcome(module, where)
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(prog="mbxval bench mutation", description=__doc__.split("\n\n")[0])
+    parser.add_argument(
+        "--module",
+        action="append",
+        choices=sorted(MODULES),
+        help="module to mutate (repeatable; default all)",
+    )
+    parser.add_argument(
+        "--keep", type=Path, help="run in this directory and keep it (mutmut show works there)"
+    )
+    args = parser.parse_args(argv)
+    print(f"{'module':<40} {'total':>6} {'killed':>7} {'survived':>9} {'timeout':>8} {'no tests':>9}")
+    for module in args.module or list(MODULES):
+        outcome = run(module, args.keep / module.replace("/", "_") if args.keep else None)
+        print(
+            f"{module:<40} {outcome.total:>6} {outcome.killed:>7} {len(outcome.survivors):>9} "
+            f"{outcome.timeout:>8} {outcome.other:>9}"
+        )
+        for name in outcome.survivors:
+            print(f"    survived {name}: {EXPLAINED.get(name, 'NOT EXPLAINED')}")
+
+
+if __name__ == "__main__":
+    main()
