@@ -95,6 +95,16 @@ EXPLAINED: dict[str, str] = {
         "constant speed (_constant_speed), so the term is 0 whatever its sign, or a factor / cos(theta) "
         "instead of * (cos of a float angle is never exactly 0)",
     ),
+    "reference_solver.newton.x_newton__mutmut_6": "range(max_iterations + 2) for + 1: the loop breaks at "
+    "iteration == max_iterations before it reaches the range's end, so the extra pass is never run",
+    "reference_solver.newton.x__backtrack__mutmut_18": "a trial accepted when its scaled residual equals "
+    "the current one (<= for <): differs only on an exact tie of two floating residuals, a step that is "
+    "neither progress nor harm",
+    **dict.fromkeys(
+        ("reference_solver.newton.x_newton__mutmut_74", "reference_solver.newton.x_newton__mutmut_78"),
+        "the empty step's branch (dx.size 0): a step is taken only after a factorization with rcond > 0, "
+        "which an empty matrix never has (its rcond is 0 and the loop stops first): unreachable",
+    ),
 }
 
 KILLED, SURVIVED = 1, 0

@@ -1,11 +1,15 @@
-"""Newton's exits where the mutation run (docs/mutation.md) found them unchecked: a start whose
-residual is not finite stops at once, unconverged, with the start unchanged and no factors."""
+"""Newton's exits and arithmetic where the mutation run (docs/mutation.md) found them unchecked: a
+start whose residual is not finite stops at once; the iteration count, the strict tolerances, the
+unconverged result's fields, a singular Jacobian, an empty system, and the backtracking's halving,
+each on a one-unknown system whose iterates are worked by hand."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
+import pytest
 
 import scenarios
 from reference_solver import ConstraintSystem
@@ -19,3 +23,70 @@ def test_a_non_finite_start_is_returned_unconverged_at_once() -> None:
     assert result.converged is False and result.iterations == 0 and result.factors is None
     assert math.isnan(result.residual)
     assert result.q.shape == start.shape and np.isnan(result.q).all()
+
+
+class OneUnknown:
+    """A one-row, one-unknown system C(q) = row_scale * f(q) (scaled residual f), enough to pin
+    Newton's arithmetic: the iterates below are worked by hand from f and f'."""
+
+    def __init__(self, f, df, row_scale: float = 1.0) -> None:  # type: ignore[no-untyped-def]
+        self.f, self.df = f, df
+        self.row_scales = np.array([row_scale])
+        self.column_scales = np.array([1.0])
+
+    def evaluate(self, q: np.ndarray, t: float):  # type: ignore[no-untyped-def]
+        return self.residual(q, t), self.row_scales[:, None] * np.array([[self.df(q[0])]]), None
+
+    def residual(self, q: np.ndarray, t: float) -> np.ndarray:
+        return self.row_scales * np.array([self.f(q[0])])
+
+    def scaled_jacobian(self, jac: np.ndarray) -> np.ndarray:
+        return jac * self.column_scales[None, :] / self.row_scales[:, None]
+
+
+def linear() -> OneUnknown:
+    return OneUnknown(lambda q: q - 0.5, lambda q: 1.0)
+
+
+def test_a_linear_row_converges_on_the_second_iteration_with_its_residual() -> None:
+    # iteration 0: C = -0.5, step to 0.5; iteration 1: C = 0 but the step was 0.5; iteration 2: done
+    result = newton(linear(), np.array([0.0]), 0.0, NewtonSettings())  # type: ignore[arg-type]
+    assert result.converged is True and result.iterations == 2 and result.residual == 0.0
+    assert result.q[0] == 0.5 and result.factors is not None
+
+
+def test_the_tolerances_are_strict_and_an_unconverged_result_says_how_far_it_got() -> None:
+    for settings in (NewtonSettings(residual_tolerance=0.0), NewtonSettings(step_tolerance=0.0)):
+        result = newton(linear(), np.array([0.0]), 0.0, dataclasses.replace(settings, max_iterations=3))  # type: ignore[arg-type]
+        assert result.converged is False and result.iterations == 3 and result.residual == 0.0
+    rootless = OneUnknown(lambda q: q * q + 1.0, lambda q: 2.0 * q)  # no real root
+    result = newton(rootless, np.array([0.3]), 0.0, NewtonSettings(max_iterations=4))  # type: ignore[arg-type]
+    assert result.converged is False and result.iterations == 4
+    assert result.residual == pytest.approx(result.q[0] ** 2 + 1.0, rel=1e-12)  # at the last iterate
+
+
+def test_a_singular_jacobian_stops_at_once() -> None:
+    flat = OneUnknown(lambda q: 1.0, lambda q: 0.0)
+    result = newton(flat, np.array([0.0]), 0.0, NewtonSettings())  # type: ignore[arg-type]
+    assert result.converged is False and result.iterations == 0 and result.residual == 1.0
+
+
+def test_an_empty_system_has_residual_zero_and_no_factors_to_step_with() -> None:
+    empty = OneUnknown(lambda q: 0.0, lambda q: 0.0)
+    empty.row_scales, empty.column_scales = np.zeros(0), np.zeros(0)
+    empty.evaluate = lambda q, t: (np.zeros(0), np.zeros((0, 0)), None)  # type: ignore[method-assign]
+    result = newton(empty, np.zeros(0), 0.0, NewtonSettings())  # type: ignore[arg-type]
+    assert result.residual == 0.0 and result.converged is False and result.iterations == 0
+
+
+def test_backtracking_takes_the_first_halving_that_lowers_the_scaled_residual() -> None:
+    damped = NewtonSettings(damped=True, max_iterations=1)
+    # tanh(q) - 0.5 from 0: the full step (0.5) lowers |f| from 0.5 to 0.038 and is taken as it is
+    # (twice it would lower |f| too); rows scaled by 10, judged scaled.
+    saturating = OneUnknown(lambda q: math.tanh(q) - 0.5, lambda q: 1.0 - math.tanh(q) ** 2, row_scale=10.0)
+    assert newton(saturating, np.array([0.0]), 0.0, damped).q[0] == 0.5  # type: ignore[arg-type]
+    # exp(q) - 1 from -3: the full step (e^3 - 1 = 19.09) and its halves to a quarter raise |f|;
+    # an eighth of it (to -0.614) lowers it from 0.950 to 0.459.
+    steep = OneUnknown(lambda q: math.exp(q) - 1.0, math.exp)
+    full = math.exp(3.0) - 1.0
+    assert newton(steep, np.array([-3.0]), 0.0, damped).q[0] == pytest.approx(-3.0 + full / 8, rel=1e-14)  # type: ignore[arg-type]
