@@ -147,9 +147,10 @@ def check_scenario_names(names: list[str], out: Path, rerun: bool) -> None:
         raise UsageError(clash)
 
 
-def run_selection(selection: Selection, out: Path, progress: bool) -> Counter[str]:
-    """Run a checked selection into `out` (the caller holds its writer lock); returns the rows this
-    run made, by status (the store may hold more: rows kept from earlier runs)."""
+def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = False) -> Counter[str]:
+    """Run a checked selection into `out` (the caller holds its writer lock), and with `draw` draw
+    its mechanisms beside the results for a report; returns the rows this run made, by status (the
+    store may hold more: rows kept from earlier runs)."""
     suite, backend = selection.suite, selection.backend
     arguments: dict[str, Any] = {
         "truth": suite.truth,
@@ -166,7 +167,8 @@ def run_selection(selection: Selection, out: Path, progress: bool) -> Counter[st
             ResultsStore(out), selection.engines, selection.options, **arguments, **vars(backend)
         )
     runner.run(selection.names)
-    _draw(out, runner.planned.values())
+    if draw:
+        _draw(out, runner.planned.values())
     return runner.made
 
 
@@ -203,7 +205,7 @@ def run_and_render(
     """Run a checked selection into `out` under its writer lock, then render its report (unless
     not `report`); the rows this run made by status, and the report's page."""
     with WriterLock(out, wait=wait):
-        made = run_selection(selection, out, progress)
+        made = run_selection(selection, out, progress, draw=report)
         return made, render_reports(out) if report else None
 
 
