@@ -11,7 +11,7 @@ from pathlib import Path
 
 from reports.drawing.drawing import draw_svg
 from reports.harness.atomic_write import atomic_output
-from reports.render.drawings import DRAWINGS, INDEX
+from reports.render.drawings import DRAWINGS, INDEX, read_index
 from scenarios import Scenario
 
 MAX_BODIES = 30
@@ -32,7 +32,7 @@ def write_drawings(out: Path, scenarios: Iterable[Scenario]) -> dict[str, str]:
     failing the run. Returns the index, {scenario: file name}."""
     folder = out / DRAWINGS
     folder.mkdir(exist_ok=True)
-    index = {s: folder.joinpath(n).name for s, n in _stored_index(folder).items()}
+    index = read_index(folder)
     for scenario in scenarios:
         if len(scenario.bodies) > MAX_BODIES:
             continue
@@ -48,11 +48,3 @@ def write_drawings(out: Path, scenarios: Iterable[Scenario]) -> dict[str, str]:
     with atomic_output(folder / INDEX) as stream:
         stream.write(json.dumps(index, indent=1, sort_keys=True))
     return index
-
-
-def _stored_index(folder: Path) -> dict[str, str]:
-    try:
-        found = json.loads((folder / INDEX).read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return {}
-    return {str(k): str(v) for k, v in found.items()} if isinstance(found, dict) else {}

@@ -25,16 +25,24 @@ def read_drawings(results: str | os.PathLike[str]) -> dict[str, str]:
         folder = results_directory(results) / DRAWINGS
     except FileNotFoundError:  # no store there (yet): the folder as given
         folder = Path(results) / DRAWINGS
+    found: dict[str, str] = {}
+    for scenario, name in read_index(folder).items():
+        path = folder / name
+        try:
+            if path.is_file() and not path.is_symlink() and path.stat().st_size <= MAX_BYTES:
+                found[scenario] = path.read_text(encoding="utf-8")
+        except OSError:
+            continue
+    return found
+
+
+def read_index(folder: Path) -> dict[str, str]:
+    """{scenario: bare file name} of a drawings folder's index; empty when it cannot be read. A name
+    is reduced to its last part, so that it never reaches out of the folder."""
     try:
         index = json.loads((folder / INDEX).read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return {}
-    found: dict[str, str] = {}
-    for scenario, name in index.items() if isinstance(index, dict) else ():
-        path = folder / Path(str(name)).name  # a bare file name inside the folder, nothing else
-        try:
-            if path.is_file() and not path.is_symlink() and path.stat().st_size <= MAX_BYTES:
-                found[str(scenario)] = path.read_text(encoding="utf-8")
-        except OSError:
-            continue
-    return found
+    if not isinstance(index, dict):
+        return {}
+    return {str(scenario): Path(str(name)).name for scenario, name in index.items()}
