@@ -1,5 +1,6 @@
-"""Each scenario of a run drawn at t = 0 and left beside its results (DIR/drawings/), so that the
-report shows the mechanism without drawing it (reports.render.drawings reads them)."""
+"""Each scenario of a run drawn and left beside its results (DIR/drawings/), so that the report
+shows the mechanism without drawing it (reports.render.drawings reads them): one cycle in
+REPORT_FRAMES frames where that animation stays small, else the still at t = 0."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import warnings
 from collections.abc import Iterable
 from pathlib import Path
 
-from reports.drawing.drawing import draw_svg
+from reports.drawing.drawing import DrawingError, draw_svg
 from reports.harness.atomic_write import atomic_output
 from reports.render.drawings import DRAWINGS, INDEX, read_index
 from scenarios import Scenario
@@ -17,6 +18,11 @@ from scenarios import Scenario
 MAX_BODIES = 30
 """A scenario with more bodies is not drawn for the report (n_four_bar/spec's 81 take about a
 minute to pose); `mbxval draw` still draws it."""
+REPORT_FRAMES = 12
+"""Frames of the report's animation of one cycle (`mbxval draw --frames` draws any number)."""
+MAX_ANIMATION_BYTES = 48_000
+"""An animation larger than this is left out for the still: the page carries every drawing, and
+a cam's twelve redrawn profiles (about 90 to 130 kB) would add more than its figures."""
 
 
 def file_name(scenario: str) -> str:
@@ -27,7 +33,7 @@ def file_name(scenario: str) -> str:
 
 
 def write_drawings(out: Path, scenarios: Iterable[Scenario]) -> dict[str, str]:
-    """Draw each scenario at t = 0 into out/drawings/ and add them to its index (the drawings of
+    """Draw each scenario (report_drawing) into out/drawings/ and add them to its index (the drawings of
     earlier runs into `out` stay); a scenario that cannot be drawn is left out with a warning, never
     failing the run. Returns the index, {scenario: file name}."""
     folder = out / DRAWINGS
@@ -37,7 +43,7 @@ def write_drawings(out: Path, scenarios: Iterable[Scenario]) -> dict[str, str]:
         if len(scenario.bodies) > MAX_BODIES:
             continue
         try:
-            text = draw_svg(scenario)
+            text = report_drawing(scenario)
         except Exception as error:  # a picture is never worth a run: say why and go on
             warnings.warn(f"{scenario.name}: not drawn ({error})", RuntimeWarning, stacklevel=2)
             continue
@@ -48,3 +54,14 @@ def write_drawings(out: Path, scenarios: Iterable[Scenario]) -> dict[str, str]:
     with atomic_output(folder / INDEX) as stream:
         stream.write(json.dumps(index, indent=1, sort_keys=True))
     return index
+
+
+def report_drawing(scenario: Scenario) -> str:
+    """The scenario's cycle in REPORT_FRAMES frames when that fits MAX_ANIMATION_BYTES, else its
+    still at t = 0 (also where no cycle can be animated)."""
+    still = draw_svg(scenario)
+    try:
+        animation = draw_svg(scenario, frames=REPORT_FRAMES)
+    except DrawingError:
+        return still
+    return animation if len(animation.encode("utf-8")) <= MAX_ANIMATION_BYTES else still

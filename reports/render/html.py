@@ -10,8 +10,10 @@ at the three levels side by side, and the table of runs.
 from __future__ import annotations
 
 import base64
+import html as html_module
 import multiprocessing
 import os
+import re
 from typing import Any
 
 from reports.dynamics.cases import map_cells
@@ -63,6 +65,9 @@ window.addEventListener('load', function () {
   document.body.setAttribute('data-plots-loaded', good.length + '/' + images.length);
 });
 """
+
+_TITLE = re.compile(r"<title>([^<]*)</title>")
+"""A drawing's first title: what it shows (a still at t, or a cycle in frames)."""
 
 
 def render(data: ReportData) -> str:
@@ -245,16 +250,19 @@ def _forked_section(scenario: str) -> str:
 
 
 def _drawing(data: ReportData, scenario: str) -> str:
-    """The mechanism at t = 0 as the run drew it (reports.drawing), or nothing. Embedded as an image,
-    never as markup: a results directory may come from anywhere, and an image runs no script."""
+    """The mechanism as the run drew it (reports.drawing: one cycle animated, or the still at
+    t = 0), or nothing. Embedded as an image, never as markup: a results directory may come from
+    anywhere, and an image runs no script. Its alternative text is the drawing's own title."""
     svg = data.drawings.get(scenario, "")
     if not svg.lstrip().startswith("<svg"):
         return ""
     source = "data:image/svg+xml;base64," + base64.b64encode(svg.encode("utf-8")).decode("ascii")
-    caption = "the mechanism at t = 0, posed by the native solver (`mbxval draw` draws any t, or animates)"
+    found = _TITLE.search(svg)
+    alt = html_module.unescape(found.group(1)) if found else f"the mechanism of {scenario}"
+    caption = "posed by the native solver; `mbxval draw` draws any t or number of frames"
     return (
-        f'<figure class="drawing"><img class="drawing" src="{source}" alt="the mechanism of '
-        f'{markup.escape(scenario)}"><figcaption class="muted">{markup.escape(caption)}</figcaption></figure>'
+        f'<figure class="drawing"><img class="drawing" src="{source}" alt="{markup.escape(alt)}">'
+        f'<figcaption class="muted">{markup.escape(caption)}</figcaption></figure>'
     )
 
 

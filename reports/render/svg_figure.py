@@ -32,6 +32,11 @@ _GEOMETRY = re.compile(r'\s(?:d|x|y|points|transform)="[^"]*"')
 _LONG_DECIMALS = re.compile(r"(\d\.\d\d)\d+")
 _REFERENCES = re.compile(r'(?:url\(#|href="#)([^")]+)')
 _IDS = re.compile(r'(id="|url\(#|href="#)([^")]+)')
+_FONTS = re.compile(r"font-family: ?'DejaVu Sans', [^;\"]*")
+FONTS = "'DejaVu Sans', Verdana, Arial, sans-serif"
+"""The texts' fonts: the one matplotlib measured the layout with, then wide sans fonts like it
+(matplotlib names ten fallbacks on every one of a page's texts)."""
+_NO_ROTATION = re.compile(r' transform="rotate\(-?0 [^"]*\)"')
 
 
 def hover(artist: Artist, titles: Sequence[str]) -> None:
@@ -53,6 +58,7 @@ def svg(figure: Figure, alt: str) -> str:
     titles = _TITLES.pop(figure, {})
     plt.close(figure)
     text = _GEOMETRY.sub(lambda m: _LONG_DECIMALS.sub(r"\1", m.group(0)), buffer.getvalue())
+    text = _NO_ROTATION.sub("", _FONTS.sub(f"font-family: {FONTS}", text))
     root = ElementTree.fromstring(text)
     for element in root.iter():
         gid = element.get("id", "")

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 import scenarios
-from reports.drawing.files import MAX_BODIES, file_name, write_drawings
+from reports.drawing.files import MAX_ANIMATION_BYTES, MAX_BODIES, REPORT_FRAMES, file_name, write_drawings
 from reports.render.drawings import DRAWINGS, INDEX, read_drawings
 
 
@@ -23,6 +23,21 @@ def test_drawings_are_written_indexed_and_read_back(tmp_path: Path) -> None:
     assert set(found) == {"four_bar", "cam_roller"}
     assert all(text.lstrip().startswith("<svg") for text in found.values())
     assert ">crank<" in found["four_bar"] or "crank" in found["four_bar"]
+
+
+def test_a_small_cycle_is_animated_and_a_large_one_left_as_the_still(tmp_path: Path) -> None:
+    """The four-bar's cycle in REPORT_FRAMES frames fits the page's budget; a cam's twelve redrawn
+    profiles do not, so its drawing is the still at t = 0."""
+    write_drawings(tmp_path, [scenarios.build("four_bar"), scenarios.build("cam_roller")])
+    found = read_drawings(tmp_path)
+    animated = found["four_bar"]
+    assert animated.count('<g class="frame"') == REPORT_FRAMES
+    assert animated.count("<animate ") == REPORT_FRAMES
+    assert len(animated.encode()) <= MAX_ANIMATION_BYTES
+    assert "four_bar: one cycle" in animated
+    still = found["cam_roller"]
+    assert still.count('<g class="frame"') == 1 and "<animate " not in still
+    assert "<title>cam_roller at t = 0 s</title>" in still
 
 
 def test_what_cannot_be_drawn_is_left_out_with_a_warning(tmp_path: Path) -> None:

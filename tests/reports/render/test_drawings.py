@@ -24,6 +24,8 @@ def test_a_run_s_report_shows_each_scenario_s_drawing_as_an_image(tmp_path: Path
     assert page.count(IMAGE) == 1
     encoded = page.split(IMAGE, 1)[1].split('"', 1)[0]
     assert base64.b64decode(encoded).decode() == (out / DRAWINGS / index["slider_crank"]).read_text()
+    alt = page.split(IMAGE, 1)[1].split('alt="', 1)[1].split('"', 1)[0]
+    assert alt == "slider_crank: one cycle (0.125664 s) in 12 frames"  # 2 pi / the default 50 rad/s
 
     planted = '<svg xmlns="http://www.w3.org/2000/svg"><script>alert("x")</script></svg>'
     (out / DRAWINGS / index["slider_crank"]).write_text(planted)

@@ -128,3 +128,18 @@ def test_a_line_without_markers_has_one_title_for_the_whole_line() -> None:
     (line,) = axes.plot([0.0, 1.0, 2.0], [1.0, 3.0, 2.0])
     svg_figure.hover(line, ["reference default run: largest 3"])
     assert titles(svg_figure.svg(figure, "a line")) == ["reference default run: largest 3"]
+
+
+def test_texts_name_their_fonts_briefly_and_carry_no_null_rotation() -> None:
+    """matplotlib writes ten fallback fonts and a rotate(0 x y) on every text; the page holds
+    about 1500 texts, so the figure keeps DejaVu Sans (its layout font) and three fallbacks."""
+    figure, axes = plt.subplots()
+    axes.plot([1, 2], [3, 4])
+    axes.set_title("a title")
+    axes.set_ylabel("a turned label")
+    text = svg_figure.svg(figure, "fonts")
+    assert "Bitstream Vera Sans" not in text and "rotate(0 " not in text and "rotate(-0 " not in text
+    root = ElementTree.fromstring(text)
+    texts = [t for t in root.iter("{http://www.w3.org/2000/svg}text")]
+    assert texts and all(svg_figure.FONTS in (t.get("style") or "") for t in texts)
+    assert any("rotate(-90" in (t.get("transform") or "") for t in texts)  # a real turn is kept
