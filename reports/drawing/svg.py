@@ -29,6 +29,8 @@ PIN = 5.0
 PIN_SPACING = 90.0
 """Pins are drawn this many pixels apart at least, typically (the page grows, up to LARGEST pixels)."""
 LARGEST = 6000.0
+CHAIN_PINS = 8
+"""Pin places from which a mechanism is a chain whose pins are kept PIN_SPACING apart."""
 SMALLEST = 4.0
 """A circle is drawn at least this many pixels in radius, so that a small gear stays visible."""
 PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2")
@@ -140,9 +142,10 @@ def fit(instants: Sequence[Instant], size: float) -> View:
 
 def _typical_pin_gap(instant: Instant) -> float:
     """The median over the pins of the distance to the nearest other pin not at the same place
-    (inf for fewer than two places): small for a long chain of small loops."""
+    (inf for fewer than CHAIN_PINS places): small for a long chain of small loops. A short linkage
+    with one tiny link (a crank 1e-3 of its rod) is drawn to scale, its tiny link as small as it is."""
     points = np.unique(np.array([s.points[0] for s in instant.shapes if s.kind == "revolute"]), axis=0)
-    if len(points) < 2:
+    if len(points) < CHAIN_PINS:
         return math.inf
     gaps = np.linalg.norm(points[:, None, :] - points[None, :, :], axis=2)
     gaps[gaps <= 1e-9 * float(np.max(gaps))] = math.inf

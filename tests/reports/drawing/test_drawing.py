@@ -22,6 +22,7 @@ import pandas as pd
 import pytest
 
 import mbxval
+from reports.drawing import svg as svg_module
 from reports.drawing.drawing import (
     DYNAMIC_RTOL,
     DrawingError,
@@ -199,3 +200,17 @@ def test_drawings_inline_in_one_page_share_no_ids_and_scope_their_styles() -> No
         rules = [line for line in style.strip().splitlines() if line]
         assert rules and all(line.startswith(f".{root.get('class')} ") for line in rules)
     assert ids[0].isdisjoint(ids[1])
+
+
+def test_a_chain_keeps_its_pins_apart_and_one_tiny_link_is_drawn_to_scale() -> None:
+    """Ten loops of 1 m links (the IFToMM benchmark's): the page grows so that pins are
+    PIN_SPACING apart. A slider-crank whose crank is 1e-3 of its rod has three pins: it stays on
+    the usual page, the crank as small as it is (its rod fills the width), not a 6000 px strip."""
+    chain = ET.fromstring(draw_svg(load("n_four_bar[loops=10]")))
+    assert float(chain.get("width", "nan")) > svg_module.WIDTH
+    assert float(chain.get("data-scale", "nan")) * 1.0 >= svg_module.PIN_SPACING * (1 - 1e-9)
+    tiny = load("slider_crank/stress_link_ratio_1e-3")
+    root = ET.fromstring(draw_svg(tiny))
+    assert float(root.get("width", "nan")) == svg_module.WIDTH
+    crank = dict(tiny.parameters)["crank_length"] * float(root.get("data-scale", "nan"))
+    assert crank < svg_module.PIN_SPACING / 10
