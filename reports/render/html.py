@@ -49,7 +49,7 @@ img, svg.plot { max-width: 100%; height: auto; margin: 0.3em 0; } .muted { color
 table.matrix td { min-width: 0; white-space: nowrap; padding: 0.15em 0.35em; }
 table.matrix .force { border-left: 2px solid #557; font-style: italic; }
 .plots { display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start; }
-figure.drawing { margin: 0.5em 0; } img.drawing { max-height: 340px; width: auto; }
+figure.drawing { margin: 0.5em 0; } img.drawing { max-height: 460px; max-width: 100%; width: auto; }
 """
 
 WORKERS = 2
