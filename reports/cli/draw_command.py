@@ -12,7 +12,7 @@ from collections.abc import Callable
 
 from reports.cli.usage import UsageError, pairs, scenario_argument
 from reports.drawing.drawing import MAX_FRAMES, DrawingError, draw_svg
-from reports.harness.atomic_write import atomic_output, output_target
+from reports.harness.atomic_write import output_target, write_text
 from scenarios import load
 
 
@@ -41,8 +41,7 @@ def cmd_draw(args: argparse.Namespace) -> int:
         text = draw_svg(scenario, t, args.frames)
     except DrawingError as error:
         raise UsageError(f"{scenario.name}: {error}") from None
-    with atomic_output(args.out) as stream:
-        stream.write(text)
+    write_text(args.out, text)
     print(f"wrote {args.out}")
     return 0
 

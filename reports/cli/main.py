@@ -26,7 +26,7 @@ from adapters.base import Adapter, OptionValue, Setting, SettingError
 from adapters.step_rule import RULE
 from reports.cli.usage import Parser, UsageError, pairs, scenario_argument
 from reports.harness import provenance, self_check, stop
-from reports.harness.atomic_write import atomic_output, atomic_path, output_target
+from reports.harness.atomic_write import atomic_output, atomic_path, output_target, write_text
 from reports.harness.common_start import common_start
 from reports.harness.gate import GateError
 from reports.harness.store_files import StoreDamaged
@@ -196,8 +196,7 @@ def cmd_export(args: argparse.Namespace) -> int:
         raise UsageError("--name names a scenario file: give it with --format toml")
     scenario = renamed(scenario, args.name)
     if args.format == "toml":
-        with atomic_output(args.out) as stream:
-            stream.write(scenario_toml(scenario))
+        write_text(args.out, scenario_toml(scenario))
         print(f"wrote {args.out}")
         return 0
     adapter = load_engine(args.engine)

@@ -7,7 +7,7 @@ import json
 import sys
 from collections.abc import Callable
 
-from reports.harness.atomic_write import atomic_output
+from reports.harness.atomic_write import write_text
 from scenarios.files.json_schema import scenario_schema
 
 
@@ -16,8 +16,7 @@ def cmd_schema(args: argparse.Namespace) -> int:
     if args.out is None:
         sys.stdout.write(text)
         return 0
-    with atomic_output(args.out) as stream:
-        stream.write(text)
+    write_text(args.out, text)
     print(f"wrote {args.out}")
     return 0
 

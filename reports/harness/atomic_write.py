@@ -91,6 +91,12 @@ def atomic_output(path: str | os.PathLike[str], mode: str = "w") -> Iterator[IO[
         yield stream
 
 
+def write_text(path: str | os.PathLike[str], text: str) -> None:
+    """Replace `path` with `text` (UTF-8) in one step: readers see the old file or the new one."""
+    with atomic_output(path) as stream:
+        stream.write(text)
+
+
 def sync_file(path: Path) -> None:
     """fsync a file or a folder (a folder: so that a rename in it is durable)."""
     fd = os.open(path, os.O_RDONLY)

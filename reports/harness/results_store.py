@@ -100,9 +100,6 @@ class ResultsStore:
     def trajectories(self, trajectories: Mapping[Key, Trajectory]) -> None:
         self._trajectories = Changes(trajectories, replaced=True)
 
-    def has(self, key: Key) -> bool:
-        return key in self.rows
-
     def add(self, row: dict[str, Any], trajectory: Trajectory | None = None) -> None:
         missing = set(COLUMNS) - set(row)
         if missing:

@@ -28,6 +28,7 @@ from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
+from reports.harness.atomic_write import sync_file
 from reports.harness.store_layout import (
     CURRENT,
     GENERATIONS,
@@ -86,7 +87,7 @@ def commit(
             (work / folder).mkdir(parents=True)
         for name, write in writers.items():
             write(work / name)
-            _sync(work / name)
+            sync_file(work / name)
             size, digest = checksum(work / name)
             files[name] = {"bytes": size, "sha256": digest}
         for name, recorded in carried.items():
@@ -94,17 +95,17 @@ def commit(
             _link_or_copy(committed_now / name, work / name)
             files[name] = dict(recorded)
         for folder in folders:
-            _sync(work / folder)
+            sync_file(work / folder)
         text = json.dumps({**meta, "files": files}, indent=2, sort_keys=True, default=str)
         (work / SIDECAR).write_text(text + "\n")
-        _sync(work / SIDECAR)
+        sync_file(work / SIDECAR)
         os.chmod(work, 0o755)
         generation = home / next_name(home)
         os.rename(work, generation)
-        _sync(home)
+        sync_file(home)
         switch(root, generation)
         switched = True
-        _sync(root)
+        sync_file(root)
     except BaseException:
         shutil.rmtree(work, ignore_errors=True)
         if generation is not None and not switched and generation.exists():
@@ -201,14 +202,5 @@ def _discard(generation: Path) -> None:
     shutil.rmtree(gone, ignore_errors=True)
 
 
-def sync_path(path: Path) -> None:
-    """fsync a file, or a folder so that a rename in it is durable."""
-    _sync(path)
-
-
-def _sync(path: Path) -> None:
-    fd = os.open(path, os.O_RDONLY)
-    try:
-        os.fsync(fd)
-    finally:
-        os.close(fd)
+sync_path = sync_file
+"""fsync a file, or a folder so that a rename in it is durable (atomic_write's)."""
