@@ -1,4 +1,5 @@
-"""Planar frames: rotating a vector, composing poses, and a body point in world coordinates.
+"""Planar frames: a unit direction, rotating a vector, composing poses, and a body point in world
+coordinates.
 
 Values only; constraint code that needs derivatives writes its own inside each engine, so that the
 engines check each other independently.
@@ -9,6 +10,12 @@ from __future__ import annotations
 import math
 
 from scenarios.bodies import Pose, Vec2
+
+
+def unit(v: Vec2) -> Vec2:
+    """v / |v|: a declared axis as a direction (scenarios accept any non-zero length)."""
+    norm = math.hypot(v[0], v[1])
+    return (v[0] / norm, v[1] / norm)
 
 
 def rotate(angle: float, v: Vec2) -> Vec2:

@@ -50,6 +50,7 @@ from scenarios.cam_profiles import EccentricDisc
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
 from scenarios.drivers import AbsoluteDriver, RelativeRotationDriver
 from scenarios.gears import GearPair, RackPinion
+from scenarios.geometry import unit
 from scenarios.joints import Ground, Prismatic, Revolute, RevoluteRevolute
 from scenarios.motions import Motion
 from scenarios.scenario import Scenario
@@ -190,7 +191,7 @@ class _Builder:
     def prismatic(self, joint: Prismatic) -> None:
         # Exudyn keeps the marker-1 normal across the axis; in body j's frame the axis is turned by
         # the constant relative angle theta_i - theta_j.
-        ax, ay = np.array(joint.axis) / math.hypot(*joint.axis)
+        ax, ay = unit(joint.axis)
         c, s = math.cos(joint.angle), math.sin(joint.angle)
         axis_j = (c * ax - s * ay, s * ax + c * ay)
         self.mbs.AddObject(
@@ -295,9 +296,8 @@ class _Builder:
         angle = self.rack_angle(item)
         assert angle is not None
         c, s = math.cos(angle), math.sin(angle)
-        ax, ay = item.axis
-        norm = math.hypot(ax, ay)
-        u = ((c * ax - s * ay) / norm, (s * ax + c * ay) / norm)
+        ax, ay = unit(item.axis)
+        u = (c * ax - s * ay, s * ax + c * ay)
         px, py = item.rack.local
         pitch = u[0] * (c * px - s * py) + u[1] * (s * px + c * py)
         rack, pinion = item.rack.body, item.centre.body

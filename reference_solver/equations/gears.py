@@ -8,6 +8,7 @@ from reference_solver.equation import Equation
 from reference_solver.kinematic_vectors import Row, inner
 from reference_solver.layout import Layout
 from scenarios.gears import GearPair, RackPinion
+from scenarios.geometry import unit
 
 
 class GearPairEquation(Equation):
@@ -35,9 +36,7 @@ class RackPinionEquation(Equation):
     def __init__(self, gear: RackPinion, layout: Layout):
         super().__init__(gear.name, layout, (gear.centre.body, gear.rack.body))
         self.gear = gear
-        ax, ay = gear.axis
-        norm = float(np.hypot(ax, ay))
-        self.axis = (ax / norm, ay / norm)
+        self.axis = unit(gear.axis)
         self.labels = (f"{gear.name}.mesh",)
         self.powers = (1,)
 

@@ -7,6 +7,7 @@ import numpy as np
 from reference_solver.equation import Equation
 from reference_solver.kinematic_vectors import Row, components, inner
 from reference_solver.layout import Layout
+from scenarios.geometry import unit
 from scenarios.joints import Ground, Prismatic, Revolute, RevoluteRevolute
 
 
@@ -43,9 +44,8 @@ class PrismaticEquation(Equation):
     def __init__(self, joint: Prismatic, layout: Layout):
         super().__init__(joint.name, layout, (joint.p_i.body, joint.p_j.body))
         self.joint = joint
-        ax, ay = joint.axis
-        norm = float(np.hypot(ax, ay))
-        self.normal = (-ay / norm, ax / norm)
+        ax, ay = unit(joint.axis)
+        self.normal = (-ay, ax)
         self.labels = (f"{joint.name}.angle", f"{joint.name}.normal")
         self.powers = (0, 1)
 
