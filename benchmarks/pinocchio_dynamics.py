@@ -20,8 +20,8 @@ import pinocchio as pin
 import scenarios
 from adapters.pinocchio import PinocchioAdapter
 from adapters.pinocchio.adapter import Built
-from adapters.pinocchio.marching import RK4
 from adapters.pinocchio.row_dynamics import RowDynamicSolver
+from adapters.pinocchio.simulation import RK4
 from adapters.timing import fastest
 from scenarios.forces import AppliedForce, SpringDamper
 

@@ -36,7 +36,7 @@ from adapters.mujoco.cams import cam_pairs
 from adapters.mujoco.compile import assembled_poses, clock_armatures, compile_model, follower_springs
 from adapters.mujoco.controls import controls
 from adapters.mujoco.dynamics import DYNAMIC_MODES, angle_columns, closes_loops
-from adapters.mujoco.kinematic import KinematicSolver
+from adapters.mujoco.kinematics import KinematicSolver
 from adapters.mujoco.laws import laws
 from adapters.mujoco.loads import loads_of
 from adapters.mujoco.mjcf import Physics
@@ -51,7 +51,7 @@ from adapters.mujoco.settings import (
     rule_sweep,
     time_constant,
 )
-from adapters.mujoco.stepping import advance, read_outputs, record, side_step, soften
+from adapters.mujoco.simulation import advance, read_outputs, record, side_step, soften
 from adapters.mujoco.tree import TreeError, plan_tree
 from scenarios.cam_linkage import CAM_MODELS, cam_model_scenario, default_cam_model
 from scenarios.scenario import Scenario
@@ -274,7 +274,7 @@ class MujocoAdapter(Adapter):
         return Trajectory(grid, model.bodies, pos, vel, acc, extras=extras)
 
     def _kinematic(self, model: Model, grid: np.ndarray) -> Trajectory:
-        """MuJoCo's rows solved at each grid time (adapters.mujoco.kinematic)."""
+        """MuJoCo's rows solved at each grid time (adapters.mujoco.kinematics)."""
         assert model.kinematic is not None
         m = model.model
         d = mujoco.MjData(m)

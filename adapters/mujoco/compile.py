@@ -19,7 +19,7 @@ from adapters.mujoco.laws import Clock, Law, laws
 from adapters.mujoco.mjcf import Physics, mjcf
 from adapters.mujoco.model import Model, evaluate
 from adapters.mujoco.scale import Scale, clock_armature
-from adapters.mujoco.stepping import advance
+from adapters.mujoco.simulation import advance
 from adapters.mujoco.tree import Tree, angle
 from scenarios.bodies import Pose
 from scenarios.scenario import Scenario

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from adapters.mujoco.kinematic import EQUALITY
+from adapters.mujoco.kinematics import EQUALITY
 from adapters.mujoco.laws import Law
 from adapters.mujoco.tree import Tree
 from scenarios.bodies import GROUND

@@ -8,7 +8,7 @@ import mujoco
 import numpy as np
 
 from adapters.mujoco.forces import ForceMap
-from adapters.mujoco.kinematic import KinematicSolver
+from adapters.mujoco.kinematics import KinematicSolver
 from adapters.mujoco.laws import Clock
 from adapters.mujoco.loads import Loads
 from adapters.mujoco.tree import Affine

@@ -36,8 +36,6 @@ from adapters.pinocchio.dynamics import DynamicSolver, dynamic_support
 from adapters.pinocchio.free_start import free_start
 from adapters.pinocchio.kinematics import KinematicSolver, body_motion
 from adapters.pinocchio.loads import Loads
-from adapters.pinocchio.marching import EULER as EULER_METHOD
-from adapters.pinocchio.marching import RK4
 from adapters.pinocchio.model import PinModel, build_model
 from adapters.pinocchio.row_dynamics import RowDynamicSolver
 from adapters.pinocchio.rows import Rows, force_labels
@@ -52,6 +50,8 @@ from adapters.pinocchio.settings import (
     rule_setting,
 )
 from adapters.pinocchio.settings import gains as default_gains
+from adapters.pinocchio.simulation import EULER as EULER_METHOD
+from adapters.pinocchio.simulation import RK4
 from adapters.pinocchio.tree import Tree, TreeError, plan
 from adapters.step_rule import rule_step
 from scenarios.scenario import Scenario

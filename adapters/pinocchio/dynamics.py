@@ -18,9 +18,9 @@ from scipy.linalg import lapack
 
 from adapters.base import EngineFailure, Singular
 from adapters.pinocchio.loads import Loads
-from adapters.pinocchio.marching import RK4, march
 from adapters.pinocchio.model import PinModel, se3
 from adapters.pinocchio.rows import Rows, Snapshot
+from adapters.pinocchio.simulation import RK4, march
 from adapters.pinocchio.tree import Tree, point_pose
 from scenarios.bodies import GROUND
 from scenarios.joints import Revolute
@@ -62,7 +62,7 @@ def _constraint(pm: PinModel, joint: Revolute, gains: tuple[float, float]) -> pi
 
 class DynamicSolver:
     """Accelerations from `constraintDynamics` (or `aba` on a tree) under the scenario's loads, with
-    the drive multipliers, marched by RK4 or semi-implicit Euler (adapters.pinocchio.marching)."""
+    the drive multipliers, marched by RK4 or semi-implicit Euler (adapters.pinocchio.simulation)."""
 
     def __init__(
         self,

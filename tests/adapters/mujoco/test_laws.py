@@ -32,7 +32,7 @@ import scenarios
 from adapters.base import Setting
 from adapters.mujoco import MujocoAdapter
 from adapters.mujoco.controls import controls
-from adapters.mujoco.stepping import soften
+from adapters.mujoco.simulation import soften
 from reference_solver import solve
 from scenarios import Polynomial, TabulatedLaw
 from scenarios.drivers import RelativeRotationDriver
