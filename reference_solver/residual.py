@@ -23,7 +23,7 @@ def constraint_residual(scenario: Scenario, trajectory: Trajectory) -> np.ndarra
     _check(scenario, trajectory)
     system = constraint_system(scenario) if not scenario.cams else None
     if not isinstance(system, CompiledSystem):
-        return plain_constraint_residual(scenario, trajectory)
+        return _plain_residual(scenario, trajectory)
     layout = system.layout
     order = [trajectory.bodies.index(b) for b in layout.bodies]
     q = np.zeros(layout.size)
@@ -47,6 +47,10 @@ def _check(scenario: Scenario, trajectory: Trajectory) -> None:
 def plain_constraint_residual(scenario: Scenario, trajectory: Trajectory) -> np.ndarray:
     """`constraint_residual` on the plain constraint rows."""
     _check(scenario, trajectory)
+    return _plain_residual(scenario, trajectory)
+
+
+def _plain_residual(scenario: Scenario, trajectory: Trajectory) -> np.ndarray:
     assert trajectory.position is not None
     layout = Layout.of(scenario)
     known_phi = {c for c in layout.contacts if f"{c}.phi" in trajectory.extras}
