@@ -18,6 +18,7 @@ import math
 
 import numpy as np
 
+from adapters.mujoco.cam_tip import tip_radius
 from scenarios.cam_profiles import EccentricDisc, LobedProfile, Profile, profile_point
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
 from scenarios.scenario import Scenario
@@ -50,16 +51,30 @@ def extent(profile: Profile) -> tuple[float, float]:
     return float(radii.min()), float(radii.max())
 
 
-def vertices(profile: Profile, pieces: int) -> np.ndarray:
-    """The polygon's vertices (pieces, 2) in the cam's frame: the profile at equal angles from 0."""
+def curve_point(profile: Profile, phi: float, inset: float = 0.0) -> np.ndarray:
+    """The profile's point at polar angle phi, moved inward along its normal by `inset` (a point of
+    its inward offset curve; 0: the profile itself)."""
+    u = profile_point(profile, phi)
+    if inset == 0.0:
+        return u[0]
+    tangent = u[1] / np.linalg.norm(u[1])
+    return u[0] + inset * np.array([-tangent[1], tangent[0]])
+
+
+def vertices(profile: Profile, pieces: int, inset: float = 0.0) -> np.ndarray:
+    """The polygon's vertices (pieces, 2) in the cam's frame: the profile (or its inward offset by
+    `inset`) at equal angles from 0."""
     phis = 2.0 * math.pi * np.arange(pieces) / pieces
-    return np.array([profile_point(profile, float(p))[0] for p in phis])
+    return np.array([curve_point(profile, float(p), inset) for p in phis])
 
 
-def facets(profile: Profile, pieces: int) -> tuple[float, list[tuple[float, float, float, float]]]:
+def facets(
+    profile: Profile, pieces: int, inset: float = 0.0
+) -> tuple[float, list[tuple[float, float, float, float]]]:
     """The facets' capsule radius and, per facet, its segment (x1, y1, x2, y2): the chord moved
-    inward by the radius, so that the capsule's outer side is the chord."""
-    points = vertices(profile, pieces)
+    inward by the radius, so that the capsule's outer side is the chord (of the profile, or of its
+    inward offset by `inset`)."""
+    points = vertices(profile, pieces, inset)
     radius = THICKNESS * extent(profile)[0]
     ends = np.roll(points, -1, axis=0)
     tangents = (ends - points) / np.linalg.norm(ends - points, axis=1)[:, None]
@@ -69,17 +84,17 @@ def facets(profile: Profile, pieces: int) -> tuple[float, list[tuple[float, floa
     return radius, [(a[0], a[1], b[0], b[1]) for a, b in pairs]
 
 
-def sagitta(profile: Profile, pieces: int) -> float:
-    """The largest distance between the profile and the chord polygon, measured at each chord's
-    middle angle (the faceting's geometric error)."""
-    points = vertices(profile, pieces)
+def sagitta(profile: Profile, pieces: int, inset: float = 0.0) -> float:
+    """The largest distance between the profile (or its inward offset by `inset`) and the chord
+    polygon, measured at each chord's middle angle (the faceting's geometric error)."""
+    points = vertices(profile, pieces, inset)
     mids = 2.0 * math.pi * (np.arange(pieces) + 0.5) / pieces
     worst = 0.0
     for k, phi in enumerate(mids):
         a, b = points[k], points[(k + 1) % pieces]
         tangent = (b - a) / np.linalg.norm(b - a)
         outward = np.array([tangent[1], -tangent[0]])
-        worst = max(worst, abs(float((profile_point(profile, float(phi))[0] - a) @ outward)))
+        worst = max(worst, abs(float((curve_point(profile, float(phi), inset) - a) @ outward)))
     return worst
 
 
@@ -116,5 +131,5 @@ def faceted(scenario: Scenario) -> bool:
 def hops(contacts: tuple[CamContact, ...], pieces: int) -> dict[int, float]:
     """Per faceted cam (its index among the contacts): its polygon's sagitta, the gap its follower
     may show where it hops off a vertex (adapters.mujoco.cam_load.check_contacts)."""
-    faceted = [(k, c.profile) for k, c in enumerate(contacts) if not isinstance(c.profile, EccentricDisc)]
-    return {k: sagitta(profile, pieces) for k, profile in faceted}
+    faceted = [(k, c) for k, c in enumerate(contacts) if not isinstance(c.profile, EccentricDisc)]
+    return {k: sagitta(c.profile, pieces, tip_radius(c)) for k, c in faceted}

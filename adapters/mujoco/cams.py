@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from adapters.mujoco.cam_facets import DEFAULT_PIECES, extent, facets, lobed_reason
+from adapters.mujoco.cam_tip import tip_radius
 from adapters.mujoco.tree import Tree, TreeError, rot
 from scenarios.bodies import Point
 from scenarios.cam_profiles import EccentricDisc, LobedProfile, SplineProfile
@@ -73,8 +74,6 @@ def unsupported_reason(contact: CamContact) -> str | None:
     profile = contact.profile
     if isinstance(profile, EccentricDisc):
         return None
-    if isinstance(contact, KnifeEdgeCam):
-        return f"cam '{contact.name}' has a {_kind(profile)} profile: {KNIFE_ON_FACETS}"
     if isinstance(profile, SplineProfile):
         return None
     if isinstance(profile, LobedProfile):
@@ -103,7 +102,7 @@ def cam_pairs(contacts: tuple[CamContact, ...], tree: Tree, pieces: int = DEFAUL
             radius, reach = profile.radius, profile.radius + profile.eccentricity
         else:
             radius = reach = extent(profile)[1]
-            thickness, segments = facets(profile, pieces)
+            thickness, segments = facets(profile, pieces, tip_radius(contact))
             cam = tuple(
                 Geom(contact.cam, f"{name}{k}", "capsule", (thickness,), fromto=ends)
                 for k, ends in enumerate(segments)
@@ -132,6 +131,9 @@ def _follower(contact: CamContact, tree: Tree, radius: float, reach: float) -> G
         size = (reach, thickness, 2.0 * HALF_HEIGHT * radius)
         return Geom(contact.face.body, name, "box", size, (centre[0], centre[1]), tangent_angle)
     assert isinstance(contact, KnifeEdgeCam)
+    tip_r = tip_radius(contact)
+    if tip_r > 0.0:  # on facets: a sphere centred on the tip (adapters.mujoco.cam_tip)
+        return Geom(contact.tip.body, name, "sphere", (tip_r,), contact.tip.local)
     # The edge points from the tip towards the cam's centre of rotation at the authored pose.
     tip = contact.tip
     toward = tree.point(Point(contact.cam)) - tree.point(tip)
