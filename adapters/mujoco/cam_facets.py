@@ -18,8 +18,8 @@ import math
 
 import numpy as np
 
-from adapters.mujoco.cam_tip import tip_radius
-from scenarios.cam_profiles import EccentricDisc, LobedProfile, Profile, profile_point
+from adapters.mujoco.cam_tip import offset_point, tip_radius
+from scenarios.cam_profiles import EccentricDisc, LobedProfile, Profile
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
 from scenarios.scenario import Scenario
 
@@ -51,21 +51,11 @@ def extent(profile: Profile) -> tuple[float, float]:
     return float(radii.min()), float(radii.max())
 
 
-def curve_point(profile: Profile, phi: float, inset: float = 0.0) -> np.ndarray:
-    """The profile's point at polar angle phi, moved inward along its normal by `inset` (a point of
-    its inward offset curve; 0: the profile itself)."""
-    u = profile_point(profile, phi)
-    if inset == 0.0:
-        return u[0]
-    tangent = u[1] / np.linalg.norm(u[1])
-    return u[0] + inset * np.array([-tangent[1], tangent[0]])
-
-
 def vertices(profile: Profile, pieces: int, inset: float = 0.0) -> np.ndarray:
     """The polygon's vertices (pieces, 2) in the cam's frame: the profile (or its inward offset by
     `inset`) at equal angles from 0."""
     phis = 2.0 * math.pi * np.arange(pieces) / pieces
-    return np.array([curve_point(profile, float(p), inset) for p in phis])
+    return np.array([offset_point(profile, float(p), inset) for p in phis])
 
 
 def facets(
@@ -94,7 +84,7 @@ def sagitta(profile: Profile, pieces: int, inset: float = 0.0) -> float:
         a, b = points[k], points[(k + 1) % pieces]
         tangent = (b - a) / np.linalg.norm(b - a)
         outward = np.array([tangent[1], -tangent[0]])
-        worst = max(worst, abs(float((curve_point(profile, float(phi), inset) - a) @ outward)))
+        worst = max(worst, abs(float((offset_point(profile, float(phi), inset) - a) @ outward)))
     return worst
 
 

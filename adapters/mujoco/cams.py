@@ -9,10 +9,11 @@ turned 45 degrees about its point. Any other profile (a spline, a lobed cam) is 
 profile points at equal angles (adapters.mujoco.cam_facets), one contact pair per facet: every
 collision stays analytic (capsule-sphere, capsule-box, as on the disc), the follower rides the chords
 (a sagitta of kappa c^2 / 8), and its velocity and acceleration carry the facets' kinks, smoothed by
-the soft contact (measured errors in cam_facets.DEFAULT_PIECES). A knife edge on
-such a polygon is refused (its velocity jumps at every vertex and it chatters), and so is a lobed cam
-(its follower chatters too; concave valleys the follower cannot follow are named:
-cam_facets.lobed_reason): only spline profiles with a roller or a flat face are built as facets.
+the soft contact (measured errors in cam_facets.DEFAULT_PIECES). A knife edge on such a polygon
+would chatter (its velocity jumps at every vertex): it is a sphere centred on its tip rolling on the
+facets of the profile's inward offset by the sphere's radius, whose centre traces the knife's path
+exactly (adapters.mujoco.cam_tip). A lobed cam is refused (its follower chatters; concave valleys
+the follower cannot follow are named: cam_facets.lobed_reason): spline profiles are built as facets.
 """
 
 from __future__ import annotations
@@ -23,18 +24,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from adapters.mujoco.cam_facets import DEFAULT_PIECES, extent, facets, lobed_reason
-from adapters.mujoco.cam_tip import tip_radius
+from adapters.mujoco.cam_tip import tip_radius, tip_reason
 from adapters.mujoco.tree import Tree, TreeError, rot
 from scenarios.bodies import Point
 from scenarios.cam_profiles import EccentricDisc, LobedProfile, SplineProfile
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
 
-KNIFE_ON_FACETS = (
-    "MuJoCo's model of it is a polygon of facets, and a knife edge's velocity jumps at each vertex: "
-    "the follower is thrown off every vertex and chatters (measured on cam_knife_edge/spline: "
-    "position error 3e-5..5e-5 m and acceleration 510 m/s^2, the preload over the mass, from 512 to "
-    "2048 facets, not converging)"
-)
 LOBES_ON_FACETS = (
     "MuJoCo's model of it is a polygon of facets, on which the follower is thrown off the vertices "
     "and chatters (measured on cam_roller with profile=lobed: acceleration 501 m/s^2, the preload "
@@ -75,14 +70,10 @@ def unsupported_reason(contact: CamContact) -> str | None:
     if isinstance(profile, EccentricDisc):
         return None
     if isinstance(profile, SplineProfile):
-        return None
+        return tip_reason(contact)
     if isinstance(profile, LobedProfile):
         return lobed_reason(contact) or f"cam '{contact.name}' has a lobed profile: {LOBES_ON_FACETS}"
     return f"cam '{contact.name}' has a {type(profile).__name__} profile, which MuJoCo's model does not know"
-
-
-def _kind(profile: object) -> str:
-    return {SplineProfile: "spline", LobedProfile: "lobed"}.get(type(profile), type(profile).__name__)
 
 
 def cam_pairs(contacts: tuple[CamContact, ...], tree: Tree, pieces: int = DEFAULT_PIECES) -> list[CamPair]:
