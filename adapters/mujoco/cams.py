@@ -33,7 +33,8 @@ from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
 LOBES_ON_FACETS = (
     "MuJoCo's model of it is a polygon of facets, on which the follower is thrown off the vertices "
     "and chatters (measured on cam_roller with profile=lobed: acceleration 501 m/s^2, the preload "
-    "over the mass, against 36 m/s^2, at 512 and 2048 facets alike)"
+    "over the mass, against 36 m/s^2, at 512 and 2048 facets alike; the knife edge with profile=lobed, a "
+    "sphere on the profile's offset, 501 m/s^2 alike)"
 )
 HALF_HEIGHT = 0.2
 """Half-thickness of all cam geometry normal to the plane, in cam disc radii."""
