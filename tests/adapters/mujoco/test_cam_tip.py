@@ -98,12 +98,6 @@ def test_the_spline_knife_edge_runs_ok_within_its_measured_error() -> None:
     held(follower_errors("cam_knife_edge/spline", DEFAULT_PIECES), (2.62e-6, 1.86e-4, 1.06))
 
 
-def test_a_steep_spline_knife_edge_is_not_refused_for_a_box_corner() -> None:
-    # the box corner's 40 degree limit is the disc's; the sphere has no corner
-    steep = scenarios.build("cam_knife_edge", overrides={"profile": "spline", "eccentricity": 0.045})
-    assert ADAPTER.supports(steep) is None
-
-
 @pytest.mark.slow
 def test_the_error_falls_with_the_piece_count() -> None:
     counts = (128, 512, 2048)
