@@ -16,13 +16,13 @@ from reports.cli.main import main
 from reports.harness.results_store import read_results
 from tests.support.stores import copy_entry
 
-SCENARIOS = ("slider_crank", "cam_roller[profile=lobed]")
+SCENARIOS = ("slider_crank", "cam_roller/stress_undercut")
 CHROMIUM = Path("/usr/bin/chromium")
 
 
 @pytest.fixture(scope="module")
 def results(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """A real small run: MuJoCo over its sweep (it does not support lobed cams), timed once."""
+    """A real small run: MuJoCo over its sweep (it does not support the lobed cam), timed once."""
     out = tmp_path_factory.mktemp("run")
     args = ["run", "--out", str(out), "--quiet", "--engine", "mujoco"]
     args += ["--repeats", "1", "--warmup", "0"]
@@ -67,8 +67,8 @@ def test_markdown_summary_has_the_matrix_and_each_scenario(results: Path) -> Non
     for name in SCENARIOS:
         assert f"\n## {name}\n" in text
     unsupported = frame[frame["status"] == "unsupported"]
-    assert len(unsupported) == 1 and unsupported["scenario"].item() == "cam_roller[profile=lobed]"
-    assert "| cam_roller[profile=lobed] | unsupported |" in text and "| slider_crank | ok " in text
+    assert len(unsupported) == 1 and unsupported["scenario"].item() == "cam_roller/stress_undercut"
+    assert "| cam_roller/stress_undercut | unsupported |" in text and "| slider_crank | ok " in text
 
 
 def test_report_rerenders_from_stored_files_alone(results: Path, tmp_path: Path) -> None:
