@@ -95,7 +95,7 @@ def test_a_cam_thinner_than_the_sphere_is_refused_naming_the_sphere() -> None:
 
 def test_the_spline_knife_edge_runs_ok_within_its_measured_error() -> None:
     # measured 2.6e-6 m, 1.9e-4 m/s, 1.06 m/s^2 at 512 pieces (2.5 s)
-    held(follower_errors("cam_knife_edge/spline", DEFAULT_PIECES), (2.62e-6, 1.86e-4, 1.06))
+    held(follower_errors("cam_knife_edge/spline", DEFAULT_PIECES).tolist(), (2.62e-6, 1.86e-4, 1.06))
 
 
 @pytest.mark.slow
@@ -104,7 +104,7 @@ def test_the_error_falls_with_the_piece_count() -> None:
     errors = np.array([follower_errors("cam_knife_edge/spline", n) for n in counts])
     measured = ((6.02e-6, 3.08e-3, 6.51), (2.62e-6, 1.86e-4, 1.06), (1.28e-6, 9.47e-5, 0.324))
     for found, expected in zip(errors, measured, strict=True):
-        held(found, expected)
+        held(found.tolist(), expected)
     assert np.all(np.diff(errors, axis=0) < 0.0)
 
 
@@ -114,7 +114,7 @@ def test_the_error_falls_as_the_sphere_nears_the_radius_of_curvature(monkeypatch
     errors = []
     for fraction in fractions:
         monkeypatch.setattr(cam_tip, "TIP_FRACTION", fraction)
-        errors.append(follower_errors("cam_knife_edge/spline", DEFAULT_PIECES))
+        errors.append(follower_errors("cam_knife_edge/spline", DEFAULT_PIECES).tolist())
     measured = ((3.72e-5, 7.44e-2, 509.0), (3.86e-6, 2.66e-3, 16.0), (2.62e-6, 1.86e-4, 1.06))
     for found, expected in zip(errors, measured, strict=True):
         held(found, expected)
