@@ -1,7 +1,8 @@
 """A non-circular cam profile as a chain of thin capsules lying in the plane: a polygon of flat facets
-MuJoCo collides analytically (capsule-sphere for a roller, capsule-box for a flat face: the
-colliders of the disc cam). Boxes were tried first: a box-box contact between a knife edge or a flat
-face and a facet takes the wrong face's normal, and the start does not assemble.
+MuJoCo collides analytically (capsule-sphere for a roller and for a knife edge's sphere on the
+profile's offset, adapters.mujoco.cam_tip; capsule-box for a flat face: the colliders of the disc
+cam). Boxes were tried first: a box-box contact between a knife edge or a flat face and a facet
+takes the wrong face's normal, and the start does not assemble.
 
 The profile is sampled at `pieces` equally spaced angles; each facet is a capsule of radius
 THICKNESS times the smallest radius whose segment is the chord between two consecutive points moved
