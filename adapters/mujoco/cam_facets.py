@@ -1,7 +1,8 @@
 """A non-circular cam profile as a chain of thin capsules lying in the plane: a polygon of flat facets
-MuJoCo collides analytically (capsule-sphere for a roller, capsule-box for a flat face: the
-colliders of the disc cam). Boxes were tried first: a box-box contact between a knife edge or a flat
-face and a facet takes the wrong face's normal, and the start does not assemble.
+MuJoCo collides analytically (capsule-sphere for a roller and for a knife edge's sphere on the
+profile's offset, adapters.mujoco.cam_tip; capsule-box for a flat face: the colliders of the disc
+cam). Boxes were tried first: a box-box contact between a knife edge or a flat face and a facet
+takes the wrong face's normal, and the start does not assemble.
 
 The profile is sampled at `pieces` equally spaced angles; each facet is a capsule of radius
 THICKNESS times the smallest radius whose segment is the chord between two consecutive points moved
@@ -18,8 +19,9 @@ import math
 
 import numpy as np
 
-from scenarios.cam_profiles import EccentricDisc, LobedProfile, Profile, profile_point
-from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
+from adapters.mujoco.cam_tip import offset_point, tip_radius
+from scenarios.cam_profiles import EccentricDisc, LobedProfile, Profile
+from scenarios.cams import CamContact, FlatFaceCam, RollerCam
 from scenarios.scenario import Scenario
 
 DEFAULT_PIECES = 512
@@ -50,16 +52,20 @@ def extent(profile: Profile) -> tuple[float, float]:
     return float(radii.min()), float(radii.max())
 
 
-def vertices(profile: Profile, pieces: int) -> np.ndarray:
-    """The polygon's vertices (pieces, 2) in the cam's frame: the profile at equal angles from 0."""
+def vertices(profile: Profile, pieces: int, inset: float = 0.0) -> np.ndarray:
+    """The polygon's vertices (pieces, 2) in the cam's frame: the profile (or its inward offset by
+    `inset`) at equal angles from 0."""
     phis = 2.0 * math.pi * np.arange(pieces) / pieces
-    return np.array([profile_point(profile, float(p))[0] for p in phis])
+    return np.array([offset_point(profile, float(p), inset) for p in phis])
 
 
-def facets(profile: Profile, pieces: int) -> tuple[float, list[tuple[float, float, float, float]]]:
+def facets(
+    profile: Profile, pieces: int, inset: float = 0.0
+) -> tuple[float, list[tuple[float, float, float, float]]]:
     """The facets' capsule radius and, per facet, its segment (x1, y1, x2, y2): the chord moved
-    inward by the radius, so that the capsule's outer side is the chord."""
-    points = vertices(profile, pieces)
+    inward by the radius, so that the capsule's outer side is the chord (of the profile, or of its
+    inward offset by `inset`)."""
+    points = vertices(profile, pieces, inset)
     radius = THICKNESS * extent(profile)[0]
     ends = np.roll(points, -1, axis=0)
     tangents = (ends - points) / np.linalg.norm(ends - points, axis=1)[:, None]
@@ -69,17 +75,17 @@ def facets(profile: Profile, pieces: int) -> tuple[float, list[tuple[float, floa
     return radius, [(a[0], a[1], b[0], b[1]) for a, b in pairs]
 
 
-def sagitta(profile: Profile, pieces: int) -> float:
-    """The largest distance between the profile and the chord polygon, measured at each chord's
-    middle angle (the faceting's geometric error)."""
-    points = vertices(profile, pieces)
+def sagitta(profile: Profile, pieces: int, inset: float = 0.0) -> float:
+    """The largest distance between the profile (or its inward offset by `inset`) and the chord
+    polygon, measured at each chord's middle angle (the faceting's geometric error)."""
+    points = vertices(profile, pieces, inset)
     mids = 2.0 * math.pi * (np.arange(pieces) + 0.5) / pieces
     worst = 0.0
     for k, phi in enumerate(mids):
         a, b = points[k], points[(k + 1) % pieces]
         tangent = (b - a) / np.linalg.norm(b - a)
         outward = np.array([tangent[1], -tangent[0]])
-        worst = max(worst, abs(float((profile_point(profile, float(phi))[0] - a) @ outward)))
+        worst = max(worst, abs(float((offset_point(profile, float(phi), inset) - a) @ outward)))
     return worst
 
 
@@ -101,11 +107,7 @@ def lobed_reason(contact: CamContact) -> str | None:
         )
     if isinstance(contact, FlatFaceCam):
         return f"{head}: a flat face bridges a concave valley and never touches its bottom"
-    assert isinstance(contact, KnifeEdgeCam)
-    return (
-        f"{head}: MuJoCo's knife edge is the corner of a box, whose sides would meet the valley's "
-        "flanks before its tip reaches the bottom"
-    )
+    return None  # a knife edge's sphere runs on the offset, whose valleys are wider (adapters.mujoco.cam_tip)
 
 
 def faceted(scenario: Scenario) -> bool:
@@ -116,5 +118,5 @@ def faceted(scenario: Scenario) -> bool:
 def hops(contacts: tuple[CamContact, ...], pieces: int) -> dict[int, float]:
     """Per faceted cam (its index among the contacts): its polygon's sagitta, the gap its follower
     may show where it hops off a vertex (adapters.mujoco.cam_load.check_contacts)."""
-    faceted = [(k, c.profile) for k, c in enumerate(contacts) if not isinstance(c.profile, EccentricDisc)]
-    return {k: sagitta(profile, pieces) for k, profile in faceted}
+    faceted = [(k, c) for k, c in enumerate(contacts) if not isinstance(c.profile, EccentricDisc)]
+    return {k: sagitta(c.profile, pieces, tip_radius(c)) for k, c in faceted}

@@ -23,6 +23,7 @@ import numpy as np
 
 from adapters.base import EngineFailure
 from adapters.mujoco.assembly import FOLLOWER, closest_contacts, follower_geom, pair_groups
+from adapters.mujoco.cam_tip import tip_radius
 from scenarios.cam_profiles import EccentricDisc
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam, follower_body
 from scenarios.drivers import AbsoluteDriver
@@ -60,8 +61,9 @@ def pressure_angle(contact: KnifeEdgeCam) -> float:
 
 
 def knife_edge_reason(contact: CamContact) -> str | None:
-    """Why the box-corner knife edge would not stay a knife edge on this profile, if it would not."""
-    if not isinstance(contact, KnifeEdgeCam):
+    """Why the box-corner knife edge would not stay a knife edge on this profile, if it would not (a
+    knife edge on a faceted profile is a sphere, adapters.mujoco.cam_tip: it has no corner)."""
+    if not isinstance(contact, KnifeEdgeCam) or tip_radius(contact) > 0.0:
         return None
     psi = pressure_angle(contact)
     if psi <= MAX_EDGE_PRESSURE_ANGLE:

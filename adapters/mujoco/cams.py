@@ -9,10 +9,11 @@ turned 45 degrees about its point. Any other profile (a spline, a lobed cam) is 
 profile points at equal angles (adapters.mujoco.cam_facets), one contact pair per facet: every
 collision stays analytic (capsule-sphere, capsule-box, as on the disc), the follower rides the chords
 (a sagitta of kappa c^2 / 8), and its velocity and acceleration carry the facets' kinks, smoothed by
-the soft contact (measured errors in cam_facets.DEFAULT_PIECES). A knife edge on
-such a polygon is refused (its velocity jumps at every vertex and it chatters), and so is a lobed cam
-(its follower chatters too; concave valleys the follower cannot follow are named:
-cam_facets.lobed_reason): only spline profiles with a roller or a flat face are built as facets.
+the soft contact (measured errors in cam_facets.DEFAULT_PIECES). A knife edge on such a polygon
+would chatter (its velocity jumps at every vertex): it is a sphere centred on its tip rolling on the
+facets of the profile's inward offset by the sphere's radius, whose centre traces the knife's path
+exactly (adapters.mujoco.cam_tip). A lobed cam is refused (its follower chatters; concave valleys
+the follower cannot follow are named: cam_facets.lobed_reason): spline profiles are built as facets.
 """
 
 from __future__ import annotations
@@ -23,21 +24,17 @@ from dataclasses import dataclass
 import numpy as np
 
 from adapters.mujoco.cam_facets import DEFAULT_PIECES, extent, facets, lobed_reason
+from adapters.mujoco.cam_tip import tip_radius, tip_reason
 from adapters.mujoco.tree import Tree, TreeError, rot
 from scenarios.bodies import Point
 from scenarios.cam_profiles import EccentricDisc, LobedProfile, SplineProfile
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam
 
-KNIFE_ON_FACETS = (
-    "MuJoCo's model of it is a polygon of facets, and a knife edge's velocity jumps at each vertex: "
-    "the follower is thrown off every vertex and chatters (measured on cam_knife_edge/spline: "
-    "position error 3e-5..5e-5 m and acceleration 510 m/s^2, the preload over the mass, from 512 to "
-    "2048 facets, not converging)"
-)
 LOBES_ON_FACETS = (
     "MuJoCo's model of it is a polygon of facets, on which the follower is thrown off the vertices "
     "and chatters (measured on cam_roller with profile=lobed: acceleration 501 m/s^2, the preload "
-    "over the mass, against 36 m/s^2, at 512 and 2048 facets alike)"
+    "over the mass, against 36 m/s^2, at 512 and 2048 facets alike; the knife edge with profile=lobed, a "
+    "sphere on the profile's offset, 501 m/s^2 alike)"
 )
 HALF_HEIGHT = 0.2
 """Half-thickness of all cam geometry normal to the plane, in cam disc radii."""
@@ -73,17 +70,11 @@ def unsupported_reason(contact: CamContact) -> str | None:
     profile = contact.profile
     if isinstance(profile, EccentricDisc):
         return None
-    if isinstance(contact, KnifeEdgeCam):
-        return f"cam '{contact.name}' has a {_kind(profile)} profile: {KNIFE_ON_FACETS}"
     if isinstance(profile, SplineProfile):
-        return None
+        return tip_reason(contact)
     if isinstance(profile, LobedProfile):
         return lobed_reason(contact) or f"cam '{contact.name}' has a lobed profile: {LOBES_ON_FACETS}"
     return f"cam '{contact.name}' has a {type(profile).__name__} profile, which MuJoCo's model does not know"
-
-
-def _kind(profile: object) -> str:
-    return {SplineProfile: "spline", LobedProfile: "lobed"}.get(type(profile), type(profile).__name__)
 
 
 def cam_pairs(contacts: tuple[CamContact, ...], tree: Tree, pieces: int = DEFAULT_PIECES) -> list[CamPair]:
@@ -103,7 +94,7 @@ def cam_pairs(contacts: tuple[CamContact, ...], tree: Tree, pieces: int = DEFAUL
             radius, reach = profile.radius, profile.radius + profile.eccentricity
         else:
             radius = reach = extent(profile)[1]
-            thickness, segments = facets(profile, pieces)
+            thickness, segments = facets(profile, pieces, tip_radius(contact))
             cam = tuple(
                 Geom(contact.cam, f"{name}{k}", "capsule", (thickness,), fromto=ends)
                 for k, ends in enumerate(segments)
@@ -132,6 +123,9 @@ def _follower(contact: CamContact, tree: Tree, radius: float, reach: float) -> G
         size = (reach, thickness, 2.0 * HALF_HEIGHT * radius)
         return Geom(contact.face.body, name, "box", size, (centre[0], centre[1]), tangent_angle)
     assert isinstance(contact, KnifeEdgeCam)
+    tip_r = tip_radius(contact)
+    if tip_r > 0.0:  # on facets: a sphere centred on the tip (adapters.mujoco.cam_tip)
+        return Geom(contact.tip.body, name, "sphere", (tip_r,), contact.tip.local)
     # The edge points from the tip towards the cam's centre of rotation at the authored pose.
     tip = contact.tip
     toward = tree.point(Point(contact.cam)) - tree.point(tip)

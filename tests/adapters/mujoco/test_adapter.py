@@ -86,13 +86,9 @@ def test_default_setting_matches_closed_forms(name: str) -> None:
 
 
 @pytest.mark.parametrize("name", [n for n in scenarios.catalogue() if n.endswith("/spline")])
-def test_spline_cams_run_as_facets_or_are_refused_with_their_reason(name: str) -> None:
-    # Roller and flat face: a polygon of facets (errors in test_cam_facets); a knife edge chatters.
-    reason = ADAPTER.supports(scenarios.build(name))
-    if name.startswith("cam_knife_edge"):
-        assert reason is not None and "chatters" in reason
-    else:
-        assert reason is None
+def test_spline_cams_run_as_facets(name: str) -> None:
+    # A polygon of facets (errors in test_cam_facets); a knife edge's as a sphere (test_cam_tip).
+    assert ADAPTER.supports(scenarios.build(name)) is None
 
 
 def test_instability_is_diverged_with_its_time_and_no_trajectory() -> None:

@@ -16,13 +16,13 @@ from reports.cli.main import main
 from reports.harness.results_store import read_results
 from tests.support.stores import copy_entry
 
-SCENARIOS = ("slider_crank", "cam_knife_edge/spline")
+SCENARIOS = ("slider_crank", "cam_roller/stress_undercut")
 CHROMIUM = Path("/usr/bin/chromium")
 
 
 @pytest.fixture(scope="module")
 def results(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """A real small run: MuJoCo over its sweep (it does not support spline cams), timed once."""
+    """A real small run: MuJoCo over its sweep (it does not support the lobed cam), timed once."""
     out = tmp_path_factory.mktemp("run")
     args = ["run", "--out", str(out), "--quiet", "--engine", "mujoco"]
     args += ["--repeats", "1", "--warmup", "0"]
@@ -45,7 +45,7 @@ def test_html_is_self_contained_with_its_plots(results: Path) -> None:
     assert not re.search(r'(src|href)="(https?:|//)', page), "the page must not load anything from outside"
     images = re.findall(r'<svg class="plot" .*?</svg>', page, flags=re.DOTALL)
     kinds = [re.search(r'aria-label="([^"]+)"', image).group(1) for image in images]  # type: ignore[union-attr]
-    # the suite overview; slider_crank: work-precision and deviations; cam_knife_edge/spline: nothing ran
+    # the suite overview; slider_crank: work-precision and deviations; the lobed cam: nothing ran
     assert kinds == ["overview of error against run time", "work-precision plot", "deviations"]
     assert "no work-precision plot: no successful run to draw" in page
     assert "no stored truth trajectory: no deviations" in page
@@ -56,7 +56,7 @@ def test_html_is_self_contained_with_its_plots(results: Path) -> None:
         assert root.findall(".//{http://www.w3.org/2000/svg}text") and "<image" not in image
     _, meta = read_results(results)
     assert f"<th>engine mujoco</th><td>{meta['engines']['mujoco']}</td>" in page
-    assert 'class="unsupported"' in page  # MuJoCo and the spline cam, in the matrix
+    assert 'class="unsupported"' in page  # MuJoCo and the lobed cam, in the matrix
     assert html.escape(meta["scales"]) in page
 
 
@@ -67,8 +67,8 @@ def test_markdown_summary_has_the_matrix_and_each_scenario(results: Path) -> Non
     for name in SCENARIOS:
         assert f"\n## {name}\n" in text
     unsupported = frame[frame["status"] == "unsupported"]
-    assert len(unsupported) == 1 and unsupported["scenario"].item() == "cam_knife_edge/spline"
-    assert "| cam_knife_edge/spline | unsupported |" in text and "| slider_crank | ok " in text
+    assert len(unsupported) == 1 and unsupported["scenario"].item() == "cam_roller/stress_undercut"
+    assert "| cam_roller/stress_undercut | unsupported |" in text and "| slider_crank | ok " in text
 
 
 def test_report_rerenders_from_stored_files_alone(results: Path, tmp_path: Path) -> None:
