@@ -24,8 +24,8 @@ import reports.cli.store_command as store_command
 import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
 from adapters.step_rule import RULE
-from reports.cli.usage import Parser, UsageError, pairs, scenario_argument
-from reports.harness import provenance, self_check, stop
+from reports.cli.usage import Parser, UsageError, Versions, pairs, scenario_argument
+from reports.harness import self_check, stop
 from reports.harness.atomic_write import atomic_output, atomic_path, output_target
 from reports.harness.common_start import common_start
 from reports.harness.gate import GateError
@@ -237,11 +237,9 @@ def parser() -> argparse.ArgumentParser:
         ),
         epilog="example: mbxval list; mbxval solve four_bar --out four_bar.csv;\n"
         "  mbxval run --out results; mbxval report results; mbxval --version",
-        formatter_class=argparse.RawDescriptionHelpFormatter,  # keeps --version's lines
+        formatter_class=argparse.RawDescriptionHelpFormatter,  # keeps the epilog's lines
     )
-    top.add_argument(
-        "-V", "--version", action="version", version=provenance.version_text(), help="print the versions"
-    )
+    top.add_argument("-V", "--version", action=Versions, help="print the versions")
     sub = top.add_subparsers(dest="command", required=True, parser_class=Parser)
 
     listing = sub.add_parser("list", help="scenarios, variants, engines and what each supports")
@@ -249,7 +247,7 @@ def parser() -> argparse.ArgumentParser:
     listing.add_argument("scenarios", nargs="*", help="only these scenarios or scenario files (.toml)")
 
     solve = sub.add_parser("solve", help="one trajectory as CSV")
-    _scenario_arguments(solve, "reference")
+    _scenario_arguments(solve, adapters.NATIVE)
     solve.add_argument("--t-end", type=float, help="end time (default: the scenario's)")
     grid = solve.add_mutually_exclusive_group()
     grid.add_argument("--steps", type=int, help="number of equal steps (rows = steps + 1)")
