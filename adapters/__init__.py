@@ -67,6 +67,19 @@ def adapter_class(name: str) -> type[Adapter]:
     return kind
 
 
+def exporters() -> list[str]:
+    """The engines that write a model file of their own (their adapter overrides `export`), in the
+    registry's order; an engine that cannot be loaded here is left out."""
+    found = []
+    for name in names():
+        try:
+            if adapter_class(name).export is not Adapter.export:
+                found.append(name)
+        except EngineUnavailable:
+            continue
+    return found
+
+
 def load(name: str) -> Adapter:
     """An instance of engine `name`'s adapter."""
     return adapter_class(name)()

@@ -200,11 +200,12 @@ def cmd_export(args: argparse.Namespace) -> int:
             stream.write(scenario_toml(scenario))
         print(f"wrote {args.out}")
         return 0
-    adapter = load_engine(args.engine)
+    engine = args.engine or next(iter(adapters.exporters()), adapters.NATIVE)
+    adapter = load_engine(engine)
     setting = engine_setting(adapter, scenario, args.mode, args.setting)
     reason = adapter.supports(scenario)
     if reason is not None:
-        raise UsageError(f"{args.engine} cannot represent {scenario.name}: {reason}")
+        raise UsageError(f"{engine} cannot represent {scenario.name}: {reason}")
     try:
         with atomic_path(args.out) as temp:  # the engine's own writer fills a temporary file
             adapter.export(scenario, setting, str(temp))
@@ -214,9 +215,11 @@ def cmd_export(args: argparse.Namespace) -> int:
     return 0
 
 
-def _scenario_arguments(parser: argparse.ArgumentParser, engine_default: str) -> None:
+def _scenario_arguments(parser: argparse.ArgumentParser, engine_default: str | None) -> None:
+    """The scenario and engine arguments; no `engine_default`: the first engine with a model file."""
     scenario_argument(parser)
-    parser.add_argument("--engine", default=engine_default, help=f"engine (default {engine_default})")
+    said = engine_default or "the first with a model file of its own, such as MJCF"
+    parser.add_argument("--engine", default=engine_default, help=f"engine (default: {said})")
     parser.add_argument("--mode", help="engine mode (for example RK4, implicitfast, kinematic)")
     parser.add_argument(
         "--setting",
@@ -255,7 +258,7 @@ def parser() -> argparse.ArgumentParser:
     solve.add_argument("--out", help="CSV file (default: stdout)")
 
     export = sub.add_parser("export", help="write the engine's own model file")
-    _scenario_arguments(export, "mujoco")
+    _scenario_arguments(export, None)
     export.add_argument("--out", required=True, help="model file to write")
     export.add_argument(
         "--format",
