@@ -1,6 +1,9 @@
 """Engine adapters, one subpackage per engine, each imported only when that engine is asked for;
 engines from other packages arrive through the `mbxval.engines` entry-point group.
 
+`ENGINES` is the registry: one line per built-in engine. Everything else about an engine (its modes,
+settings, colour, packages, stress settings) is declared on its adapter class, read through
+`adapter_class(name)`, so adding an engine touches its subpackage, one line here and its tests.
 `load(name)` returns an adapter instance, or raises EngineUnavailable with the reason (the engine is
 not installed, or its module failed to import), so a missing engine costs only its own rows.
 """
@@ -12,8 +15,11 @@ from importlib.metadata import entry_points
 
 from adapters.base import Adapter
 
+NATIVE = "reference"
+"""The engine name of the native textbook solver (adapters.reference)."""
+
 ENGINES: dict[str, tuple[str, str]] = {
-    "reference": ("adapters.reference", "ReferenceAdapter"),
+    NATIVE: ("adapters.reference", "ReferenceAdapter"),
     "mujoco": ("adapters.mujoco", "MujocoAdapter"),
     "exudyn": ("adapters.exudyn", "ExudynAdapter"),
     "pinocchio": ("adapters.pinocchio", "PinocchioAdapter"),
@@ -43,8 +49,8 @@ def names() -> list[str]:
     return [*ENGINES, *installed()]
 
 
-def load(name: str) -> Adapter:
-    """An instance of engine `name`'s adapter."""
+def adapter_class(name: str) -> type[Adapter]:
+    """Engine `name`'s adapter class, whose class attributes declare its facts (Adapter)."""
     known = {**ENGINES, **installed()}
     if name not in known:
         raise EngineUnavailable(f"unknown engine '{name}'; known: {', '.join(known)}")
@@ -56,7 +62,24 @@ def load(name: str) -> Adapter:
         raise EngineUnavailable(f"engine '{name}' is not available: {error}") from error
     if not (isinstance(kind, type) and issubclass(kind, Adapter)):
         raise EngineUnavailable(f"engine {name!r}: {module_name}:{class_name} is not an Adapter subclass")
-    adapter: Adapter = kind()
-    if adapter.name != name:
-        raise EngineUnavailable(f"engine '{name}': its adapter calls itself '{adapter.name}'")
-    return adapter
+    if kind.name != name:
+        raise EngineUnavailable(f"engine '{name}': its adapter calls itself '{kind.name}'")
+    return kind
+
+
+def exporters() -> list[str]:
+    """The engines that write a model file of their own (their adapter overrides `export`), in the
+    registry's order; an engine that cannot be loaded here is left out."""
+    found = []
+    for name in names():
+        try:
+            if adapter_class(name).export is not Adapter.export:
+                found.append(name)
+        except EngineUnavailable:
+            continue
+    return found
+
+
+def load(name: str) -> Adapter:
+    """An instance of engine `name`'s adapter."""
+    return adapter_class(name)()

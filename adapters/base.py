@@ -12,7 +12,10 @@ A subclass provides exactly:
     build(scenario, setting) -> model          the engine's own model (not timed)
     simulate(model, times) -> Trajectory       the timed part; must not depend on earlier calls.
 It may also provide export(scenario, setting, path) in the engine's own file format, and call
-`self.count_steps(n)` inside `simulate` to report the engine steps taken.
+`self.count_steps(n)` inside `simulate` to report the engine steps taken. Its other facts are data
+here too, so that nothing outside its subpackage names it: `colour` (its colour in the report's
+figures), `packages` (the distributions whose versions a run records) and `probe_settings` (its
+settings for a stress case that probes what it has knobs for, adapters.probes).
 
 Every setting is checked against `modes` and `options` where it enters (`check_setting`): an unknown
 mode or key, a value of the wrong type or outside its range is a SettingError naming the known ones or
@@ -37,6 +40,7 @@ from typing import Any, ClassVar, Literal
 import numpy as np
 
 from adapters.modes import Mode, measures_of
+from adapters.probes import Probe
 from adapters.timing import fastest
 from scenarios.family import declared_value, range_text
 from scenarios.scenario import Scenario
@@ -181,6 +185,11 @@ class Adapter:
     """How the engine applies the settings rule (adapters.step_rule): its constants, one line."""
     dynamics: ClassVar[bool] = False
     """Whether the engine runs forward dynamics (scenarios whose `analysis` is "dynamic")."""
+    colour: ClassVar[str] = ""
+    """The engine's colour in the report's figures, stored with its runs ('' for one from a shared
+    palette, reports.harness.engine_facts)."""
+    packages: ClassVar[tuple[str, ...]] = ()
+    """The distributions (as pip names them) whose installed versions a run records beside ours."""
 
     def __init__(self) -> None:
         self._steps = 0
@@ -206,6 +215,11 @@ class Adapter:
 
     def export(self, scenario: Scenario, setting: Setting, path: str) -> None:
         raise NotImplementedError(f"engine '{self.name}' has no model file format to export")
+
+    def probe_settings(self, probe: Probe, scenario: Scenario) -> list[Setting] | None:
+        """The settings to run a stress case that probes `probe` with (the first its default), or
+        None for the engine's own default: an engine without knobs for what is probed keeps it."""
+        return None
 
     # --- owned by the base ---------------------------------------------------------------------
     def check_setting(self, setting: Setting) -> Setting:

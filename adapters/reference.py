@@ -17,6 +17,7 @@ from importlib.metadata import version as package_version
 
 import numpy as np
 
+from adapters import NATIVE
 from adapters.base import Adapter, EngineFailure, Option, Setting, Singular
 from adapters.modes import ENGINE, Mode
 from reference_solver import SingularConfigurationError, SolverError, analyse
@@ -39,7 +40,8 @@ class ReferenceModel:
 
 
 class ReferenceAdapter(Adapter):
-    name = "reference"
+    name = NATIVE
+    colour = "#444444"
     rule = (
         "no fixed step: Newton's tolerance 1e-12 (kinematics), DOP853's rtol 1e-12 (dynamics), each "
         "swept to its floor"

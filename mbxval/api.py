@@ -18,6 +18,7 @@ import pandas as pd
 
 import reports.cli.compare_command as compare_command
 import reports.cli.suite_commands as suite_commands
+from adapters import NATIVE
 from adapters.base import OptionValue
 from reports.cli.main import parser, solve_trajectory
 from reports.cli.usage import UsageError
@@ -69,7 +70,7 @@ def _scenario(scenario: str | PathLike | Scenario, parameters: Mapping[str, Valu
 
 def solve(
     scenario: str | PathLike | Scenario,
-    engine: str = "reference",
+    engine: str = NATIVE,
     mode: str | None = None,
     settings: Mapping[str, OptionValue] | None = None,
     t_end: float | None = None,

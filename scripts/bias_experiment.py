@@ -21,8 +21,10 @@ import sys
 import time
 from pathlib import Path
 
+import adapters
+
 ROOT = Path(__file__).resolve().parent.parent
-ENGINES = ("reference", "mujoco", "exudyn", "pinocchio")
+ENGINES = tuple(adapters.names())
 
 
 def run_suite(engine: str, bias: float, every: bool, selection: list[str]) -> tuple[int, list[str], float]:

@@ -102,6 +102,8 @@ class ExudynRun:
 
 class ExudynAdapter(Adapter):
     name = "exudyn"
+    colour = "#d62728"
+    packages = ("exudyn",)
     dynamics = True
     rule = f"GA3 (spectral radius 0.9, full Newton) at 1/{STEPS_PER_PERIOD} of the shortest period"
     measured = (

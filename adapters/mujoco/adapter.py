@@ -47,12 +47,14 @@ from adapters.mujoco.settings import (
     KINEMATIC_MODES,
     STEPS_PER_PERIOD,
     TC_STEPS,
+    probe_settings,
     rule_default,
     rule_sweep,
     time_constant,
 )
 from adapters.mujoco.simulation import advance, read_outputs, record, side_step, soften
 from adapters.mujoco.tree import TreeError, plan_tree
+from adapters.probes import Probe
 from scenarios.cam_linkage import CAM_MODELS, cam_model_scenario, default_cam_model
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -83,6 +85,8 @@ class MujocoAdapter(Adapter):
     """MuJoCo (generalized coordinates, soft constraints) driven by clock joints."""
 
     name = "mujoco"
+    colour = "#1f77b4"
+    packages = ("mujoco",)
     measured = (
         *(
             Mode(
@@ -161,6 +165,9 @@ class MujocoAdapter(Adapter):
             if faceted(scenario):
                 setting = setting.replace(cam_pieces=DEFAULT_PIECES)
         return setting
+
+    def probe_settings(self, probe: Probe, scenario: Scenario) -> list[Setting] | None:
+        return probe_settings(probe, scenario, self.default_setting(scenario))
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
         dynamic = scenario.analysis == "dynamic"

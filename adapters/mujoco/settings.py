@@ -18,7 +18,8 @@ silent default for large systems.
 from __future__ import annotations
 
 from adapters.base import Setting
-from adapters.step_rule import rule_step
+from adapters.probes import MASS, STIFFNESS, Probe
+from adapters.step_rule import at_step, rule_step
 from scenarios.scenario import Scenario
 
 STEPS_PER_PERIOD = 2000
@@ -81,3 +82,30 @@ def time_constant(setting: Setting, dt: float) -> float:
     if setting.get("tc") is not None:
         return float(setting["tc"])
     return float(setting.get("tc_steps", TC_STEPS)) * dt
+
+
+STRESS_STEPS = (2e-3, 1e-3, 3e-4, 1e-4, 3e-5)
+"""The steps (s) of the stiffness probe, after the scenario's own output step."""
+STRESS_TC_STEPS = (2.0, 10.0, 50.0)
+"""The stiffness probe's time constants, in steps."""
+STRESS_IMPEDANCES = (0.9, 0.99, 0.9999)
+"""The stiffness probe's impedances (solimp)."""
+
+
+def probe_settings(probe: Probe, scenario: Scenario, default: Setting) -> list[Setting] | None:
+    """MuJoCo's settings for a stress case (adapters.probes), its `default` first. Stiffness: the
+    soft equalities' time constant (in steps) and impedance against the step, RK4 and implicitfast.
+    Mass: the default and a ten times finer step, the result depending on the masses."""
+    if probe == STIFFNESS:
+        interval = scenario.t_end / scenario.steps
+        grid = [
+            Setting(mode, default.options).replace(dt=dt, tc=tc * dt, impedance=impedance)
+            for mode in KINEMATIC_MODES
+            for dt in (interval, *STRESS_STEPS)
+            for tc in STRESS_TC_STEPS
+            for impedance in STRESS_IMPEDANCES
+        ]
+        return [default, *grid]
+    if probe == MASS:
+        return [default, at_step(default, float(default["dt"]) / 10)]
+    return None

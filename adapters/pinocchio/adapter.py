@@ -47,12 +47,14 @@ from adapters.pinocchio.settings import (
     PER_PERIOD,
     STEPS_PER_PERIOD,
     dynamic_sweep,
+    probe_settings,
     rule_setting,
 )
 from adapters.pinocchio.settings import gains as default_gains
 from adapters.pinocchio.simulation import EULER as EULER_METHOD
 from adapters.pinocchio.simulation import RK4
 from adapters.pinocchio.tree import Tree, TreeError, plan
+from adapters.probes import Probe
 from adapters.step_rule import rule_step
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -123,6 +125,8 @@ class Built:
 
 class PinocchioAdapter(Adapter):
     name = "pinocchio"
+    colour = "#2ca02c"
+    packages = ("pin",)
     rule = (
         "kinematic scenarios: Newton at each output time (no step, tol 1e-15); free dynamics: "
         f"baumgarte (RK4) at 1/{STEPS_PER_PERIOD[BAUMGARTE]} of the shortest period, gains critically "
@@ -169,6 +173,9 @@ class PinocchioAdapter(Adapter):
     ) -> Setting:
         """A dynamic-mode setting with `steps_per_period` RK4 steps per shortest period."""
         return rule_setting(scenario, mode, steps_per_period)
+
+    def probe_settings(self, probe: Probe, scenario: Scenario) -> list[Setting] | None:
+        return probe_settings(probe, scenario, self.default_setting(scenario))
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
         if scenario.analysis == "dynamic":

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 
 from adapters.base import Setting
+from adapters.probes import MASS, STIFFNESS, Probe
 from adapters.step_rule import rule_step, shortest_period
 from scenarios.scenario import Scenario
 
@@ -61,3 +62,29 @@ def dynamic_sweep(scenario: Scenario) -> list[Setting]:
         kp, kd = gains(scenario, BAUMGARTE, factor)
         settings.append(rule_setting(scenario, BAUMGARTE).replace(kp=kp, kd=kd))
     return settings
+
+
+STRESS_STEPS_PER_TURN = (100, 300, 1000)
+"""The stiffness probe's RK4 steps per crank revolution."""
+STRESS_GAINS = (1.0, 1e2, 1e3, 1e4)
+"""The stiffness probe's Baumgarte rates, in crank speeds (kp = (g w)^2, kd = 2 g w)."""
+MASS_STEPS_PER_TURN = 1000
+"""The mass probe's RK4 steps per crank revolution."""
+
+
+def probe_settings(probe: Probe, scenario: Scenario, default: Setting) -> list[Setting] | None:
+    """Pinocchio's settings for a stress case (adapters.probes), its `default` first. Stiffness:
+    Baumgarte gains against RK4 steps per crank revolution. Mass: the dynamic mode (RK4, no gains)
+    beside the kinematic default, the result depending on the masses."""
+    w = abs(float(scenario.parameter("omega")))
+    turn = 2 * math.pi / w
+    if probe == STIFFNESS:
+        stabilised = [
+            Setting.of(BAUMGARTE, dt=turn / n, kp=(g * w) ** 2, kd=2 * g * w)
+            for n in STRESS_STEPS_PER_TURN
+            for g in STRESS_GAINS
+        ]
+        return [default, *stabilised]
+    if probe == MASS:
+        return [default, Setting.of(DYNAMIC, dt=turn / MASS_STEPS_PER_TURN, kp=0.0, kd=0.0)]
+    return None

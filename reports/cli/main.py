@@ -24,8 +24,8 @@ import reports.cli.store_command as store_command
 import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
 from adapters.step_rule import RULE
-from reports.cli.usage import Parser, UsageError, pairs, scenario_argument
-from reports.harness import provenance, self_check, stop
+from reports.cli.usage import Parser, UsageError, Versions, pairs, scenario_argument
+from reports.harness import self_check, stop
 from reports.harness.atomic_write import atomic_output, atomic_path, output_target, write_text
 from reports.harness.common_start import common_start
 from reports.harness.gate import GateError
@@ -199,11 +199,12 @@ def cmd_export(args: argparse.Namespace) -> int:
         write_text(args.out, scenario_toml(scenario))
         print(f"wrote {args.out}")
         return 0
-    adapter = load_engine(args.engine)
+    engine = args.engine or next(iter(adapters.exporters()), adapters.NATIVE)
+    adapter = load_engine(engine)
     setting = engine_setting(adapter, scenario, args.mode, args.setting)
     reason = adapter.supports(scenario)
     if reason is not None:
-        raise UsageError(f"{args.engine} cannot represent {scenario.name}: {reason}")
+        raise UsageError(f"{engine} cannot represent {scenario.name}: {reason}")
     try:
         with atomic_path(args.out) as temp:  # the engine's own writer fills a temporary file
             adapter.export(scenario, setting, str(temp))
@@ -213,9 +214,11 @@ def cmd_export(args: argparse.Namespace) -> int:
     return 0
 
 
-def _scenario_arguments(parser: argparse.ArgumentParser, engine_default: str) -> None:
+def _scenario_arguments(parser: argparse.ArgumentParser, engine_default: str | None) -> None:
+    """The scenario and engine arguments; no `engine_default`: the first engine with a model file."""
     scenario_argument(parser)
-    parser.add_argument("--engine", default=engine_default, help=f"engine (default {engine_default})")
+    said = engine_default or "the first with a model file of its own, such as MJCF"
+    parser.add_argument("--engine", default=engine_default, help=f"engine (default: {said})")
     parser.add_argument("--mode", help="engine mode (for example RK4, implicitfast, kinematic)")
     parser.add_argument(
         "--setting",
@@ -236,11 +239,9 @@ def parser() -> argparse.ArgumentParser:
         ),
         epilog="example: mbxval list; mbxval solve four_bar --out four_bar.csv;\n"
         "  mbxval run --out results; mbxval report results; mbxval --version",
-        formatter_class=argparse.RawDescriptionHelpFormatter,  # keeps --version's lines
+        formatter_class=argparse.RawDescriptionHelpFormatter,  # keeps the epilog's lines
     )
-    top.add_argument(
-        "-V", "--version", action="version", version=provenance.version_text(), help="print the versions"
-    )
+    top.add_argument("-V", "--version", action=Versions, help="print the versions")
     sub = top.add_subparsers(dest="command", required=True, parser_class=Parser)
 
     listing = sub.add_parser("list", help="scenarios, variants, engines and what each supports")
@@ -248,7 +249,7 @@ def parser() -> argparse.ArgumentParser:
     listing.add_argument("scenarios", nargs="*", help="only these scenarios or scenario files (.toml)")
 
     solve = sub.add_parser("solve", help="one trajectory as CSV")
-    _scenario_arguments(solve, "reference")
+    _scenario_arguments(solve, adapters.NATIVE)
     solve.add_argument("--t-end", type=float, help="end time (default: the scenario's)")
     grid = solve.add_mutually_exclusive_group()
     grid.add_argument("--steps", type=int, help="number of equal steps (rows = steps + 1)")
@@ -256,7 +257,7 @@ def parser() -> argparse.ArgumentParser:
     solve.add_argument("--out", help="CSV file (default: stdout)")
 
     export = sub.add_parser("export", help="write the engine's own model file")
-    _scenario_arguments(export, "mujoco")
+    _scenario_arguments(export, None)
     export.add_argument("--out", required=True, help="model file to write")
     export.add_argument(
         "--format",

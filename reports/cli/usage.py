@@ -7,6 +7,9 @@ import argparse
 from collections.abc import Sequence
 from typing import NoReturn
 
+from reports.harness.engine_facts import engine_packages
+from reports.harness.provenance import version_text
+
 
 class UsageError(Exception):
     """Bad input from the user: reported as one line with exit status 2."""
@@ -41,3 +44,21 @@ def scenario_argument(parser: argparse.ArgumentParser) -> None:
         metavar="NAME=VALUE",
         help="family parameter, or a scenario file's value by dotted key path",
     )
+
+
+class Versions(argparse.Action):
+    """`--version`: our version, Python's and every package's we run on, the engines' read from the
+    registry only when asked (reading them imports every engine, which no other command needs)."""
+
+    def __init__(self, option_strings: Sequence[str], dest: str = argparse.SUPPRESS, help: str = "") -> None:
+        super().__init__(option_strings, dest, nargs=0, default=argparse.SUPPRESS, help=help)
+
+    def __call__(
+        self,
+        parser: argparse.ArgumentParser,
+        namespace: argparse.Namespace,
+        values: object,
+        option_string: str | None = None,
+    ) -> NoReturn:
+        print(version_text(engine_packages()))
+        parser.exit()

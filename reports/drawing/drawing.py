@@ -69,7 +69,7 @@ def native_setting(scenario: Scenario) -> Setting:
     """The native solver's setting for a drawing."""
     if scenario.analysis == "dynamic":
         return Setting.of("DOP853", rtol=DYNAMIC_RTOL)
-    return adapters.load("reference").default_setting(scenario)
+    return adapters.load(adapters.NATIVE).default_setting(scenario)
 
 
 def still_grid(scenario: Scenario, t: float) -> np.ndarray:
@@ -94,7 +94,7 @@ def frame_grid(scenario: Scenario, frames: int) -> tuple[np.ndarray, list[int]]:
 
 def solve(scenario: Scenario, times: np.ndarray) -> Trajectory:
     """Every body's trajectory on `times` by the native solver; DrawingError if it fails."""
-    engine = adapters.load("reference")
+    engine = adapters.load(adapters.NATIVE)
     result = engine.run(common_start(scenario), native_setting(scenario), times)
     if result.status != "ok" or result.trajectory is None:
         raise DrawingError(

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from adapters import NATIVE
 from adapters.base import Adapter, Setting
 from adapters.step_rule import at_step
 from reports.harness.truth import DYNAMIC_RTOL, NamedTruth
@@ -72,7 +73,7 @@ def settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
     tighter than JUDGED_MARGIN times the truth's tolerance; otherwise each engine's own sweep."""
     if scenario.name in map_cells():
         return _at_step(scenario, adapter)
-    if adapter.name == "reference" and scenario.analysis == "dynamic":
+    if adapter.name == NATIVE and scenario.analysis == "dynamic":
         loosest = truth_rtol(scenario) * JUDGED_MARGIN
         chosen = [adapter.default_setting(scenario), *adapter.sweep(scenario)]
         return _unique([s.replace(rtol=max(float(s["rtol"]), loosest)) for s in chosen])

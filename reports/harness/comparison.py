@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 
+from adapters import NATIVE
 from adapters.base import RunResult
 from reports.harness import self_check
 from reports.harness.energy_drift import energy_drift
@@ -14,9 +15,6 @@ from reports.harness.level_error import level_errors
 from reports.harness.metrics import Residual, compared_levels, error_metrics, residual_metrics
 from scenarios import Scenario
 from scenarios.trajectory import Trajectory
-
-NATIVE_ENGINE = "reference"
-"""The engine whose forces are the force level's truth (harness.truth.with_native_forces)."""
 
 
 class ComparisonError(Exception):
@@ -53,7 +51,7 @@ def compare(
             metrics["energy_change"] = self_check.energy_change(scenario, result.trajectory)
         except (ValueError, KeyError) as error:
             notes.append(f"energy drift not measured: {error}")
-    if force_columns(result.trajectory) and result.engine != NATIVE_ENGINE:  # never judged by itself
+    if force_columns(result.trajectory) and result.engine != NATIVE:  # the native forces are the truth's
         native = {c: truth.extras[c] for c in force_columns(truth)}
         if not native:
             notes.append("forces not compared: the truth carries none (harness.truth.with_native_forces)")

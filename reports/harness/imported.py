@@ -17,6 +17,7 @@ from typing import Any
 from adapters.base import RunResult, Setting
 from reports.harness import provenance
 from reports.harness.comparison import compare
+from reports.harness.engine_facts import colour, engine_packages
 from reports.harness.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.harness.metrics import HEADLINE_DEFINITION, Residual
 from reports.harness.results_store import ResultsStore
@@ -89,12 +90,14 @@ def add_to_store(store: ResultsStore, scenario: Scenario, scored: Score) -> None
     store.put_truth(scenario.name, scored.truth.name, scored.truth.trajectory.select(scenario.output_bodies))
     store.add(scored.row, scored.imported.trajectory)
     meta = dict(store.meta) or {
-        **provenance.describe(),
+        **provenance.describe(engine_packages()),
         "suite": "imported",
         "truth": "each row's `truth` column (reports.harness.truth)",
         "headline": HEADLINE_DEFINITION,
         "scales": SCALE_DEFINITION,
     }
-    meta["imported"] = {**meta.get("imported", {}), scored.row["engine"]: scored.imported.source}
+    label = scored.row["engine"]
+    meta["imported"] = {**meta.get("imported", {}), label: scored.imported.source}
+    meta["engine_colours"] = {**meta.get("engine_colours", {}), label: colour(label)}
     meta["revisions"] = sorted({str(r.get("revision") or "unknown") for r in store.rows.values()})
     store.save(meta, clean=True)

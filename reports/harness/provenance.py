@@ -1,4 +1,6 @@
-"""Where and with what results were made: machine, Python, packages, git revision, date."""
+"""Where and with what results were made: machine, Python, packages, git revision, date. The
+engines' packages are the caller's to name (reports.harness.engine_facts.engine_packages): this
+module knows no engine."""
 
 from __future__ import annotations
 
@@ -6,11 +8,13 @@ import datetime
 import os
 import platform
 import subprocess
+from collections.abc import Sequence
 from importlib import metadata
 from pathlib import Path
 from typing import Any
 
-PACKAGES = ("numpy", "scipy", "pandas", "mujoco", "exudyn", "pin")
+OWN_PACKAGES = ("numpy", "scipy", "pandas")
+"""The distributions every run rests on, whichever engines it runs; the engines' follow them."""
 
 
 def machine() -> dict[str, Any]:
@@ -23,9 +27,10 @@ def machine() -> dict[str, Any]:
     }
 
 
-def packages() -> dict[str, str]:
+def packages(engine_packages: Sequence[str]) -> dict[str, str]:
+    """The installed version of our own packages, then of `engine_packages` ('not installed')."""
     versions = {}
-    for name in PACKAGES:
+    for name in (*OWN_PACKAGES, *engine_packages):
         try:
             versions[name] = metadata.version(name)
         except metadata.PackageNotFoundError:
@@ -41,11 +46,11 @@ def version() -> str:
         return "unknown"
 
 
-def version_text() -> str:
+def version_text(engine_packages: Sequence[str]) -> str:
     """What `mbxval --version` prints: our version, then Python's and each package's we run on
-    (the engines among them), one per line."""
+    (the engines' `engine_packages` among them), one per line."""
     lines = [f"mbxval {version()}", f"python {platform.python_version()}"]
-    return "\n".join(lines + [f"{name} {v}" for name, v in packages().items()])
+    return "\n".join(lines + [f"{name} {v}" for name, v in packages(engine_packages).items()])
 
 
 def git_revision() -> str:
@@ -63,11 +68,12 @@ def now() -> str:
     return datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
 
 
-def describe() -> dict[str, Any]:
+def describe(engine_packages: Sequence[str]) -> dict[str, Any]:
+    """The sidecar's description of where and with what (`engine_packages`: the engines') a run was made."""
     return {
         "machine": machine(),
         "python": platform.python_version(),
-        "packages": packages(),
+        "packages": packages(engine_packages),
         "git_revision": git_revision(),
         "date": now(),
     }

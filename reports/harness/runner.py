@@ -31,6 +31,7 @@ from adapters.base import Adapter, RunResult, Setting
 from reports.harness import provenance, stop
 from reports.harness.common_start import common_start
 from reports.harness.comparison import compare
+from reports.harness.engine_facts import colours, engine_packages
 from reports.harness.isolation import run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.metrics import (
@@ -181,9 +182,10 @@ class Runner:
             name: (a if isinstance(a, str) else a._safe_version()) for name, a in self.adapters.items()
         }
         meta = {
-            **provenance.describe(),
+            **provenance.describe(engine_packages()),
             "suite": self.suite,
             "engines": versions,
+            "engine_colours": colours(self.engines),
             "repeats": self.options.repeats,
             "warmup": self.options.warmup,
             "timeout": self.options.timeout,

@@ -11,18 +11,11 @@ import numpy as np
 import pandas as pd
 from matplotlib.axes import Axes
 
+from reports.harness.engine_facts import colour as colour  # the engines' colours, declared by their adapters
 from reports.render.markup import figure_text
 
 FLOOR = 1e-17  # errors of exactly zero are drawn here on log axes
-COLOURS = {"reference": "#444444", "mujoco": "#1f77b4", "exudyn": "#d62728", "pinocchio": "#2ca02c"}
-OTHER_COLOURS = ("#9467bd", "#8c564b", "#e377c2", "#bcbd22", "#17becf", "#ff7f0e")
 MARKERS = "osD^v<>p*h"
-
-
-def colour(engine: str) -> str:
-    if engine in COLOURS:
-        return COLOURS[engine]
-    return OTHER_COLOURS[sum(map(ord, engine)) % len(OTHER_COLOURS)]
 
 
 def legend_entries(panels: Iterable[Axes]) -> tuple[list[Any], list[str]]:

@@ -10,7 +10,7 @@ with) and declares:
 - `refine`: the truth is solved on a grid this many times finer (near-singular cases, where the
   solver's predictor could jump to another branch on the scenario's own grid);
 - `settings`: each engine's settings for the case (the first is the default), or None for the
-  engine's own default;
+  engine's own default; what an engine runs for a probe is the engine's to say (probing);
 - `drift`: a long horizon, whose report compares the first and the last revolution.
 """
 
@@ -21,6 +21,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from adapters.base import Adapter, Setting
+from adapters.probes import MASS, STIFFNESS, Probe
 from adapters.step_rule import at_step
 from scenarios import build
 from scenarios.scenario import Scenario
@@ -96,41 +97,14 @@ def per_revolution(speed: float) -> Settings:
     return settings
 
 
-def stiffness(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
-    """MuJoCo: the soft equality's time constant (2, 10, 50 steps) and impedance against the step, RK4 and
-    implicitfast; Pinocchio: Baumgarte gains against RK4 steps per revolution."""
-    interval = scenario.t_end / scenario.steps
-    if adapter.name == "mujoco":
-        base = adapter.default_setting(scenario)
-        grid = [
-            Setting(mode, base.options).replace(dt=dt, tc=tc * dt, impedance=imp)
-            for mode in ("RK4", "implicitfast")
-            for dt in (interval, 2e-3, 1e-3, 3e-4, 1e-4, 3e-5)
-            for tc in (2.0, 10.0, 50.0)
-            for imp in (0.9, 0.99, 0.9999)
-        ]
-        return [base, *grid]
-    if adapter.name == "pinocchio":
-        w = abs(float(scenario.parameter("omega")))
-        gains = [
-            Setting.of("baumgarte", dt=2 * math.pi / w / n, kp=(g * w) ** 2, kd=2 * g * w)
-            for n in (100, 300, 1000)
-            for g in (1.0, 1e2, 1e3, 1e4)
-        ]
-        return [adapter.default_setting(scenario), *gains]
-    return None
+def probing(probe: Probe) -> Settings:
+    """Each engine's own settings for a case that probes `probe` (Adapter.probe_settings): the
+    constraint stiffness against the step, or the masses; None keeps the engine's default."""
 
+    def settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
+        return adapter.probe_settings(probe, scenario)
 
-def heavy(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
-    """The engines whose result depends on the masses: MuJoCo at its default and a 10x finer step,
-    Pinocchio's dynamic mode at 1000 RK4 steps per revolution beside its kinematic default."""
-    default = adapter.default_setting(scenario)
-    period = 2 * math.pi / abs(float(scenario.parameter("omega")))
-    if adapter.name == "mujoco":
-        return [default, at_step(default, float(default["dt"]) / 10)]
-    if adapter.name == "pinocchio":
-        return [default, Setting.of("dynamic", dt=period / 1000, kp=0.0, kd=0.0)]
-    return None
+    return settings
 
 
 def _cases() -> tuple[StressCase, ...]:
@@ -140,7 +114,9 @@ def _cases() -> tuple[StressCase, ...]:
     sc = "slider_crank"
     return (
         StressCase(sc, "nominal slider-crank (the scale and speed cases' reference point)"),
-        StressCase("four_bar", "nominal four-bar (the mass-ratio cases' reference point)", settings=heavy),
+        StressCase(
+            "four_bar", "nominal four-bar (the mass-ratio cases' reference point)", settings=probing(MASS)
+        ),
         StressCase(f"{sc}/stress_dead_centre", "slider-driven through the outer dead centre", dead_centre),
         StressCase(f"{sc}/stress_equal_links", "crank = rod, through th2 = pi/2", crank_at_right_angle),
         StressCase(
@@ -180,10 +156,12 @@ def _cases() -> tuple[StressCase, ...]:
         StressCase(f"{sc}/stress_link_ratio_1e-3", "crank 1e-3 of the rod"),
         StressCase("four_bar/stress_link_ratio_1e-3", "crank 1e-3 of the other links"),
         StressCase("spur_gears/stress_ratio_1000", "gear ratio 1:1000"),
-        StressCase("four_bar/stress_mass_1e3", "coupler 1e3 times heavier", settings=heavy),
-        StressCase("four_bar/stress_mass_1e6", "coupler 1e6 times heavier", settings=heavy),
+        StressCase("four_bar/stress_mass_1e3", "coupler 1e3 times heavier", settings=probing(MASS)),
+        StressCase("four_bar/stress_mass_1e6", "coupler 1e6 times heavier", settings=probing(MASS)),
         StressCase(f"{sc}/stress_long", "1000 revolutions at 20 steps per revolution", drift=True),
-        StressCase(f"{sc}/stress_stiffness", "constraint stiffness against the step", settings=stiffness),
+        StressCase(
+            f"{sc}/stress_stiffness", "constraint stiffness against the step", settings=probing(STIFFNESS)
+        ),
         StressCase("cam_knife_edge/stress_steep", "eccentric disc, pressure angle up to 64 deg"),
         StressCase("cam_roller/stress_steep", "eccentric disc, pressure angle up to 35 deg"),
         StressCase("cam_knife_edge/stress_few_knots", "spline profile through 6 knots"),

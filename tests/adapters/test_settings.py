@@ -9,6 +9,7 @@ import pytest
 import adapters
 import scenarios
 from adapters.base import Setting, SettingError
+from tests.support.engines import COMPARED
 
 
 @pytest.mark.parametrize("engine", adapters.names())
@@ -52,7 +53,7 @@ def test_a_bad_setting_is_one_failed_run_not_an_exception() -> None:
     assert result.status == "failed" and "option dt must be a float in (0, 1] s" in result.message
 
 
-@pytest.mark.parametrize("engine", ["mujoco", "exudyn", "pinocchio"])
+@pytest.mark.parametrize("engine", COMPARED)
 def test_a_step_that_would_take_forever_is_refused_before_running(engine: str) -> None:
     """slider_crank's grid spans 2 pi / omega; a step of 1e-12 s would take ~1e11 steps."""
     from adapters.base import MAX_STEPS

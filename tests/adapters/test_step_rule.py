@@ -13,8 +13,7 @@ import adapters
 import scenarios
 from adapters.lattice import hermite, lattice_point, lattice_steps
 from adapters.step_rule import FALLBACK_PERIOD, rule_step, shortest_period
-
-FIXED_STEP = ("mujoco", "exudyn", "pinocchio")
+from tests.support.engines import COMPARED
 
 
 def test_a_driven_mechanism_s_period_is_one_turn_of_its_crank() -> None:
@@ -91,7 +90,7 @@ def test_interpolation_does_not_amplify_a_velocity_error() -> None:
     assert abs(a[0]) < 1e-12
 
 
-@pytest.mark.parametrize("engine", FIXED_STEP)
+@pytest.mark.parametrize("engine", COMPARED)
 def test_steps_do_not_depend_on_the_output_grid(engine: str) -> None:
     """The issue's case: four_bar_gravity with t_end 0.2 and 4 steps against t_end 0.4 and 16 steps
     (before: 1.5e-2 apart in Exudyn, 1.6e-5 in Pinocchio). The same march: the same states at the
@@ -124,7 +123,7 @@ def test_a_driven_mechanism_s_outputs_do_not_depend_on_the_grid(engine: str) -> 
     np.testing.assert_allclose(coarse.trajectory.position, fine.trajectory.position[::2], rtol=0, atol=1e-13)
 
 
-@pytest.mark.parametrize("engine", FIXED_STEP)
+@pytest.mark.parametrize("engine", COMPARED)
 def test_a_grid_that_goes_back_in_time_is_a_failed_run(engine: str) -> None:
     adapter = adapters.load(engine)
     result = adapter.run(scenarios.load("four_bar_gravity"), times=np.array([0.0, 0.02, 0.01]))

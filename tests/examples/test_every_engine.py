@@ -26,8 +26,8 @@ from tests.examples.closed_forms import CLOSED_FORMS
 from tests.examples.engine_errors import default_run, errors
 from tests.examples.support import example
 from tests.support.bounds import held
+from tests.support.engines import ENGINES
 
-ENGINES = ("reference", "mujoco", "exudyn", "pinocchio")
 MEASURED: dict[tuple[str, str], tuple[float, float, float]] = {
     ("whitworth_quick_return", "reference"): (8.9e-16, 1.1e-15, 4.9e-15),
     ("whitworth_quick_return", "mujoco"): (1.9e-07, 1.9e-06, 2.0e-04),

@@ -12,6 +12,7 @@ import pytest
 
 import scenarios
 from reports.cli.main import main
+from reports.harness import engine_facts
 from reports.harness.results_store import read_results, read_trajectories
 from reports.render.report_data import ReportData
 from scenarios import Trajectory
@@ -77,6 +78,9 @@ def test_out_adds_the_row_beside_the_engines(tmp_path: Path, capsys: pytest.Capt
     assert "bodies not in the file, not scored: gear_out" in row["message"]
     assert set(frame["engine"]) == {"reference", "other_tool"}  # the engine's rows are kept
     assert meta["imported"] == {"other_tool": str(csv)}
+    assert meta["engine_colours"] == engine_facts.colours(
+        ["reference", "other_tool"]
+    )  # the run's and the label's
     assert ("spur_gears", "other_tool", "imported") in read_trajectories(store)
     data = ReportData.load(store)
     assert data.engines() == ["reference", "other_tool"]

@@ -9,13 +9,14 @@ import pytest
 
 from reports.cli.main import main
 from reports.harness.results_store import read_results
+from tests.support.engines import ENGINES
 
 
 @pytest.mark.parametrize(
     ("args", "words"),
     [
         (["--suite", "nightly"], "unknown suite 'nightly'; known: default, quick"),
-        (["--engine", "bullet"], "unknown engine 'bullet'; known: reference, mujoco, exudyn, pinocchio"),
+        (["--engine", "bullet"], f"unknown engine 'bullet'; known: {', '.join(ENGINES)}"),
         (["--scenario", "slider_crank/nope"], "slider_crank: unknown variant 'nope'"),
     ],
 )

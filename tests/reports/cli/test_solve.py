@@ -14,6 +14,7 @@ import pytest
 import scenarios
 from reports.cli.main import main
 from scenarios.closed_form import exact
+from tests.support.engines import ENGINES
 
 
 def run(capsys, *argv: str) -> tuple[int, str, str]:  # type: ignore[no-untyped-def]
@@ -131,9 +132,9 @@ def test_list_is_a_table_of_what_each_engine_supports(capsys) -> None:  # type: 
     }
     assert set(rows) == set(scenarios.catalogue())
     header = next(line for line in out.splitlines() if line.startswith("scenario"))
-    assert header.split()[1:] == ["reference", "mujoco", "exudyn", "pinocchio"]
-    assert rows["slider_crank"] == ["yes"] * 4
-    assert rows["cam_knife_edge/spline"] == ["yes"] * 4  # MuJoCo's knife edge: a sphere on the offset
+    assert header.split()[1:] == list(ENGINES)
+    assert rows["slider_crank"] == ["yes"] * len(ENGINES)
+    assert rows["cam_knife_edge/spline"] == ["yes"] * len(ENGINES)  # MuJoCo's knife: a sphere on the offset
     assert "    crank_length=0.2  (a number in (0, 1e+06] m)" in out
     assert "stress_" not in out
     # every mode says what it measures: the engine's own solver, or an adapter loop with derived levels

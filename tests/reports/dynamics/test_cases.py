@@ -17,6 +17,7 @@ from reports.dynamics.cases import (
 from reports.harness.suites import get
 from scenarios import load
 from scenarios.registry import all_families
+from tests.support.engines import COMPARED
 
 
 def test_the_suite_runs_every_dynamic_scenario_and_no_kinematic_one() -> None:
@@ -50,7 +51,7 @@ def test_the_native_engine_is_never_judged_by_a_truth_as_loose_as_itself() -> No
 
 
 def test_a_map_cell_runs_every_mode_at_its_step() -> None:
-    for engine in ("mujoco", "exudyn", "pinocchio"):
+    for engine in COMPARED:
         adapter = adapters.load(engine)
         for name, values in map_cells().items():
             chosen = settings(load(name), adapter)

@@ -12,6 +12,7 @@ import adapters
 from reports.harness.common_start import common_start
 from scenarios import load
 from scenarios.files.writer import scenario_toml
+from tests.support.engines import COMPARED
 
 
 @pytest.fixture(scope="module")
@@ -32,7 +33,7 @@ def test_a_consistent_start_is_kept_as_written() -> None:
     assert common_start(kinematic) is kinematic
 
 
-@pytest.mark.parametrize("engine", ["mujoco", "exudyn", "pinocchio"])
+@pytest.mark.parametrize("engine", COMPARED)
 def test_every_engine_starts_from_the_native_assembly(off_by_a_millimetre: Path, engine: str) -> None:
     written = load(str(off_by_a_millimetre))
     scenario = common_start(written)

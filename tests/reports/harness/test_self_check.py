@@ -17,6 +17,7 @@ from reference_solver.dynamics import simulate
 from reports.cli.main import main
 from reports.harness import self_check
 from scenarios.trajectory import Trajectory
+from tests.support.engines import ENGINES
 
 
 def test_the_verdict_names_what_drifted_and_its_limit() -> None:
@@ -76,7 +77,7 @@ def test_solve_warns_on_a_gross_drift_and_keeps_exit_0(capsys, tmp_path) -> None
     assert err.startswith("mbxval: warning: mujoco drifted: constraint residual") and err.count("\n") == 1
 
 
-@pytest.mark.parametrize("engine", ["reference", "mujoco", "exudyn", "pinocchio"])
+@pytest.mark.parametrize("engine", ENGINES)
 def test_no_alarm_on_a_default_run(engine: str) -> None:
     scenario = scenarios.build("four_bar_gravity")
     adapter = load_engine(engine)
