@@ -16,56 +16,14 @@ import numpy as np
 from scenarios import Scenario, Trajectory
 from scenarios.families.slider_crank import stroke_limits
 from scenarios.identity import family_twin
-
-
-def _e(theta: np.ndarray) -> np.ndarray:
-    return np.stack([np.cos(theta), np.sin(theta)], axis=-1)
-
-
-def _link_point(base, theta, omega, alpha, s):  # type: ignore[no-untyped-def]
-    """Position, velocity and acceleration of the point at distance s along a link from `base`."""
-    p, v, a = base
-    e, n = _e(theta), _e(theta + math.pi / 2)
-    return (
-        p + s * e,
-        v + s * omega[:, None] * n,
-        a + s * (alpha[:, None] * n - (omega**2)[:, None] * e),
-    )
-
-
-def _body(point, theta, omega, alpha):  # type: ignore[no-untyped-def]
-    """Stack a frame's (x, y) kinematics and its angle into (N, 3) arrays per level."""
-    p, v, a = point
-    return (np.column_stack([p, theta]), np.column_stack([v, omega]), np.column_stack([a, alpha]))
-
-
-def _trajectory(times, bodies, extras=None):  # type: ignore[no-untyped-def]
-    names = tuple(bodies)
-    levels = [np.stack([bodies[b][k] for b in names], axis=1) for k in range(3)]
-    return Trajectory(np.asarray(times), names, *levels, extras=extras or {})
-
-
-def _fixed(n: int, x: float, y: float):  # type: ignore[no-untyped-def]
-    zero = np.zeros((n, 2))
-    return (np.tile([x, y], (n, 1)), zero, zero.copy())
-
-
-def _constant_speed(s: Scenario, t: np.ndarray):  # type: ignore[no-untyped-def]
-    omega, theta0 = float(s.parameter("omega")), float(s.parameter("theta0"))
-    return theta0 + omega * t, np.full_like(t, omega), np.zeros_like(t)
-
-
-def _solve2(m11, m12, m21, m22, r1, r2):  # type: ignore[no-untyped-def]
-    """Cramer's rule for [[m11, m12], [m21, m22]] x = [r1, r2], elementwise."""
-    det = m11 * m22 - m12 * m21
-    return (r1 * m22 - m12 * r2) / det, (m11 * r2 - r1 * m21) / det
+from scenarios.link_kinematics import assemble, constant_speed, fixed, frame, link_point, solve2, unit
 
 
 def slider_crank(s: Scenario, t: np.ndarray) -> Trajectory:
     l2, l3, h = (float(s.parameter(k)) for k in ("crank_length", "rod_length", "offset"))
     n = len(t)
     if s.parameter("drive") == "crank":
-        th2, w2, a2 = _constant_speed(s, t)
+        th2, w2, a2 = constant_speed(s, t)
         th3 = np.arcsin((h - l2 * np.sin(th2)) / l3)
         w3 = -l2 * np.cos(th2) * w2 / (l3 * np.cos(th3))
         a3 = (l2 * np.sin(th2) * w2**2 - l2 * np.cos(th2) * a2 + l3 * np.sin(th3) * w3**2) / (
@@ -81,20 +39,20 @@ def slider_crank(s: Scenario, t: np.ndarray) -> Trajectory:
         th3 = np.arctan2(h - l2 * np.sin(th2), xb - l2 * np.cos(th2))
         # x_B = l2 cos th2 + l3 cos th3 and h = l2 sin th2 + l3 sin th3, differentiated.
         m = (-l2 * np.sin(th2), -l3 * np.sin(th3), l2 * np.cos(th2), l3 * np.cos(th3))
-        w2, w3 = _solve2(*m, vb, np.zeros(n))
+        w2, w3 = solve2(*m, vb, np.zeros(n))
         r1 = ab + l2 * np.cos(th2) * w2**2 + l3 * np.cos(th3) * w3**2
         r2 = l2 * np.sin(th2) * w2**2 + l3 * np.sin(th3) * w3**2
-        a2, a3 = _solve2(*m, r1, r2)
-    origin = _fixed(n, 0.0, 0.0)
-    a_pin = _link_point(origin, th2, w2, a2, l2)
-    b_pin = _link_point(a_pin, th3, w3, a3, l3)
+        a2, a3 = solve2(*m, r1, r2)
+    origin = fixed(n, 0.0, 0.0)
+    a_pin = link_point(origin, th2, w2, a2, l2)
+    b_pin = link_point(a_pin, th3, w3, a3, l3)
     zero = np.zeros(n)
-    return _trajectory(
+    return assemble(
         t,
         {
-            "crank": _body(_link_point(origin, th2, w2, a2, l2 / 2), th2, w2, a2),
-            "rod": _body(_link_point(a_pin, th3, w3, a3, l3 / 2), th3, w3, a3),
-            "slider": _body(b_pin, zero, zero, zero),
+            "crank": frame(link_point(origin, th2, w2, a2, l2 / 2), th2, w2, a2),
+            "rod": frame(link_point(a_pin, th3, w3, a3, l3 / 2), th3, w3, a3),
+            "slider": frame(b_pin, zero, zero, zero),
         },
     )
 
@@ -105,7 +63,7 @@ def four_bar(s: Scenario, t: np.ndarray) -> Trajectory:
     )
     branch = int(s.parameter("branch"))
     n = len(t)
-    th2, w2, a2 = _constant_speed(s, t)
+    th2, w2, a2 = constant_speed(s, t)
     ax, ay = a * np.cos(th2), a * np.sin(th2)
     dx, dy = g - ax, -ay
     d = np.hypot(dx, dy)
@@ -114,18 +72,18 @@ def four_bar(s: Scenario, t: np.ndarray) -> Trajectory:
     th4 = np.unwrap(np.arctan2(by, bx - g))
     # a e2 + b e3 - c e4 = (g, 0), differentiated: b w3 e3' - c w4 e4' = -a w2 e2'.
     m = (-b * np.sin(th3), c * np.sin(th4), b * np.cos(th3), -c * np.cos(th4))
-    w3, w4 = _solve2(*m, a * np.sin(th2) * w2, -a * np.cos(th2) * w2)
+    w3, w4 = solve2(*m, a * np.sin(th2) * w2, -a * np.cos(th2) * w2)
     r1 = a * np.sin(th2) * a2 + a * np.cos(th2) * w2**2 + b * np.cos(th3) * w3**2 - c * np.cos(th4) * w4**2
     r2 = -a * np.cos(th2) * a2 + a * np.sin(th2) * w2**2 + b * np.sin(th3) * w3**2 - c * np.sin(th4) * w4**2
-    a3, a4 = _solve2(*m, r1, r2)
-    origin, o4 = _fixed(n, 0.0, 0.0), _fixed(n, g, 0.0)
-    a_pin = _link_point(origin, th2, w2, a2, a)
-    return _trajectory(
+    a3, a4 = solve2(*m, r1, r2)
+    origin, o4 = fixed(n, 0.0, 0.0), fixed(n, g, 0.0)
+    a_pin = link_point(origin, th2, w2, a2, a)
+    return assemble(
         t,
         {
-            "crank": _body(_link_point(origin, th2, w2, a2, a / 2), th2, w2, a2),
-            "coupler": _body(_link_point(a_pin, th3, w3, a3, b / 2), th3, w3, a3),
-            "rocker": _body(_link_point(o4, th4, w4, a4, c / 2), th4, w4, a4),
+            "crank": frame(link_point(origin, th2, w2, a2, a / 2), th2, w2, a2),
+            "coupler": frame(link_point(a_pin, th3, w3, a3, b / 2), th3, w3, a3),
+            "rocker": frame(link_point(o4, th4, w4, a4, c / 2), th4, w4, a4),
         },
     )
 
@@ -133,32 +91,32 @@ def four_bar(s: Scenario, t: np.ndarray) -> Trajectory:
 def spur_gears(s: Scenario, t: np.ndarray) -> Trajectory:
     r1, r2 = float(s.parameter("radius_in")), float(s.parameter("radius_out"))
     internal = s.parameter("mesh") == "internal"
-    th, w, al = _constant_speed(s, t)
+    th, w, al = constant_speed(s, t)
     ratio = (r1 / r2) if internal else -(r1 / r2)
     theta0 = float(s.parameter("theta0"))
     n = len(t)
     centre = r2 - r1 if internal else r1 + r2
-    return _trajectory(
+    return assemble(
         t,
         {
-            "gear_in": _body(_fixed(n, 0.0, 0.0), th, w, al),
-            "gear_out": _body(_fixed(n, centre, 0.0), ratio * (th - theta0), ratio * w, ratio * al),
+            "gear_in": frame(fixed(n, 0.0, 0.0), th, w, al),
+            "gear_out": frame(fixed(n, centre, 0.0), ratio * (th - theta0), ratio * w, ratio * al),
         },
     )
 
 
 def planetary_gears(s: Scenario, t: np.ndarray) -> Trajectory:
     rs, rp = float(s.parameter("radius_sun")), float(s.parameter("radius_planet"))
-    th, w, al = _constant_speed(s, t)
+    th, w, al = constant_speed(s, t)
     theta0 = float(s.parameter("theta0"))
-    origin = _fixed(len(t), 0.0, 0.0)
+    origin = fixed(len(t), 0.0, 0.0)
     ratio = 1.0 + rs / rp
-    return _trajectory(
+    return assemble(
         t,
         {
-            "arm": _body(_link_point(origin, th, w, al, (rs + rp) / 2), th, w, al),
-            "planet": _body(
-                _link_point(origin, th, w, al, rs + rp), ratio * (th - theta0), ratio * w, ratio * al
+            "arm": frame(link_point(origin, th, w, al, (rs + rp) / 2), th, w, al),
+            "planet": frame(
+                link_point(origin, th, w, al, rs + rp), ratio * (th - theta0), ratio * w, ratio * al
             ),
         },
     )
@@ -166,7 +124,7 @@ def planetary_gears(s: Scenario, t: np.ndarray) -> Trajectory:
 
 def rack_pinion(s: Scenario, t: np.ndarray) -> Trajectory:
     r = float(s.parameter("radius"))
-    th, w, al = _constant_speed(s, t)
+    th, w, al = constant_speed(s, t)
     theta0 = float(s.parameter("theta0"))
     n = len(t)
     zero = np.zeros(n)
@@ -175,17 +133,17 @@ def rack_pinion(s: Scenario, t: np.ndarray) -> Trajectory:
         np.column_stack([r * w, zero]),
         np.column_stack([r * al, zero]),
     )
-    return _trajectory(
-        t, {"pinion": _body(_fixed(n, 0.0, 0.0), th, w, al), "rack": _body(rack, zero, zero, zero)}
+    return assemble(
+        t, {"pinion": frame(fixed(n, 0.0, 0.0), th, w, al), "rack": frame(rack, zero, zero, zero)}
     )
 
 
 def disc_cam(s: Scenario, t: np.ndarray) -> Trajectory:
     big_r, e = float(s.parameter("radius")), float(s.parameter("eccentricity"))
-    th, w, al = _constant_speed(s, t)
+    th, w, al = constant_speed(s, t)
     n = len(t)
     zero = np.zeros(n)
-    centre = e * _e(th)  # the disc's centre, global
+    centre = e * unit(th)  # the disc's centre, global
     if s.family == "cam_flat_face":
         y, dy, ddy = big_r + e * np.sin(th), e * np.cos(th), -e * np.sin(th)
         contact = centre + np.array([0.0, big_r])
@@ -207,9 +165,9 @@ def disc_cam(s: Scenario, t: np.ndarray) -> Trajectory:
         np.column_stack([zero, dy * w]),
         np.column_stack([zero, ddy * w**2 + dy * al]),
     )
-    return _trajectory(
+    return assemble(
         t,
-        {"cam": _body(_fixed(n, 0.0, 0.0), th, w, al), "follower": _body(follower_kin, zero, zero, zero)},
+        {"cam": frame(fixed(n, 0.0, 0.0), th, w, al), "follower": frame(follower_kin, zero, zero, zero)},
         extras={"contact.phi": phi},
     )
 
