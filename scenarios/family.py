@@ -19,7 +19,7 @@ from scenarios.trajectory import Trajectory
 MAX_LENGTH = 1e6  # m: a kilometre-sized mechanism is in range, a 1e308 m one is a typo
 MAX_RATE = 1e6  # rad/s
 MAX_ANGLE = 1e3  # rad, for initial angles
-MAX_STEPS = 10_000_000  # grid steps: 1e7 points of a few bodies is about 2 GB of trajectory
+MAX_GRID_STEPS = 10_000_000  # 1e7 grid points of a few bodies is about 2 GB of trajectory
 MAX_REVOLUTIONS = 1e5
 
 
@@ -148,7 +148,7 @@ def time_grid(steps: int = 200) -> dict[str, Parameter]:
     """The grid every revolving family takes: `revolutions` turns in `steps` steps."""
     return {
         "revolutions": positive(1.0, MAX_REVOLUTIONS, "turns"),
-        "steps": count(steps, 1, MAX_STEPS),
+        "steps": count(steps, 1, MAX_GRID_STEPS),
     }
 
 

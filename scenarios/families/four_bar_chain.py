@@ -22,9 +22,9 @@ from scenarios.drivers import AbsoluteDriver
 from scenarios.families.four_bar import link
 from scenarios.family import (
     MAX_ANGLE,
+    MAX_GRID_STEPS,
     MAX_RATE,
     MAX_REVOLUTIONS,
-    MAX_STEPS,
     Family,
     Parameter,
     angle,
@@ -121,7 +121,7 @@ FAMILY = Family(
         "amplitude": Parameter(1.0, "rad", low=-MAX_ANGLE, high=MAX_ANGLE),
         "theta0": angle(math.pi / 2),
         "periods": positive(1.0, MAX_REVOLUTIONS, "periods"),
-        "steps": count(200, 1, MAX_STEPS),
+        "steps": count(200, 1, MAX_GRID_STEPS),
     },
     build=_build,
     closed_form=closed_form,
