@@ -1,5 +1,5 @@
-"""Shared builder of the cam families: a disc cam pinned at the origin and driven at constant speed,
-and a follower translating along the y axis through the cam's centre.
+"""Shared builder and closed form of the cam families: a disc cam pinned at the origin and driven at
+constant speed, and a follower translating along the y axis through the cam's centre.
 
 The profile is the eccentric disc (radius R, eccentricity e) or, with `profile=spline`, a periodic
 cubic spline through `knots` radii of that disc, or with `profile=lobed` the lobed cam
