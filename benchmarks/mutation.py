@@ -34,14 +34,31 @@ PACKAGES = (
     "examples",
 )
 
+CLOSED_FORM_TESTS = (
+    "tests/scenarios/test_closed_form.py",
+    "tests/scenarios/test_closed_form_edges.py",
+    "tests/scenarios/test_four_bar_chain.py",
+    "tests/scenarios/test_cam_linkage.py",
+    "tests/reference_solver/test_closed_forms.py",
+    "tests/reports/harness/test_truth.py",
+)
+"""The tests of the closed forms, which sit beside their families (Family.closed_form): mutating a
+family module mutates its builder too, which these tests reach only through the native solver."""
+
 MODULES: dict[str, tuple[str, ...]] = {
-    "scenarios/closed_form.py": (
-        "tests/scenarios/test_closed_form.py",
-        "tests/scenarios/test_closed_form_edges.py",
-        "tests/scenarios/test_four_bar_chain.py",
-        "tests/scenarios/test_cam_linkage.py",
-        "tests/reference_solver/test_closed_forms.py",
-        "tests/reports/harness/test_truth.py",
+    **dict.fromkeys(
+        (
+            "scenarios/closed_form.py",
+            "scenarios/link_kinematics.py",
+            "scenarios/families/slider_crank.py",
+            "scenarios/families/four_bar.py",
+            "scenarios/families/spur_gears.py",
+            "scenarios/families/planetary_gears.py",
+            "scenarios/families/rack_pinion.py",
+            "scenarios/families/disc_cam.py",
+            "scenarios/families/four_bar_chain.py",
+        ),
+        CLOSED_FORM_TESTS,
     ),
     "reports/harness/metrics.py": ("tests/reports/harness/test_metrics.py",),
     "reports/harness/level_error.py": ("tests/reports/harness/test_level_error.py",),
@@ -80,18 +97,19 @@ EXPLAINED: dict[str, str] = {
     "reports.harness.level_error.x_level_series__mutmut_37": _DTYPE + " (fmax of float arrays)",
     **dict.fromkeys(
         (
-            "scenarios.closed_form.x__e__mutmut_7",
-            "scenarios.closed_form.x_four_bar_chain__mutmut_48",
-            "scenarios.closed_form.x_four_bar_chain__mutmut_57",
+            "scenarios.link_kinematics.x_unit__mutmut_7",
+            "scenarios.families.four_bar_chain.x_closed_form__mutmut_48",
+            "scenarios.families.four_bar_chain.x_closed_form__mutmut_57",
         ),
         "stack(..., axis=-1) -> axis=+1: the angles are 1-D (one per grid time), so both axes are the last",
     ),
-    "scenarios.closed_form.x_four_bar_chain__mutmut_108": (
+    "scenarios.families.four_bar_chain.x_closed_form__mutmut_108": (
         "a body's `turns` False -> None: it is only tested for truth, and None is false too"
     ),
     **dict.fromkeys(
         tuple(
-            f"scenarios.closed_form.x_disc_cam__mutmut_{k}" for k in (126, 128, 129, 135, 136, 137, 138, 139)
+            f"scenarios.families.disc_cam.x_disc_cam_closed_form__mutmut_{k}"
+            for k in (135, 137, 138, 144, 145, 146, 147, 148)
         ),
         "the contact angle's 2 pi shift: its argument is pi/2 minus the contact point's polar angle, within "
         "pi/2 for a contact above the cam's axis (where the follower is), so round() and the shift are 0; "
@@ -99,15 +117,15 @@ EXPLAINED: dict[str, str] = {
     ),
     **dict.fromkeys(
         (
-            "scenarios.closed_form.x_four_bar__mutmut_122",
-            "scenarios.closed_form.x_four_bar__mutmut_123",
-            "scenarios.closed_form.x_slider_crank__mutmut_39",
-            "scenarios.closed_form.x_slider_crank__mutmut_46",
-            "scenarios.closed_form.x_disc_cam__mutmut_145",
+            "scenarios.families.four_bar.x_closed_form__mutmut_122",
+            "scenarios.families.four_bar.x_closed_form__mutmut_123",
+            "scenarios.families.slider_crank.x_closed_form__mutmut_39",
+            "scenarios.families.slider_crank.x_closed_form__mutmut_46",
+            "scenarios.families.disc_cam.x_disc_cam_closed_form__mutmut_154",
         ),
         "a term times the driver's angular acceleration, exactly 0: every closed form's driver turns at "
-        "constant speed (_constant_speed), so the term is 0 whatever its sign, or a factor / cos(theta) "
-        "instead of * (cos of a float angle is never exactly 0)",
+        "constant speed (link_kinematics.constant_speed), so the term is 0 whatever its sign, or a factor "
+        "/ cos(theta) instead of * (cos of a float angle is never exactly 0)",
     ),
     "reference_solver.newton.x_newton__mutmut_6": "range(max_iterations + 2) for + 1: the loop breaks at "
     "iteration == max_iterations before it reaches the range's end, so the extra pass is never run",

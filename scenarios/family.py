@@ -1,5 +1,5 @@
-"""A mechanism family as data: its parameters (each with a type, a range and a unit), variants and
-builder. The registry collects the families; a family never imports the registry.
+"""A mechanism family as data: its parameters (each with a type, a range and a unit), variants,
+builder and closed form. The registry collects the families; a family never imports the registry.
 
 Every value that enters a family, a default, a variant's or a user's `--set`, is checked here against
 its declaration before anything is built, so a bad value gets one message naming the limit.
@@ -11,12 +11,15 @@ import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
+import numpy as np
+
 from scenarios.scenario import ParameterValue, Scenario, ScenarioError
+from scenarios.trajectory import Trajectory
 
 MAX_LENGTH = 1e6  # m: a kilometre-sized mechanism is in range, a 1e308 m one is a typo
 MAX_RATE = 1e6  # rad/s
 MAX_ANGLE = 1e3  # rad, for initial angles
-MAX_STEPS = 10_000_000  # grid steps: 1e7 points of a few bodies is about 2 GB of trajectory
+MAX_GRID_STEPS = 10_000_000  # 1e7 grid points of a few bodies is about 2 GB of trajectory
 MAX_REVOLUTIONS = 1e5
 
 
@@ -145,16 +148,26 @@ def time_grid(steps: int = 200) -> dict[str, Parameter]:
     """The grid every revolving family takes: `revolutions` turns in `steps` steps."""
     return {
         "revolutions": positive(1.0, MAX_REVOLUTIONS, "turns"),
-        "steps": count(steps, 1, MAX_STEPS),
+        "steps": count(steps, 1, MAX_GRID_STEPS),
     }
+
+
+ClosedForm = Callable[[Scenario, np.ndarray], Trajectory]
+"""`closed_form(scenario, times)`: the exact trajectory of a family's own mechanism on `times`."""
+
+
+class NoClosedForm(ValueError):
+    """The scenario has no closed form: it is not a family's own mechanism, or its family has none."""
 
 
 @dataclass(frozen=True)
 class Family:
-    """A mechanism family: every parameter declared, named variants, and a builder.
+    """A mechanism family: every parameter declared, named variants, a builder and a closed form.
 
     `build(params, variant)` receives every parameter, already checked and typed, and returns the
-    scenario.
+    scenario. `closed_form(scenario, times)` is the family's independent truth for a scenario it
+    built (scenarios.closed_form.exact checks that first); it raises NoClosedForm for the parameters
+    it does not cover. None where the family has no closed form.
     """
 
     name: str
@@ -162,6 +175,7 @@ class Family:
     parameters: Mapping[str, Parameter]
     build: Callable[[dict[str, ParameterValue], str], Scenario]
     variants: Mapping[str, Mapping[str, ParameterValue]]
+    closed_form: ClosedForm | None = None
     dynamic: bool = False
     """Forward dynamics (gravity, forces) rather than a driven kinematic analysis: left out of the
     kinematic catalogue until the engines are compared on dynamics."""

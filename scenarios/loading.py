@@ -7,7 +7,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 
-from scenarios.family import MAX_STEPS
+from scenarios.family import MAX_GRID_STEPS
 from scenarios.files import read_scenario
 from scenarios.limits import check_grid, check_t_end
 from scenarios.registry import build, family
@@ -72,8 +72,8 @@ def _with_grid(scenario: Scenario, grid: Mapping[str, str]) -> Scenario:
         steps = int(grid.get("steps", steps))
     except ValueError as error:
         raise ScenarioError(f"{name}: t_end must be a number and steps a whole number: {error}") from None
-    if not 1 <= steps <= MAX_STEPS:
-        raise ScenarioError(f"{name}: steps must be in [1, {MAX_STEPS}], got {steps}")
+    if not 1 <= steps <= MAX_GRID_STEPS:
+        raise ScenarioError(f"{name}: steps must be in [1, {MAX_GRID_STEPS}], got {steps}")
     check_t_end(name, t_end)
     check_grid(name, steps + 1, len(scenario.bodies))
     return dataclasses.replace(scenario, t_end=t_end, steps=steps)

@@ -3,7 +3,7 @@
 A run may carry its drivers' forces (`<driver>.force`; `<driver>.x.force`, `<driver>.y.force` for a
 point's two rows) and its joints' reactions (`<joint>.fx`, `<joint>.fy`: the force the joint
 applies to its first moving body, world axes). They are set against the native solver's: in a
-driven scenario its inverse dynamics on its own kinematic analysis at tolerance 1e-12, in free
+driven scenario its inverse dynamics on its own kinematic analysis at TRUTH_TOLERANCE, in free
 dynamics the multipliers of its dynamic truth where the truth carries them. FORCE_DEFINITION says
 how the error is made one number.
 """
@@ -18,6 +18,9 @@ from scenarios.drivers import AbsoluteDriver, RelativeRotationDriver
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
+TRUTH_TOLERANCE = 1e-12
+"""Newton's tolerance for every native truth: the kinematic one (harness.truth, stress.truth) and the
+force level's inverse dynamics on the native analysis. Defined here, the lowest module that needs it."""
 DRIVER_SUFFIX = ".force"
 REACTION_SUFFIXES = (".fx", ".fy")
 FORCE_DEFINITION = (
@@ -38,7 +41,7 @@ def native_forces(scenario: Scenario, times: np.ndarray) -> dict[str, np.ndarray
     from reference_solver import analyse  # on first use: the native solver is slow to import
     from reference_solver.dynamics import inverse_dynamics
 
-    found = inverse_dynamics(scenario, analyse(scenario, times, tolerance=1e-12))
+    found = inverse_dynamics(scenario, analyse(scenario, times, tolerance=TRUTH_TOLERANCE))
     return {k: v for k, v in found.items() if k.endswith((DRIVER_SUFFIX, *REACTION_SUFFIXES))}
 
 

@@ -32,6 +32,7 @@ from reports.harness import provenance, stop
 from reports.harness.common_start import common_start
 from reports.harness.comparison import compare
 from reports.harness.engine_facts import colours, engine_packages
+from reports.harness.forces import TRUTH_TOLERANCE
 from reports.harness.isolation import run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.metrics import (
@@ -48,7 +49,6 @@ from scenarios import Scenario, ScenarioError
 from scenarios import load as build_scenario
 from scenarios.trajectory import Trajectory
 
-TRUTH_TOLERANCE = 1e-12
 LONG_RUN = 0.25  # seconds: a simulation this long is timed once after the warm-up
 Truth = Callable[[Scenario, np.ndarray], Trajectory | NamedTruth]
 """A truth hook: the truth of a scenario on a grid; a bare trajectory is named HOOK_TRUTH."""

@@ -4,7 +4,7 @@ Where the scenario has a closed form (scenarios.closed_form.exact: a kinematic f
 mechanism, identified by its digest, eccentric disc cams among the cams) the closed form is the
 truth, and the native solver is measured against it like any other engine. Elsewhere (spline and
 lobed cam profiles, scenario files that are not a family's own mechanism) the truth is the native
-solver solved on a grid REFINE times finer at tolerance TOLERANCE, sampled on the scenario's grid.
+solver solved on a grid REFINE times finer at TRUTH_TOLERANCE, sampled on the scenario's grid.
 A dynamic scenario (no closed form) takes the native forward dynamics at DYNAMIC_RTOL, tighter
 than any setting the native engine is measured at. Each truth carries its name, stored with every
 row measured against it. The force level's truth is always the native solver's: its inverse
@@ -18,16 +18,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from reports.harness.forces import native_forces
+from reports.harness.forces import TRUTH_TOLERANCE, native_forces
 from scenarios import Scenario, Trajectory
 from scenarios.closed_form import NoClosedForm, exact
 
-TOLERANCE = 1e-12
 REFINE = 4
 ATTEMPTS = 3
 """How often the native solve is cut short at the time the solver stopped before giving up."""
 CLOSED_FORM = "closed form"
-NATIVE = f"native, tolerance {TOLERANCE:g}, grid refined {REFINE}x"
+NATIVE = f"native, tolerance {TRUTH_TOLERANCE:g}, grid refined {REFINE}x"
 DYNAMIC_RTOL = 1e-13
 NATIVE_DYNAMIC = f"native dynamics, DOP853 rtol {DYNAMIC_RTOL:g}"
 
@@ -50,13 +49,13 @@ def closed_form(scenario: Scenario, times: np.ndarray) -> Trajectory | None:
 
 
 def native_refined(scenario: Scenario, times: np.ndarray) -> Trajectory:
-    """The native solver on a grid REFINE times finer at TOLERANCE, sampled on `times` (NaN from
+    """The native solver on a grid REFINE times finer at TRUTH_TOLERANCE, sampled on `times` (NaN from
     where it finds no configuration)."""
     return partial_truth(scenario, np.asarray(times, dtype=float), REFINE)
 
 
 def partial_truth(scenario: Scenario, times: np.ndarray, refine: int = 1) -> Trajectory:
-    """The native solution on `times` at TOLERANCE, solved on a grid `refine` times finer; NaN from
+    """The native solution on `times` at TRUTH_TOLERANCE, solved on a grid `refine` times finer; NaN from
     where the solver stops (a singular configuration, no configuration beyond). An empty prefix (no
     assembly) raises the solver's error."""
     import reference_solver  # on first use: the native solver is slow to import
@@ -65,7 +64,7 @@ def partial_truth(scenario: Scenario, times: np.ndarray, refine: int = 1) -> Tra
     end = fine.size
     for _ in range(ATTEMPTS):
         try:
-            solved = reference_solver.solve(scenario, fine[:end], tolerance=TOLERANCE)
+            solved = reference_solver.solve(scenario, fine[:end], tolerance=TRUTH_TOLERANCE)
             break
         except reference_solver.SolverError as error:
             if error.time is None:

@@ -20,7 +20,8 @@ import dataclasses
 
 import numpy as np
 
-from reports.harness.truth import CLOSED_FORM, TOLERANCE, closed_form, partial_truth
+from reports.harness.forces import TRUTH_TOLERANCE
+from reports.harness.truth import CLOSED_FORM, closed_form, partial_truth
 from reports.stress.cases import StressCase, case
 from scenarios.identity import family_twin
 from scenarios.scenario import Scenario
@@ -54,7 +55,7 @@ def stress_truth_name(scenario: Scenario) -> str:
     if closed_form(scenario, np.zeros(1)) is not None:
         return CLOSED_FORM
     refine = declared_case(scenario).refine
-    return f"native, tolerance {TOLERANCE:g}" + (f", grid refined {refine}x" if refine > 1 else "")
+    return f"native, tolerance {TRUTH_TOLERANCE:g}" + (f", grid refined {refine}x" if refine > 1 else "")
 
 
 def _until(truth: Trajectory, known: np.ndarray) -> Trajectory:

@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 
 from scenarios.bodies import GROUND, Body, Point
-from scenarios.family import MAX_STEPS, Family, Parameter, count, positive
+from scenarios.family import MAX_GRID_STEPS, Family, Parameter, count, positive
 from scenarios.forces import AppliedTorque, SpringDamper
 from scenarios.joints import Revolute
 from scenarios.motions import Constant
@@ -141,7 +141,7 @@ FAMILY = Family(
         "spring_stiffness": positive(C0, 1e15, "N/m"),
         "torque": Parameter(MOM, "N m", low=-1e6, high=1e6),
         "t_end": positive(REFERENCE_T, 1e3, "s"),
-        "steps": count(30, 1, MAX_STEPS),
+        "steps": count(30, 1, MAX_GRID_STEPS),
     },
     build=_build,
     variants={},

@@ -6,7 +6,7 @@ import math
 
 from scenarios.bodies import Point
 from scenarios.cams import FlatFaceCam
-from scenarios.families.disc_cam import PARAMETERS, SPLINE_VARIANTS, build_disc_cam
+from scenarios.families.disc_cam import PARAMETERS, SPLINE_VARIANTS, build_disc_cam, disc_cam_closed_form
 from scenarios.family import Family
 from scenarios.scenario import ParameterValue, Scenario
 
@@ -26,5 +26,6 @@ FAMILY = Family(
     summary="driven disc cam, translating flat-faced follower",
     parameters=PARAMETERS,
     build=_build,
+    closed_form=disc_cam_closed_form,
     variants=SPLINE_VARIANTS,
 )

@@ -6,7 +6,7 @@ import math
 
 from scenarios.bodies import Point
 from scenarios.cams import RollerCam
-from scenarios.families.disc_cam import PARAMETERS, SPLINE_VARIANTS, build_disc_cam
+from scenarios.families.disc_cam import PARAMETERS, SPLINE_VARIANTS, build_disc_cam, disc_cam_closed_form
 from scenarios.family import Family, length
 from scenarios.scenario import ParameterValue, Scenario
 
@@ -27,6 +27,7 @@ FAMILY = Family(
     summary="driven disc cam, translating roller follower",
     parameters={**PARAMETERS, "roller_radius": length(0.02)},
     build=_build,
+    closed_form=disc_cam_closed_form,
     variants={
         **SPLINE_VARIANTS,
         # Stress variants: pressure angle up to asin(e / (R + r)) = 35 deg (e = 0.045 R does not

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 
 from scenarios.bodies import GROUND, Body, Point
-from scenarios.family import MAX_STEPS, Family, Parameter, angle, count, length, positive
+from scenarios.family import MAX_GRID_STEPS, Family, Parameter, angle, count, length, positive
 from scenarios.joints import Revolute
 from scenarios.scenario import ParameterValue, Scenario, ScenarioError, require_finite, require_positive
 
@@ -59,7 +59,7 @@ FAMILY = Family(
         "theta0": angle(1.0),
         "gravity": Parameter(9.81, "m/s^2", low=-1e6, high=1e6),
         "t_end": positive(2.0, 1e6, "s"),
-        "steps": count(200, 1, MAX_STEPS),
+        "steps": count(200, 1, MAX_GRID_STEPS),
     },
     build=_build,
     variants={"small_oscillation": {"links": 1, "theta0": 1e-4}},

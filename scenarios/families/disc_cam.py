@@ -1,5 +1,5 @@
-"""Shared builder of the cam families: a disc cam pinned at the origin and driven at constant speed,
-and a follower translating along the y axis through the cam's centre.
+"""Shared builder and closed form of the cam families: a disc cam pinned at the origin and driven at
+constant speed, and a follower translating along the y axis through the cam's centre.
 
 The profile is the eccentric disc (radius R, eccentricity e) or, with `profile=spline`, a periodic
 cubic spline through `knots` radii of that disc, or with `profile=lobed` the lobed cam
@@ -14,14 +14,28 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
+import numpy as np
+
 from scenarios.bodies import GROUND, Body, Point
 from scenarios.cam_profiles import EccentricDisc, LobedProfile, Profile, SplineProfile
 from scenarios.cams import CamContact
 from scenarios.drivers import AbsoluteDriver
-from scenarios.family import MAX_LENGTH, Parameter, angle, choice, count, length, speed, time_grid
+from scenarios.family import (
+    MAX_LENGTH,
+    NoClosedForm,
+    Parameter,
+    angle,
+    choice,
+    count,
+    length,
+    speed,
+    time_grid,
+)
 from scenarios.joints import Prismatic, Revolute
+from scenarios.link_kinematics import assemble, constant_speed, fixed, frame, unit
 from scenarios.motions import ConstantSpeed
 from scenarios.scenario import ParameterValue, Scenario, ScenarioError, revolving
+from scenarios.trajectory import Trajectory
 
 MAX_KNOTS = 10_000
 MAX_LOBES = 100
@@ -93,4 +107,43 @@ def build_disc_cam(
         (driver,),
         big_r,
         description,
+    )
+
+
+def disc_cam_closed_form(s: Scenario, t: np.ndarray) -> Trajectory:
+    """The eccentric disc's exact kinematics (module docstring) for the family's follower, with the
+    contact parameter phi as the extra `contact.phi` (positions only); NoClosedForm for the spline
+    and lobed profiles."""
+    if s.parameter("profile") != "disc":
+        raise NoClosedForm("closed forms exist for the eccentric disc profile only")
+    big_r, e = float(s.parameter("radius")), float(s.parameter("eccentricity"))
+    th, w, al = constant_speed(s, t)
+    n = len(t)
+    zero = np.zeros(n)
+    centre = e * unit(th)  # the disc's centre, global
+    if s.family == "cam_flat_face":
+        y, dy, ddy = big_r + e * np.sin(th), e * np.cos(th), -e * np.sin(th)
+        contact = centre + np.array([0.0, big_r])
+    else:
+        rr = float(s.parameter("roller_radius")) if s.family == "cam_roller" else 0.0
+        g = (big_r + rr) ** 2 - (e * np.cos(th)) ** 2
+        y = e * np.sin(th) + np.sqrt(g)
+        dy = e * np.cos(th) + e**2 * np.sin(2 * th) / (2 * np.sqrt(g))
+        ddy = (
+            -e * np.sin(th) + e**2 * np.cos(2 * th) / np.sqrt(g) - (e**2 * np.sin(2 * th)) ** 2 / (4 * g**1.5)
+        )
+        follower = np.column_stack([zero, y])
+        contact = centre + big_r * (follower - centre) / np.linalg.norm(follower - centre, axis=1)[:, None]
+    # phi: the polar angle of the contact point in the cam's frame.
+    phi = np.unwrap(np.arctan2(contact[:, 1], contact[:, 0]) - th)
+    phi += 2 * math.pi * round((math.pi / 2 - th[0] - phi[0]) / (2 * math.pi))
+    follower_kin = (
+        np.column_stack([zero, y]),
+        np.column_stack([zero, dy * w]),
+        np.column_stack([zero, ddy * w**2 + dy * al]),
+    )
+    return assemble(
+        t,
+        {"cam": frame(fixed(n, 0.0, 0.0), th, w, al), "follower": frame(follower_kin, zero, zero, zero)},
+        extras={"contact.phi": phi},
     )

@@ -10,16 +10,20 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+import numpy as np
+
 from scenarios.bodies import GROUND, Body, Point
 from scenarios.drivers import AbsoluteDriver
 from scenarios.family import Family, Parameter, angle, length, positive, speed, time_grid
 from scenarios.joints import Revolute
+from scenarios.link_kinematics import assemble, constant_speed, fixed, frame, link_point, solve2
 from scenarios.motions import ConstantSpeed
 from scenarios.scenario import (
     ParameterValue,
     Scenario,
     revolving,
 )
+from scenarios.trajectory import Trajectory
 
 
 def link(name: str, start: tuple[float, float], end: tuple[float, float], length: float) -> Body:
@@ -56,6 +60,39 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     )
 
 
+def closed_form(s: Scenario, t: np.ndarray) -> Trajectory:
+    """The four-bar's exact kinematics: the coupler's angle from the triangle A-B-O4 on `branch`, the
+    rocker's from B; rates from a e2 + b e3 - c e4 = (g, 0) differentiated, by Cramer's rule."""
+    g, a, b, c = (
+        float(s.parameter(k)) for k in ("ground_length", "crank_length", "coupler_length", "rocker_length")
+    )
+    branch = int(s.parameter("branch"))
+    n = len(t)
+    th2, w2, a2 = constant_speed(s, t)
+    ax, ay = a * np.cos(th2), a * np.sin(th2)
+    dx, dy = g - ax, -ay
+    d = np.hypot(dx, dy)
+    th3 = np.unwrap(np.arctan2(dy, dx) + branch * np.arccos((b**2 + d**2 - c**2) / (2 * b * d)))
+    bx, by = ax + b * np.cos(th3), ay + b * np.sin(th3)
+    th4 = np.unwrap(np.arctan2(by, bx - g))
+    # a e2 + b e3 - c e4 = (g, 0), differentiated: b w3 e3' - c w4 e4' = -a w2 e2'.
+    m = (-b * np.sin(th3), c * np.sin(th4), b * np.cos(th3), -c * np.cos(th4))
+    w3, w4 = solve2(*m, a * np.sin(th2) * w2, -a * np.cos(th2) * w2)
+    r1 = a * np.sin(th2) * a2 + a * np.cos(th2) * w2**2 + b * np.cos(th3) * w3**2 - c * np.cos(th4) * w4**2
+    r2 = -a * np.cos(th2) * a2 + a * np.sin(th2) * w2**2 + b * np.sin(th3) * w3**2 - c * np.sin(th4) * w4**2
+    a3, a4 = solve2(*m, r1, r2)
+    origin, o4 = fixed(n, 0.0, 0.0), fixed(n, g, 0.0)
+    a_pin = link_point(origin, th2, w2, a2, a)
+    return assemble(
+        t,
+        {
+            "crank": frame(link_point(origin, th2, w2, a2, a / 2), th2, w2, a2),
+            "coupler": frame(link_point(a_pin, th3, w3, a3, b / 2), th3, w3, a3),
+            "rocker": frame(link_point(o4, th4, w4, a4, c / 2), th4, w4, a4),
+        },
+    )
+
+
 FAMILY = Family(
     name="four_bar",
     summary="crank, coupler and rocker; a Grashof crank-rocker by default",
@@ -71,6 +108,7 @@ FAMILY = Family(
         **time_grid(),
     },
     build=_build,
+    closed_form=closed_form,
     variants={
         "crossed": {"branch": -1},
         # Stress variants (the stress suite; reports/stress_cases.py says what each probes).

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from scenarios.families import four_bar
 from scenarios.families.released import released
-from scenarios.family import MAX_STEPS, Family, Parameter, angle, count, positive
+from scenarios.family import MAX_GRID_STEPS, Family, Parameter, angle, count, positive
 from scenarios.scenario import ParameterValue, Scenario, require_finite
 
 
@@ -31,7 +31,7 @@ FAMILY = Family(
         "branch": Parameter(1, low=-1, high=1, nonzero=True),
         "gravity": Parameter(9.81, "m/s^2", low=-1e6, high=1e6),
         "t_end": positive(1.0, 1e6, "s"),
-        "steps": count(200, 1, MAX_STEPS),
+        "steps": count(200, 1, MAX_GRID_STEPS),
     },
     build=_build,
     variants={},

@@ -19,7 +19,7 @@ from dataclasses import replace
 
 from scenarios.families import four_bar_chain
 from scenarios.families.released import released
-from scenarios.family import MAX_STEPS, Family, Parameter, angle, count, positive
+from scenarios.family import MAX_GRID_STEPS, Family, Parameter, angle, count, positive
 from scenarios.scenario import ParameterValue, Scenario, require_finite
 
 
@@ -57,7 +57,7 @@ FAMILY = Family(
         "theta0": angle(math.pi / 2),
         "gravity": Parameter(9.81, "m/s^2", low=-1e6, high=1e6),
         "t_end": positive(4.0, 1e6, "s"),
-        "steps": count(160, 1, MAX_STEPS),
+        "steps": count(160, 1, MAX_GRID_STEPS),
     },
     build=_build,
     variants={"spec": {"loops": 40, "t_end": 20.0}},

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from scenarios.bodies import GROUND, Point
 from scenarios.drivers import AbsoluteDriver
 from scenarios.families.four_bar import link
@@ -15,12 +17,14 @@ from scenarios.families.spur_gears import gear_body
 from scenarios.family import Family, angle, length, speed, time_grid
 from scenarios.gears import GearPair
 from scenarios.joints import Revolute
+from scenarios.link_kinematics import assemble, constant_speed, fixed, frame, link_point
 from scenarios.motions import ConstantSpeed
 from scenarios.scenario import (
     ParameterValue,
     Scenario,
     revolving,
 )
+from scenarios.trajectory import Trajectory
 
 
 def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
@@ -48,6 +52,24 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     )
 
 
+def closed_form(s: Scenario, t: np.ndarray) -> Trajectory:
+    """The arm at the drive's angle, the planet on its end turning at (1 + r_sun / r_planet) times it."""
+    rs, rp = float(s.parameter("radius_sun")), float(s.parameter("radius_planet"))
+    th, w, al = constant_speed(s, t)
+    theta0 = float(s.parameter("theta0"))
+    origin = fixed(len(t), 0.0, 0.0)
+    ratio = 1.0 + rs / rp
+    return assemble(
+        t,
+        {
+            "arm": frame(link_point(origin, th, w, al, (rs + rp) / 2), th, w, al),
+            "planet": frame(
+                link_point(origin, th, w, al, rs + rp), ratio * (th - theta0), ratio * w, ratio * al
+            ),
+        },
+    )
+
+
 FAMILY = Family(
     name="planetary_gears",
     summary="fixed sun, driven arm and a planet",
@@ -59,5 +81,6 @@ FAMILY = Family(
         **time_grid(),
     },
     build=_build,
+    closed_form=closed_form,
     variants={},
 )

@@ -9,10 +9,13 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from scenarios.bodies import GROUND, Body, Point
 from scenarios.drivers import AbsoluteDriver
 from scenarios.family import Family, angle, choice, length, offset, positive, speed, time_grid
 from scenarios.joints import Prismatic, Revolute
+from scenarios.link_kinematics import assemble, constant_speed, fixed, frame, link_point, solve2
 from scenarios.motions import ConstantSpeed, Harmonic
 from scenarios.scenario import (
     ParameterValue,
@@ -20,6 +23,7 @@ from scenarios.scenario import (
     ScenarioError,
     revolving,
 )
+from scenarios.trajectory import Trajectory
 
 
 def stroke_limits(l2: float, l3: float, h: float) -> tuple[float, float]:
@@ -71,6 +75,46 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     )
 
 
+def closed_form(s: Scenario, t: np.ndarray) -> Trajectory:
+    """The slider-crank's exact kinematics (module docstring): crank-driven, the rod's angle from the
+    y closure; slider-driven, the crank's from the triangle O-A-B; rates by Cramer's rule."""
+    l2, l3, h = (float(s.parameter(k)) for k in ("crank_length", "rod_length", "offset"))
+    n = len(t)
+    if s.parameter("drive") == "crank":
+        th2, w2, a2 = constant_speed(s, t)
+        th3 = np.arcsin((h - l2 * np.sin(th2)) / l3)
+        w3 = -l2 * np.cos(th2) * w2 / (l3 * np.cos(th3))
+        a3 = (l2 * np.sin(th2) * w2**2 - l2 * np.cos(th2) * a2 + l3 * np.sin(th3) * w3**2) / (
+            l3 * np.cos(th3)
+        )
+    else:
+        outer, inner = stroke_limits(l2, l3, h)
+        mean, half = (outer + inner) / 2, float(s.parameter("stroke_fraction")) * (outer - inner) / 2
+        om = abs(float(s.parameter("omega")))
+        xb, vb, ab = mean + half * np.sin(om * t), half * om * np.cos(om * t), -half * om**2 * np.sin(om * t)
+        rho = np.hypot(xb, h)
+        th2 = np.arctan2(h, xb) + np.arccos((rho**2 + l2**2 - l3**2) / (2 * l2 * rho))
+        th3 = np.arctan2(h - l2 * np.sin(th2), xb - l2 * np.cos(th2))
+        # x_B = l2 cos th2 + l3 cos th3 and h = l2 sin th2 + l3 sin th3, differentiated.
+        m = (-l2 * np.sin(th2), -l3 * np.sin(th3), l2 * np.cos(th2), l3 * np.cos(th3))
+        w2, w3 = solve2(*m, vb, np.zeros(n))
+        r1 = ab + l2 * np.cos(th2) * w2**2 + l3 * np.cos(th3) * w3**2
+        r2 = l2 * np.sin(th2) * w2**2 + l3 * np.sin(th3) * w3**2
+        a2, a3 = solve2(*m, r1, r2)
+    origin = fixed(n, 0.0, 0.0)
+    a_pin = link_point(origin, th2, w2, a2, l2)
+    b_pin = link_point(a_pin, th3, w3, a3, l3)
+    zero = np.zeros(n)
+    return assemble(
+        t,
+        {
+            "crank": frame(link_point(origin, th2, w2, a2, l2 / 2), th2, w2, a2),
+            "rod": frame(link_point(a_pin, th3, w3, a3, l3 / 2), th3, w3, a3),
+            "slider": frame(b_pin, zero, zero, zero),
+        },
+    )
+
+
 FAMILY = Family(
     name="slider_crank",
     summary="crank, rod and slider; crank- or slider-driven, optional offset",
@@ -85,6 +129,7 @@ FAMILY = Family(
         **time_grid(),
     },
     build=_build,
+    closed_form=closed_form,
     variants={
         "offset": {"offset": 0.05},
         "slider_drive": {"drive": "slider", "theta0": 1.2},

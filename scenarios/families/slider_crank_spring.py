@@ -8,7 +8,7 @@ from __future__ import annotations
 from scenarios.bodies import GROUND, Point
 from scenarios.families import slider_crank
 from scenarios.families.released import released
-from scenarios.family import MAX_STEPS, Family, Parameter, angle, count, length, positive
+from scenarios.family import MAX_GRID_STEPS, Family, Parameter, angle, count, length, positive
 from scenarios.forces import AppliedTorque, SpringDamper
 from scenarios.motions import Constant
 from scenarios.scenario import ParameterValue, Scenario, require_finite, require_positive
@@ -47,7 +47,7 @@ FAMILY = Family(
         "stiffness": positive(1000.0, 1e15, "N/m"),
         "damping": Parameter(5.0, "N s/m", low=0.0, high=1e12),
         "t_end": positive(1.0, 1e6, "s"),
-        "steps": count(200, 1, MAX_STEPS),
+        "steps": count(200, 1, MAX_GRID_STEPS),
     },
     build=_build,
     variants={"undamped": {"damping": 0.0}},

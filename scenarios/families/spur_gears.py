@@ -9,11 +9,14 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from scenarios.bodies import GROUND, Body, Point
 from scenarios.drivers import AbsoluteDriver
 from scenarios.family import Family, angle, choice, length, speed, time_grid
 from scenarios.gears import GearPair
 from scenarios.joints import Revolute
+from scenarios.link_kinematics import assemble, constant_speed, fixed, frame
 from scenarios.motions import ConstantSpeed
 from scenarios.scenario import (
     ParameterValue,
@@ -21,6 +24,7 @@ from scenarios.scenario import (
     ScenarioError,
     revolving,
 )
+from scenarios.trajectory import Trajectory
 
 
 def gear_body(name: str, centre: tuple[float, float], radius: float, angle: float) -> Body:
@@ -51,6 +55,24 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     )
 
 
+def closed_form(s: Scenario, t: np.ndarray) -> Trajectory:
+    """Both gears on their fixed centres, the output turning at -+ r_in / r_out times the input."""
+    r1, r2 = float(s.parameter("radius_in")), float(s.parameter("radius_out"))
+    internal = s.parameter("mesh") == "internal"
+    th, w, al = constant_speed(s, t)
+    ratio = (r1 / r2) if internal else -(r1 / r2)
+    theta0 = float(s.parameter("theta0"))
+    n = len(t)
+    centre = r2 - r1 if internal else r1 + r2
+    return assemble(
+        t,
+        {
+            "gear_in": frame(fixed(n, 0.0, 0.0), th, w, al),
+            "gear_out": frame(fixed(n, centre, 0.0), ratio * (th - theta0), ratio * w, ratio * al),
+        },
+    )
+
+
 FAMILY = Family(
     name="spur_gears",
     summary="two spur gears on fixed centres, external or internal mesh",
@@ -63,6 +85,7 @@ FAMILY = Family(
         **time_grid(),
     },
     build=_build,
+    closed_form=closed_form,
     variants={
         "internal": {"mesh": "internal"},
         "stress_ratio_1000": {"radius_in": 1e-3, "radius_out": 1.0},  # the stress suite: 1:1000

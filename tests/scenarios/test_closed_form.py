@@ -56,3 +56,14 @@ def test_the_caller_s_grid_is_the_trajectory_s() -> None:
     assert trajectory.times.dtype == float and list(trajectory.times) == times
     assert trajectory.position is not None and trajectory.position.shape[0] == 3
     assert exact(scenario, [0, 1]).times.dtype == float  # whole seconds given as integers
+
+
+def test_every_kinematic_family_declares_its_closed_form_and_no_dynamic_one_does() -> None:
+    """A kinematic family without one would be measured against the native solver only, silently."""
+    families = scenarios.all_families().values()
+    assert {f.name for f in families if f.closed_form is not None} == {
+        f.name for f in families if not f.dynamic
+    }
+    dynamic = scenarios.build("compound_pendulum")
+    with pytest.raises(NoClosedForm, match="not a family with one"):
+        exact(dynamic)
