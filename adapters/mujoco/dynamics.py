@@ -21,7 +21,7 @@ DYNAMIC_MODES = ("RK4", "implicit", "implicitfast", "Euler")
 def closes_loops(scenario: Scenario) -> bool:
     """Whether MuJoCo closes a loop with a soft equality (an open chain has nothing to soften)."""
     try:
-        return bool(plan_tree(scenario).loops)
+        return bool(plan_tree(scenario).closures)
     except TreeError:
         return False
 

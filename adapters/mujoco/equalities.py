@@ -37,7 +37,7 @@ def equalities(root: ET.Element, elements: dict[str, ET.Element], tree: Tree, la
     """The <equality> section (and the fixed tendons the laws need) under `root`."""
     equality = ET.SubElement(root, "equality")
     tendons: ET.Element | None = None
-    for loop in tree.loops:
+    for loop in tree.closures:
         site1 = _site(elements, loop.p_i, f"{loop.name}_i")
         site2 = _site(elements, loop.p_j, f"{loop.name}_j")
         ET.SubElement(equality, "connect", name=loop.name, site1=site1, site2=site2)

@@ -91,7 +91,7 @@ def force_map(scenario: Scenario, tree: Tree, laws: list[Law], m: mujoco.MjModel
                 gradient[m.jnt_dofadr[m.joint(dof_joint).id]] += coef
         equality = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_EQUALITY, law.name)
         drivers.append(DriverForce(law.name, equality, gradient / (gradient @ gradient)))
-    loops = {loop.name for loop in tree.loops}
+    loops = {loop.name for loop in tree.closures}
     tree_joints = {j.name: j for j in tree.joints}
     reactions = []
     for joint in scenario.joints:

@@ -46,7 +46,7 @@ class Tree:
     pose of every body at qpos = 0."""
 
     joints: tuple[TreeJoint, ...]
-    loops: tuple[Revolute, ...]
+    closures: tuple[Revolute, ...]
     poses: dict[str, Pose]
 
     def joint_of(self, body: str) -> TreeJoint:
@@ -100,11 +100,11 @@ def plan_tree(scenario: Scenario, poses: dict[str, Pose] | None = None) -> Tree:
     chosen = sorted(
         (e.joint for e in spanning.edges), key=lambda j: (GROWTH_ORDER.index(type(j)), order[j.name])
     )
-    loops = []
+    closures = []
     for name in spanning.closures:
         joint = by_name[name]
         if isinstance(joint, Revolute):
-            loops.append(joint)
+            closures.append(joint)
         elif isinstance(joint, Ground | Prismatic):
             raise TreeError(f"joint '{joint.name}' closes a loop, and MuJoCo closes loops only at pins")
     placed: dict[str, Pose] = {GROUND: (0.0, 0.0, 0.0)}
@@ -121,7 +121,7 @@ def plan_tree(scenario: Scenario, poses: dict[str, Pose] | None = None) -> Tree:
                 ordered.append(tree_joint)
                 frontier.append(child)
     del placed[GROUND]
-    return Tree(tuple(ordered), tuple(loops), placed)
+    return Tree(tuple(ordered), tuple(closures), placed)
 
 
 def _world(p: Point, placed: dict[str, Pose]) -> np.ndarray:

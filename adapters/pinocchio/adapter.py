@@ -206,7 +206,7 @@ class PinocchioAdapter(Adapter):
         solver = KinematicSolver(pm, rows, length=scenario.characteristic_length)
         count = (
             rows.evaluate(solver.snapshot(self._guess(scenario, pm))).val.size
-            if rows.loops or rows.drivers
+            if rows.closures or rows.drivers
             else 0
         )
         unknowns = pm.model.nq + len(scenario.cams)

@@ -30,7 +30,7 @@ from scenarios.scenario import Scenario
 def dynamic_support(scenario: Scenario, tree: Tree) -> str | None:
     """None if every loop closure is a revolute joint, else why the dynamic mode cannot run it."""
     items = {j.name: j for j in scenario.joints}
-    for name in tree.loops:
+    for name in tree.closures:
         item = items[name]
         if not isinstance(item, Revolute):
             return (
@@ -79,7 +79,7 @@ class DynamicSolver:
         model = pm.model
         self.data, self.kin_data = model.createData(), model.createData()
         self.cmodels = pin.StdVec_RigidConstraintModel()
-        for item in rows.loops:
+        for item in rows.closures:
             assert isinstance(item, Revolute)
             self.cmodels.append(_constraint(pm, item, gains))
         self.cdatas = pin.StdVec_RigidConstraintData()

@@ -28,7 +28,7 @@ def free_start(scenario: Scenario, kin: KinematicSolver) -> tuple[np.ndarray, np
     """(q0, v0) consistent with the loop rows, from the scenario's body guesses and rates."""
     pm = kin.pm
     q = pm.q_guess()
-    if kin.rows.loops:
+    if kin.rows.closures:
         for _ in range(POLISH):
             rows = kin.rows.evaluate(kin.snapshot(q))
             if float(np.max(np.abs(rows.val))) <= ROUNDOFF * scenario.characteristic_length:
@@ -47,7 +47,7 @@ def free_start(scenario: Scenario, kin: KinematicSolver) -> tuple[np.ndarray, np
     )
     rates = np.concatenate([np.asarray(b.rate, dtype=float) for b in scenario.bodies])
     v = np.linalg.lstsq(jac, rates, rcond=None)[0]
-    if kin.rows.loops:
+    if kin.rows.closures:
         loop = kin.rows.evaluate(kin.snapshot(q)).jac
         v = v - loop.T @ np.linalg.lstsq(loop @ loop.T, loop @ v, rcond=None)[0]
     return q, v

@@ -169,7 +169,7 @@ class Rows:
     """The rows of a scenario that the Pinocchio tree does not satisfy by construction: loop
     closures (target zero) first, then drivers (target f(t))."""
 
-    loops: tuple[object, ...]
+    closures: tuple[object, ...]
     drivers: tuple[Driver, ...]
     contacts: dict[str, int]
     motions: tuple[Motion, ...]
@@ -179,10 +179,10 @@ class Rows:
         items = {j.name: j for j in scenario.joints}
         contacts = {c.name: k for k, c in enumerate(scenario.cams)}
         motions = tuple(m for d in scenario.drivers for m in motions_of(d))
-        return cls(tuple(items[name] for name in pm.tree.loops), scenario.drivers, contacts, motions)
+        return cls(tuple(items[name] for name in pm.tree.closures), scenario.drivers, contacts, motions)
 
     def loop_rows(self, s: Snapshot) -> list[Quantity]:
-        return [row for item in self.loops for row in _joint_rows(item, s, self.contacts)]
+        return [row for item in self.closures for row in _joint_rows(item, s, self.contacts)]
 
     def drive_rows(self, s: Snapshot) -> Quantity:
         return stack([_driver_rows(d, s) for d in self.drivers])

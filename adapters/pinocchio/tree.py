@@ -61,7 +61,7 @@ class Mimic:
 class Tree:
     edges: tuple[Edge, ...]
     """Parents before children."""
-    loops: tuple[str, ...]
+    closures: tuple[str, ...]
     """Names of the scenario's joints, gears and cam contacts left as loop-closure rows."""
     mimics: tuple[Mimic, ...] = ()
 
@@ -135,7 +135,7 @@ def _with_mimics(scenario: Scenario, tree: Tree) -> Tree:
     With rho = theta - theta_carrier, the gear law is r_i rho_i + s r_j rho_j = c (s = -1 inside).
     """
     mimics: list[Mimic] = []
-    loops = list(tree.loops)
+    closures = list(tree.closures)
     taken: set[str] = set()
     for gear in (j for j in scenario.joints if isinstance(j, GearPair)):
         s = -1.0 if gear.internal else 1.0
@@ -154,8 +154,8 @@ def _with_mimics(scenario: Scenario, tree: Tree) -> Tree:
         (pri, sign_p), k_pri = next(t for t in terms if t[0][0] != sec)
         mimics.append(Mimic(gear.name, sec, pri, -k_pri * sign_p / k_sec, c / k_sec))
         taken |= {sec, pri}
-        loops.remove(gear.name)
-    return Tree(tree.edges, tuple(loops), tuple(mimics))
+        closures.remove(gear.name)
+    return Tree(tree.edges, tuple(closures), tuple(mimics))
 
 
 def body_pose(tree: Tree, body: str) -> tuple[str, Pose]:

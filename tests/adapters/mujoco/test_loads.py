@@ -70,7 +70,7 @@ def test_the_spring_is_the_straight_line_between_its_points() -> None:
 
 def test_a_rotational_spring_on_a_loop_closure_is_unsupported() -> None:
     scenario = scenarios.load("four_bar_gravity")
-    closure = plan_tree(scenario).loops[0]
+    closure = plan_tree(scenario).closures[0]
     spring = RotationalSpringDamper("spring", closure.p_i.body, closure.p_j.body, stiffness=1.0)
     result = ADAPTER.run(dataclasses.replace(scenario, forces=(spring,)))
     assert result.status == "unsupported"

@@ -91,8 +91,8 @@ def test_gear_pairs_become_mimic_joints(name: str) -> None:
     scenario = scenarios.build(name)
     mimic = adapter.build(scenario, adapter.default_setting(scenario))
     rows = adapter.build(scenario, adapter.default_setting(scenario).replace(gears="row"))
-    assert mimic.pm.model.nq == 1 and mimic.pm.tree.loops == () and len(mimic.pm.tree.mimics) == 1
-    assert rows.pm.model.nq == 2 and rows.pm.tree.loops == ("mesh",)
+    assert mimic.pm.model.nq == 1 and mimic.pm.tree.closures == () and len(mimic.pm.tree.mimics) == 1
+    assert rows.pm.model.nq == 2 and rows.pm.tree.closures == ("mesh",)
 
 
 def test_loose_tolerance_costs_accuracy() -> None:

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
+from distributed import Client
 
 from reports.cli.main import main
 from reports.harness.dask_backend import DaskRunner, local_cluster
@@ -96,6 +97,8 @@ def test_run_through_the_cluster_option(
 ) -> None:
     args = ["run", "--out", str(tmp_path), "--quiet", "--suite", "quick", "--engine", "reference"]
     sweep = ["--scenario", "slider_crank", "--sweep", "offset=0,0.01"]
+    with Client(cluster) as client:  # the worker killed by the test before is restarted by its nanny
+        client.wait_for_workers(2, timeout=120)
     assert main([*args, *sweep, "--cluster", cluster]) == 0
     assert "2 runs (ok 2)" in capsys.readouterr().out
     frame = rows(tmp_path)
