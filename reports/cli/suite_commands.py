@@ -265,7 +265,7 @@ def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, A
     if baseline is None:
         print(gate.update_baseline(args.baseline, frame, meta))
         return 0
-    verdict = gate.compare(baseline, frame, args.factor)
+    verdict = gate.judge(baseline, frame, args.factor)
     if args.junit:
         gate_files.write(args.junit, gate_files.junit_xml(verdict, args.baseline, args.factor))
     if args.json:

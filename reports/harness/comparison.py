@@ -21,7 +21,7 @@ class ComparisonError(Exception):
     """An engine's trajectory that cannot be set against the truth (wrong grid or bodies)."""
 
 
-def compare(
+def measure(
     scenario: Scenario, result: RunResult, truth: Trajectory | str, residual: Residual | None
 ) -> tuple[dict[str, float], tuple[str, ...], str]:
     """Error metrics, compared levels and a note (why something is missing) for one run."""

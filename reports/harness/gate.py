@@ -148,7 +148,7 @@ def _unsound(cell: Any) -> str:
     return ""
 
 
-def compare(
+def judge(
     baseline: list[dict[str, Any]], current: pd.DataFrame, factor: float = DEFAULT_FACTOR
 ) -> GateResult:
     """Every regression of `current` (a results table) against the `baseline` cells; GateError

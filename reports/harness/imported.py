@@ -1,7 +1,7 @@
 """Scoring a trajectory made by another tool as if it were one more engine's run.
 
 The trajectory (reports.harness.trajectory_file) is measured against the same truth a run gets
-(reports.harness.truth.independent_truth) by the runner's own `compare` (the same metrics, the
+(reports.harness.truth.independent_truth) by the runner's own `measure` (the same metrics, the
 per-level errors of reports.harness.level_error), and becomes a result row with the label as its
 engine, the setting IMPORTED and a `measures` text saying where it came from; with a store, the row
 and its trajectory are added beside the engines' so the report shows them together.
@@ -16,7 +16,7 @@ from typing import Any
 
 from adapters.base import RunResult, Setting
 from reports.harness import provenance
-from reports.harness.comparison import compare
+from reports.harness.comparison import measure
 from reports.harness.engine_facts import colour, engine_packages
 from reports.harness.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.harness.metrics import HEADLINE_DEFINITION, Residual
@@ -73,7 +73,7 @@ def score(
         trajectory=imported.trajectory,
         measures=measures(imported),
     )
-    metrics, levels, note = compare(scored, result, found.trajectory, residual or reference_residual())
+    metrics, levels, note = measure(scored, result, found.trajectory, residual or reference_residual())
     row = result_row(scenario, result, True, 0, 0, metrics, levels, "; ".join((*imported.notes, note)))
     row.update(
         truth=found.name,

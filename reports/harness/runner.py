@@ -30,7 +30,7 @@ import adapters
 from adapters.base import Adapter, RunResult, Setting
 from reports.harness import provenance, stop
 from reports.harness.common_start import common_start
-from reports.harness.comparison import compare
+from reports.harness.comparison import measure
 from reports.harness.engine_facts import colours, engine_packages
 from reports.harness.forces import TRUTH_TOLERANCE
 from reports.harness.isolation import run_here, run_isolated
@@ -277,7 +277,7 @@ def _run_one(
     def execute() -> tuple[RunResult, int, dict[str, float], tuple[str, ...], str]:
         result, repeats = timed_run(adapter, scenario, setting, times, opts)
         against = truth.trajectory if isinstance(truth, NamedTruth) else truth
-        return (result, repeats, *compare(scenario, result, against, residual))
+        return (result, repeats, *measure(scenario, result, against, residual))
 
     outcome = run_isolated(execute, opts.timeout)
     if outcome.kind == "timeout":

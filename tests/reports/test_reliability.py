@@ -117,14 +117,14 @@ def test_a_save_killed_between_its_files_leaves_the_old_generation(
     before, trajectories = rows(out), read_trajectories(out)
     store = ResultsStore(out)
     store.rows.clear()
-    real = store_files._sync
+    real = store_files.sync_file
 
     def die_after_first_file(path: Path) -> None:
         real(path)
         if path.name == RESULTS:
             raise KeyboardInterrupt
 
-    monkeypatch.setattr(store_files, "_sync", die_after_first_file)
+    monkeypatch.setattr(store_files, "sync_file", die_after_first_file)
     with pytest.raises(KeyboardInterrupt):
         store.save({})
     monkeypatch.undo()
@@ -277,7 +277,7 @@ def test_no_cell_in_common_or_a_smaller_baseline_is_bad_input(stored: Path, tmp_
     assert main(["check", "--baseline", str(baseline), "--results", str(stored)]) == 2
     one_line_error(capsys, "the baseline lacks 2 of the 3 cells")
     with pytest.raises(gate.GateError, match="0 cells compared"):
-        gate.compare(gate.baseline_cells(other), frame.iloc[:0])
+        gate.judge(gate.baseline_cells(other), frame.iloc[:0])
 
 
 def test_every_level_is_compared_keyed_per_level() -> None:
@@ -293,10 +293,10 @@ def test_every_level_is_compared_keyed_per_level() -> None:
         return pd.DataFrame([{**row, "error": errors.get("error_position", math.nan), **errors}])
 
     base = gate.baseline_cells(cell(error_position=1e-9, error_velocity=1e-8, error_acceleration=math.nan))
-    assert gate.compare(base, cell(error_position=1e-9, error_velocity=1e-8)).passed  # a level NaN in both
-    worse = gate.compare(base, cell(error_position=1e-9, error_velocity=1e-6, error_acceleration=1.0))
+    assert gate.judge(base, cell(error_position=1e-9, error_velocity=1e-8)).passed  # a level NaN in both
+    worse = gate.judge(base, cell(error_position=1e-9, error_velocity=1e-6, error_acceleration=1.0))
     assert [r.what for r in worse.regressions] == ["velocity error 1e-06 > 10 x baseline 1e-08"]
-    lost = gate.compare(base, cell(error_position=1e-9))  # no velocity column: the level not produced
+    lost = gate.judge(base, cell(error_position=1e-9))  # no velocity column: the level not produced
     assert [r.what for r in lost.regressions] == ["velocity error no longer measured (baseline 1e-08)"]
 
 
@@ -409,7 +409,7 @@ def test_ctrl_c_in_report_or_check_is_one_line(
     stored: Path, tmp_path: Path, command: str, monkeypatch, capsys
 ) -> None:
     monkeypatch.setattr(suite_commands, "render_reports", interrupt)
-    monkeypatch.setattr(gate, "compare", interrupt)
+    monkeypatch.setattr(gate, "judge", interrupt)
     baseline = tmp_path / "b.json"
     gate.write_baseline(baseline, read_results(stored)[0], {})
     argv = (

@@ -8,7 +8,7 @@ import pytest
 
 import adapters
 from adapters.base import Setting
-from reports.harness.comparison import compare
+from reports.harness.comparison import measure
 from reports.harness.forces import native_forces
 from reports.harness.truth import independent_truth
 from scenarios import load
@@ -39,7 +39,7 @@ held two-sided (tests.support.bounds)."""
 def test_forces_match_the_native_inverse_dynamics(name: str, mode: str) -> None:
     setting = EXUDYN.default_setting(load(name))
     scenario, times, run = _run(name, Setting.of(mode, **dict(setting.options)), {})
-    metrics, _, _ = compare(scenario, run, independent_truth(scenario, times).trajectory, None)
+    metrics, _, _ = measure(scenario, run, independent_truth(scenario, times).trajectory, None)
     held([metrics["error_force"]], [MEASURED[(name, mode)]], ("force",))
     assert np.isfinite(metrics["driver_force_error"]) and np.isfinite(metrics["reaction_error"])
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import adapters
-from reports.harness.comparison import compare
+from reports.harness.comparison import measure
 from reports.harness.truth import independent_truth
 from scenarios import load
 from tests.support.bounds import held
@@ -27,7 +27,7 @@ def _force_metrics(name: str, tc_steps: float | None) -> dict[str, float]:
         setting = setting.replace(tc=tc_steps * float(setting["dt"]))
     run = MUJOCO.run(scenario, setting, times)
     assert run.status == "ok", run.message
-    metrics, _, note = compare(scenario, run, independent_truth(scenario, times).trajectory, None)
+    metrics, _, note = measure(scenario, run, independent_truth(scenario, times).trajectory, None)
     assert "forces not compared" not in note
     return metrics
 
@@ -46,7 +46,7 @@ def test_reactions_in_free_dynamics_match_the_native_multipliers() -> None:
     times = np.asarray(scenario.times())
     run = MUJOCO.run(scenario, None, times)
     assert run.status == "ok"
-    metrics, _, _ = compare(scenario, run, independent_truth(scenario, times).trajectory, None)
+    metrics, _, _ = measure(scenario, run, independent_truth(scenario, times).trajectory, None)
     assert metrics["reaction_error"] < 3e-4
 
 

@@ -24,11 +24,11 @@ def test_every_scenario_of_the_suite_has_a_default_cell_per_engine() -> None:
 def test_the_gate_sees_an_engine_losing_accuracy_in_dynamics() -> None:
     cells = gate.read_baseline(BASELINE)
     frame = pd.DataFrame(cells)
-    assert gate.compare(cells, frame, gate.DEFAULT_FACTOR).passed
+    assert gate.judge(cells, frame, gate.DEFAULT_FACTOR).passed
     worse = frame.copy()
     k = worse.index[
         (worse["engine"] == "mujoco") & (worse["scenario"] == "four_bar_gravity") & worse["is_default"]
     ][0]
     worse.loc[k, "error_position"] = 100.0 * float(worse.loc[k, "error_position"])
-    verdict = gate.compare(cells, worse, gate.DEFAULT_FACTOR)
+    verdict = gate.judge(cells, worse, gate.DEFAULT_FACTOR)
     assert [(r.scenario, r.engine) for r in verdict.regressions] == [("four_bar_gravity", "mujoco")]

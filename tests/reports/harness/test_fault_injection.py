@@ -46,7 +46,7 @@ def run(directory: Path) -> None:
 
 def checkpoints() -> list[tuple[object, str]]:
     """Every point where a kill is injected: each file written and synced, each rename, each row."""
-    return [(store_files, "_sync"), (os, "rename"), (os, "replace"), (ResultsStore, "add")]
+    return [(store_files, "sync_file"), (os, "rename"), (os, "replace"), (ResultsStore, "add")]
 
 
 def killed_run(directory: Path, after: int) -> int:

@@ -11,7 +11,7 @@ import pytest
 
 import adapters
 from adapters.base import Setting
-from reports.harness.comparison import compare
+from reports.harness.comparison import measure
 from reports.harness.forces import force_errors, native_forces
 from reports.harness.truth import independent_truth
 from scenarios import load
@@ -86,5 +86,5 @@ def test_pinocchio_drive_multipliers_are_the_native_torques(mode: str) -> None:
     run = adapters.load("pinocchio").run(SCENARIO, Setting.of(mode))
     assert run.status == "ok" and run.trajectory is not None
     assert "crank_drive.force" in run.trajectory.extras
-    metrics, _, _ = compare(SCENARIO, run, independent_truth(SCENARIO, TIMES).trajectory, None)
+    metrics, _, _ = measure(SCENARIO, run, independent_truth(SCENARIO, TIMES).trajectory, None)
     assert metrics["driver_force_error"] < 1e-9

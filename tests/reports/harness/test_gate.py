@@ -75,7 +75,7 @@ def test_update_writes_what_compare_reads(checked, tmp_path: Path, capsys) -> No
     assert main(["check", "--baseline", str(fresh), "--results", str(out), "--update"]) == 0
     frame, _ = read_results(out)
     assert gate.read_baseline(fresh) == gate.baseline_cells(frame)
-    assert gate.compare(gate.read_baseline(fresh), frame).passed
+    assert gate.judge(gate.read_baseline(fresh), frame).passed
 
 
 def cells(*rows: tuple[str, str, bool, str, float]) -> pd.DataFrame:
@@ -96,9 +96,9 @@ def test_status_order_floor_and_coverage() -> None:
             ("b", "e1", True, "ok", 1e-6),
         )
     )
-    same = gate.compare(base, cells(("a", "e1", True, "ok", 5e-13), ("a", "e2", True, "ok", 1e-9)))
+    same = gate.judge(base, cells(("a", "e1", True, "ok", 5e-13), ("a", "e2", True, "ok", 1e-9)))
     assert same.passed and same.compared == 2  # below the floor; unsupported -> ok is no regression
-    worse = gate.compare(
+    worse = gate.judge(
         base,
         cells(
             ("a", "e1", True, "ok", 2e-11),

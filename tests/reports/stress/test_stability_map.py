@@ -12,7 +12,7 @@ import pytest
 import scenarios
 from adapters.base import RunResult, Setting
 from reference_solver import constraint_residual, solve
-from reports.harness.comparison import compare
+from reports.harness.comparison import measure
 from reports.harness.results_store import ResultsStore
 from reports.harness.rows import failure_row, result_row
 from reports.render.report_data import ReportData
@@ -38,7 +38,7 @@ def _ok(
     store: ResultsStore, scenario: scenarios.Scenario, engine: str, run: Trajectory, truth: Trajectory
 ) -> None:
     result = RunResult(engine, "test", SETTING, "ok", trajectory=run, run_time=0.01, build_time=0.0)
-    metrics, levels, note = compare(scenario, result, truth, constraint_residual)
+    metrics, levels, note = measure(scenario, result, truth, constraint_residual)
     store.add(result_row(scenario, result, True, 1, 0, metrics, levels, note), run)
 
 
