@@ -17,6 +17,7 @@ from scipy.integrate import solve_ivp
 from reference_solver.compiled_system import constraint_system
 from reference_solver.dynamics.ali3p_grid import integrate
 from reference_solver.dynamics.augmented import accelerations, constraint_outputs
+from reference_solver.dynamics.compiled_rates import partitioned_ode
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.partition import Partitioned, State, choose_independent
@@ -154,7 +155,7 @@ def simulate(
     t, k = float(grid[0]), 1
     while k < len(grid):
         independent = choose_independent(system, state.jac)
-        ode = Partitioned(system, mass, loads, state.q, independent)
+        ode = partitioned_ode(system, mass, loads, state.q, independent)
         partitions += 1
         chosen = ode.conditioning(state.jac)
         cols = system.column_scales[independent]

@@ -1,0 +1,112 @@
+"""The coordinate-partitioned ODE with its right-hand side in one compiled call (fast.rates): the
+same positions, rates and state as Partitioned, over the compiled constraint rows and force
+elements, with no Python between them. `partitioned_ode` gives it where the constraints are compiled
+(reference_solver.compiled_system) and every force element has a kernel, Partitioned otherwise."""
+
+from __future__ import annotations
+
+from types import ModuleType
+
+import numpy as np
+
+from reference_solver.compiled_system import CompiledSystem
+from reference_solver.dynamics.loads import Loads, LoadState
+from reference_solver.dynamics.partition import NEWTON_STEPS, RESIDUAL, STALLED, Partitioned, State
+from reference_solver.errors import ConvergenceError
+from reference_solver.fast import rates_kernels
+from reference_solver.fast.load_program import compile_loads
+from reference_solver.fast.program import WIDTH
+from reference_solver.fast.rows import NotCompiled
+from reference_solver.system import ConstraintSystem
+
+
+class CompiledPartitioned(Partitioned):
+    """Partitioned, its positions, state and rates evaluated by fast.rates.partitioned (`kernels`)."""
+
+    def __init__(
+        self,
+        system: CompiledSystem,
+        mass: np.ndarray,
+        loads: Loads,
+        q: np.ndarray,
+        independent: np.ndarray,
+        kernels: ModuleType,
+    ) -> None:
+        super().__init__(system, mass, loads, q, independent)
+        k = self.kernels = kernels
+        program, forces = system.kernels.program, compile_loads(loads.forces, system.layout, loads.gravity)
+        n, m, f = system.unknowns, system.size, independent.size
+        self.n, self.m = n, m
+        self.vec = np.zeros((k.VECTORS, n + m))
+        self.vec[k.Q, :n], self.vec[k.GRAVITY, :n], self.vec[k.MASS, :n] = q, forces.gravity, mass
+        self.vec[k.ROW_SCALE, :m] = system.row_scales
+        self.sizes = np.zeros(6, np.int64)
+        drivers = int(system.offsets[len(system.scenario.joints)])
+        self.sizes[[k.S_N, k.S_M, k.S_F, k.S_DRIVERS, k.S_NEWTON]] = n, m, f, drivers, NEWTON_STEPS
+        self.jacs, self.lus = np.zeros((2, m * n)), np.zeros((2, m, m))
+        bodies = len(system.layout.bodies)
+        self.arguments = (
+            *(program.ints, program.reals, forces.ints, forces.reals),
+            *(self.independent.astype(np.int64), self.dependent.astype(np.int64), self.sizes),
+            *(np.array([RESIDUAL, STALLED]), self.vec, self.jacs, self.lus, np.zeros((2, m), np.int64)),
+            *(np.zeros((n + m, n + m)), np.zeros(n + m, np.int64), np.zeros((5, max(bodies, WIDTH)))),
+            *(np.zeros((2, 2, WIDTH)), np.zeros((0, 4, 2)), np.zeros((2, 6))),
+        )
+        self.nothing = np.zeros(0)
+
+    def restart(self, q: np.ndarray) -> None:
+        self.vec[self.kernels.Q, : self.n] = q
+        self.sizes[self.kernels.S_HAS_FACTORS] = 0
+
+    def _run(self, level: int, t: float, y: np.ndarray, out: np.ndarray) -> None:
+        k = self.kernels
+        status, residual = k.partitioned(level, float(t), np.ascontiguousarray(y), out, *self.arguments)
+        if status == k.NOT_CONVERGED:
+            raise ConvergenceError(
+                f"{self.system.scenario.name}: the dependent coordinates did not converge at t={t:.6g} "
+                f"(constraint residual {residual:.2g})",
+                time=t,
+                q=self.vec[k.QT, : self.n].copy(),
+            )
+        if status == k.SINGULAR:
+            raise np.linalg.LinAlgError("the augmented matrix [M C_q^T; C_q 0] has an exactly zero pivot")
+
+    def positions(self, t: float, q_independent: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        self._run(self.kernels.POSITIONS, t, q_independent, self.nothing)
+        return self.vec[self.kernels.Q, : self.n].copy(), self.jacs[0].reshape(self.m, self.n).copy()
+
+    def state(self, t: float, y: np.ndarray) -> State:
+        k, n, m = self.kernels, self.n, self.m
+        self._run(k.STATE, t, y, self.nothing)
+        vec = self.vec
+        potential, applied, dissipation = (float(v) for v in vec[k.TOTALS, :3])
+        loads = LoadState(vec[k.QE, :n].copy(), potential, applied, dissipation)
+        return State(
+            float(t),
+            vec[k.Q, :n].copy(),
+            vec[k.QD, :n].copy(),
+            vec[k.QDD, :n].copy(),
+            vec[k.LAM, :m].copy(),
+            self.jacs[0].reshape(m, n).copy(),
+            loads,
+        )
+
+    def rates(self, t: float, y: np.ndarray) -> np.ndarray:
+        self.evaluations += 1
+        out = np.empty(2 * self.size + 3)
+        self._run(self.kernels.RATES, t, y, out)
+        return out
+
+
+def partitioned_ode(
+    system: ConstraintSystem, mass: np.ndarray, loads: Loads, q: np.ndarray, independent: np.ndarray
+) -> Partitioned:
+    """CompiledPartitioned where the system is compiled and its loads compile, else Partitioned."""
+    if isinstance(system, CompiledSystem):
+        kernels, _ = rates_kernels()
+        if kernels is not None:
+            try:
+                return CompiledPartitioned(system, mass, loads, q, independent, kernels)
+            except NotCompiled:
+                pass
+    return Partitioned(system, mass, loads, q, independent)

@@ -1,0 +1,173 @@
+"""One right-hand side of the coordinate-partitioned forward dynamics in a single numba call: the
+steps of reference_solver.dynamics.partition (positions, rates, state) over the compiled
+constraint rows (fast.evaluate), force elements (fast.load_kernel) and small dense LU (fast.dense_lu).
+
+    positions  the tangent predictor C_D dq_D = -(C_I dq_I + C_t(t) - C_t(t_last)), then Newton on
+               the dependent coordinates until C holds to RESIDUAL (scaled) or stalls below STALLED
+    rates      C_D q'_D = -C_t - C_I q'_I
+    state      Q_d, Q_e, and [M C_q^T; C_q 0] [q''; lambda] = [Q_e; Q_d], rows of C_q scaled to
+               unit length, by LU with partial pivoting
+
+`partitioned` does them up to `level` and keeps the last converged q, C_q and LU of C_D in its
+arguments for the next call, as Partitioned does in its attributes. Every array is made by the
+caller (fast.rates' caller, dynamics.compiled_rates); the rows of `vec` are the vectors below.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from reference_solver.fast.dense_lu import lu_factor, lu_solve
+from reference_solver.fast.evaluate import c_t, evaluate
+from reference_solver.fast.load_kernel import loads
+
+POSITIONS, STATE, RATES = 0, 1, 2
+"""Levels: how far `partitioned` goes."""
+OK, NOT_CONVERGED, SINGULAR = 0, 1, 2
+Q, QT, QD, QDD, QE, LAM, ZERO, GRAVITY, MASS, ROW_SCALE, C, Q_D, CT, CT_LAST, MOVE, NORMS, RHS, TOTALS = (
+    range(18)
+)
+VECTORS = 18
+"""Rows of `vec`, each n + m long: Q the last converged positions, QT Newton's iterate, TOTALS the
+potential energy, applied power and dissipation of the last state."""
+S_N, S_M, S_F, S_DRIVERS, S_NEWTON, S_HAS_FACTORS = range(6)
+"""Entries of `sizes`: coordinates, rows, independent coordinates, first driver row, Newton's
+iteration limit, and whether the last converged factors exist (the predictor's)."""
+LAST, TRIAL = 0, 1
+"""The two slots of `jacs`, `lus` and `pivs`: the last converged ones and Newton's."""
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _scaled_max(c, scales, m):  # type: ignore[no-untyped-def]
+    """max |c / scales| (NaN if any entry is NaN, as numpy's max)."""
+    worst = 0.0
+    for r in range(m):
+        value = abs(c[r] / scales[r])
+        if not value <= worst:
+            worst = value
+    return worst
+
+
+@njit(cache=True, error_model="numpy")
+def partitioned(  # type: ignore[no-untyped-def]
+    level, t, y, out, ints, reals, lints, lreals, ind, dep, sizes, tol, vec, jacs, lus, pivs, kkt, kpiv, work,
+    scratch, us, points
+):  # fmt: skip
+    """Up to `level` at (t, y), y = (q_I, q'_I, ...); with RATES, out <- (q'_I, q''_I, applied power,
+    dissipation, driver power). Returns the status (OK, NOT_CONVERGED, SINGULAR) and the last scaled
+    constraint residual. tol = (RESIDUAL, STALLED)."""
+    n, m, f = sizes[S_N], sizes[S_M], sizes[S_F]
+    q, qt, qd, zero = vec[Q, :n], vec[QT, :n], vec[QD, :n], vec[ZERO, :n]  # evaluate reads n from q
+    ct, ct_last, move = vec[CT], vec[CT_LAST], vec[MOVE]
+    jac, jt, lu, lt, piv, pt = jacs[LAST], jacs[TRIAL], lus[LAST], lus[TRIAL], pivs[LAST], pivs[TRIAL]
+    c, q_d, scales = vec[C], vec[Q_D], vec[ROW_SCALE]
+    for i in range(n):
+        qt[i] = q[i]
+    if sizes[S_HAS_FACTORS]:  # tangent predictor
+        c_t(ints, reals, t, ct)
+        for r in range(m):
+            s = 0.0
+            for k in range(f):
+                s += jac[r * n + ind[k]] * (y[k] - q[ind[k]])
+            move[r] = s + ct[r] - ct_last[r]
+        lu_solve(lu, m, piv, move)
+        for k in range(m):
+            qt[dep[k]] -= move[k]
+    for k in range(f):
+        qt[ind[k]] = y[k]
+    previous, residual, converged = math.inf, math.inf, False
+    for _ in range(sizes[S_NEWTON]):
+        evaluate(ints, reals, qt, zero, t, c, q_d, jt, work, scratch, us)
+        residual = _scaled_max(c, scales, m)
+        for r in range(m):
+            for k in range(m):
+                lt[r, k] = jt[r * n + dep[k]]
+        lu_factor(lt, m, pt)
+        stalled = residual < tol[1] and residual > 0.5 * previous
+        previous = residual
+        if residual <= tol[0] or stalled:
+            converged = True
+            break
+        for r in range(m):
+            move[r] = c[r]
+        lu_solve(lt, m, pt, move)
+        for k in range(m):
+            qt[dep[k]] -= move[k]
+    if not converged:
+        return NOT_CONVERGED, residual
+    for i in range(n):
+        q[i] = qt[i]
+    for i in range(m * n):
+        jac[i] = jt[i]
+    for r in range(m):
+        piv[r] = pt[r]
+        for k in range(m):
+            lu[r, k] = lt[r, k]
+    c_t(ints, reals, t, ct_last)
+    sizes[S_HAS_FACTORS] = 1
+    if level == POSITIONS:
+        return OK, residual
+
+    for k in range(f):
+        qd[ind[k]] = y[f + k]
+    for r in range(m):
+        s = -ct_last[r]
+        for k in range(f):
+            s -= jac[r * n + ind[k]] * qd[ind[k]]
+        move[r] = s
+    lu_solve(lu, m, piv, move)
+    for k in range(m):
+        qd[dep[k]] = move[k]
+
+    evaluate(ints, reals, q, qd, t, c, q_d, jt[:0], work, scratch, us)
+    loads(lints, lreals, vec[GRAVITY], q, qd, t, vec[QE, :n], points, vec[TOTALS])
+    if _accelerations(n, m, jac, vec, kkt, kpiv):
+        return SINGULAR, residual
+    if level == STATE:
+        return OK, residual
+
+    totals, qdd, lam = vec[TOTALS], vec[QDD], vec[LAM]
+    power = 0.0
+    for r in range(sizes[S_DRIVERS], m):
+        s = 0.0
+        for j in range(n):
+            s += jac[r * n + j] * qd[j]
+        power -= lam[r] * s
+    for k in range(f):
+        out[k], out[f + k] = qd[ind[k]], qdd[ind[k]]
+    out[2 * f], out[2 * f + 1], out[2 * f + 2] = totals[1], totals[2], power
+    return OK, residual
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _accelerations(n, m, jac, vec, kkt, kpiv):  # type: ignore[no-untyped-def]
+    """vec[QDD], vec[LAM] <- q'' and lambda from the augmented system (dynamics.augmented); True if
+    its LU meets an exactly zero pivot."""
+    norms, rhs, mass, qe, q_d = vec[NORMS], vec[RHS], vec[MASS], vec[QE], vec[Q_D]
+    size = n + m
+    for i in range(size):
+        for j in range(size):
+            kkt[i, j] = 0.0
+    for i in range(n):
+        kkt[i, i] = mass[i]
+        rhs[i] = qe[i]
+    for r in range(m):
+        s = 0.0
+        for j in range(n):
+            s += jac[r * n + j] * jac[r * n + j]
+        norms[r] = math.sqrt(s) if s > 0.0 else 1.0
+        for j in range(n):
+            value = jac[r * n + j] / norms[r]
+            kkt[n + r, j] = value
+            kkt[j, n + r] = value
+        rhs[n + r] = q_d[r] / norms[r]
+    if lu_factor(kkt, size, kpiv):
+        return True
+    lu_solve(kkt, size, kpiv, rhs)
+    for i in range(n):
+        vec[QDD, i] = rhs[i]
+    for r in range(m):
+        vec[LAM, r] = rhs[n + r] / norms[r]
+    return False
