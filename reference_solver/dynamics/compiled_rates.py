@@ -49,7 +49,7 @@ class CompiledPartitioned(Partitioned):
             *(program.ints, program.reals, forces.ints, forces.reals),
             *(self.independent.astype(np.int64), self.dependent.astype(np.int64), self.sizes),
             *(np.array([RESIDUAL, STALLED]), self.vec, self.jacs, self.lus, np.zeros((2, m), np.int64)),
-            *(np.zeros((n + m, n + m)), np.zeros(n + m, np.int64), np.zeros((5, max(bodies, WIDTH)))),
+            *(np.zeros((f, f)), np.zeros(f, np.int64), np.zeros((m, f)), np.zeros((5, max(bodies, WIDTH)))),
             *(np.zeros((2, 2, WIDTH)), np.zeros((0, 4, 2)), np.zeros((2, 6))),
         )
         self.nothing = np.zeros(0)
@@ -69,7 +69,7 @@ class CompiledPartitioned(Partitioned):
                 q=self.vec[k.QT, : self.n].copy(),
             )
         if status == k.SINGULAR:
-            raise np.linalg.LinAlgError("the augmented matrix [M C_q^T; C_q 0] has an exactly zero pivot")
+            raise np.linalg.LinAlgError("the reduced mass matrix has an exactly zero pivot")
 
     def positions(self, t: float, q_independent: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         self._run(self.kernels.POSITIONS, t, q_independent, self.nothing)

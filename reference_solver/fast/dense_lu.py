@@ -52,3 +52,22 @@ def lu_solve(a, n, piv, b):  # type: ignore[no-untyped-def]
         for j in range(i + 1, n):
             s -= a[i, j] * b[j]
         b[i] = s / a[i, i]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def lu_solve_transposed(a, n, piv, b):  # type: ignore[no-untyped-def]
+    """b[:n] <- A^-T b from lu_factor's a and piv (P A = L U, so A^T = U^T L^T P)."""
+    for i in range(n):
+        s = b[i]
+        for j in range(i):
+            s -= a[j, i] * b[j]
+        b[i] = s / a[i, i]
+    for i in range(n - 1, -1, -1):
+        s = b[i]
+        for j in range(i + 1, n):
+            s -= a[j, i] * b[j]
+        b[i] = s
+    for k in range(n - 1, -1, -1):
+        p = piv[k]
+        if p != k:
+            b[k], b[p] = b[p], b[k]

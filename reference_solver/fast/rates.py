@@ -5,8 +5,9 @@ constraint rows (fast.evaluate), force elements (fast.load_kernel) and small den
     positions  the tangent predictor C_D dq_D = -(C_I dq_I + C_t(t) - C_t(t_last)), then Newton on
                the dependent coordinates until C holds to RESIDUAL (scaled) or stalls below STALLED
     rates      C_D q'_D = -C_t - C_I q'_I
-    state      Q_d, Q_e, and [M C_q^T; C_q 0] [q''; lambda] = [Q_e; Q_d], rows of C_q scaled to
-               unit length, by LU with partial pivoting
+    state      Q_d, Q_e, and q'', lambda from M q'' + C_q^T lambda = Q_e, C_q q'' = Q_d, reduced to
+               the independent accelerations through C_D's LU (the plain path solves the augmented
+               matrix whole: each checks the other)
 
 `partitioned` does them up to `level` and keeps the last converged q, C_q and LU of C_D in its
 arguments for the next call, as Partitioned does in its attributes. Every array is made by the
@@ -19,17 +20,15 @@ import math
 
 from numba import njit
 
-from reference_solver.fast.dense_lu import lu_factor, lu_solve
+from reference_solver.fast.dense_lu import lu_factor, lu_solve, lu_solve_transposed
 from reference_solver.fast.evaluate import c_t, evaluate
 from reference_solver.fast.load_kernel import loads
 
 POSITIONS, STATE, RATES = 0, 1, 2
 """Levels: how far `partitioned` goes."""
 OK, NOT_CONVERGED, SINGULAR = 0, 1, 2
-Q, QT, QD, QDD, QE, LAM, ZERO, GRAVITY, MASS, ROW_SCALE, C, Q_D, CT, CT_LAST, MOVE, NORMS, RHS, TOTALS = (
-    range(18)
-)
-VECTORS = 18
+Q, QT, QD, QDD, QE, LAM, ZERO, GRAVITY, MASS, ROW_SCALE, C, Q_D, CT, CT_LAST, MOVE, RHS, TOTALS = range(17)
+VECTORS = 17
 """Rows of `vec`, each n + m long: Q the last converged positions, QT Newton's iterate, TOTALS the
 potential energy, applied power and dissipation of the last state."""
 S_N, S_M, S_F, S_DRIVERS, S_NEWTON, S_HAS_FACTORS = range(6)
@@ -52,8 +51,8 @@ def _scaled_max(c, scales, m):  # type: ignore[no-untyped-def]
 
 @njit(cache=True, error_model="numpy")
 def partitioned(  # type: ignore[no-untyped-def]
-    level, t, y, out, ints, reals, lints, lreals, ind, dep, sizes, tol, vec, jacs, lus, pivs, kkt, kpiv, work,
-    scratch, us, points
+    level, t, y, out, ints, reals, lints, lreals, ind, dep, sizes, tol, vec, jacs, lus, pivs, reduced, rpiv,
+    x, work, scratch, us, points
 ):  # fmt: skip
     """Up to `level` at (t, y), y = (q_I, q'_I, ...); with RATES, out <- (q'_I, q''_I, applied power,
     dissipation, driver power). Returns the status (OK, NOT_CONVERGED, SINGULAR) and the last scaled
@@ -123,7 +122,7 @@ def partitioned(  # type: ignore[no-untyped-def]
 
     evaluate(ints, reals, q, qd, t, c, q_d, jt[:0], work, scratch, us)
     loads(lints, lreals, vec[GRAVITY], q, qd, t, vec[QE, :n], points, vec[TOTALS])
-    if _accelerations(n, m, jac, vec, kkt, kpiv):
+    if _accelerations(n, m, f, ind, dep, jac, lu, piv, vec, reduced, rpiv, x):
         return SINGULAR, residual
     if level == STATE:
         return OK, residual
@@ -142,32 +141,45 @@ def partitioned(  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _accelerations(n, m, jac, vec, kkt, kpiv):  # type: ignore[no-untyped-def]
-    """vec[QDD], vec[LAM] <- q'' and lambda from the augmented system (dynamics.augmented); True if
-    its LU meets an exactly zero pivot."""
-    norms, rhs, mass, qe, q_d = vec[NORMS], vec[RHS], vec[MASS], vec[QE], vec[Q_D]
-    size = n + m
-    for i in range(size):
-        for j in range(size):
-            kkt[i, j] = 0.0
-    for i in range(n):
-        kkt[i, i] = mass[i]
-        rhs[i] = qe[i]
+def _accelerations(n, m, f, ind, dep, jac, lu, piv, vec, reduced, rpiv, x):  # type: ignore[no-untyped-def]
+    """vec[QDD], vec[LAM] <- q'' and lambda of M q'' + C_q^T lambda = Q_e, C_q q'' = Q_d, in the
+    independent accelerations: with X = C_D^-1 C_I and p = C_D^-1 Q_d (C_D's LU is at hand),
+    q''_D = p - X q''_I and (M_I + X^T M_D X) q''_I = Q_e,I - X^T (Q_e,D - M_D p); then
+    C_D^T lambda = Q_e,D - M_D q''_D. True if the reduced mass matrix has an exactly zero pivot.
+    reduced (f, f) and x (m, f) are scratch."""
+    mass, qe, qdd, lam, p = vec[MASS], vec[QE], vec[QDD], vec[LAM], vec[RHS]
+    for k in range(f):
+        for r in range(m):
+            p[r] = jac[r * n + ind[k]]
+        lu_solve(lu, m, piv, p)
+        for r in range(m):
+            x[r, k] = p[r]
     for r in range(m):
-        s = 0.0
-        for j in range(n):
-            s += jac[r * n + j] * jac[r * n + j]
-        norms[r] = math.sqrt(s) if s > 0.0 else 1.0
-        for j in range(n):
-            value = jac[r * n + j] / norms[r]
-            kkt[n + r, j] = value
-            kkt[j, n + r] = value
-        rhs[n + r] = q_d[r] / norms[r]
-    if lu_factor(kkt, size, kpiv):
+        p[r] = vec[Q_D, r]
+    lu_solve(lu, m, piv, p)
+    for a in range(f):
+        s = qe[ind[a]]
+        for r in range(m):
+            s -= x[r, a] * (qe[dep[r]] - mass[dep[r]] * p[r])
+        qdd[ind[a]] = s
+        for b in range(f):
+            s = mass[ind[a]] if a == b else 0.0
+            for r in range(m):
+                s += mass[dep[r]] * x[r, a] * x[r, b]
+            reduced[a, b] = s
+    if lu_factor(reduced, f, rpiv):
         return True
-    lu_solve(kkt, size, kpiv, rhs)
-    for i in range(n):
-        vec[QDD, i] = rhs[i]
+    for a in range(f):
+        lam[a] = qdd[ind[a]]
+    lu_solve(reduced, f, rpiv, lam)
+    for a in range(f):
+        qdd[ind[a]] = lam[a]
     for r in range(m):
-        vec[LAM, r] = rhs[n + r] / norms[r]
+        s = p[r]
+        for a in range(f):
+            s -= x[r, a] * qdd[ind[a]]
+        qdd[dep[r]] = s
+    for r in range(m):
+        lam[r] = qe[dep[r]] - mass[dep[r]] * qdd[dep[r]]
+    lu_solve_transposed(lu, m, piv, lam)
     return False
