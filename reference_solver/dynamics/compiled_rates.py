@@ -39,45 +39,51 @@ class CompiledPartitioned(Partitioned):
         self.n, self.m = n, m
         self.vec = np.zeros((k.VECTORS, n + m))
         self.vec[k.Q, :n], self.vec[k.GRAVITY, :n], self.vec[k.MASS, :n] = q, forces.gravity, mass
-        self.vec[k.ROW_SCALE, :m] = system.row_scales
-        self.sizes = np.zeros(6, np.int64)
+        self.vec[k.ROW_SCALE, :m], self.vec[k.COL_SCALE, :n] = system.row_scales, system.column_scales
+        self.vec[k.TOL, :2] = RESIDUAL, STALLED
+        self.index = np.zeros((k.INDICES, max(n, m, 6)), np.int64)
+        self.index[k.IND, :f], self.index[k.DEP, :m] = self.independent, self.dependent
         drivers = int(system.offsets[len(system.scenario.joints)])
-        self.sizes[[k.S_N, k.S_M, k.S_F, k.S_DRIVERS, k.S_NEWTON]] = n, m, f, drivers, NEWTON_STEPS
-        self.jacs, self.lus = np.zeros((2, m * n)), np.zeros((2, m, m))
-        bodies = len(system.layout.bodies)
+        self.index[k.SIZES, [k.S_N, k.S_M, k.S_F, k.S_DRIVERS, k.S_NEWTON]] = n, m, f, drivers, NEWTON_STEPS
+        self.jacs = np.zeros((2, m * n))
+        side, width = max(m, f), max(len(system.layout.bodies), WIDTH)
+        matrices, work = np.zeros((k.MATRICES, side, side)), np.zeros((k.POINTS + 2, width))
         self.arguments = (
-            *(program.ints, program.reals, forces.ints, forces.reals),
-            *(self.independent.astype(np.int64), self.dependent.astype(np.int64), self.sizes),
-            *(np.array([RESIDUAL, STALLED]), self.vec, self.jacs, self.lus, np.zeros((2, m), np.int64)),
-            *(np.zeros((f, f)), np.zeros(f, np.int64), np.zeros((m, f)), np.zeros((5, max(bodies, WIDTH)))),
-            *(np.zeros((2, 2, WIDTH)), np.zeros((0, 4, 2)), np.zeros((2, 6))),
+            *(program.ints, program.reals, forces.ints, forces.reals, self.index, self.vec, self.jacs),
+            *(matrices, work, np.zeros((2, 2, WIDTH)), np.zeros((0, 4, 2))),
         )
         self.nothing = np.zeros(0)
+        self.partitioned, self.outputs, self.level, self.ok = k.partitioned, 2 * f + 3, k.RATES, k.OK
 
     def restart(self, q: np.ndarray) -> None:
         self.vec[self.kernels.Q, : self.n] = q
-        self.sizes[self.kernels.S_HAS_FACTORS] = 0
+        self.index[self.kernels.SIZES, self.kernels.S_HAS_FACTORS] = 0
 
     def _run(self, level: int, t: float, y: np.ndarray, out: np.ndarray) -> None:
-        k = self.kernels
-        status, residual = k.partitioned(level, float(t), np.ascontiguousarray(y), out, *self.arguments)
-        if status == k.NOT_CONVERGED:
+        status, residual = self.kernels.partitioned(level, t, y, out, *self.arguments)
+        if status != self.kernels.OK:
+            self._fail(status, t, residual)
+
+    def _fail(self, status: int, t: float, residual: float) -> None:
+        if status == self.kernels.NOT_CONVERGED:
             raise ConvergenceError(
                 f"{self.system.scenario.name}: the dependent coordinates did not converge at t={t:.6g} "
                 f"(constraint residual {residual:.2g})",
                 time=t,
-                q=self.vec[k.QT, : self.n].copy(),
+                q=self.vec[self.kernels.QT, : self.n].copy(),
             )
-        if status == k.SINGULAR:
-            raise np.linalg.LinAlgError("the reduced mass matrix has an exactly zero pivot")
+        raise np.linalg.LinAlgError("the reduced mass matrix has an exactly zero pivot")
+
+    def conditioning(self, jac: np.ndarray) -> float:
+        return float(self.kernels.conditioning(np.ascontiguousarray(jac), self.index, self.vec))
 
     def positions(self, t: float, q_independent: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        self._run(self.kernels.POSITIONS, t, q_independent, self.nothing)
+        self._run(self.kernels.POSITIONS, float(t), np.ascontiguousarray(q_independent), self.nothing)
         return self.vec[self.kernels.Q, : self.n].copy(), self.jacs[0].reshape(self.m, self.n).copy()
 
     def state(self, t: float, y: np.ndarray) -> State:
         k, n, m = self.kernels, self.n, self.m
-        self._run(k.STATE, t, y, self.nothing)
+        self._run(k.STATE, float(t), np.ascontiguousarray(y), self.nothing)
         vec = self.vec
         potential, applied, dissipation = (float(v) for v in vec[k.TOTALS, :3])
         loads = LoadState(vec[k.QE, :n].copy(), potential, applied, dissipation)
@@ -92,9 +98,12 @@ class CompiledPartitioned(Partitioned):
         )
 
     def rates(self, t: float, y: np.ndarray) -> np.ndarray:
+        """The right-hand side; y comes from the integrator (a contiguous float array)."""
         self.evaluations += 1
-        out = np.empty(2 * self.size + 3)
-        self._run(self.kernels.RATES, t, y, out)
+        out = np.empty(self.outputs)
+        status, residual = self.partitioned(self.level, t, y, out, *self.arguments)
+        if status != self.ok:
+            self._fail(status, t, residual)
         return out
 
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from reference_solver.fast.dense_lu import lu_factor, lu_solve, lu_solve_transposed
@@ -27,15 +28,45 @@ from reference_solver.fast.load_kernel import loads
 POSITIONS, STATE, RATES = 0, 1, 2
 """Levels: how far `partitioned` goes."""
 OK, NOT_CONVERGED, SINGULAR = 0, 1, 2
-Q, QT, QD, QDD, QE, LAM, ZERO, GRAVITY, MASS, ROW_SCALE, C, Q_D, CT, CT_LAST, MOVE, RHS, TOTALS = range(17)
-VECTORS = 17
+(
+    Q,
+    QT,
+    QD,
+    QDD,
+    QE,
+    LAM,
+    ZERO,
+    GRAVITY,
+    MASS,
+    ROW_SCALE,
+    COL_SCALE,
+    C,
+    Q_D,
+    CT,
+    CT_LAST,
+    MOVE,
+    RHS,
+    TOTALS,
+    TOL,
+) = range(19)
+VECTORS = 19
 """Rows of `vec`, each n + m long: Q the last converged positions, QT Newton's iterate, TOTALS the
-potential energy, applied power and dissipation of the last state."""
+potential energy, applied power and dissipation of the last state, TOL Newton's (RESIDUAL, STALLED)."""
+IND, DEP, SIZES, PIV, PIV_TRIAL, RPIV = range(6)
+INDICES = 6
+"""Rows of `index`: the independent and dependent columns, the sizes below, the row swaps of the
+LU factors in `mats` (LU and LU_TRIAL) and of the reduced mass matrix."""
 S_N, S_M, S_F, S_DRIVERS, S_NEWTON, S_HAS_FACTORS = range(6)
-"""Entries of `sizes`: coordinates, rows, independent coordinates, first driver row, Newton's
+"""Entries of index[SIZES]: coordinates, rows, independent coordinates, first driver row, Newton's
 iteration limit, and whether the last converged factors exist (the predictor's)."""
 LAST, TRIAL = 0, 1
-"""The two slots of `jacs`, `lus` and `pivs`: the last converged ones and Newton's."""
+"""The two slots of `jacs`: the last converged C_q and Newton's (flat, row-major)."""
+LU, LU_TRIAL, REDUCED, X = range(4)
+MATRICES = 4
+"""Slots of `mats`, each max(m, f) square: C_D's last converged LU factors and Newton's, the reduced
+mass matrix and X = C_D^-1 C_I."""
+POINTS = 5
+"""Rows POINTS, POINTS + 1 of `work` (after evaluate's) hold the load kernel's point scratch."""
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -51,16 +82,24 @@ def _scaled_max(c, scales, m):  # type: ignore[no-untyped-def]
 
 @njit(cache=True, error_model="numpy")
 def partitioned(  # type: ignore[no-untyped-def]
-    level, t, y, out, ints, reals, lints, lreals, ind, dep, sizes, tol, vec, jacs, lus, pivs, reduced, rpiv,
-    x, work, scratch, us, points
+    level, t, y, out, ints, reals, lints, lreals, index, vec, jacs, mats, work, scratch, us
 ):  # fmt: skip
     """Up to `level` at (t, y), y = (q_I, q'_I, ...); with RATES, out <- (q'_I, q''_I, applied power,
     dissipation, driver power). Returns the status (OK, NOT_CONVERGED, SINGULAR) and the last scaled
-    constraint residual. tol = (RESIDUAL, STALLED)."""
+    constraint residual."""
+    ind, dep, sizes, piv, pt, rpiv = (
+        index[IND],
+        index[DEP],
+        index[SIZES],
+        index[PIV],
+        index[PIV_TRIAL],
+        index[RPIV],
+    )
     n, m, f = sizes[S_N], sizes[S_M], sizes[S_F]
+    lu, lt, reduced, x, tol = mats[LU], mats[LU_TRIAL], mats[REDUCED], mats[X], vec[TOL]
     q, qt, qd, zero = vec[Q, :n], vec[QT, :n], vec[QD, :n], vec[ZERO, :n]  # evaluate reads n from q
     ct, ct_last, move = vec[CT], vec[CT_LAST], vec[MOVE]
-    jac, jt, lu, lt, piv, pt = jacs[LAST], jacs[TRIAL], lus[LAST], lus[TRIAL], pivs[LAST], pivs[TRIAL]
+    jac, jt = jacs[LAST], jacs[TRIAL]
     c, q_d, scales = vec[C], vec[Q_D], vec[ROW_SCALE]
     for i in range(n):
         qt[i] = q[i]
@@ -121,7 +160,7 @@ def partitioned(  # type: ignore[no-untyped-def]
         qd[dep[k]] = move[k]
 
     evaluate(ints, reals, q, qd, t, c, q_d, jt[:0], work, scratch, us)
-    loads(lints, lreals, vec[GRAVITY], q, qd, t, vec[QE, :n], points, vec[TOTALS])
+    loads(lints, lreals, vec[GRAVITY], q, qd, t, vec[QE, :n], work[POINTS:], vec[TOTALS])
     if _accelerations(n, m, f, ind, dep, jac, lu, piv, vec, reduced, rpiv, x):
         return SINGULAR, residual
     if level == STATE:
@@ -183,3 +222,17 @@ def _accelerations(n, m, f, ind, dep, jac, lu, piv, vec, reduced, rpiv, x):  # t
         lam[r] = qe[dep[r]] - mass[dep[r]] * qdd[dep[r]]
     lu_solve_transposed(lu, m, piv, lam)
     return False
+
+
+@njit(cache=True, error_model="numpy")
+def conditioning(jac, index, vec):  # type: ignore[no-untyped-def]
+    """The reciprocal 2-norm condition number of the scaled dependent block B of `jac` (m, n), as
+    Partitioned.conditioning: sqrt of the extreme eigenvalues of B^T B (accurate to round-off over
+    its square, 1e-12 relative at a reciprocal condition number of 1e-2)."""
+    dep, m = index[DEP], index[SIZES, S_M]
+    block = np.empty((m, m))
+    for r in range(m):
+        for k in range(m):
+            block[r, k] = jac[r, dep[k]] * vec[COL_SCALE, dep[k]] / vec[ROW_SCALE, r]
+    values = np.linalg.eigvalsh(block.T @ block)
+    return math.sqrt(max(values[0], 0.0) / values[-1])

@@ -113,3 +113,12 @@ def test_the_plain_constraints_keep_the_plain_right_hand_side() -> None:
     start = initial_state(system, mass, loads, float(scenario.times()[0]))
     ode = partitioned_ode(system, mass, loads, start.q, choose_independent(system, start.jac))
     assert type(ode) is Partitioned
+
+
+@pytest.mark.parametrize("name", DYNAMIC)
+def test_compiled_conditioning_is_the_plain_one(name: str) -> None:
+    """The eigenvalues of B^T B against the plain path's singular values of B, to 1e-10."""
+    compiled, plain, start = both(name)
+    for t, y in random_states(plain, start, 10, seed=2):
+        jac = plain.state(t, y).jac
+        assert compiled.conditioning(jac) == pytest.approx(plain.conditioning(jac), rel=1e-10)
