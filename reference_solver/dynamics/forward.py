@@ -126,9 +126,11 @@ def simulate(
     coordinate partitioning integrated by `method` (one of METHODS) at `rtol`, or by ALI3-P
     (`method="ali3p"`, ali3p.py) at the fixed `step` (default ALI3P_STEP, cut to divide each output
     interval; `rtol` is not used there). `fast` evaluates the constraints on the compiled path
-    (compiled_system), which callers of the partitioned method ask for where no singular passage
-    lets round-off pick the motion (n_four_bar at rtol 1e-12 loses its energy on it, 0.53, and holds
-    it to 9e-9 on the plain path); ALI3-P passes it on either."""
+    (compiled_system) and, for the partitioned method, the whole right-hand side in one compiled
+    call (compiled_rates), which callers ask for where no singular passage lets round-off pick the
+    motion (n_four_bar at rtol 1e-12 lost its energy, 0.53, on the compiled constraints alone; the
+    compiled right-hand side holds it to 2e-8 of the kinetic energy, the plain path to 9e-9);
+    ALI3-P passes it on either."""
     if method not in (*METHODS, ALI3P):
         raise SolverError(f"unknown integrator '{method}' (known: {', '.join((*METHODS, ALI3P))})")
     if step is not None and not (np.isfinite(step) and step > 0):
