@@ -98,8 +98,10 @@ class CompiledPartitioned(Partitioned):
         )
 
     def rates(self, t: float, y: np.ndarray) -> np.ndarray:
-        """The right-hand side; y comes from the integrator (a contiguous float array)."""
+        """The right-hand side (y a column of a matrix where Radau differentiates it numerically)."""
         self.evaluations += 1
+        if not y.flags.c_contiguous:
+            y = np.ascontiguousarray(y)  # one compiled version of the kernel: contiguous arrays
         out = np.empty(self.outputs)
         status, residual = self.partitioned(self.level, t, y, out, *self.arguments)
         if status != self.ok:

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from reference_solver.compiled_system import constraint_system
+from reference_solver.dynamics import simulate
 from reference_solver.dynamics.compiled_rates import CompiledPartitioned, partitioned_ode
 from reference_solver.dynamics.forward import initial_state
 from reference_solver.dynamics.loads import Loads
@@ -122,3 +123,14 @@ def test_compiled_conditioning_is_the_plain_one(name: str) -> None:
     for t, y in random_states(plain, start, 10, seed=2):
         jac = plain.state(t, y).jac
         assert compiled.conditioning(jac) == pytest.approx(plain.conditioning(jac), rel=1e-10)
+
+
+def test_radau_integrates_the_same_motion_on_both_paths() -> None:
+    """Radau differentiates the right-hand side numerically (columns of a matrix: non-contiguous
+    states); measured 2.2e-15 apart in q, 2.8e-12 in q'' (of 1.4e3: 2e-15), over 0.1 s at rtol
+    1e-10, round-off, bounded at five times that."""
+    scenario = load("slider_crank_spring", {"t_end": 0.1, "steps": 10})
+    fast = simulate(scenario, rtol=1e-10, method="Radau", fast=True)
+    plain = simulate(scenario, rtol=1e-10, method="Radau")
+    assert np.max(np.abs(fast.q - plain.q)) < 1e-14
+    assert np.max(np.abs(fast.qdd - plain.qdd)) < 1e-14 * np.max(np.abs(plain.qdd))
