@@ -7,7 +7,7 @@ from __future__ import annotations
 from numba import njit
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def lu_factor(a, n, piv):  # type: ignore[no-untyped-def]
     """a[:n, :n] <- its LU factors (unit lower L below the diagonal), piv[k] the row swapped with
     row k; True if a pivot is exactly zero (that column is then left unscaled, as LAPACK does)."""
@@ -35,7 +35,7 @@ def lu_factor(a, n, piv):  # type: ignore[no-untyped-def]
     return singular
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def lu_solve(a, n, piv, b):  # type: ignore[no-untyped-def]
     """b[:n] <- A^-1 b from lu_factor's a and piv."""
     for k in range(n):
@@ -54,7 +54,7 @@ def lu_solve(a, n, piv, b):  # type: ignore[no-untyped-def]
         b[i] = s / a[i, i]
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def lu_solve_transposed(a, n, piv, b):  # type: ignore[no-untyped-def]
     """b[:n] <- A^-T b from lu_factor's a and piv (P A = L U, so A^T = U^T L^T P)."""
     for i in range(n):

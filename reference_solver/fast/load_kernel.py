@@ -60,7 +60,7 @@ def _push(qe, col, fx, fy, ax, ay):  # type: ignore[no-untyped-def]
         qe[col + 2] += -ay * fx + ax * fy
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def loads(ints, reals, gravity, q, qd, t, qe, points, totals):  # type: ignore[no-untyped-def]
     """qe <- Q_e(q, qd, t); totals <- potential energy, applied power, dissipated power; points
     (2, 6) is scratch."""

@@ -179,7 +179,7 @@ def partitioned(  # type: ignore[no-untyped-def]
     return OK, residual
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _accelerations(n, m, f, ind, dep, jac, lu, piv, vec, reduced, rpiv, x):  # type: ignore[no-untyped-def]
     """vec[QDD], vec[LAM] <- q'' and lambda of M q'' + C_q^T lambda = Q_e, C_q q'' = Q_d, in the
     independent accelerations: with X = C_D^-1 C_I and p = C_D^-1 Q_d (C_D's LU is at hand),
