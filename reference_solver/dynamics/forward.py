@@ -129,7 +129,8 @@ def simulate(
     (compiled_system) and, for the partitioned method, the whole right-hand side in one compiled
     call (compiled_rates), which callers ask for where no singular passage lets round-off pick the
     motion (n_four_bar at rtol 1e-12 lost its energy, 0.53, on the compiled constraints alone; the
-    compiled right-hand side holds it to 2e-8 of the kinetic energy, the plain path to 9e-9);
+    compiled right-hand side held it to 8e-10 of the kinetic energy when measured, the plain
+    path to 9e-9, but round-off picks the outcome there);
     ALI3-P passes it on either."""
     if method not in (*METHODS, ALI3P):
         raise SolverError(f"unknown integrator '{method}' (known: {', '.join((*METHODS, ALI3P))})")

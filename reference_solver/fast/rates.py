@@ -3,7 +3,10 @@ steps of reference_solver.dynamics.partition (positions, rates, state) over the 
 constraint rows (fast.evaluate), force elements (fast.load_kernel) and small dense LU (fast.dense_lu).
 
     positions  the tangent predictor C_D dq_D = -(C_I dq_I + C_t(t) - C_t(t_last)), then Newton on
-               the dependent coordinates until C holds to RESIDUAL (scaled) or stalls below STALLED
+               the dependent coordinates until C holds to RESIDUAL (scaled) or stalls below STALLED;
+               its corrections use the last converged LU of C_D (a chord method) while each halves
+               the residual, C_D's own LU from the first one that does not (the plain path
+               factors at every iteration); C_D is factored where Newton stops, for what follows
     rates      C_D q'_D = -C_t - C_I q'_I
     state      Q_d, Q_e, and q'', lambda from M q'' + C_q^T lambda = Q_e, C_q q'' = Q_d, reduced to
                the independent accelerations through C_D's LU (the plain path solves the augmented
@@ -116,21 +119,27 @@ def partitioned(  # type: ignore[no-untyped-def]
     for k in range(f):
         qt[ind[k]] = y[k]
     previous, residual, converged = math.inf, math.inf, False
+    chord = sizes[S_HAS_FACTORS] != 0  # correct with the last converged factors while they contract
     for _ in range(sizes[S_NEWTON]):
         evaluate(ints, reals, qt, zero, t, c, q_d, jt, work, scratch, us)
         residual = _scaled_max(c, scales, m)
-        for r in range(m):
-            for k in range(m):
-                lt[r, k] = jt[r * n + dep[k]]
-        lu_factor(lt, m, pt)
         stalled = residual < tol[1] and residual > 0.5 * previous
+        chord = chord and not residual > 0.5 * previous
         previous = residual
+        if residual <= tol[0] or stalled or not chord:
+            for r in range(m):
+                for k in range(m):
+                    lt[r, k] = jt[r * n + dep[k]]
+            lu_factor(lt, m, pt)
         if residual <= tol[0] or stalled:
             converged = True
             break
         for r in range(m):
             move[r] = c[r]
-        lu_solve(lt, m, pt, move)
+        if chord:
+            lu_solve(lu, m, piv, move)
+        else:
+            lu_solve(lt, m, pt, move)
         for k in range(m):
             qt[dep[k]] -= move[k]
     if not converged:
