@@ -4,9 +4,10 @@ from) on the same grid.
 
     python -m benchmarks.dynamics_speed [--repeats N]      (or: mbxval bench dynamics)
 
-Right-hand sides per second are printed for the plain constraints (`simulate`'s default)
-and the compiled ones (`fast=True`, reference_solver.compiled_system), with their ratio;
-the dynamics column is the compiled path.
+Right-hand sides per second are printed for the plain path (`simulate`'s default) and the compiled
+one (`fast=True`: reference_solver.compiled_system's constraints, the whole right-hand side in one
+numba call, reference_solver.dynamics.compiled_rates), with their ratio; the two take turns in each
+repeat, so that the ratio is measured side by side; the dynamics column is the compiled path.
 
 Forward dynamics: coordinate partitioning with DOP853 at rtol 1e-12 (truth quality); its cost per
 point depends on how many integrator steps fall between output points, so the right-hand-side
@@ -37,12 +38,19 @@ POINTS = 50
 
 
 def best(run: Callable[[], object], repeats: int) -> float:
-    times = []
+    return min(interleaved([run], repeats)[0])
+
+
+def interleaved(runs: list[Callable[[], object]], repeats: int) -> list[list[float]]:
+    """The wall time of each run in each round, the runs taking turns within a round, so that a
+    burst of load on a shared machine falls on both sides of a ratio alike."""
+    times: list[list[float]] = [[] for _ in runs]
     for _ in range(repeats):
-        start = time.perf_counter()
-        run()
-        times.append(time.perf_counter() - start)
-    return min(times)
+        for run, kept in zip(runs, times, strict=True):
+            start = time.perf_counter()
+            run()
+            kept.append(time.perf_counter() - start)
+    return times
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -59,8 +67,10 @@ def main(argv: list[str] | None = None) -> None:
         scenario = scenarios.build(name, overrides={"steps": POINTS} if name != "stiff_spring" else {})
         grid = scenario.times(steps=POINTS)
         evaluations = simulate(scenario, grid, fast=True).evaluations
-        dynamic = best(partial(simulate, scenario, grid, fast=True), args.repeats) / (POINTS + 1)
-        unfast = best(partial(simulate, scenario, grid), args.repeats) / (POINTS + 1)
+        compiled, plain_runs = interleaved(
+            [partial(simulate, scenario, grid, fast=True), partial(simulate, scenario, grid)], args.repeats
+        )
+        dynamic, unfast = min(compiled) / (POINTS + 1), min(plain_runs) / (POINTS + 1)
         per_point = evaluations / (POINTS + 1)
         rates = f"{per_point / unfast:13.0f}{per_point / dynamic:10.0f}{unfast / dynamic:7.1f}"
         plain = fast = "-"

@@ -17,6 +17,7 @@ from scipy.integrate import solve_ivp
 from reference_solver.compiled_system import constraint_system
 from reference_solver.dynamics.ali3p_grid import integrate
 from reference_solver.dynamics.augmented import accelerations, constraint_outputs
+from reference_solver.dynamics.compiled_rates import partitioned_ode
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.partition import Partitioned, State, choose_independent
@@ -125,9 +126,12 @@ def simulate(
     coordinate partitioning integrated by `method` (one of METHODS) at `rtol`, or by ALI3-P
     (`method="ali3p"`, ali3p.py) at the fixed `step` (default ALI3P_STEP, cut to divide each output
     interval; `rtol` is not used there). `fast` evaluates the constraints on the compiled path
-    (compiled_system), which callers of the partitioned method ask for where no singular passage
-    lets round-off pick the motion (n_four_bar at rtol 1e-12 loses its energy on it, 0.53, and holds
-    it to 9e-9 on the plain path); ALI3-P passes it on either."""
+    (compiled_system) and, for the partitioned method, the whole right-hand side in one compiled
+    call (compiled_rates), which callers ask for where no singular passage lets round-off pick the
+    motion (n_four_bar at rtol 1e-12 lost its energy, 0.53, on the compiled constraints alone; the
+    compiled right-hand side held it to 8e-10 of the kinetic energy when measured, the plain
+    path to 9e-9, but round-off picks the outcome there);
+    ALI3-P passes it on either."""
     if method not in (*METHODS, ALI3P):
         raise SolverError(f"unknown integrator '{method}' (known: {', '.join((*METHODS, ALI3P))})")
     if step is not None and not (np.isfinite(step) and step > 0):
@@ -154,7 +158,7 @@ def simulate(
     t, k = float(grid[0]), 1
     while k < len(grid):
         independent = choose_independent(system, state.jac)
-        ode = Partitioned(system, mass, loads, state.q, independent)
+        ode = partitioned_ode(system, mass, loads, state.q, independent)
         partitions += 1
         chosen = ode.conditioning(state.jac)
         cols = system.column_scales[independent]

@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import warnings
 from functools import lru_cache
+from importlib import import_module
 from importlib.util import find_spec
+from pathlib import Path
 from types import ModuleType
 from typing import TYPE_CHECKING
 
@@ -47,15 +49,27 @@ def _compiled() -> tuple[ModuleType | None, str]:
     return path, ""
 
 
-@lru_cache(maxsize=1)
 def dense_kernels() -> tuple[ModuleType | None, str]:
     """The dense kernels' module (forward dynamics), or None and why it cannot be used here."""
+    return _kernels("dense")
+
+
+def rates_kernels() -> tuple[ModuleType | None, str]:
+    """The partitioned right-hand side's module (forward dynamics, fast.rates), or None and why."""
+    return _kernels("rates")
+
+
+@lru_cache(maxsize=2)
+def _kernels(name: str) -> tuple[ModuleType | None, str]:
     if not AVAILABLE:
         return None, "numba is not installed"
+    from reference_solver.fast.cache_guard import refresh  # before numba reads its cache
+
+    refresh(Path(__file__).parent)
     try:
-        from reference_solver.fast import dense
+        module = import_module(f"reference_solver.fast.{name}")
     except RuntimeError as error:  # as in _compiled
         if "cannot cache" not in str(error):
             raise
         return None, f"numba cannot cache its compiled kernels anywhere writable ({error})"
-    return dense, ""
+    return module, ""

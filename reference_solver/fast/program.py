@@ -74,7 +74,7 @@ class Program(NamedTuple):
         return int(self.sizes[S_N])
 
 
-def _motion(motion: Motion | None) -> tuple[int, tuple[float, ...]]:
+def motion_code(motion: Motion | None) -> tuple[int, tuple[float, ...]]:
     if motion is None:
         return MOTION_NONE, ()
     if isinstance(motion, ConstantSpeed):
@@ -151,7 +151,7 @@ class _Rows:
     def add(self, r: int, spec: RowSpec, eq: Equation, reuse: bool) -> None:
         ints, reals = self.ints[r], self.reals[r]
         ints[K_KIND], ints[K_REUSE], ints[K_WIDTH] = spec.kind, reuse, eq.width
-        ints[K_MOTION], params = _motion(spec.motion)
+        ints[K_MOTION], params = motion_code(spec.motion)
         reals[X_MOTION : X_MOTION + len(params)] = params
         reals[X_CONSTANT] = spec.constant
         ints[K_SLOT_COL : K_SLOT_COL + eq.width] = eq.columns

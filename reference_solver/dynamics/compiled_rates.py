@@ -1,0 +1,123 @@
+"""The coordinate-partitioned ODE with its right-hand side in one compiled call (fast.rates): the
+same positions, rates and state as Partitioned, over the compiled constraint rows and force
+elements, with no Python between them. `partitioned_ode` gives it where the constraints are compiled
+(reference_solver.compiled_system) and every force element has a kernel, Partitioned otherwise."""
+
+from __future__ import annotations
+
+from types import ModuleType
+
+import numpy as np
+
+from reference_solver.compiled_system import CompiledSystem
+from reference_solver.dynamics.loads import Loads, LoadState
+from reference_solver.dynamics.partition import NEWTON_STEPS, RESIDUAL, STALLED, Partitioned, State
+from reference_solver.errors import ConvergenceError
+from reference_solver.fast import rates_kernels
+from reference_solver.fast.load_program import compile_loads
+from reference_solver.fast.program import WIDTH
+from reference_solver.fast.rows import NotCompiled
+from reference_solver.system import ConstraintSystem
+
+
+class CompiledPartitioned(Partitioned):
+    """Partitioned, its positions, state and rates evaluated by fast.rates.partitioned (`kernels`)."""
+
+    def __init__(
+        self,
+        system: CompiledSystem,
+        mass: np.ndarray,
+        loads: Loads,
+        q: np.ndarray,
+        independent: np.ndarray,
+        kernels: ModuleType,
+    ) -> None:
+        super().__init__(system, mass, loads, q, independent)
+        k = self.kernels = kernels
+        program, forces = system.kernels.program, compile_loads(loads.forces, system.layout, loads.gravity)
+        n, m, f = system.unknowns, system.size, independent.size
+        self.n, self.m = n, m
+        self.vec = np.zeros((k.VECTORS, n + m))
+        self.vec[k.Q, :n], self.vec[k.GRAVITY, :n], self.vec[k.MASS, :n] = q, forces.gravity, mass
+        self.vec[k.ROW_SCALE, :m], self.vec[k.COL_SCALE, :n] = system.row_scales, system.column_scales
+        self.vec[k.TOL, :2] = RESIDUAL, STALLED
+        self.index = np.zeros((k.INDICES, max(n, m, 6)), np.int64)
+        self.index[k.IND, :f], self.index[k.DEP, :m] = self.independent, self.dependent
+        drivers = int(system.offsets[len(system.scenario.joints)])
+        self.index[k.SIZES, [k.S_N, k.S_M, k.S_F, k.S_DRIVERS, k.S_NEWTON]] = n, m, f, drivers, NEWTON_STEPS
+        self.jacs = np.zeros((2, m * n))
+        side, width = max(m, f), max(len(system.layout.bodies), WIDTH)
+        matrices, work = np.zeros((k.MATRICES, side, side)), np.zeros((k.POINTS + 2, width))
+        self.arguments = (
+            *(program.ints, program.reals, forces.ints, forces.reals, self.index, self.vec, self.jacs),
+            *(matrices, work, np.zeros((2, 2, WIDTH)), np.zeros((0, 4, 2))),
+        )
+        self.nothing = np.zeros(0)
+        self.partitioned, self.outputs, self.level, self.ok = k.partitioned, 2 * f + 3, k.RATES, k.OK
+
+    def restart(self, q: np.ndarray) -> None:
+        self.vec[self.kernels.Q, : self.n] = q
+        self.index[self.kernels.SIZES, self.kernels.S_HAS_FACTORS] = 0
+
+    def _run(self, level: int, t: float, y: np.ndarray, out: np.ndarray) -> None:
+        status, residual = self.kernels.partitioned(level, t, y, out, *self.arguments)
+        if status != self.kernels.OK:
+            self._fail(status, t, residual)
+
+    def _fail(self, status: int, t: float, residual: float) -> None:
+        if status == self.kernels.NOT_CONVERGED:
+            raise ConvergenceError(
+                f"{self.system.scenario.name}: the dependent coordinates did not converge at t={t:.6g} "
+                f"(constraint residual {residual:.2g})",
+                time=t,
+                q=self.vec[self.kernels.QT, : self.n].copy(),
+            )
+        raise np.linalg.LinAlgError("the reduced mass matrix has an exactly zero pivot")
+
+    def conditioning(self, jac: np.ndarray) -> float:
+        return float(self.kernels.conditioning(np.ascontiguousarray(jac), self.index, self.vec))
+
+    def positions(self, t: float, q_independent: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        self._run(self.kernels.POSITIONS, float(t), np.ascontiguousarray(q_independent), self.nothing)
+        return self.vec[self.kernels.Q, : self.n].copy(), self.jacs[0].reshape(self.m, self.n).copy()
+
+    def state(self, t: float, y: np.ndarray) -> State:
+        k, n, m = self.kernels, self.n, self.m
+        self._run(k.STATE, float(t), np.ascontiguousarray(y), self.nothing)
+        vec = self.vec
+        potential, applied, dissipation = (float(v) for v in vec[k.TOTALS, :3])
+        loads = LoadState(vec[k.QE, :n].copy(), potential, applied, dissipation)
+        return State(
+            float(t),
+            vec[k.Q, :n].copy(),
+            vec[k.QD, :n].copy(),
+            vec[k.QDD, :n].copy(),
+            vec[k.LAM, :m].copy(),
+            self.jacs[0].reshape(m, n).copy(),
+            loads,
+        )
+
+    def rates(self, t: float, y: np.ndarray) -> np.ndarray:
+        """The right-hand side (y a column of a matrix where Radau differentiates it numerically)."""
+        self.evaluations += 1
+        if not y.flags.c_contiguous:
+            y = np.ascontiguousarray(y)  # one compiled version of the kernel: contiguous arrays
+        out = np.empty(self.outputs)
+        status, residual = self.partitioned(self.level, t, y, out, *self.arguments)
+        if status != self.ok:
+            self._fail(status, t, residual)
+        return out
+
+
+def partitioned_ode(
+    system: ConstraintSystem, mass: np.ndarray, loads: Loads, q: np.ndarray, independent: np.ndarray
+) -> Partitioned:
+    """CompiledPartitioned where the system is compiled and its loads compile, else Partitioned."""
+    if isinstance(system, CompiledSystem):
+        kernels, _ = rates_kernels()
+        if kernels is not None:
+            try:
+                return CompiledPartitioned(system, mass, loads, q, independent, kernels)
+            except NotCompiled:
+                pass
+    return Partitioned(system, mass, loads, q, independent)
