@@ -37,6 +37,7 @@ class ReferenceModel:
     mode: str = "newton"
     inverse: bool = False
     step: float | None = None
+    compiled: bool = True
 
 
 class ReferenceAdapter(Adapter):
@@ -70,6 +71,13 @@ class ReferenceAdapter(Adapter):
         Option("rtol", float, 0.0, 0.1, low_open=True, help="integrator relative tolerance (dynamics)"),
         Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="ALI3-P's largest step (dynamics)"),
         Option("inverse_dynamics", int, 0, 1, help="1: add driver forces, reactions and energies"),
+        Option(
+            "compiled",
+            int,
+            0,
+            1,
+            help="dynamics: 1 (default) the compiled right-hand side, 0 the plain Python one",
+        ),
     )
     dynamics = True
 
@@ -96,16 +104,13 @@ class ReferenceAdapter(Adapter):
             raise EngineFailure(f"mode '{setting.mode}' does not apply to {scenario.name} (known: {known})")
         tolerance = float(setting.get("rtol" if dynamic else "tolerance", 1e-12))
         step = float(setting.get("dt", ALI3P_STEP)) if setting.mode == ALI3P else None
-        return ReferenceModel(
-            scenario, tolerance, setting.mode, bool(setting.get("inverse_dynamics", 0)), step
-        )
+        inverse, compiled = bool(setting.get("inverse_dynamics", 0)), bool(setting.get("compiled", 1))
+        return ReferenceModel(scenario, tolerance, setting.mode, inverse, step, compiled)
 
     def simulate(self, model: ReferenceModel, times: np.ndarray) -> Trajectory:
         try:
             if model.scenario.analysis == "dynamic":
-                fast = (
-                    model.mode == ALI3P
-                )  # the compiled constraints: ALI3-P evaluates them at every iteration
+                fast = model.compiled or model.mode == ALI3P  # ALI3-P: compiled constraints either way
                 dynamic = simulate(model.scenario, times, model.tolerance, model.mode, fast, model.step)
                 self.count_steps(dynamic.evaluations)
                 return dynamic.trajectory()
