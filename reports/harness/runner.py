@@ -5,9 +5,12 @@ native solver refined; or the suite's own hook) is computed once on the scenario
 this process (with a time limit), so that the solver's JIT-compiled kernels are compiled once and
 inherited by the forked runs;
 each engine run (build timed apart, simulation timed as the minimum of repeats after a warm-up, by
-the adapter's base class) happens in a forked child with a time limit, and its errors against the
-truth are computed there too. A crash, a hang or a divergence costs that row only. Rows already
-stored are skipped unless `rerun`; the store is saved after each scenario-engine group.
+the adapter's base class) happens in a forked worker with a time limit, and its errors against the
+truth are computed there too. One worker, forked from this process once it has warmed the
+scenario, makes a group's runs one after another (reports.harness.isolation.Worker); a crash or a
+hang costs that row only, and the next run gets a new worker. Rows already
+stored are skipped unless `rerun`; the store is saved after a scenario-engine group when
+`RunOptions.save_interval` has passed since the last save, and at the end.
 `run_group` makes a group's rows without storing them, so that a Dask task
 (reports.harness.dask_backend) runs a group exactly as this runner does.
 """
@@ -16,8 +19,10 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import math
 import sys
 import threading
+import time
 from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -31,7 +36,7 @@ from adapters.base import Adapter, RunResult, Setting
 from reports.harness import provenance, stop
 from reports.harness.common_start import common_start
 from reports.harness.comparison import compare
-from reports.harness.isolation import run_here, run_isolated
+from reports.harness.isolation import Worker, run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.metrics import (
     HEADLINE_DEFINITION,
@@ -67,6 +72,10 @@ class RunOptions:
     keep_failures: bool = False  # keep stored failed/timeout rows instead of retrying them
     keep_stale: bool = False  # keep rows of another revision or engine version, marked stale
     truth_timeout: float = 600.0  # our own solver; its first call may compile its kernels
+    save_interval: float = 5.0
+    """Seconds between saves while running: a save costs a store generation (about 0.1 s), so rows
+    are saved after the group that ends this long after the last save, and always at the end (an
+    interrupt or a stop signal saves too); a hard kill loses at most this much work."""
 
 
 def reference_residual() -> Residual | None:
@@ -101,6 +110,8 @@ class Runner:
         self.planned: dict[str, Scenario] = {}
         """The scenarios of the last `run`, by name (as built for it: a file's, with its sets)."""
         self.revision = provenance.git_revision()
+        self.provenance = provenance.describe()  # machine, packages, revision: once, not per save
+        self.saved_at = -math.inf
         self.policy = ResumePolicy(options.rerun, options.keep_failures, options.keep_stale)
         self.stored = StoredRuns(store, self.revision, self.policy)
         for name in self.engines:
@@ -177,11 +188,15 @@ class Runner:
         self.made[str(row["status"])] += 1
 
     def _save(self, clean: bool = False) -> None:
+        """Save the store when it is due (RunOptions.save_interval), or now when `clean`."""
+        if not clean and time.monotonic() - self.saved_at < self.options.save_interval:
+            return
         versions = {
             name: (a if isinstance(a, str) else a._safe_version()) for name, a in self.adapters.items()
         }
         meta = {
-            **provenance.describe(),
+            **self.provenance,
+            "date": provenance.now(),
             "suite": self.suite,
             "engines": versions,
             "repeats": self.options.repeats,
@@ -198,6 +213,7 @@ class Runner:
             "scales": SCALE_DEFINITION,
         }
         self.store.save(meta, clean)
+        self.saved_at = time.monotonic()
 
 
 def _pair(group: Group) -> tuple[str, str]:
@@ -242,42 +258,54 @@ def run_group(
     done: Callable[[str], None] | None = None,
 ) -> list[Stored]:
     """The rows of one scenario-engine group: each job run isolated (a crash or a hang costs its
-    row), timed and compared with the truth; `done(label)` after each. Stores nothing, so that it
-    runs the same here and in a Dask task."""
+    row), timed and compared with the truth; `done(label)` after each. The runs are made one after
+    another by one forked worker (forked again after a crash or a timeout), forked after this
+    process has warmed the scenario. Stores nothing, so that it runs the same here and in a Dask
+    task."""
     timed_out: set[str] = set()
     out: list[Stored] = []
-    if jobs:
-        warm(group.scenario)  # before the first fork: every run inherits the kernels and the program
-    for setting, is_default in jobs:
-        if setting.mode in timed_out:
-            message = "not run: a cheaper setting of this mode hit the time limit"
-            out.append((failure(group, setting, is_default, "timeout", message), None))
-        else:
-            out.append(_run_one(group, setting, is_default, truth, options, residual, timed_out))
-        if done is not None:
-            done(setting.label)
+    if not jobs:
+        return out
+    warm(group.scenario)  # before the fork: the worker inherits the kernels and the program
+    measure = functools.partial(measured, group, truth, options, residual)
+    with Worker(measure) as worker:
+        for setting, is_default in jobs:
+            if setting.mode in timed_out:
+                message = "not run: a cheaper setting of this mode hit the time limit"
+                out.append((failure(group, setting, is_default, "timeout", message), None))
+            else:
+                out.append(_run_one(worker, group, setting, is_default, truth, options, timed_out))
+            if done is not None:
+                done(setting.label)
     return out
 
 
+Measured = tuple[RunResult, int, dict[str, float], tuple[str, ...], str]
+"""A run's result, its number of timed repeats, and its comparison (metrics, levels, note)."""
+
+
+def measured(
+    group: Group, truth: NamedTruth | str, opts: RunOptions, residual: Residual | None, setting: Setting
+) -> Measured:
+    """One run of the group at `setting`, timed and compared with the truth (in the worker)."""
+    scenario, adapter = group.scenario, group.adapter
+    assert adapter is not None
+    result, repeats = timed_run(adapter, scenario, setting, np.asarray(scenario.times()), opts)
+    against = truth.trajectory if isinstance(truth, NamedTruth) else truth
+    return (result, repeats, *compare(scenario, result, against, residual))
+
+
 def _run_one(
+    worker: Worker[Setting, Measured],
     group: Group,
     setting: Setting,
     is_default: bool,
     truth: NamedTruth | str,
     opts: RunOptions,
-    residual: Residual | None,
     timed_out: set[str],
 ) -> Stored:
-    scenario, adapter = group.scenario, group.adapter
-    assert adapter is not None
-    times = np.asarray(scenario.times())
-
-    def execute() -> tuple[RunResult, int, dict[str, float], tuple[str, ...], str]:
-        result, repeats = timed_run(adapter, scenario, setting, times, opts)
-        against = truth.trajectory if isinstance(truth, NamedTruth) else truth
-        return (result, repeats, *compare(scenario, result, against, residual))
-
-    outcome = run_isolated(execute, opts.timeout)
+    scenario = group.scenario
+    outcome = worker.call(setting, opts.timeout)
     if outcome.kind == "timeout":
         timed_out.add(setting.mode)
         return failure(group, setting, is_default, "timeout", outcome.message), None
