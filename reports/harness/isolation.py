@@ -79,19 +79,19 @@ class Worker(Generic[A, T]):
         try:
             self.tasks.send((CALL, argument))
             if not self.results.poll(timeout):
-                self._stop(kill=True)
+                self._stop("kill")
                 return Outcome("timeout", message=f"no result within the time limit of {timeout:g} s")
             kind, payload = self.results.recv()
         except (EOFError, BrokenPipeError):
-            exitcode = self._stop(kill=False)
+            exitcode = self._stop("reap")
             return Outcome("crash", message=_crash_message(exitcode, self.output))
         if kind == "ok":
             return Outcome("ok", value=payload)
         return Outcome("error", message=str(payload))
 
     def close(self) -> None:
-        """End the child (it leaves its loop when the pipe closes) and drop its output file."""
-        self._stop(kill=False)
+        """Release the child (it leaves its loop and exits on its own) and drop the output file."""
+        self._stop("release")
         self.output.close()
 
     def __enter__(self) -> Worker[A, T]:
@@ -99,7 +99,7 @@ class Worker(Generic[A, T]):
 
     def __exit__(self, kind: object, *exc: object) -> None:
         if kind is not None:  # interrupted (Ctrl-C, a stop signal), perhaps mid-call: no waiting
-            self._stop(kill=True)
+            self._stop("kill")
         self.close()
 
     def _start(self) -> None:
@@ -114,25 +114,28 @@ class Worker(Generic[A, T]):
         task_reader.close()
         result_writer.close()
 
-    def _stop(self, kill: bool) -> int | None:
-        """End the child (killed, or left to finish its loop) and close the pipes; its exit code."""
-        if self.child is None:
+    def _stop(self, how: Literal["kill", "reap", "release"]) -> int | None:
+        """End the child and close the pipes: killed (a timeout, an interrupt), reaped (it died:
+        its exit code), or released (told to leave its loop and not waited for: it exits while
+        this process goes on; multiprocessing reaps it at the next fork or at exit)."""
+        child, tasks, results = self.child, self.tasks, self.results
+        if child is None or tasks is None or results is None:
             return None
-        if self.tasks is not None:
-            if not kill:  # told, not left to see EOF: a sibling's fork may hold the pipe open
-                with contextlib.suppress(OSError):
-                    self.tasks.send((STOP, None))
-            self.tasks.close()
-        if kill:
-            self.child.kill()
-        self.child.join(None if kill else 5.0)
-        if self.child.exitcode is None:  # a child that does not leave its loop when told
-            self.child.kill()
-            self.child.join()
-        exitcode: int | None = self.child.exitcode
-        if self.results is not None:
-            self.results.close()
         self.child = self.tasks = self.results = None
+        if how == "release":  # told, not left to see EOF: a sibling's fork may hold the pipe open
+            with contextlib.suppress(OSError):
+                tasks.send((STOP, None))
+        if how == "kill":
+            child.kill()
+        tasks.close()
+        results.close()
+        if how == "release":
+            return None
+        child.join(5.0)
+        if child.exitcode is None:  # the pipe closed but the process lives on
+            child.kill()
+            child.join()
+        exitcode: int | None = child.exitcode
         return exitcode
 
 

@@ -4,20 +4,17 @@ For each scenario the truth (reports.harness.truth: the closed form where there 
 native solver refined; or the suite's own hook) is computed once on the scenario's grid, in
 this process (with a time limit), so that the solver's JIT-compiled kernels are compiled once and
 inherited by the forked runs;
-each engine run (build timed apart, simulation timed as the minimum of repeats after a warm-up, by
-the adapter's base class) happens in a forked worker with a time limit, and its errors against the
-truth are computed there too. One worker, forked from this process once it has warmed the
-scenario, makes a group's runs one after another (reports.harness.isolation.Worker); a crash or a
-hang costs that row only, and the next run gets a new worker. Rows already
-stored are skipped unless `rerun`; the store is saved after a scenario-engine group when
-`RunOptions.save_interval` has passed since the last save, and at the end.
-`run_group` makes a group's rows without storing them, so that a Dask task
-(reports.harness.dask_backend) runs a group exactly as this runner does.
+each scenario-engine group's runs are then made by reports.harness.group_runs.run_group (build
+timed apart, simulation timed as the minimum of repeats after a warm-up by the adapter's base class,
+errors against the truth computed beside it, all in one warm forked worker with a time limit per
+run): a crash, a hang or a divergence costs that row only. Rows already stored are skipped unless
+`rerun`; the store is saved after a group when `RunOptions.save_interval` has passed since the last
+save, and at the end. A Dask task (reports.harness.dask_backend) runs a group with the same
+`run_group`.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import math
 import sys
@@ -25,18 +22,17 @@ import threading
 import time
 from collections import Counter
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import tqdm
 
 import adapters
-from adapters.base import Adapter, RunResult, Setting
+from adapters.base import Adapter, Setting
 from reports.harness import provenance, stop
 from reports.harness.common_start import common_start
-from reports.harness.comparison import compare
-from reports.harness.isolation import Worker, run_here, run_isolated
+from reports.harness.group_runs import RunOptions, run_group
+from reports.harness.isolation import run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.metrics import (
     HEADLINE_DEFINITION,
@@ -45,37 +41,16 @@ from reports.harness.metrics import (
 from reports.harness.planning import Group, SettingsHook, plan_engine
 from reports.harness.results_store import ResultsStore
 from reports.harness.resume import ResumePolicy, StoredRuns
-from reports.harness.rows import failure_row, result_row
 from reports.harness.truth import NamedTruth, independent_truth, named
-from reports.harness.warm import warm
 from scenarios import Scenario, ScenarioError
 from scenarios import load as build_scenario
 from scenarios.trajectory import Trajectory
 
 TRUTH_TOLERANCE = 1e-12
-LONG_RUN = 0.25  # seconds: a simulation this long is timed once after the warm-up
 Truth = Callable[[Scenario, np.ndarray], Trajectory | NamedTruth]
 """A truth hook: the truth of a scenario on a grid; a bare trajectory is named HOOK_TRUTH."""
 HOOK_TRUTH = f"native, tolerance {TRUTH_TOLERANCE:g}"
 Loader = Callable[[str], Adapter]
-
-
-@dataclass(frozen=True)
-class RunOptions:
-    """How each engine run is made: `sweep` False runs only each engine's default setting."""
-
-    sweep: bool = True
-    repeats: int = 3
-    warmup: int = 1
-    timeout: float = 60.0
-    rerun: bool = False
-    keep_failures: bool = False  # keep stored failed/timeout rows instead of retrying them
-    keep_stale: bool = False  # keep rows of another revision or engine version, marked stale
-    truth_timeout: float = 600.0  # our own solver; its first call may compile its kernels
-    save_interval: float = 5.0
-    """Seconds between saves while running: a save costs a store generation (about 0.1 s), so rows
-    are saved after the group that ends this long after the last save, and always at the end (an
-    interrupt or a stop signal saves too); a hard kill loses at most this much work."""
 
 
 def reference_residual() -> Residual | None:
@@ -243,100 +218,3 @@ def solve_truth(truth: Truth, scenario: Scenario, timeout: float) -> NamedTruth 
     if outcome.kind != "ok" or outcome.value is None:
         return f"no reference truth ({outcome.kind}: {outcome.message})"
     return named(outcome.value, HOOK_TRUTH)
-
-
-Stored = tuple[dict[str, Any], Trajectory | None]
-"""A row and the trajectory kept with it (the default setting's, when ok)."""
-
-
-def run_group(
-    group: Group,
-    jobs: list[tuple[Setting, bool]],
-    truth: NamedTruth | str,
-    options: RunOptions,
-    residual: Residual | None,
-    done: Callable[[str], None] | None = None,
-) -> list[Stored]:
-    """The rows of one scenario-engine group: each job run isolated (a crash or a hang costs its
-    row), timed and compared with the truth; `done(label)` after each. The runs are made one after
-    another by one forked worker (forked again after a crash or a timeout), forked after this
-    process has warmed the scenario. Stores nothing, so that it runs the same here and in a Dask
-    task."""
-    timed_out: set[str] = set()
-    out: list[Stored] = []
-    if not jobs:
-        return out
-    warm(group.scenario)  # before the fork: the worker inherits the kernels and the program
-    measure = functools.partial(measured, group, truth, options, residual)
-    with Worker(measure) as worker:
-        for setting, is_default in jobs:
-            if setting.mode in timed_out:
-                message = "not run: a cheaper setting of this mode hit the time limit"
-                out.append((failure(group, setting, is_default, "timeout", message), None))
-            else:
-                out.append(_run_one(worker, group, setting, is_default, truth, options, timed_out))
-            if done is not None:
-                done(setting.label)
-    return out
-
-
-Measured = tuple[RunResult, int, dict[str, float], tuple[str, ...], str]
-"""A run's result, its number of timed repeats, and its comparison (metrics, levels, note)."""
-
-
-def measured(
-    group: Group, truth: NamedTruth | str, opts: RunOptions, residual: Residual | None, setting: Setting
-) -> Measured:
-    """One run of the group at `setting`, timed and compared with the truth (in the worker)."""
-    scenario, adapter = group.scenario, group.adapter
-    assert adapter is not None
-    result, repeats = timed_run(adapter, scenario, setting, np.asarray(scenario.times()), opts)
-    against = truth.trajectory if isinstance(truth, NamedTruth) else truth
-    return (result, repeats, *compare(scenario, result, against, residual))
-
-
-def _run_one(
-    worker: Worker[Setting, Measured],
-    group: Group,
-    setting: Setting,
-    is_default: bool,
-    truth: NamedTruth | str,
-    opts: RunOptions,
-    timed_out: set[str],
-) -> Stored:
-    scenario = group.scenario
-    outcome = worker.call(setting, opts.timeout)
-    if outcome.kind == "timeout":
-        timed_out.add(setting.mode)
-        return failure(group, setting, is_default, "timeout", outcome.message), None
-    if outcome.kind != "ok" or outcome.value is None:
-        return failure(group, setting, is_default, "failed", outcome.message), None
-    result, repeats, metrics, levels, note = outcome.value
-    row = result_row(scenario, result, is_default, repeats, opts.warmup, metrics, levels, note)
-    row["engine"] = group.engine  # the name it was asked by, whatever the adapter calls itself
-    row["truth"] = truth.name if isinstance(truth, NamedTruth) else ""
-    keep = result.trajectory if is_default and result.status == "ok" else None
-    return row, keep.select(scenario.output_bodies) if keep is not None else None
-
-
-def failure(group: Group, setting: Setting, is_default: bool, status: Any, message: str) -> dict[str, Any]:
-    """The row of a run of the group that produced nothing to compare."""
-    return failure_row(group.scenario, group.engine, group.version, setting, is_default, status, message)
-
-
-def timed_run(
-    adapter: Adapter, scenario: Scenario, setting: Setting, times: np.ndarray, opts: RunOptions
-) -> tuple[RunResult, int]:
-    """The adapter's run, timed as the minimum of `opts.repeats` after the warm-up, except that a
-    run longer than LONG_RUN is timed once (its timing noise is small against its length). Returns
-    the result and the number of timed repeats."""
-    first = adapter.run(scenario, setting, times, repeats=1, warmup=opts.warmup)
-    if first.status != "ok" or opts.repeats <= 1 or first.run_time > LONG_RUN:
-        return first, 1
-    more = adapter.run(scenario, setting, times, repeats=opts.repeats - 1, warmup=0)
-    if more.status != "ok":  # an engine that fails on a repeat of the same run: that is its result
-        return more, opts.repeats
-    best = dataclasses.replace(
-        first, run_time=min(first.run_time, more.run_time), build_time=min(first.build_time, more.build_time)
-    )
-    return best, opts.repeats
