@@ -1,11 +1,12 @@
-"""A scenario-engine group's runs: each made in the group's warm worker (reports.harness.isolation.
-Worker, forked once this process has warmed the scenario), timed as the minimum of repeats after a
-warm-up, compared with the truth there, and made into a row. A crash or a hang costs its own row;
-the next run gets a new worker. Stores nothing, so that a group runs the same in the Runner and in
-a Dask task."""
+"""A scenario-engine group's runs: each made in a warm worker (reports.harness.isolation.Worker,
+forked from this process once it has warmed the scenario, and kept for the engine's next groups),
+timed as the minimum of repeats after a warm-up, compared with the truth there, and made into a
+row. A crash or a hang costs its own row; the next run gets a new worker. Stores nothing, so that a
+group runs the same in the Runner and in a Dask task."""
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import functools
 from collections.abc import Callable
@@ -16,7 +17,7 @@ import numpy as np
 
 from adapters.base import Adapter, RunResult, Setting
 from reports.harness.comparison import compare
-from reports.harness.isolation import Worker
+from reports.harness.isolation import Outcome, Worker
 from reports.harness.metrics import Residual
 from reports.harness.planning import Group
 from reports.harness.rows import failure_row, result_row
@@ -57,25 +58,28 @@ def run_group(
     options: RunOptions,
     residual: Residual | None,
     done: Callable[[str], None] | None = None,
+    workers: Workers | None = None,
 ) -> list[Stored]:
     """The rows of one scenario-engine group: each job run isolated (a crash or a hang costs its
-    row), timed and compared with the truth; `done(label)` after each. The runs are made one after
-    another by one forked worker (forked again after a crash or a timeout), forked after this
-    process has warmed the scenario. Stores nothing, so that it runs the same here and in a Dask
-    task."""
+    row), timed and compared with the truth; `done(label)` after each. The runs are made by the
+    engine's warm worker in `workers` (kept for the next group; by default, a worker for this group
+    alone), forked after this process has warmed the scenario. Stores nothing, so that it runs the
+    same here and in a Dask task."""
     timed_out: set[str] = set()
     out: list[Stored] = []
     if not jobs:
         return out
-    warm(group.scenario)  # before the fork: the worker inherits the kernels and the program
-    measure = functools.partial(measured, group, truth, options, residual)
-    with Worker(measure) as worker:
+    warm(group.scenario)  # before a fork: a worker inherits the kernels and the program
+    with contextlib.ExitStack() as stack:
+        if workers is None:
+            workers = stack.enter_context(Workers(options, residual))
         for setting, is_default in jobs:
             if setting.mode in timed_out:
                 message = "not run: a cheaper setting of this mode hit the time limit"
                 out.append((failure(group, setting, is_default, "timeout", message), None))
             else:
-                out.append(_run_one(worker, group, setting, is_default, truth, options, timed_out))
+                outcome = workers.measure(group, truth, setting)
+                out.append(_stored(outcome, group, setting, is_default, truth, options, timed_out))
             if done is not None:
                 done(setting.label)
     return out
@@ -83,21 +87,62 @@ def run_group(
 
 Measured = tuple[RunResult, int, dict[str, float], tuple[str, ...], str]
 """A run's result, its number of timed repeats, and its comparison (metrics, levels, note)."""
+Order = tuple[tuple[Scenario, NamedTruth | str] | None, Setting]
+"""What a worker is sent for one run: the group's scenario and truth with the group's first run in
+that worker's child (None after: the child holds them), and the setting."""
 
 
-def measured(
-    group: Group, truth: NamedTruth | str, opts: RunOptions, residual: Residual | None, setting: Setting
+class Workers:
+    """Warm workers for the runs, one per engine adapter, kept from group to group: each forked
+    once (and again after a crash or a timeout), not once per group, with the adapter as this
+    process holds it. A worker is sent a group's scenario and truth (pickled, about 60 kB) with
+    the group's first run in its child. Use it as a context manager: leaving it ends the workers."""
+
+    def __init__(self, options: RunOptions, residual: Residual | None) -> None:
+        self.options, self.residual = options, residual
+        self.workers: dict[int, Worker[Order, Measured]] = {}
+        self.held: dict[int, Group] = {}
+        """By adapter: the group whose scenario and truth its worker's child holds."""
+
+    def measure(self, group: Group, truth: NamedTruth | str, setting: Setting) -> Outcome[Measured]:
+        """One run of the group at `setting` in the worker of the group's adapter."""
+        key = id(group.adapter)
+        worker = self.workers.get(key)
+        if worker is None:
+            measure = functools.partial(_measure, group.adapter, self.options, self.residual, {})
+            worker = self.workers[key] = Worker(measure)
+        holds = worker.ready and self.held.get(key) is group
+        self.held[key] = group
+        order: Order = (None if holds else (group.scenario, truth), setting)
+        return worker.call(order, self.options.timeout)
+
+    def __enter__(self) -> Workers:
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        for worker in self.workers.values():
+            worker.__exit__(*exc)
+        self.workers.clear()
+        self.held.clear()
+
+
+def _measure(
+    adapter: Adapter | None, opts: RunOptions, residual: Residual | None, held: dict[str, Any], order: Order
 ) -> Measured:
-    """One run of the group at `setting`, timed and compared with the truth (in the worker)."""
-    scenario, adapter = group.scenario, group.adapter
+    """One run, timed and compared with the truth (in the worker's child, which keeps the group's
+    scenario and truth in `held` for the group's next runs)."""
+    sent, setting = order
+    if sent is not None:
+        held["group"] = sent
+    scenario, truth = held["group"]
     assert adapter is not None
     result, repeats = timed_run(adapter, scenario, setting, np.asarray(scenario.times()), opts)
     against = truth.trajectory if isinstance(truth, NamedTruth) else truth
     return (result, repeats, *compare(scenario, result, against, residual))
 
 
-def _run_one(
-    worker: Worker[Setting, Measured],
+def _stored(
+    outcome: Outcome[Measured],
     group: Group,
     setting: Setting,
     is_default: bool,
@@ -105,8 +150,8 @@ def _run_one(
     opts: RunOptions,
     timed_out: set[str],
 ) -> Stored:
+    """The row of a run (and its trajectory when kept), from what became of it."""
     scenario = group.scenario
-    outcome = worker.call(setting, opts.timeout)
     if outcome.kind == "timeout":
         timed_out.add(setting.mode)
         return failure(group, setting, is_default, "timeout", outcome.message), None

@@ -69,6 +69,11 @@ class Worker(Generic[A, T]):
         self.forks = 0
         """How many children this worker has forked (one, unless calls crashed or timed out)."""
 
+    @property
+    def ready(self) -> bool:
+        """Whether a child is forked and waiting (the next call forks one otherwise)."""
+        return self.child is not None
+
     def call(self, argument: A, timeout: float) -> Outcome[T]:
         """`function(argument)` in the child, or what became of it."""
         if self.child is None:

@@ -6,11 +6,11 @@ this process (with a time limit), so that the solver's JIT-compiled kernels are 
 inherited by the forked runs;
 each scenario-engine group's runs are then made by reports.harness.group_runs.run_group (build
 timed apart, simulation timed as the minimum of repeats after a warm-up by the adapter's base class,
-errors against the truth computed beside it, all in one warm forked worker with a time limit per
-run): a crash, a hang or a divergence costs that row only. Rows already stored are skipped unless
-`rerun`; the store is saved after a group when `RunOptions.save_interval` has passed since the last
-save, and at the end. A Dask task (reports.harness.dask_backend) runs a group with the same
-`run_group`.
+errors against the truth computed beside it, in a warm forked worker per engine, kept from group
+to group, with a time limit per run): a crash, a hang or a divergence costs that row only. Rows
+already stored are skipped unless `rerun`; the store is saved after a group when
+`RunOptions.save_interval` has passed since the last save, and at the end. A Dask task
+(reports.harness.dask_backend) runs a group with the same `run_group`.
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ import adapters
 from adapters.base import Adapter, Setting
 from reports.harness import provenance, stop
 from reports.harness.common_start import common_start
-from reports.harness.group_runs import RunOptions, run_group
+from reports.harness.group_runs import RunOptions, Workers, run_group
 from reports.harness.isolation import run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.metrics import (
@@ -118,7 +118,8 @@ class Runner:
         """Run each group's pending jobs here, one after another (unavailable groups left out)."""
         total = sum(len(jobs) for _, jobs in groups)  # the bar counts runs: a truth is not one
         truths: dict[str, NamedTruth | str] = {}
-        with progress_bar(total, self.progress, "run") as bar:
+        workers = Workers(self.options, self.residual)  # one per engine, kept from group to group
+        with progress_bar(total, self.progress, "run") as bar, workers:
             for group, jobs in groups:
                 name = group.scenario.name
                 self._reconcile(group)
@@ -131,7 +132,8 @@ class Runner:
                     self._put_truth(group.scenario, truths[name])
                 done = functools.partial(tick, bar, f"{name} {group.engine}")
                 truth = truths.get(name, "")
-                for row, trajectory in run_group(group, jobs, truth, self.options, self.residual, done):
+                made = run_group(group, jobs, truth, self.options, self.residual, done, workers)
+                for row, trajectory in made:
                     self._add(row, trajectory)
                 self._save()
                 stop.raise_if_terminated()
