@@ -87,6 +87,7 @@ class Runner:
         self.revision = provenance.git_revision()
         self.provenance = provenance.describe()  # machine, packages, revision: once, not per save
         self.saved_at = -math.inf
+        """When the store was last saved (time.monotonic); a run counts its interval from its start."""
         self.policy = ResumePolicy(options.rerun, options.keep_failures, options.keep_stale)
         self.stored = StoredRuns(store, self.revision, self.policy)
         for name in self.engines:
@@ -99,7 +100,9 @@ class Runner:
     """Runs made at the same time (the `workers` column): one by one here."""
 
     def run(self, scenario_names: Sequence[str]) -> None:
-        """Plan every group, then run what is not stored yet, saving after each group."""
+        """Plan every group, then run what is not stored yet, saving as RunOptions.save_interval says
+        and at the end."""
+        self.saved_at = time.monotonic()
         groups = [g for name in scenario_names for g in self._plan(name)]
         self.planned = {g.scenario.name: g.scenario for g in groups}
         stored = self.stored = StoredRuns(self.store, self.revision, self.policy)
