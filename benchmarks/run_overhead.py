@@ -54,7 +54,7 @@ def work_of(out: Path) -> tuple[int, float, float]:
     return len(rows), compute, work
 
 
-def run_phase(names: list[str], engines: list[str], suite: Suite, out: Path) -> None:
+def run_phase(label: str, names: list[str], engines: list[str], suite: Suite, out: Path) -> None:
     """The per-run overhead of the run phase, in this process: wall - truths - work, per row."""
     spent = [0.0]
     truth = suite.truth or independent_truth
@@ -75,8 +75,9 @@ def run_phase(names: list[str], engines: list[str], suite: Suite, out: Path) -> 
     count, _, work = work_of(out)
     per_run = (seconds - spent[0] - work) / max(count, 1)
     print(
-        f"run phase in-process: {count} rows in {seconds:.2f} s, of which truths {spent[0]:.2f} s "
-        f"({1000 * spent[0] / max(len(names), 1):.0f} ms per point) and work {work:.3f} s; "
+        f"{label}, run phase in-process: {count} rows in {seconds:.2f} s, of which truths "
+        f"{spent[0]:.2f} s ({1000 * spent[0] / max(len(names), 1):.0f} ms per scenario) "
+        f"and work {work:.3f} s; "
         f"overhead {1000 * per_run:.1f} ms per run (target: at most 10)"
     )
 
@@ -132,8 +133,12 @@ def main(argv: list[str] | None = None) -> None:
         print(f"one-point solve of {args.scenario}: {solve:.2f} s wall")
         print(f"sweep wall / one-point solve wall: {native['wall'] / solve:.1f}x (target: at most 3x)")
         specs = args.sweep or [f"omega=lin:10:40:{args.points}"]
+        swept = points([args.scenario], specs)
         suite = suite_named(args.suite or "default")
-        run_phase(points([args.scenario], specs), args.engines.split(","), suite, base / "in-process")
+        run_phase("sweep", swept, args.engines.split(","), suite, base / "in-process")
+        if args.scenarios:
+            engines = args.suite_engines.split(",")
+            run_phase("default suite", names, engines, suite_named("default"), base / "suite-in-process")
 
 
 if __name__ == "__main__":
