@@ -12,6 +12,10 @@ Each case runs the command line in a fresh interpreter into an empty directory, 
 A run that fails (a singular position, a timeout) stores no times: its work counts as overhead.
 Beside them, the wall time of a one-point `mbxval solve` of the same scenario, for the ratio the
 issue's target names (the native sweep in at most 3 times a one-point solve).
+
+The per-run overhead the issue bounds (10 ms beyond the run's own time) is measured apart, on the
+same sweep run by a Runner in this process: its run phase (no start-up, no report), less the
+truths' time (one per sweep point, timed apart) and the work, over the rows.
 """
 
 from __future__ import annotations
@@ -23,8 +27,15 @@ import tempfile
 import time
 from pathlib import Path
 
-from reports.harness.results_store import read_results
-from reports.harness.suites import main_scenarios
+import numpy as np
+
+from reports.harness.results_store import ResultsStore, read_results
+from reports.harness.runner import Runner, RunOptions
+from reports.harness.suites import Suite, main_scenarios
+from reports.harness.suites import get as suite_named
+from reports.harness.sweep import points
+from reports.harness.truth import NamedTruth, independent_truth
+from scenarios import Scenario, Trajectory
 
 
 def wall(arguments: list[str]) -> float:
@@ -34,15 +45,49 @@ def wall(arguments: list[str]) -> float:
     return time.perf_counter() - start
 
 
-def measure(label: str, arguments: list[str], out: Path) -> dict[str, float]:
-    seconds = wall(["run", *arguments, "--out", str(out), "--quiet"])
+def work_of(out: Path) -> tuple[int, float, float]:
+    """Rows, compute and work of a results store (see the module's docstring)."""
     rows, _ = read_results(out)
     build, run = rows["build_time"].fillna(0), rows["run_time"].fillna(0)  # a failed run times nothing
     compute = float((build + run).sum())
     work = float((build + run * (rows["warmup"].fillna(0) + rows["repeats"].fillna(1))).sum())
-    per_run = (seconds - work) / max(len(rows), 1)
+    return len(rows), compute, work
+
+
+def run_phase(label: str, names: list[str], engines: list[str], suite: Suite, out: Path) -> None:
+    """The per-run overhead of the run phase, in this process: wall - truths - work, per row."""
+    spent = [0.0]
+    truth = suite.truth or independent_truth
+
+    def timed_truth(scenario: Scenario, times: np.ndarray) -> Trajectory | NamedTruth:
+        start = time.perf_counter()
+        try:
+            return truth(scenario, times)
+        finally:
+            spent[0] += time.perf_counter() - start
+
+    options = RunOptions(suite.sweep, suite.repeats, suite.warmup, suite.timeout)
+    store = ResultsStore(out)
+    runner = Runner(store, engines, options, truth=timed_truth, progress=False, settings=suite.settings)
+    start = time.perf_counter()
+    runner.run(names)
+    seconds = time.perf_counter() - start
+    count, _, work = work_of(out)
+    per_run = (seconds - spent[0] - work) / max(count, 1)
     print(
-        f"{label:<28} {len(rows):5d} {seconds:8.2f} {compute:9.3f} {work:8.3f} "
+        f"{label}, run phase in-process: {count} rows in {seconds:.2f} s, of which truths "
+        f"{spent[0]:.2f} s ({1000 * spent[0] / max(len(names), 1):.0f} ms per scenario) "
+        f"and work {work:.3f} s; "
+        f"overhead {1000 * per_run:.1f} ms per run (target: at most 10)"
+    )
+
+
+def measure(label: str, arguments: list[str], out: Path) -> dict[str, float]:
+    seconds = wall(["run", *arguments, "--out", str(out), "--quiet"])
+    count, compute, work = work_of(out)
+    per_run = (seconds - work) / max(count, 1)
+    print(
+        f"{label:<28} {count:5d} {seconds:8.2f} {compute:9.3f} {work:8.3f} "
         f"{seconds / compute:9.1f} {seconds / work:8.1f} {1000 * per_run:10.1f}"
     )
     return {"wall": seconds, "work": work}
@@ -85,8 +130,15 @@ def main(argv: list[str] | None = None) -> None:
             chosen = [a for n in names for a in ("--scenario", n)]
             measure(f"default suite, {len(names)} scen.", [*chosen, *suite_engines], base / "suite")
         solve = wall(["solve", args.scenario, "--out", str(base / "solve.csv")])
-    print(f"one-point solve of {args.scenario}: {solve:.2f} s wall")
-    print(f"sweep wall / one-point solve wall: {native['wall'] / solve:.1f}x (target: at most 3x)")
+        print(f"one-point solve of {args.scenario}: {solve:.2f} s wall")
+        print(f"sweep wall / one-point solve wall: {native['wall'] / solve:.1f}x (target: at most 3x)")
+        specs = args.sweep or [f"omega=lin:10:40:{args.points}"]
+        swept = points([args.scenario], specs)
+        suite = suite_named(args.suite or "default")
+        run_phase("sweep", swept, args.engines.split(","), suite, base / "in-process")
+        if args.scenarios:
+            engines = args.suite_engines.split(",")
+            run_phase("default suite", names, engines, suite_named("default"), base / "suite-in-process")
 
 
 if __name__ == "__main__":

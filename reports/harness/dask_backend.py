@@ -24,19 +24,10 @@ from collections.abc import Iterator, Sequence
 from typing import Any
 
 from adapters.base import Setting
+from reports.harness.group_runs import RunOptions, Stored, failure, run_group
 from reports.harness.metrics import Residual
 from reports.harness.planning import Group
-from reports.harness.runner import (
-    Loader,
-    Runner,
-    RunOptions,
-    Stored,
-    Truth,
-    failure,
-    progress_bar,
-    run_group,
-    solve_truth,
-)
+from reports.harness.runner import Loader, Runner, Truth, progress_bar, solve_truth
 from reports.harness.truth import NamedTruth
 from scenarios import Scenario
 

@@ -4,35 +4,36 @@ For each scenario the truth (reports.harness.truth: the closed form where there 
 native solver refined; or the suite's own hook) is computed once on the scenario's grid, in
 this process (with a time limit), so that the solver's JIT-compiled kernels are compiled once and
 inherited by the forked runs;
-each engine run (build timed apart, simulation timed as the minimum of repeats after a warm-up, by
-the adapter's base class) happens in a forked child with a time limit, and its errors against the
-truth are computed there too. A crash, a hang or a divergence costs that row only. Rows already
-stored are skipped unless `rerun`; the store is saved after each scenario-engine group.
-`run_group` makes a group's rows without storing them, so that a Dask task
-(reports.harness.dask_backend) runs a group exactly as this runner does.
+each scenario-engine group's runs are then made by reports.harness.group_runs.run_group (build
+timed apart, simulation timed as the minimum of repeats after a warm-up by the adapter's base class,
+errors against the truth computed beside it, in a warm forked worker per engine, kept from group
+to group, with a time limit per run): a crash, a hang or a divergence costs that row only. Rows
+already stored are skipped unless `rerun`; the store is saved after a group when
+`RunOptions.save_interval` has passed since the last save, and at the end. A Dask task
+(reports.harness.dask_backend) runs a group with the same `run_group`.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import functools
+import math
 import sys
 import threading
+import time
 from collections import Counter
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import tqdm
 
 import adapters
-from adapters.base import Adapter, RunResult, Setting
+from adapters.base import Adapter, Setting
 from reports.harness import provenance, stop
 from reports.harness.common_start import common_start
-from reports.harness.comparison import measure
 from reports.harness.engine_facts import colours, engine_packages
 from reports.harness.forces import TRUTH_TOLERANCE
+from reports.harness.group_runs import RunOptions, Workers, run_group
 from reports.harness.isolation import run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.metrics import (
@@ -42,32 +43,15 @@ from reports.harness.metrics import (
 from reports.harness.planning import Group, SettingsHook, plan_engine
 from reports.harness.results_store import ResultsStore
 from reports.harness.resume import ResumePolicy, StoredRuns
-from reports.harness.rows import failure_row, result_row
 from reports.harness.truth import NamedTruth, independent_truth, named
-from reports.harness.warm import warm
 from scenarios import Scenario, ScenarioError
 from scenarios import load as build_scenario
 from scenarios.trajectory import Trajectory
 
-LONG_RUN = 0.25  # seconds: a simulation this long is timed once after the warm-up
 Truth = Callable[[Scenario, np.ndarray], Trajectory | NamedTruth]
 """A truth hook: the truth of a scenario on a grid; a bare trajectory is named HOOK_TRUTH."""
 HOOK_TRUTH = f"native, tolerance {TRUTH_TOLERANCE:g}"
 Loader = Callable[[str], Adapter]
-
-
-@dataclass(frozen=True)
-class RunOptions:
-    """How each engine run is made: `sweep` False runs only each engine's default setting."""
-
-    sweep: bool = True
-    repeats: int = 3
-    warmup: int = 1
-    timeout: float = 60.0
-    rerun: bool = False
-    keep_failures: bool = False  # keep stored failed/timeout rows instead of retrying them
-    keep_stale: bool = False  # keep rows of another revision or engine version, marked stale
-    truth_timeout: float = 600.0  # our own solver; its first call may compile its kernels
 
 
 def reference_residual() -> Residual | None:
@@ -102,6 +86,11 @@ class Runner:
         self.planned: dict[str, Scenario] = {}
         """The scenarios of the last `run`, by name (as built for it: a file's, with its sets)."""
         self.revision = provenance.git_revision()
+        self.provenance = provenance.describe(
+            engine_packages()
+        )  # machine, packages, revision: once, not per save
+        self.saved_at = -math.inf
+        """When the store was last saved (time.monotonic); a run counts its interval from its start."""
         self.policy = ResumePolicy(options.rerun, options.keep_failures, options.keep_stale)
         self.stored = StoredRuns(store, self.revision, self.policy)
         for name in self.engines:
@@ -114,7 +103,9 @@ class Runner:
     """Runs made at the same time (the `workers` column): one by one here."""
 
     def run(self, scenario_names: Sequence[str]) -> None:
-        """Plan every group, then run what is not stored yet, saving after each group."""
+        """Plan every group, then run what is not stored yet, saving as RunOptions.save_interval says
+        and at the end."""
+        self.saved_at = time.monotonic()
         groups = [g for name in scenario_names for g in self._plan(name)]
         self.planned = {g.scenario.name: g.scenario for g in groups}
         stored = self.stored = StoredRuns(self.store, self.revision, self.policy)
@@ -133,7 +124,8 @@ class Runner:
         """Run each group's pending jobs here, one after another (unavailable groups left out)."""
         total = sum(len(jobs) for _, jobs in groups)  # the bar counts runs: a truth is not one
         truths: dict[str, NamedTruth | str] = {}
-        with progress_bar(total, self.progress, "run") as bar:
+        workers = Workers(self.options, self.residual)  # one per engine, kept from group to group
+        with progress_bar(total, self.progress, "run") as bar, workers:
             for group, jobs in groups:
                 name = group.scenario.name
                 self._reconcile(group)
@@ -146,7 +138,8 @@ class Runner:
                     self._put_truth(group.scenario, truths[name])
                 done = functools.partial(tick, bar, f"{name} {group.engine}")
                 truth = truths.get(name, "")
-                for row, trajectory in run_group(group, jobs, truth, self.options, self.residual, done):
+                made = run_group(group, jobs, truth, self.options, self.residual, done, workers)
+                for row, trajectory in made:
                     self._add(row, trajectory)
                 self._save()
                 stop.raise_if_terminated()
@@ -178,11 +171,15 @@ class Runner:
         self.made[str(row["status"])] += 1
 
     def _save(self, clean: bool = False) -> None:
+        """Save the store when it is due (RunOptions.save_interval), or now when `clean`."""
+        if not clean and time.monotonic() - self.saved_at < self.options.save_interval:
+            return
         versions = {
             name: (a if isinstance(a, str) else a._safe_version()) for name, a in self.adapters.items()
         }
         meta = {
-            **provenance.describe(engine_packages()),
+            **self.provenance,
+            "date": provenance.now(),
             "suite": self.suite,
             "engines": versions,
             "engine_colours": colours(self.engines),
@@ -200,6 +197,7 @@ class Runner:
             "scales": SCALE_DEFINITION,
         }
         self.store.save(meta, clean)
+        self.saved_at = time.monotonic()
 
 
 def _pair(group: Group) -> tuple[str, str]:
@@ -229,88 +227,3 @@ def solve_truth(truth: Truth, scenario: Scenario, timeout: float) -> NamedTruth 
     if outcome.kind != "ok" or outcome.value is None:
         return f"no reference truth ({outcome.kind}: {outcome.message})"
     return named(outcome.value, HOOK_TRUTH)
-
-
-Stored = tuple[dict[str, Any], Trajectory | None]
-"""A row and the trajectory kept with it (the default setting's, when ok)."""
-
-
-def run_group(
-    group: Group,
-    jobs: list[tuple[Setting, bool]],
-    truth: NamedTruth | str,
-    options: RunOptions,
-    residual: Residual | None,
-    done: Callable[[str], None] | None = None,
-) -> list[Stored]:
-    """The rows of one scenario-engine group: each job run isolated (a crash or a hang costs its
-    row), timed and compared with the truth; `done(label)` after each. Stores nothing, so that it
-    runs the same here and in a Dask task."""
-    timed_out: set[str] = set()
-    out: list[Stored] = []
-    if jobs:
-        warm(group.scenario)  # before the first fork: every run inherits the kernels and the program
-    for setting, is_default in jobs:
-        if setting.mode in timed_out:
-            message = "not run: a cheaper setting of this mode hit the time limit"
-            out.append((failure(group, setting, is_default, "timeout", message), None))
-        else:
-            out.append(_run_one(group, setting, is_default, truth, options, residual, timed_out))
-        if done is not None:
-            done(setting.label)
-    return out
-
-
-def _run_one(
-    group: Group,
-    setting: Setting,
-    is_default: bool,
-    truth: NamedTruth | str,
-    opts: RunOptions,
-    residual: Residual | None,
-    timed_out: set[str],
-) -> Stored:
-    scenario, adapter = group.scenario, group.adapter
-    assert adapter is not None
-    times = np.asarray(scenario.times())
-
-    def execute() -> tuple[RunResult, int, dict[str, float], tuple[str, ...], str]:
-        result, repeats = timed_run(adapter, scenario, setting, times, opts)
-        against = truth.trajectory if isinstance(truth, NamedTruth) else truth
-        return (result, repeats, *measure(scenario, result, against, residual))
-
-    outcome = run_isolated(execute, opts.timeout)
-    if outcome.kind == "timeout":
-        timed_out.add(setting.mode)
-        return failure(group, setting, is_default, "timeout", outcome.message), None
-    if outcome.kind != "ok" or outcome.value is None:
-        return failure(group, setting, is_default, "failed", outcome.message), None
-    result, repeats, metrics, levels, note = outcome.value
-    row = result_row(scenario, result, is_default, repeats, opts.warmup, metrics, levels, note)
-    row["engine"] = group.engine  # the name it was asked by, whatever the adapter calls itself
-    row["truth"] = truth.name if isinstance(truth, NamedTruth) else ""
-    keep = result.trajectory if is_default and result.status == "ok" else None
-    return row, keep.select(scenario.output_bodies) if keep is not None else None
-
-
-def failure(group: Group, setting: Setting, is_default: bool, status: Any, message: str) -> dict[str, Any]:
-    """The row of a run of the group that produced nothing to compare."""
-    return failure_row(group.scenario, group.engine, group.version, setting, is_default, status, message)
-
-
-def timed_run(
-    adapter: Adapter, scenario: Scenario, setting: Setting, times: np.ndarray, opts: RunOptions
-) -> tuple[RunResult, int]:
-    """The adapter's run, timed as the minimum of `opts.repeats` after the warm-up, except that a
-    run longer than LONG_RUN is timed once (its timing noise is small against its length). Returns
-    the result and the number of timed repeats."""
-    first = adapter.run(scenario, setting, times, repeats=1, warmup=opts.warmup)
-    if first.status != "ok" or opts.repeats <= 1 or first.run_time > LONG_RUN:
-        return first, 1
-    more = adapter.run(scenario, setting, times, repeats=opts.repeats - 1, warmup=0)
-    if more.status != "ok":  # an engine that fails on a repeat of the same run: that is its result
-        return more, opts.repeats
-    best = dataclasses.replace(
-        first, run_time=min(first.run_time, more.run_time), build_time=min(first.build_time, more.build_time)
-    )
-    return best, opts.repeats

@@ -4,9 +4,11 @@ scenario's instruction table built before any run's clock starts.
 A forked run inherits what its parent holds, and loses what it loads itself. The native solver loads
 its compiled kernels (numba's on-disk cache) at its first call, about 0.65 s, and builds a scenario's
 program at its first solve of that scenario: a child forked from a cold parent paid both on every
-run. Warmed here once per process and once per scenario, every forked run starts with them.
+run. Warmed here once per process and once per scenario, every forked worker starts with them (a
+worker kept for later groups builds a later scenario's program in its own untimed warm-up run).
 
-The warm-up is our own solver on the scenario's first two grid times, run like the truth (in the
+The warm-up is our own solver on the scenario's first two grid times and the constraint residual
+on them (every run's comparison measures it, with the dense kernels), run like the truth (in the
 runner's process with a time limit when that is the main thread; a Dask worker's task thread, where
 no alarm can be set, calls it directly: two grid times, a bounded Newton loop). Its failure is
 ignored: a run that cannot be made then fails on its own, with its own message.
@@ -58,11 +60,15 @@ def warm_kernels() -> None:
 
 
 def _solve_start(scenario: Scenario, timeout: float) -> None:
-    from reference_solver import analyse
+    from reference_solver import analyse, constraint_residual
 
     times = np.asarray(scenario.times(), dtype=float)[:2]
+
+    def start() -> None:  # the residual too: every run's comparison measures it with the kernels
+        constraint_residual(scenario, analyse(scenario, times).trajectory())
+
     if threading.current_thread() is threading.main_thread():
-        run_here(lambda: analyse(scenario, times), timeout)
+        run_here(start, timeout)
         return
     with contextlib.suppress(Exception):  # the run meets the same problem and reports it
-        analyse(scenario, times)
+        start()

@@ -19,7 +19,7 @@ from reports.harness.runner import Runner, RunOptions
 from tests.support.fake_engine import GOOD, FakeAdapter, fake_truth
 
 SCENARIOS = ["slider_crank", "four_bar"]
-OPTIONS = RunOptions(repeats=1, warmup=0, timeout=10.0)
+OPTIONS = RunOptions(repeats=1, warmup=0, timeout=10.0, save_interval=0.0)  # a save per group
 KILLS = 20
 COMPARED = ("status", "error", "is_default", "mode")
 

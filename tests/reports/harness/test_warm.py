@@ -76,11 +76,11 @@ def test_a_crash_and_a_hang_after_the_warm_up_cost_their_own_rows(tmp_path: Path
 COLD = """
 import sys
 from pathlib import Path
-import reports.harness.runner as runner
+import reports.harness.group_runs as group_runs
 from reports.harness.results_store import ResultsStore
 from reports.harness.runner import Runner, RunOptions
 if sys.argv[2] == "cold":
-    runner.warm = lambda scenario: None  # the previous path: every forked run loads the kernels
+    group_runs.warm = lambda scenario: None  # the previous path: the forked runs load the kernels
 options = RunOptions(sweep=True, repeats=1, warmup=0)
 Runner(ResultsStore(Path(sys.argv[1])), ["reference"], options, progress=False).run(
     ["four_bar[omega=12]", "slider_crank"]

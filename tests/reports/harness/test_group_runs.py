@@ -1,0 +1,46 @@
+"""A group's runs in warm workers kept from group to group: one fork serves every group of an
+engine, each group's runs are measured against that group's own scenario and truth, and a crash
+costs its own row, the next run being sent its group again in a new worker."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from adapters.base import Setting
+from reports.harness.common_start import common_start
+from reports.harness.group_runs import RunOptions, Workers, run_group
+from reports.harness.planning import plan_engine
+from reports.harness.truth import NamedTruth
+from scenarios import load as build_scenario
+from tests.support.fake_engine import GOOD, FakeAdapter, fake_truth
+
+OPTIONS = RunOptions(repeats=1, warmup=0, timeout=10.0)
+
+
+def crash_between(scenario, adapter):  # type: ignore[no-untyped-def]
+    return [GOOD[0], Setting.of("crash"), GOOD[1]]
+
+
+def test_one_worker_serves_every_group_of_an_engine(tmp_path: Path) -> None:
+    adapter = FakeAdapter(tmp_path / "log")
+    groups = []
+    for name in ("slider_crank", "four_bar", "slider_crank[offset=0.05]"):  # other bodies, grids
+        scenario = common_start(build_scenario(name))
+        groups.append(plan_engine(scenario, "fake", adapter, True, crash_between))
+    with Workers(OPTIONS, None) as workers:
+        made = []
+        for group in groups:
+            truth = NamedTruth(fake_truth(group.scenario, np.asarray(group.scenario.times())), "fake")
+            made += run_group(group, group.jobs, truth, OPTIONS, None, workers=workers)
+        (worker,) = workers.workers.values()
+        assert worker.forks == 1 + len(groups)  # the first, then one after each crash
+    statuses = [row["status"] for row, _ in made]
+    assert statuses == ["ok", "failed", "ok"] * len(groups)
+    for row, _ in made:
+        if row["status"] == "ok":  # measured against its own group's truth: the fake's error, dt
+            assert np.isclose(row["position_length_max"], float(row["setting"].split("=")[1]), rtol=1e-12)
+        else:
+            assert "SIGSEGV" in row["message"]
+    assert [row["scenario"] for row, _ in made][::3] == [g.scenario.name for g in groups]
