@@ -11,9 +11,12 @@ from typing import TypeVar
 T = TypeVar("T")
 
 
-def fastest(action: Callable[[], T], repeats: int = 1, warmup: int = 0, number: int = 1) -> tuple[float, T]:
+def fastest(
+    action: Callable[[], T], repeats: int = 1, warmup: int = 0, number: int = 1, once_above: float = math.inf
+) -> tuple[float, T]:
     """(seconds per call, the last call's result): `warmup` untimed calls, then the minimum over
-    `repeats` (at least one) of the time of `number` calls, divided by `number`."""
+    `repeats` (at least one) of the time of `number` calls, divided by `number`; a first timed
+    call longer than `once_above` seconds is the only one (its noise is small against its length)."""
     for _ in range(warmup):
         action()
     best = math.inf
@@ -23,4 +26,6 @@ def fastest(action: Callable[[], T], repeats: int = 1, warmup: int = 0, number: 
         for _ in range(max(1, number)):
             result = action()
         best = min(best, (time.perf_counter() - start) / max(1, number))
+        if best > once_above:
+            break
     return best, result

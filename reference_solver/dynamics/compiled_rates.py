@@ -61,6 +61,9 @@ class CompiledPartitioned(Partitioned):
 
     def _run(self, level: int, t: float, y: np.ndarray, out: np.ndarray) -> None:
         status, residual = self.kernels.partitioned(level, t, y, out, *self.arguments)
+        if status == self.kernels.NOT_CONVERGED:  # once more by plain Newton from the last converged q
+            self.index[self.kernels.SIZES, self.kernels.S_HAS_FACTORS] = 0
+            status, residual = self.kernels.partitioned(level, t, y, out, *self.arguments)
         if status != self.kernels.OK:
             self._fail(status, t, residual)
 

@@ -7,7 +7,6 @@ group runs the same in the Runner and in a Dask task."""
 from __future__ import annotations
 
 import contextlib
-import dataclasses
 import functools
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -173,16 +172,12 @@ def failure(group: Group, setting: Setting, is_default: bool, status: Any, messa
 def timed_run(
     adapter: Adapter, scenario: Scenario, setting: Setting, times: np.ndarray, opts: RunOptions
 ) -> tuple[RunResult, int]:
-    """The adapter's run, timed as the minimum of `opts.repeats` after the warm-up, except that a
-    run longer than LONG_RUN is timed once (its timing noise is small against its length). Returns
-    the result and the number of timed repeats."""
-    first = adapter.run(scenario, setting, times, repeats=1, warmup=opts.warmup)
-    if first.status != "ok" or opts.repeats <= 1 or first.run_time > LONG_RUN:
-        return first, 1
-    more = adapter.run(scenario, setting, times, repeats=opts.repeats - 1, warmup=0)
-    if more.status != "ok":  # an engine that fails on a repeat of the same run: that is its result
-        return more, opts.repeats
-    best = dataclasses.replace(
-        first, run_time=min(first.run_time, more.run_time), build_time=min(first.build_time, more.build_time)
+    """The adapter's run (one build), timed as the minimum of `opts.repeats` after the warm-up,
+    except that a run longer than LONG_RUN is timed once (its timing noise is small against its
+    length). Returns the result and the number of timed repeats."""
+    result = adapter.run(
+        scenario, setting, times, repeats=opts.repeats, warmup=opts.warmup, once_above=LONG_RUN
     )
-    return best, opts.repeats
+    if result.status != "ok" or result.run_time > LONG_RUN:
+        return result, 1
+    return result, max(1, opts.repeats)
