@@ -167,9 +167,21 @@ def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = 
             ResultsStore(out), selection.engines, selection.options, **arguments, **vars(backend)
         )
     runner.run(selection.names)
+    record_verdicts(out, suite.name)
     if draw:
         _draw(out, runner.planned.values())
     return runner.made
+
+
+def record_verdicts(out: Path, suite: str) -> None:
+    """Decide, now the suite's runs are stored, what the report shows of them and store it with
+    them (reports.stress.recording): the stored results read back as a report reads them, so that a
+    verdict is the one the stored trajectories give. The caller holds the store's writer lock."""
+    from reports.stress import recording as stress_recording  # the native solver: imported when needed
+
+    store = ResultsStore(out)
+    if stress_recording.record(store, suite):
+        store.save(store.meta, clean=True)
 
 
 def _draw(out: Path, planned: Iterable[Scenario]) -> None:

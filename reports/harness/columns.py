@@ -21,6 +21,44 @@ class Column:
     meaning: str
 
 
+LOST = 0.1
+"""A verdict says `drifted` where the run is farther than this from the truth and from every closure
+(lengths in characteristic lengths, angles in radians; reports.stress.branch_check)."""
+NOT_RECORDED = "not recorded"
+"""What a report shows for a column its store does not hold (written before the column existed)."""
+VERDICT_COLUMNS: tuple[Column, ...] = (
+    Column(
+        "verdict",
+        "",
+        "what became of the run, decided when the run was made: the stability verdict of a stress "
+        "case's row or a swept point's default (reports.stress.stability_map, with its branch check), "
+        "of a dynamics map cell (reports.dynamics.stability); '' where none is made or not recorded",
+    ),
+    Column("verdict_time", math.nan, "when the verdict's event happened (a failure, leaving the branch), s"),
+    Column("verdict_error", math.nan, "the largest headline error where the truth exists, as judged"),
+    Column("verdict_detail", "", "how the verdict was reached (the closure found, a false alarm, ...)"),
+    Column("case_rank", -1, "stress suite: the case's place in reports.stress.cases; -1 off a case"),
+    Column("case_probes", "", "stress suite: what the case probes"),
+    Column(
+        "case_singular_time", math.nan, "stress suite: closed-form time of the first singular configuration"
+    ),
+    Column("case_nominal", "", "stress suite: the nominal scenario the case is a similarity of"),
+    *(
+        Column(
+            f"{quantity}_{turn}_rev",
+            math.nan,
+            f"long-horizon case: largest {what} over the {turn} revolution",
+        )
+        for quantity, what in (("error", "headline error"), ("residual", "constraint residual"))
+        for turn in ("first", "last")
+    ),
+    Column(
+        "angle_error_end", math.nan, "long-horizon case: the largest body angle error at the last time, rad"
+    ),
+)
+"""Columns a report shows as stored, decided when the run was made (appended: older stores lack them)."""
+
+
 DECLARED: tuple[Column, ...] = (
     Column("scenario", "", "scenario name, family/variant"),
     Column("family", "", "mechanism family"),
@@ -94,6 +132,7 @@ DECLARED: tuple[Column, ...] = (
     Column("recorded_at", "", "when the row was made (UTC)"),
     Column("revision", "", "git revision the row was made under (harness.resume)"),
     Column("stale", False, "kept by a resume under another revision or engine version (--keep-stale)"),
+    *VERDICT_COLUMNS,
 )
 COLUMNS: tuple[str, ...] = tuple(c.name for c in DECLARED)
 
