@@ -175,12 +175,14 @@ def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = 
 
 def record_verdicts(out: Path, suite: str) -> None:
     """Decide, now the suite's runs are stored, what the report shows of them and store it with
-    them (reports.stress.recording): the stored results read back as a report reads them, so that a
-    verdict is the one the stored trajectories give. The caller holds the store's writer lock."""
-    from reports.stress import recording as stress_recording  # the native solver: imported when needed
+    them (reports.stress.recording, reports.dynamics.recording): the stored results read back as a
+    report reads them, so that a verdict is the one the stored trajectories give. The caller holds
+    the store's writer lock."""
+    from reports.dynamics import recording as dynamics_recording  # the native solver: imported when needed
+    from reports.stress import recording as stress_recording
 
     store = ResultsStore(out)
-    if stress_recording.record(store, suite):
+    if stress_recording.record(store, suite) + dynamics_recording.record(store):
         store.save(store.meta, clean=True)
 
 

@@ -7,6 +7,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from reports.harness.energy_drift import DRIFT_DEFINITION
 from reports.harness.level_error import LEVEL_COLUMNS
 from reports.harness.metrics import METRIC_COLUMNS
 
@@ -21,6 +22,11 @@ class Column:
     meaning: str
 
 
+__all__ = ["DRIFT_DEFINITION"]  # what the energy drift columns and series mean, for a report
+
+DRIFT_SERIES = {"energy drift": "drift.energy", "constraint residual": "drift.residual"}
+"""Extras stored with a dynamic scenario's default runs (reports.dynamics.recording): the energy
+drift and the scaled constraint residual at each time, by what the report calls them."""
 LOST = 0.1
 """A verdict says `drifted` where the run is farther than this from the truth and from every closure
 (lengths in characteristic lengths, angles in radians; reports.stress.branch_check)."""
@@ -55,6 +61,8 @@ VERDICT_COLUMNS: tuple[Column, ...] = (
     Column(
         "angle_error_end", math.nan, "long-horizon case: the largest body angle error at the last time, rad"
     ),
+    Column("map_stiffness", math.nan, "dynamics map cell: the spring stiffness, N/m"),
+    Column("map_dt", math.nan, "dynamics map cell: the output step, s"),
 )
 """Columns a report shows as stored, decided when the run was made (appended: older stores lack them)."""
 

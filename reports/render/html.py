@@ -14,7 +14,6 @@ import multiprocessing
 import os
 from typing import Any
 
-from reports.dynamics.cases import map_cells
 from reports.harness.forces import FORCE_DEFINITION
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.provenance import revision_label
@@ -29,7 +28,7 @@ from reports.render import (
     svg_figure,
     sweep_render,
 )
-from reports.render.report_data import ReportData, number, table, timing_note
+from reports.render.report_data import ReportData, map_cell_rows, number, table, timing_note
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 1.5em auto; max-width: 1200px; color: #222; }
@@ -69,7 +68,7 @@ def render(data: ReportData) -> str:
     """The whole page as text. The points of parameter sweeps are drawn as maps up front (a first
     screen of their own) and left out of the per-scenario matrix and sections."""
     meta, whole, data = data.meta, data, data.unswept()
-    listed = data.without(map_cells())  # the dynamics map's cells are drawn as its map
+    listed = data.without(map_cell_rows(data.frame)["scenario"])  # drawn as the dynamics map
     dynamics = dynamics_render.html_fragment(data, _image)  # "" without dynamic scenarios
     parts = [
         "<!DOCTYPE html>",

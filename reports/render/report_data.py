@@ -14,8 +14,7 @@ import pandas as pd
 import adapters
 from reports.harness.results_store import TRUTH, Key, read_results, read_trajectories
 from reports.render.drawings import read_drawings
-from scenarios import ScenarioError, catalogue, load
-from scenarios.scenario import Scenario
+from scenarios import catalogue
 from scenarios.trajectory import Trajectory
 
 TABLE_COLUMNS = (
@@ -131,6 +130,13 @@ def is_swept(frame: pd.DataFrame) -> pd.Series:
     return frame["sweep"].fillna("").astype(str) != ""
 
 
+def map_cell_rows(frame: pd.DataFrame) -> pd.DataFrame:
+    """The rows at a cell of the dynamics' stiffness-step map (their cell recorded with them)."""
+    if "map_stiffness" not in frame:
+        return frame.iloc[0:0]
+    return frame[frame["map_stiffness"].notna()]
+
+
 def timing_note(rows: pd.DataFrame) -> str:
     """Where the run times were measured and alongside how many other runs: parallel workers
     share the machine, so their times are noisier (and often longer) than one-by-one runs'."""
@@ -145,15 +151,6 @@ def timing_note(rows: pd.DataFrame) -> str:
     if counts != [1]:
         note += "; runs made in parallel share the machine, so their times are noisier than serial ones"
     return note + "."
-
-
-def stored_scenario(name: str) -> Scenario | None:
-    """The scenario a stored row names (a family, a variant, a file, a swept point), rebuilt to read
-    its constraints and masses; None where it no longer builds (renamed, or a file since edited)."""
-    try:
-        return load(name)
-    except ScenarioError:
-        return None
 
 
 def cell_text(row: pd.Series | None) -> str:
