@@ -8,8 +8,28 @@ from dataclasses import dataclass
 from typing import Any
 
 from reports.harness.energy_drift import DRIFT_DEFINITION
-from reports.harness.level_error import LEVEL_COLUMNS
+from reports.harness.forces import FORCE_DEFINITION
+from reports.harness.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.harness.metrics import METRIC_COLUMNS
+
+__all__ = [
+    "CLOSED_FORM",
+    "COLUMNS",
+    "DECLARED",
+    "DRIFT_DEFINITION",
+    "DRIFT_SERIES",
+    "FORCE_DEFINITION",
+    "LEVEL_COLUMNS",
+    "LOST",
+    "NOT_RECORDED",
+    "NOT_RUN",
+    "SCALE_DEFINITION",
+    "VERDICT_COLUMNS",
+    "Column",
+    "empty_row",
+]
+"""The definitions of what the measured columns mean are declared beside the measures (and
+re-exported here, so that a report needs this module alone)."""
 
 NOT_RUN = "-"
 """The setting label of a row that stands for an engine that never ran on the scenario."""
@@ -22,8 +42,8 @@ class Column:
     meaning: str
 
 
-__all__ = ["DRIFT_DEFINITION"]  # what the energy drift columns and series mean, for a report
-
+CLOSED_FORM = "closed form"
+"""The `truth` of a row measured against its scenario's closed form (reports.harness.truth)."""
 DRIFT_SERIES = {"energy drift": "drift.energy", "constraint residual": "drift.residual"}
 """Extras stored with a dynamic scenario's default runs (reports.dynamics.recording): the energy
 drift and the scaled constraint residual at each time, by what the report calls them."""
@@ -63,6 +83,10 @@ VERDICT_COLUMNS: tuple[Column, ...] = (
     ),
     Column("map_stiffness", math.nan, "dynamics map cell: the spring stiffness, N/m"),
     Column("map_dt", math.nan, "dynamics map cell: the output step, s"),
+    Column("scenario_rank", -1, "the scenario's place in the catalogue (the report's order); -1 not listed"),
+    Column(
+        "engine_rank", -1, "the engine's place in the engine registry (the report's order); -1 not listed"
+    ),
 )
 """Columns a report shows as stored, decided when the run was made (appended: older stores lack them)."""
 

@@ -9,12 +9,9 @@ from typing import Any
 import pandas as pd
 
 from reports.harness.agreement import pair_differences, widest
-from reports.harness.level_error import LEVEL_COLUMNS, characteristic_rate
-from reports.harness.truth import CLOSED_FORM
+from reports.harness.columns import CLOSED_FORM, LEVEL_COLUMNS
 from reports.render import markup
 from reports.render.report_data import ReportData, number
-from scenarios import ScenarioError
-from scenarios import load as build_scenario
 
 NATIVE = "reference"
 BEST, WORST = -14.0, -1.0  # log10 error drawn fully green, fully red
@@ -140,11 +137,7 @@ def agreement_frame(data: ReportData) -> pd.DataFrame:
 
 
 def scenario_rate(data: ReportData, scenario: str) -> float:
-    """The characteristic rate stored with the rows, else the scenario's own."""
+    """The characteristic rate stored with the rows (NaN in rows stored before it was: the levels
+    it scales then compare as not recorded)."""
     rows = data.rows(scenario)
-    if "characteristic_rate" in rows and pd.notna(rows["characteristic_rate"].iloc[0]):
-        return float(rows["characteristic_rate"].iloc[0])
-    try:
-        return characteristic_rate(build_scenario(scenario))
-    except (ScenarioError, KeyError):
-        return math.nan
+    return float(rows["characteristic_rate"].iloc[0]) if "characteristic_rate" in rows else math.nan

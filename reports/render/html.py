@@ -14,9 +14,7 @@ import multiprocessing
 import os
 from typing import Any
 
-from reports.harness.forces import FORCE_DEFINITION
-from reports.harness.level_error import SCALE_DEFINITION
-from reports.harness.provenance import revision_label
+from reports.harness.columns import FORCE_DEFINITION, SCALE_DEFINITION
 from reports.render import (
     dynamics_render,
     engine_reach,
@@ -28,7 +26,7 @@ from reports.render import (
     svg_figure,
     sweep_render,
 )
-from reports.render.report_data import ReportData, map_cell_rows, number, table, timing_note
+from reports.render.report_data import ReportData, map_cell_rows, number, revision_label, table, timing_note
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 1.5em auto; max-width: 1200px; color: #222; }

@@ -16,7 +16,8 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator
 
-from reports.harness.level_error import LEVEL_COLUMNS, level_series
+from reports.harness.columns import LEVEL_COLUMNS
+from reports.harness.level_error import level_series
 from reports.render.markup import figure_text
 from reports.render.plots import FLOOR, MARKERS, colour, legend_entries, swept_value, untimed, value_text
 from reports.render.svg_figure import hover
