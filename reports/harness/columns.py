@@ -18,6 +18,7 @@ __all__ = [
     "DECLARED",
     "DRIFT_DEFINITION",
     "DRIFT_SERIES",
+    "ERROR_SERIES",
     "FORCE_DEFINITION",
     "LEVEL_COLUMNS",
     "LOST",
@@ -47,6 +48,9 @@ CLOSED_FORM = "closed form"
 DRIFT_SERIES = {"energy drift": "drift.energy", "constraint residual": "drift.residual"}
 """Extras stored with a dynamic scenario's default runs (reports.dynamics.recording): the energy
 drift and the scaled constraint residual at each time, by what the report calls them."""
+ERROR_SERIES = {level: f"error.{level}" for level in LEVEL_COLUMNS}
+"""Extras stored with each default run (reports.harness.recording): its dimensionless error against
+the truth at every grid time, per level."""
 LOST = 0.1
 """A verdict says `drifted` where the run is farther than this from the truth and from every closure
 (lengths in characteristic lengths, angles in radians; reports.stress.branch_check)."""
@@ -86,6 +90,12 @@ VERDICT_COLUMNS: tuple[Column, ...] = (
     Column("scenario_rank", -1, "the scenario's place in the catalogue (the report's order); -1 not listed"),
     Column(
         "engine_rank", -1, "the engine's place in the engine registry (the report's order); -1 not listed"
+    ),
+    Column(
+        "agreement",
+        "",
+        "the scenario's engines' default runs: the widest difference per level and its pair, as JSON "
+        "(harness.recording); '' with fewer than two runs",
     ),
 )
 """Columns a report shows as stored, decided when the run was made (appended: older stores lack them)."""

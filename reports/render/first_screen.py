@@ -3,13 +3,13 @@ scenario x engine matrix at every level, and how far the engines' default runs l
 
 from __future__ import annotations
 
+import json
 import math
 from typing import Any
 
 import pandas as pd
 
-from reports.harness.agreement import pair_differences, widest
-from reports.harness.columns import CLOSED_FORM, LEVEL_COLUMNS
+from reports.harness.columns import CLOSED_FORM, LEVEL_COLUMNS, NOT_RECORDED
 from reports.render import markup
 from reports.render.report_data import ReportData, number
 
@@ -121,17 +121,22 @@ def truth_names(rows: pd.DataFrame) -> str:
 
 
 def agreement_frame(data: ReportData) -> pd.DataFrame:
-    """Per scenario and level: the pair of engines whose default runs differ most, and by how much."""
+    """Per scenario and level: the pair of engines whose default runs differ most, and by how much,
+    as the rows stored it (harness.recording); NOT_RECORDED where a store with two runs lacks it."""
     records: list[dict[str, Any]] = []
     for scenario in data.scenarios():
+        rows = data.rows(scenario)
+        stored = [str(a) for a in rows["agreement"] if str(a or "")] if "agreement" in rows else []
         runs = data.default_trajectories(scenario)
-        if len(runs) < 2:
+        if not stored and len(runs) < 2:
             continue
-        pairs = pair_differences(runs, data.characteristic_length(scenario), scenario_rate(data, scenario))
-        record: dict[str, Any] = {"scenario": scenario, "engines": len(runs)}
+        found: dict[str, Any] = json.loads(stored[0]) if stored else {"engines": len(runs), "levels": None}
+        levels: dict[str, Any] | None = found["levels"]
+        record: dict[str, Any] = {"scenario": scenario, "engines": found["engines"]}
         for level in LEVEL_COLUMNS:
-            pair, value = widest(pairs, level)
-            record[level] = "–" if pair is None else f"{number(value)} ({pair[0]}–{pair[1]})"
+            pair = None if levels is None else levels.get(level)
+            text = "–" if pair is None else f"{number(pair[2])} ({pair[0]}–{pair[1]})"
+            record[level] = NOT_RECORDED if levels is None else text
         records.append(record)
     return pd.DataFrame(records)
 

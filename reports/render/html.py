@@ -14,7 +14,7 @@ import multiprocessing
 import os
 from typing import Any
 
-from reports.harness.columns import FORCE_DEFINITION, SCALE_DEFINITION
+from reports.harness.columns import ERROR_SERIES, FORCE_DEFINITION, NOT_RECORDED, SCALE_DEFINITION
 from reports.render import (
     dynamics_render,
     engine_reach,
@@ -262,7 +262,9 @@ def _scenario_section(data: ReportData, scenario: str) -> str:
     figures = [_image(level_plots.work_precision(rows, truth_name), "work-precision plot", _why_none(rows))]
     if truth is not None:
         runs = data.default_trajectories(scenario)
-        figures.append(_image(level_plots.deviations(truth, runs, length, rate, truth_name), "deviations"))
+        stored = any(name in run.extras for run in runs.values() for name in ERROR_SERIES.values())
+        why = NOT_RECORDED if runs and not stored else "no successful run to draw"
+        figures.append(_image(level_plots.deviations(truth, runs, truth_name), "deviations", why))
     else:
         figures.append('<p class="muted">no stored truth trajectory: no deviations</p>')
     shown = table(rows)
