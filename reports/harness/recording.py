@@ -3,7 +3,8 @@ so that the report reads it and never measures:
 - each default run's dimensionless error at every grid time and level against the stored truth
   (reports.harness.level_error.level_series), as extras of its stored trajectory (ERROR_SERIES);
 - per scenario, the engines' default runs' widest difference at each level and the pair that
-  differs so (reports.harness.agreement), as JSON in the `agreement` column of the scenario's rows.
+  differs so (reports.harness.agreement), as JSON in the `agreement` column of the scenario's rows;
+- the ranks that order the report (rows.ranks), in rows stored before they were recorded.
 The agreement depends on which engines' runs the store holds, so it is measured again at every
 finish (a row is rewritten only where it changed); an error series, once stored, is kept.
 """
@@ -21,6 +22,7 @@ from reports.harness.agreement import pair_differences, widest
 from reports.harness.columns import ERROR_SERIES
 from reports.harness.level_error import level_series
 from reports.harness.results_store import TRUTH, Key, ResultsStore, stored_truths
+from reports.harness.rows import ranks
 from scenarios.scenario import LEVELS
 from scenarios.trajectory import Trajectory
 
@@ -29,7 +31,7 @@ def record(store: ResultsStore) -> int:
     """Store the error series and the agreement `store` lacks or holds out of date (the caller
     saves); returns how many trajectories and rows were written."""
     scales = _scales(store.rows.values())
-    return _record_series(store, scales) + _record_agreement(store, scales)
+    return _record_series(store, scales) + _record_agreement(store, scales) + _record_ranks(store)
 
 
 def _scales(rows: Any) -> dict[str, tuple[float, float]]:
@@ -97,5 +99,18 @@ def _record_agreement(store: ResultsStore, scales: dict[str, tuple[float, float]
         value = measured.get(str(row["scenario"]), "")
         if str(row.get("agreement") or "") != value:
             store.rows[key] = {**row, "agreement": value}
+            done += 1
+    return done
+
+
+def _record_ranks(store: ResultsStore) -> int:
+    """The ranks of rows stored without them (a name still not listed keeps -1, unrewritten)."""
+    done = 0
+    for key, row in list(store.rows.items()):
+        if int(row.get("scenario_rank", -1)) >= 0 and int(row.get("engine_rank", -1)) >= 0:
+            continue
+        found = ranks(str(row["scenario"]), str(row["engine"]))
+        if any(int(row.get(k, -1)) != v for k, v in found.items()):
+            store.rows[key] = {**row, **found}
             done += 1
     return done

@@ -41,10 +41,15 @@ def base_row(
         characteristic_rate=characteristic_rate(scenario),
         host=socket.gethostname(),
         recorded_at=now(),
-        scenario_rank=_rank(scenario.name, catalogue(include_stress=True, include_dynamic=True)),
-        engine_rank=_rank(engine, adapters.names()),
+        **ranks(scenario.name, engine),
     )
     return row
+
+
+def ranks(scenario: str, engine: str) -> dict[str, int]:
+    """The row's scenario_rank and engine_rank: where the report lists it."""
+    listed = catalogue(include_stress=True, include_dynamic=True)
+    return {"scenario_rank": _rank(scenario, listed), "engine_rank": _rank(engine, adapters.names())}
 
 
 def _rank(name: str, order: list[str]) -> int:

@@ -30,6 +30,7 @@ def _row(engine: str) -> dict[str, object]:
     return empty_row() | {
         "scenario": "s",
         "engine": engine,
+        "engine_rank": -1,
         "setting": "default",
         "is_default": True,
         "status": "ok",
@@ -45,7 +46,7 @@ def test_error_series_and_agreement_are_stored_once(tmp_path: Path) -> None:
     store.add(_row("shifted"), _trajectory(SHIFT))
     store.save({})
     store = ResultsStore(tmp_path)
-    assert record(store) == 4  # two series, two rows' agreement
+    assert record(store) == 4  # two series, two rows' agreement (names no list holds keep rank -1)
     store.save(store.meta)
     assert record(ResultsStore(tmp_path)) == 0  # nothing changed: nothing rewritten
 
@@ -59,3 +60,13 @@ def test_error_series_and_agreement_are_stored_once(tmp_path: Path) -> None:
     assert found["engines"] == 2 and found["levels"]["acceleration"] is None
     a, b, value = found["levels"]["position"]
     assert (a, b) == ("exact", "shifted") and abs(value - SHIFT / LENGTH) < 1e-12
+    ranks = dict(zip(frame["engine"], frame["engine_rank"], strict=True))
+    assert ranks == {"exact": -1, "shifted": -1}  # engines the registry does not list keep -1
+
+
+def test_a_row_stored_without_ranks_gets_them(tmp_path: Path) -> None:
+    store = ResultsStore(tmp_path)
+    store.add(_row("reference") | {"scenario": "four_bar/crossed", "scenario_rank": -1})
+    assert record(store) == 1
+    row = store.rows[("four_bar/crossed", "reference", "default")]
+    assert row["engine_rank"] == 0 and row["scenario_rank"] > 0  # four_bar itself comes first
