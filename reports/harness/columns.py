@@ -24,8 +24,8 @@ __all__ = [
     "LOST",
     "NOT_RECORDED",
     "NOT_RUN",
+    "RECORDED_COLUMNS",
     "SCALE_DEFINITION",
-    "VERDICT_COLUMNS",
     "Column",
     "empty_row",
 ]
@@ -56,7 +56,7 @@ LOST = 0.1
 (lengths in characteristic lengths, angles in radians; reports.stress.branch_check)."""
 NOT_RECORDED = "not recorded"
 """What a report shows for a column its store does not hold (written before the column existed)."""
-VERDICT_COLUMNS: tuple[Column, ...] = (
+RECORDED_COLUMNS: tuple[Column, ...] = (
     Column(
         "verdict",
         "",
@@ -174,7 +174,7 @@ DECLARED: tuple[Column, ...] = (
     Column("recorded_at", "", "when the row was made (UTC)"),
     Column("revision", "", "git revision the row was made under (harness.resume)"),
     Column("stale", False, "kept by a resume under another revision or engine version (--keep-stale)"),
-    *VERDICT_COLUMNS,
+    *RECORDED_COLUMNS,
 )
 COLUMNS: tuple[str, ...] = tuple(c.name for c in DECLARED)
 

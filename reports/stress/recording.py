@@ -1,7 +1,7 @@
 """The stress suite's and the swept points' verdicts, decided when the run is made and stored.
 
 After a suite's runs, every stored row a stability map shows gets its verdict columns
-(reports.harness.columns.VERDICT_COLUMNS), judged by reports.stress.stability_map from what the
+(the verdict columns of reports.harness.columns), judged by reports.stress.stability_map from what the
 store holds (the row, the default runs' trajectories, the truth; the branch check solves on the
 scenario's constraint equations):
 - in the stress suite, every row of a stress case, with the case's description (its place, what it

@@ -58,7 +58,7 @@ Row = Mapping[str, Any]
 
 
 def columns(judged: Judgement) -> dict[str, Any]:
-    """The verdict as the row's verdict columns (reports.harness.columns.VERDICT_COLUMNS)."""
+    """The verdict as the row's verdict columns (verdict, verdict_time, verdict_error, verdict_detail)."""
     return {
         "verdict": judged.verdict,
         "verdict_time": judged.time,

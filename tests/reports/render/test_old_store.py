@@ -13,7 +13,7 @@ import pandas as pd
 import pytest
 
 from reports.cli.main import main
-from reports.harness.columns import NOT_RECORDED, VERDICT_COLUMNS
+from reports.harness.columns import NOT_RECORDED, RECORDED_COLUMNS
 from reports.harness.results_store import read_results
 from reports.render.report import render_reports
 from tests.support.stores import write_schema_1
@@ -35,7 +35,7 @@ def old(fresh: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The same rows as a store from before generations wrote them, without the columns added since."""
     out = write_schema_1(tmp_path_factory.mktemp("old") / "store", fresh, generations=False)
     frame = pd.read_parquet(out / "results.parquet")
-    frame.drop(columns=[c.name for c in VERDICT_COLUMNS]).to_parquet(out / "results.parquet", index=False)
+    frame.drop(columns=[c.name for c in RECORDED_COLUMNS]).to_parquet(out / "results.parquet", index=False)
     return out
 
 
