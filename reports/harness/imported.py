@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from adapters.base import RunResult, Setting
-from reports.harness import provenance
+from reports.harness import provenance, recording
 from reports.harness.comparison import compare
 from reports.harness.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.harness.metrics import HEADLINE_DEFINITION, Residual
@@ -84,8 +84,10 @@ def score(
 
 
 def add_to_store(store: ResultsStore, scenario: Scenario, scored: Score) -> None:
-    """Add the row, its trajectory and the truth to `store` and save it (the caller holds the
-    store's writer lock). The store's description is kept; a new store gets the runner's."""
+    """Add the row, its trajectory and the truth to `store` and save it, then record what the
+    report draws of it (reports.harness.recording: its error over time, the engines' agreement),
+    on the store as a report reads it (the caller holds the store's writer lock). The store's
+    description is kept; a new store gets the runner's."""
     store.put_truth(scenario.name, scored.truth.name, scored.truth.trajectory.select(scenario.output_bodies))
     store.add(scored.row, scored.imported.trajectory)
     meta = dict(store.meta) or {
@@ -98,3 +100,6 @@ def add_to_store(store: ResultsStore, scenario: Scenario, scored: Score) -> None
     meta["imported"] = {**meta.get("imported", {}), scored.row["engine"]: scored.imported.source}
     meta["revisions"] = sorted({str(r.get("revision") or "unknown") for r in store.rows.values()})
     store.save(meta, clean=True)
+    stored = ResultsStore(store.directory)
+    if recording.record(stored):
+        stored.save(stored.meta, clean=True)
