@@ -70,7 +70,7 @@ def test_a_registered_engine_s_package_is_in_the_version(capsys: pytest.CaptureF
 
 @pytest.mark.usefixtures("registered")
 def test_a_registered_engine_has_its_colour_and_its_stress_settings() -> None:
-    assert plots.colour(TOY) == engine_facts.colour(TOY) == COLOUR
+    assert engine_facts.colour(TOY) == COLOUR and engine_facts.colours([TOY, "my_tool"]) == {TOY: COLOUR}
     toy = adapters.load(TOY)
     stiffness = scenarios.build("slider_crank/stress_stiffness")
     assert stress_settings(stiffness, toy) == [toy.default_setting(stiffness), STIFF]
@@ -78,21 +78,20 @@ def test_a_registered_engine_has_its_colour_and_its_stress_settings() -> None:
 
 
 def test_an_engine_without_a_colour_and_a_label_that_is_no_engine_get_one_from_the_palette() -> None:
-    for name in ("my_tool", "reference_like_label"):
-        assert engine_facts.colour(name) in engine_facts.PALETTE
-        assert engine_facts.colour(name) == engine_facts.colour(name)
+    """The report draws each engine as its store records it, and a name the store gives no colour
+    (an imported label, a store from before colours were stored) in one of its palette's."""
+    plots.use_stored_colours({"reference": "#444444"})
+    assert plots.colour("reference") == "#444444"
+    for name in ("my_tool", "reference_like_label", "mujoco"):
+        assert engine_facts.colour(name) is None or name == "mujoco"
+        assert plots.colour(name) in plots.PALETTE and plots.colour(name) == plots.colour(name)
+    plots.use_stored_colours({})
     declared = {name: adapters.adapter_class(name).colour for name in adapters.names()}
     assert all(declared.values()) and len(set(declared.values())) == len(declared)  # each its own
     assert engine_facts.colours(adapters.names()) == declared
 
 
 ROOT = Path(__file__).resolve().parents[1]
-NOT_YET = {
-    "reports/render/first_screen.py": "the native engine's name for the headline line",
-    "reports/stress/sweep_verdicts.py": "the native engine's name for the swept verdicts",
-}
-"""Modules that still spell an engine's name, each with what for: render and the verdicts are being
-moved to read stored results (issue 26), which will carry it."""
 
 
 def test_no_module_outside_the_adapters_spells_an_engine_s_name() -> None:
@@ -109,5 +108,5 @@ def test_no_module_outside_the_adapters_spells_an_engine_s_name() -> None:
             }
             if named:
                 found[str(path.relative_to(ROOT))] = named
-    assert set(found) == set(NOT_YET), found
+    assert found == {}, found
     assert all(named == {adapters.NATIVE} for named in found.values()), found

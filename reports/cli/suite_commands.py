@@ -18,6 +18,7 @@ import adapters
 import reports.cli.run_overrides as run_overrides
 from reports.cli.usage import UsageError
 from reports.harness import baselines, gate, gate_files, scenario_identity, stop, store_files, suites, sweep
+from reports.harness import recording as harness_recording
 from reports.harness.atomic_write import output_target
 from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import Runner, RunOptions
@@ -167,9 +168,24 @@ def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = 
             ResultsStore(out), selection.engines, selection.options, **arguments, **vars(backend)
         )
     runner.run(selection.names)
+    record_verdicts(out, suite.name)
     if draw:
         _draw(out, runner.planned.values())
     return runner.made
+
+
+def record_verdicts(out: Path, suite: str) -> None:
+    """Decide, now the suite's runs are stored, what the report shows of them and store it with
+    them (reports.stress.recording, reports.dynamics.recording, reports.harness.recording): the
+    stored results read back as a report reads them, so that a verdict is the one the stored
+    trajectories give. The caller holds the store's writer lock."""
+    from reports.dynamics import recording as dynamics_recording  # the native solver: imported when needed
+    from reports.stress import recording as stress_recording
+
+    store = ResultsStore(out)
+    recorded = stress_recording.record(store, suite) + dynamics_recording.record(store)
+    if recorded + harness_recording.record(store):
+        store.save(store.meta, clean=True)
 
 
 def _draw(out: Path, planned: Iterable[Scenario]) -> None:

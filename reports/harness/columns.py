@@ -7,8 +7,30 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from reports.harness.level_error import LEVEL_COLUMNS
+from reports.harness.energy_drift import DRIFT_DEFINITION
+from reports.harness.forces import FORCE_DEFINITION
+from reports.harness.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.harness.metrics import METRIC_COLUMNS
+
+__all__ = [
+    "CLOSED_FORM",
+    "COLUMNS",
+    "DECLARED",
+    "DRIFT_DEFINITION",
+    "DRIFT_SERIES",
+    "ERROR_SERIES",
+    "FORCE_DEFINITION",
+    "LEVEL_COLUMNS",
+    "LOST",
+    "NOT_RECORDED",
+    "NOT_RUN",
+    "RECORDED_COLUMNS",
+    "SCALE_DEFINITION",
+    "Column",
+    "empty_row",
+]
+"""The definitions of what the measured columns mean are declared beside the measures (and
+re-exported here, so that a report needs this module alone)."""
 
 NOT_RUN = "-"
 """The setting label of a row that stands for an engine that never ran on the scenario."""
@@ -19,6 +41,64 @@ class Column:
     name: str
     empty: Any
     meaning: str
+
+
+CLOSED_FORM = "closed form"
+"""The `truth` of a row measured against its scenario's closed form (reports.harness.truth)."""
+DRIFT_SERIES = {"energy drift": "drift.energy", "constraint residual": "drift.residual"}
+"""Extras stored with a dynamic scenario's default runs (reports.dynamics.recording): the energy
+drift and the scaled constraint residual at each time, by what the report calls them."""
+ERROR_SERIES = {level: f"error.{level}" for level in LEVEL_COLUMNS}
+"""Extras stored with each default run (reports.harness.recording): its dimensionless error against
+the truth at every grid time, per level."""
+LOST = 0.1
+"""A verdict says `drifted` where the run is farther than this from the truth and from every closure
+(lengths in characteristic lengths, angles in radians; reports.stress.branch_check)."""
+NOT_RECORDED = "not recorded"
+"""What a report shows for a column its store does not hold (written before the column existed)."""
+RECORDED_COLUMNS: tuple[Column, ...] = (
+    Column(
+        "verdict",
+        "",
+        "what became of the run, decided when the run was made: the stability verdict of a stress "
+        "case's row or a swept point's default (reports.stress.stability_map, with its branch check), "
+        "of a dynamics map cell (reports.dynamics.stability); '' where none is made or not recorded",
+    ),
+    Column("verdict_time", math.nan, "when the verdict's event happened (a failure, leaving the branch), s"),
+    Column("verdict_error", math.nan, "the largest headline error where the truth exists, as judged"),
+    Column("verdict_detail", "", "how the verdict was reached (the closure found, a false alarm, ...)"),
+    Column("case_rank", -1, "stress suite: the case's place in reports.stress.cases; -1 off a case"),
+    Column("case_probes", "", "stress suite: what the case probes"),
+    Column(
+        "case_singular_time", math.nan, "stress suite: closed-form time of the first singular configuration"
+    ),
+    Column("case_nominal", "", "stress suite: the nominal scenario the case is a similarity of"),
+    *(
+        Column(
+            f"{quantity}_{turn}_rev",
+            math.nan,
+            f"long-horizon case: largest {what} over the {turn} revolution",
+        )
+        for quantity, what in (("error", "headline error"), ("residual", "constraint residual"))
+        for turn in ("first", "last")
+    ),
+    Column(
+        "angle_error_end", math.nan, "long-horizon case: the largest body angle error at the last time, rad"
+    ),
+    Column("map_stiffness", math.nan, "dynamics map cell: the spring stiffness, N/m"),
+    Column("map_dt", math.nan, "dynamics map cell: the output step, s"),
+    Column("scenario_rank", -1, "the scenario's place in the catalogue (the report's order); -1 not listed"),
+    Column(
+        "engine_rank", -1, "the engine's place in the engine registry (the report's order); -1 not listed"
+    ),
+    Column(
+        "agreement",
+        "",
+        "the scenario's engines' default runs: the widest difference per level and its pair, as JSON "
+        "(harness.recording); '' with fewer than two runs",
+    ),
+)
+"""Columns a report shows as stored, decided when the run was made (appended: older stores lack them)."""
 
 
 DECLARED: tuple[Column, ...] = (
@@ -94,6 +174,7 @@ DECLARED: tuple[Column, ...] = (
     Column("recorded_at", "", "when the row was made (UTC)"),
     Column("revision", "", "git revision the row was made under (harness.resume)"),
     Column("stale", False, "kept by a resume under another revision or engine version (--keep-stale)"),
+    *RECORDED_COLUMNS,
 )
 COLUMNS: tuple[str, ...] = tuple(c.name for c in DECLARED)
 

@@ -2,7 +2,8 @@
 drawn in and the distributions whose versions a run records. Each is declared on the engine's
 adapter class (adapters.base.Adapter: `colour`, `packages`) and read here through the registry
 (adapters.adapter_class), so no list of engines sits outside `adapters/<engine>/`. A run stores its
-engines' colours with its results (`engine_colours` in the sidecar), so a stored report keeps them.
+engines' declared colours with its results (`engine_colours` in the sidecar), and the report draws
+them as stored (reports.render.plots gives any other name a colour of its palette).
 """
 
 from __future__ import annotations
@@ -12,10 +13,6 @@ from collections.abc import Iterable
 
 import adapters
 from adapters.base import Adapter
-
-PALETTE = ("#9467bd", "#8c564b", "#e377c2", "#bcbd22", "#17becf", "#ff7f0e")
-"""The colours of an engine that declares none and of a label that is no engine (an imported
-trajectory's), chosen by its name so that it keeps its colour from one report to the next."""
 
 
 @functools.cache
@@ -28,17 +25,17 @@ def declared(engine: str) -> type[Adapter] | None:
         return None
 
 
-def colour(engine: str) -> str:
-    """The colour `engine`'s rows are drawn in: its adapter's declaration, else one of PALETTE."""
+def colour(engine: str) -> str | None:
+    """The colour `engine`'s adapter declares, or None (no colour declared, or no such engine)."""
     kind = declared(engine)
-    if kind is not None and kind.colour:
-        return kind.colour
-    return PALETTE[sum(map(ord, engine)) % len(PALETTE)]
+    return kind.colour if kind is not None and kind.colour else None
 
 
 def colours(engines: Iterable[str]) -> dict[str, str]:
-    """Each engine's colour, as a run stores them beside its rows."""
-    return {engine: colour(engine) for engine in engines}
+    """The declared colours of `engines`, as a run stores them beside its rows (an engine that
+    declares none is left out: the report gives it one)."""
+    found = {engine: colour(engine) for engine in engines}
+    return {engine: c for engine, c in found.items() if c is not None}
 
 
 def engine_packages() -> tuple[str, ...]:

@@ -15,9 +15,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from adapters.base import RunResult, Setting
-from reports.harness import provenance
+from reports.harness import provenance, recording
 from reports.harness.comparison import measure
-from reports.harness.engine_facts import colour, engine_packages
+from reports.harness.engine_facts import colours, engine_packages
 from reports.harness.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.harness.metrics import HEADLINE_DEFINITION, Residual
 from reports.harness.results_store import ResultsStore
@@ -85,8 +85,10 @@ def score(
 
 
 def add_to_store(store: ResultsStore, scenario: Scenario, scored: Score) -> None:
-    """Add the row, its trajectory and the truth to `store` and save it (the caller holds the
-    store's writer lock). The store's description is kept; a new store gets the runner's."""
+    """Add the row, its trajectory and the truth to `store` and save it, then record what the
+    report draws of it (reports.harness.recording: its error over time, the engines' agreement),
+    on the store as a report reads it (the caller holds the store's writer lock). The store's
+    description is kept; a new store gets the runner's."""
     store.put_truth(scenario.name, scored.truth.name, scored.truth.trajectory.select(scenario.output_bodies))
     store.add(scored.row, scored.imported.trajectory)
     meta = dict(store.meta) or {
@@ -98,6 +100,9 @@ def add_to_store(store: ResultsStore, scenario: Scenario, scored: Score) -> None
     }
     label = scored.row["engine"]
     meta["imported"] = {**meta.get("imported", {}), label: scored.imported.source}
-    meta["engine_colours"] = {**meta.get("engine_colours", {}), label: colour(label)}
+    meta["engine_colours"] = {**meta.get("engine_colours", {}), **colours([label])}
     meta["revisions"] = sorted({str(r.get("revision") or "unknown") for r in store.rows.values()})
     store.save(meta, clean=True)
+    stored = ResultsStore(store.directory)
+    if recording.record(stored):
+        stored.save(stored.meta, clean=True)

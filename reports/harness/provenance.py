@@ -92,12 +92,3 @@ def _cpu_model() -> str:
     except OSError:
         pass
     return ""
-
-
-def revision_label(meta: dict[str, Any]) -> str:
-    """The git revision of stored results as a report states it: the run's revision, and every
-    other revision its rows were made under (rows kept with --keep-stale), so a resume after a new
-    commit never passes old rows off as new ones."""
-    revision = str(meta.get("git_revision", "?"))[:12]
-    others = [str(r)[:12] for r in meta.get("revisions", []) if str(r)[:12] != revision]
-    return f"{revision} (some rows from {', '.join(others)}, marked stale)" if others else revision

@@ -263,6 +263,15 @@ def _checked(root: Path, name: str, frame: pd.DataFrame) -> pd.DataFrame:
     return frame
 
 
+def stored_truths(trajectories: Mapping[Key, Trajectory]) -> dict[str, Trajectory]:
+    """The truth of each scenario among stored trajectories (the first stored, where there are more)."""
+    found: dict[str, Trajectory] = {}
+    for (scenario, engine, _), trajectory in trajectories.items():
+        if engine == TRUTH:
+            found.setdefault(scenario, trajectory)
+    return found
+
+
 def read_trajectories(path: str | os.PathLike[str]) -> dict[Key, Trajectory]:
     """Every stored trajectory by (scenario, engine, setting); the truth under engine TRUTH.
     FileNotFoundError when the store has lost its trajectories (a resume rebuilds them)."""

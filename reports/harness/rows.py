@@ -7,12 +7,14 @@ import math
 import socket
 from typing import Any
 
+import adapters
 from adapters.base import RunResult, Setting, Status
 from reports.harness import self_check
 from reports.harness.columns import NOT_RUN, empty_row
 from reports.harness.level_error import characteristic_rate
 from reports.harness.provenance import now
 from reports.harness.scenario_identity import digest
+from scenarios import catalogue
 from scenarios.scenario import Scenario
 
 
@@ -39,8 +41,20 @@ def base_row(
         characteristic_rate=characteristic_rate(scenario),
         host=socket.gethostname(),
         recorded_at=now(),
+        **ranks(scenario.name, engine),
     )
     return row
+
+
+def ranks(scenario: str, engine: str) -> dict[str, int]:
+    """The row's scenario_rank and engine_rank: where the report lists it."""
+    listed = catalogue(include_stress=True, include_dynamic=True)
+    return {"scenario_rank": _rank(scenario, listed), "engine_rank": _rank(engine, adapters.names())}
+
+
+def _rank(name: str, order: list[str]) -> int:
+    """`name`'s place in `order` (the report lists by it), -1 where it is not listed."""
+    return order.index(name) if name in order else -1
 
 
 def failure_row(

@@ -183,6 +183,7 @@ class Runner:
             "suite": self.suite,
             "engines": versions,
             "engine_colours": colours(self.engines),
+            "native_engine": adapters.NATIVE,
             "repeats": self.options.repeats,
             "warmup": self.options.warmup,
             "timeout": self.options.timeout,

@@ -14,10 +14,20 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from typing import Any
 
+from scenarios import ScenarioError, load
 from scenarios.identity import digest
 from scenarios.scenario import Scenario
 
-__all__ = ["digest", "name_clash", "stored_clash"]
+__all__ = ["digest", "name_clash", "stored_clash", "stored_scenario"]
+
+
+def stored_scenario(name: str) -> Scenario | None:
+    """The scenario a stored row names (a family, a variant, a file, a swept point), rebuilt to read
+    its constraints and masses; None where it no longer builds (renamed, or a file since edited)."""
+    try:
+        return load(name)
+    except ScenarioError:
+        return None
 
 
 def name_clash(sources: Mapping[str, Scenario]) -> str | None:

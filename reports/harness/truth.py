@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from reports.harness.columns import CLOSED_FORM
 from reports.harness.forces import TRUTH_TOLERANCE, native_forces
 from scenarios import Scenario, Trajectory
 from scenarios.closed_form import NoClosedForm, exact
@@ -25,7 +26,6 @@ from scenarios.closed_form import NoClosedForm, exact
 REFINE = 4
 ATTEMPTS = 3
 """How often the native solve is cut short at the time the solver stopped before giving up."""
-CLOSED_FORM = "closed form"
 NATIVE = f"native, tolerance {TRUTH_TOLERANCE:g}, grid refined {REFINE}x"
 DYNAMIC_RTOL = 1e-13
 NATIVE_DYNAMIC = f"native dynamics, DOP853 rtol {DYNAMIC_RTOL:g}"

@@ -1,6 +1,7 @@
 """The dynamics suite's report section, from stored results alone: the stiffness-step stability map,
 each engine's energy drift and constraint drift over time, and a table of what each engine's default
-reaches and costs per step. Empty ("") when the results hold no dynamic scenario."""
+reaches and costs per step. Empty ("") when the results hold no dynamic scenario. The verdicts and
+the drift series are read as the run stored them (reports.dynamics.recording), never evaluated."""
 
 from __future__ import annotations
 
@@ -12,16 +13,11 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-import adapters
-from reference_solver import constraint_residual
-from reports.dynamics.cases import SINGULAR_PASSAGES, TRUTH_RTOL, is_dynamic, map_cells
-from reports.dynamics.stability import DRIFTED, Cell, map_rows
-from reports.harness.energy_drift import DRIFT_DEFINITION, drift_series
+from reports.harness.columns import DRIFT_DEFINITION, DRIFT_SERIES, NOT_RECORDED
 from reports.render import markup
+from reports.render.first_screen import truth_names
 from reports.render.plots import FLOOR, colour, legend_entries
-from reports.render.report_data import ReportData, number, stored_scenario
-from scenarios.scenario import Scenario
-from scenarios.trajectory import Trajectory
+from reports.render.report_data import ReportData, map_cell_rows, number
 
 SHADES = {
     "stable": "#e6f4e6",
@@ -33,13 +29,19 @@ SHADES = {
     "singular": "#fbf5cf",
     "unsupported": "#eeeeee",
 }
-Series = Callable[[Scenario, Trajectory, Trajectory], np.ndarray]
+DYNAMIC_TRUTH = "native dynamics"
+"""How the `truth` of a dynamic scenario's rows begins (reports.harness.truth, reports.dynamics.cases)."""
 
 
 def dynamic_scenarios(data: ReportData) -> list[str]:
-    """The dynamic scenarios of the results (map cells apart), in the report's order."""
-    cells = map_cells()
-    return [s for s in data.scenarios() if is_dynamic(s) and s not in cells]
+    """The dynamic scenarios of the results (map cells apart), in the report's order: those whose
+    rows were measured against the native dynamics."""
+    frame = data.frame
+    if "truth" not in frame:
+        return []
+    dynamic = frame["truth"].fillna("").astype(str).str.startswith(DYNAMIC_TRUTH)
+    names = set(frame.loc[dynamic, "scenario"].astype(str)) - set(map_cell_rows(frame)["scenario"])
+    return [s for s in data.scenarios() if s in names]
 
 
 def headline(data: ReportData) -> str:
@@ -52,30 +54,28 @@ def headline(data: ReportData) -> str:
         ok = [float(r["error_position"]) for r in rows if r["status"] == "ok"]
         worst = max((v for v in ok if math.isfinite(v)), default=math.nan)
         parts.append(f"{engine} ok on {len(ok)} of {len(rows)}, worst {number(worst)}")
-    truth = (
-        f"the native forward dynamics (DOP853 at rtol {TRUTH_RTOL:g}; "
-        f"{', '.join(f'{f} {r:g}' for f, r in SINGULAR_PASSAGES.items())} through its singular passage)"
+    truth = truth_names(data.frame[data.frame["scenario"].isin(names)])
+    return (
+        f"Dynamic scenarios against the truth ({truth}), each engine's default setting: {'; '.join(parts)}."
     )
-    return f"Dynamic scenarios against {truth}, each engine's default setting: {'; '.join(parts)}."
 
 
-def stability_figure(cells: list[Cell]) -> Figure | None:
-    """One panel per engine: stiffness against step, each cell its default run's verdict and error."""
-    shown = [c for c in cells if c.is_default]
-    if not shown:
+def stability_figure(data: ReportData, cells: pd.DataFrame) -> Figure | None:
+    """One panel per engine: stiffness against step, each cell its default run's stored verdict and
+    error."""
+    shown = cells[cells["is_default"].astype(bool)]
+    if shown.empty:
         return None
-    known = adapters.names()
-    engines = sorted(
-        {c.engine for c in shown}, key=lambda e: (known.index(e) if e in known else len(known), e)
-    )
-    stiffnesses = sorted({c.stiffness for c in shown})
-    steps = sorted({c.dt for c in shown})
+    engines = [e for e in data.engines() if e in set(shown["engine"])]
+    stiffnesses = sorted({float(k) for k in shown["map_stiffness"]})
+    steps = sorted({float(dt) for dt in shown["map_dt"]})
     figure, axes_row = plt.subplots(1, len(engines), figsize=(3.4 * len(engines) + 0.6, 3.4), squeeze=False)
     for axes, engine in zip(axes_row[0], engines, strict=True):
-        for cell in (c for c in shown if c.engine == engine):
-            x, y = steps.index(cell.dt), stiffnesses.index(cell.stiffness)
-            axes.add_patch(plt.Rectangle((x - 0.5, y - 0.5), 1, 1, color=SHADES.get(cell.verdict, "#fff")))
-            text = cell.verdict + (f"\n{cell.error:.0e}" if math.isfinite(cell.error) else "")
+        for _, cell in shown[shown["engine"] == engine].iterrows():
+            x, y = steps.index(float(cell["map_dt"])), stiffnesses.index(float(cell["map_stiffness"]))
+            verdict, error = str(cell["verdict"]) or NOT_RECORDED, float(cell["error_position"])
+            axes.add_patch(plt.Rectangle((x - 0.5, y - 0.5), 1, 1, color=SHADES.get(verdict, "#fff")))
+            text = verdict + (f"\n{error:.0e}" if math.isfinite(error) else "")
             axes.text(x, y, text, ha="center", va="center", fontsize=7.5)
         axes.set_xlim(-0.5, len(steps) - 0.5)
         axes.set_ylim(-0.5, len(stiffnesses) - 0.5)
@@ -88,9 +88,10 @@ def stability_figure(cells: list[Cell]) -> Figure | None:
     return figure
 
 
-def drift_figure(data: ReportData, names: list[str], series: Series, label: str) -> Figure | None:
-    """One panel per scenario: each engine's default run's `series` over time (log scale)."""
-    panels = [(n, s) for n in names if (s := stored_scenario(n)) is not None and data.truth(n) is not None]
+def drift_figure(data: ReportData, names: list[str], label: str) -> Figure | None:
+    """One panel per scenario: each engine's default run's stored `label` series (DRIFT_SERIES) over
+    time (log scale); a panel none of whose runs stored it says so."""
+    panels = [n for n in names if data.truth(n) is not None]
     if not panels:
         return None
     columns = min(3, len(panels))
@@ -98,16 +99,14 @@ def drift_figure(data: ReportData, names: list[str], series: Series, label: str)
     figure, grid = plt.subplots(rows, columns, figsize=(4.3 * columns, 2.6 * rows), squeeze=False)
     for axes in grid.ravel()[len(panels) :]:
         axes.set_visible(False)
-    for axes, (name, scenario) in zip(grid.ravel(), panels, strict=False):
-        truth = data.truth(name)
-        assert truth is not None
-        for engine, run in data.default_trajectories(name).items():
-            try:
-                values = series(scenario, run.select(truth.bodies), truth)
-            except (ValueError, KeyError, IndexError):
-                continue
+    for axes, name in zip(grid.ravel(), panels, strict=False):
+        runs = data.default_trajectories(name)
+        stored = {e: run for e, run in runs.items() if DRIFT_SERIES[label] in run.extras}
+        for engine, run in stored.items():
+            values = run.extras[DRIFT_SERIES[label]]
             axes.semilogy(run.times, np.maximum(values, FLOOR), color=colour(engine), label=engine, lw=1.2)
-        axes.set_title(markup.figure_text(name), fontsize=9)
+        title = f"{name} ({NOT_RECORDED})" if runs and not stored else name
+        axes.set_title(markup.figure_text(title), fontsize=9)
         axes.set_xlabel("t [s]", fontsize=8)
         axes.tick_params(labelsize=7)
     grid[0][0].set_ylabel(label, fontsize=8)
@@ -116,11 +115,6 @@ def drift_figure(data: ReportData, names: list[str], series: Series, label: str)
         figure.legend(handles, labels, loc="upper right", fontsize=8)
     figure.tight_layout(rect=(0, 0, 0.9, 1))
     return figure
-
-
-def residual_series(scenario: Scenario, run: Trajectory, truth: Trajectory) -> np.ndarray:
-    """The run's scaled constraint residual at each time (the truth is not needed)."""
-    return np.abs(constraint_residual(scenario, run))
 
 
 def summary_table(data: ReportData, names: list[str]) -> pd.DataFrame:
@@ -155,8 +149,8 @@ def summary_table(data: ReportData, names: list[str]) -> pd.DataFrame:
 def html_fragment(data: ReportData, image: Callable[[Figure | None, str], str]) -> str:
     """The section as HTML ("" without dynamic results); `image` inlines a figure."""
     names = dynamic_scenarios(data)
-    cells = map_rows(data.frame)
-    if not names and not cells:
+    cells = map_cell_rows(data.frame)
+    if not names and cells.empty:
         return ""
     parts = ["<h2>Dynamics: drift and stability</h2>"]
     table = summary_table(data, names)
@@ -167,21 +161,21 @@ def html_fragment(data: ReportData, image: Callable[[Figure | None, str], str]) 
             "the run time per engine step, and the best position error over the engine's sweep.</p>",
             f'<div class="wide">{table.to_html(index=False, escape=True, border=0, classes="matrix")}</div>',
         ]
-    if cells:
+    if not cells.empty:
+        definition = next((str(d) for d in cells["verdict_detail"] if str(d)), f"verdicts {NOT_RECORDED}")
         parts += [
             "<h3>Stability map: spring stiffness against step size</h3>",
-            image(stability_figure(cells), "stability map"),
+            image(stability_figure(data, cells), "stability map"),
             f'<p class="muted">The stiff spring (stiff_spring/k..._dt...) at each engine\'s default setting '
-            f"for the cell's output step. stable: position error and energy drift at most {DRIFTED:g}; "
-            "drifted: above; otherwise the engine's own outcome.</p>",
+            f"for the cell's output step. {markup.escape(definition)}.</p>",
         ]
     if names:
         parts += [
             "<h3>Energy drift over time</h3>",
-            image(drift_figure(data, names, drift_series, "energy drift"), "energy drift"),
+            image(drift_figure(data, names, "energy drift"), "energy drift"),
             f'<p class="muted">{markup.escape(DRIFT_DEFINITION)}.</p>',
             "<h3>Constraint drift over time</h3>",
-            image(drift_figure(data, names, residual_series, "constraint residual"), "constraint drift"),
+            image(drift_figure(data, names, "constraint residual"), "constraint drift"),
             '<p class="muted">The largest constraint residual of each default run at each time, lengths '
             "in characteristic lengths, evaluated on the run's positions by the native constraint "
             "equations.</p>",

@@ -17,7 +17,7 @@ from collections.abc import Callable
 import numpy as np
 import pandas as pd
 
-from reports.harness.level_error import LEVEL_COLUMNS
+from reports.harness.columns import LEVEL_COLUMNS
 
 TARGET = 1e-6
 LEVELS = list(LEVEL_COLUMNS.values())

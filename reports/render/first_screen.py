@@ -3,20 +3,16 @@ scenario x engine matrix at every level, and how far the engines' default runs l
 
 from __future__ import annotations
 
+import json
 import math
 from typing import Any
 
 import pandas as pd
 
-from reports.harness.agreement import pair_differences, widest
-from reports.harness.level_error import LEVEL_COLUMNS, characteristic_rate
-from reports.harness.truth import CLOSED_FORM
+from reports.harness.columns import CLOSED_FORM, LEVEL_COLUMNS, NOT_RECORDED
 from reports.render import markup
 from reports.render.report_data import ReportData, number
-from scenarios import ScenarioError
-from scenarios import load as build_scenario
 
-NATIVE = "reference"
 BEST, WORST = -14.0, -1.0  # log10 error drawn fully green, fully red
 DRIFT_MARK = " ⚠"
 """Beside an ok run's errors when its own figures say it drifted (harness.self_check; no truth used)."""
@@ -27,12 +23,15 @@ is always the native solver's."""
 SPAN = f'colspan="{len(MATRIX_COLUMNS)}"'
 
 
-def native_line(frame: pd.DataFrame) -> str:
-    """One sentence: the native solver's worst error against the closed forms, per level."""
+def native_line(frame: pd.DataFrame, native: str) -> str:
+    """One sentence: the native solver's (engine `native`, as the store records it) worst error
+    against the closed forms, per level."""
+    if not native:
+        return "The native solver's name is not recorded in these results (a store from before it was)."
     if "truth" not in frame:
         return "The native solver was not measured against closed forms (results without a truth column)."
-    native = frame[(frame["engine"] == NATIVE) & frame["is_default"].astype(bool)]
-    closed = native[native["truth"] == CLOSED_FORM]
+    runs = frame[(frame["engine"] == native) & frame["is_default"].astype(bool)]
+    closed = runs[runs["truth"] == CLOSED_FORM]
     if closed.empty:
         return "The native solver has no run against a closed form in these results."
     bad = closed[closed["status"] != "ok"]
@@ -42,7 +41,7 @@ def native_line(frame: pd.DataFrame) -> str:
         if values.notna().any():
             where = str(closed.loc[values.idxmax(), "scenario"])
             worst.append(f"{level} {number(float(values.max()))} ({where})")
-    others = int(native["scenario"].nunique() - closed["scenario"].nunique())
+    others = int(runs["scenario"].nunique() - closed["scenario"].nunique())
     line = (
         f"Native solver against the closed forms, at its default setting on "
         f"{closed['scenario'].nunique()} scenarios: worst error {', '.join(worst)}"
@@ -124,27 +123,28 @@ def truth_names(rows: pd.DataFrame) -> str:
 
 
 def agreement_frame(data: ReportData) -> pd.DataFrame:
-    """Per scenario and level: the pair of engines whose default runs differ most, and by how much."""
+    """Per scenario and level: the pair of engines whose default runs differ most, and by how much,
+    as the rows stored it (harness.recording); NOT_RECORDED where a store with two runs lacks it."""
     records: list[dict[str, Any]] = []
     for scenario in data.scenarios():
+        rows = data.rows(scenario)
+        stored = [str(a) for a in rows["agreement"] if str(a or "")] if "agreement" in rows else []
         runs = data.default_trajectories(scenario)
-        if len(runs) < 2:
+        if not stored and len(runs) < 2:
             continue
-        pairs = pair_differences(runs, data.characteristic_length(scenario), scenario_rate(data, scenario))
-        record: dict[str, Any] = {"scenario": scenario, "engines": len(runs)}
+        found: dict[str, Any] = json.loads(stored[0]) if stored else {"engines": len(runs), "levels": None}
+        levels: dict[str, Any] | None = found["levels"]
+        record: dict[str, Any] = {"scenario": scenario, "engines": found["engines"]}
         for level in LEVEL_COLUMNS:
-            pair, value = widest(pairs, level)
-            record[level] = "–" if pair is None else f"{number(value)} ({pair[0]}–{pair[1]})"
+            pair = None if levels is None else levels.get(level)
+            text = "–" if pair is None else f"{number(pair[2])} ({pair[0]}–{pair[1]})"
+            record[level] = NOT_RECORDED if levels is None else text
         records.append(record)
     return pd.DataFrame(records)
 
 
 def scenario_rate(data: ReportData, scenario: str) -> float:
-    """The characteristic rate stored with the rows, else the scenario's own."""
+    """The characteristic rate stored with the rows (NaN in rows stored before it was: the levels
+    it scales then compare as not recorded)."""
     rows = data.rows(scenario)
-    if "characteristic_rate" in rows and pd.notna(rows["characteristic_rate"].iloc[0]):
-        return float(rows["characteristic_rate"].iloc[0])
-    try:
-        return characteristic_rate(build_scenario(scenario))
-    except (ScenarioError, KeyError):
-        return math.nan
+    return float(rows["characteristic_rate"].iloc[0]) if "characteristic_rate" in rows else math.nan

@@ -16,10 +16,7 @@ import os
 import re
 from typing import Any
 
-from reports.dynamics.cases import map_cells
-from reports.harness.forces import FORCE_DEFINITION
-from reports.harness.level_error import SCALE_DEFINITION
-from reports.harness.provenance import revision_label
+from reports.harness.columns import ERROR_SERIES, FORCE_DEFINITION, NOT_RECORDED, SCALE_DEFINITION
 from reports.render import (
     dynamics_render,
     engine_reach,
@@ -31,7 +28,7 @@ from reports.render import (
     svg_figure,
     sweep_render,
 )
-from reports.render.report_data import ReportData, number, table, timing_note
+from reports.render.report_data import ReportData, map_cell_rows, number, revision_label, table, timing_note
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 1.5em auto; max-width: 1200px; color: #222; }
@@ -74,7 +71,7 @@ def render(data: ReportData) -> str:
     """The whole page as text. The points of parameter sweeps are drawn as maps up front (a first
     screen of their own) and left out of the per-scenario matrix and sections."""
     meta, whole, data = data.meta, data, data.unswept()
-    listed = data.without(map_cells())  # the dynamics map's cells are drawn as its map
+    listed = data.without(map_cell_rows(data.frame)["scenario"])  # drawn as the dynamics map
     dynamics = dynamics_render.html_fragment(data, _image)  # "" without dynamic scenarios
     parts = [
         "<!DOCTYPE html>",
@@ -129,7 +126,7 @@ REACH_NOTE = (
 def _headline(data: ReportData) -> str:
     if data.meta.get("suite") == "dynamics":
         return dynamics_render.headline(data)
-    return first_screen.native_line(data.frame)
+    return first_screen.native_line(data.frame, data.native_engine())
 
 
 def _subject(meta: dict[str, Any]) -> str:
@@ -273,7 +270,9 @@ def _scenario_section(data: ReportData, scenario: str) -> str:
     figures = [_image(level_plots.work_precision(rows, truth_name), "work-precision plot", _why_none(rows))]
     if truth is not None:
         runs = data.default_trajectories(scenario)
-        figures.append(_image(level_plots.deviations(truth, runs, length, rate, truth_name), "deviations"))
+        stored = any(name in run.extras for run in runs.values() for name in ERROR_SERIES.values())
+        why = NOT_RECORDED if runs and not stored else "no successful run to draw"
+        figures.append(_image(level_plots.deviations(truth, runs, truth_name), "deviations", why))
     else:
         figures.append('<p class="muted">no stored truth trajectory: no deviations</p>')
     shown = table(rows)

@@ -16,7 +16,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator
 
-from reports.harness.level_error import LEVEL_COLUMNS, level_series
+from reports.harness.columns import ERROR_SERIES, LEVEL_COLUMNS
 from reports.render.markup import figure_text
 from reports.render.plots import FLOOR, MARKERS, colour, legend_entries, swept_value, untimed, value_text
 from reports.render.svg_figure import hover
@@ -118,10 +118,9 @@ def _imported_strip(axes: Axes, imported: pd.DataFrame, level: str, column: str)
     return True
 
 
-def deviations(
-    truth: Trajectory, runs: dict[str, Trajectory], length: float, rate: float, truth_name: str
-) -> Figure | None:
-    """Each engine's default run minus the truth, dimensionless, at every grid time and level."""
+def deviations(truth: Trajectory, runs: dict[str, Trajectory], truth_name: str) -> Figure | None:
+    """Each engine's default run minus the truth, dimensionless, at every grid time and level, as
+    the run stored it (ERROR_SERIES); None where no run stored any."""
     figure, axes_row = plt.subplots(1, 3, figsize=(13.5, 3.0), sharex=True)
     lows: list[float] = []
     drawn = False
@@ -129,7 +128,7 @@ def deviations(
         for engine, run in runs.items():
             if not set(truth.bodies) <= set(run.bodies):
                 continue
-            series = level_series(run, truth, level, length, rate)
+            series = run.extras.get(ERROR_SERIES[level])
             if series is None:
                 continue
             values = np.maximum(series, FLOOR)

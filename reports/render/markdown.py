@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-from reports.harness.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
-from reports.harness.provenance import revision_label
+from reports.harness.columns import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.render import engine_reach, stability_render, sweep_render
 from reports.render.first_screen import native_line, scenario_rate, truth_names
 from reports.render.markdown_table import markdown_table
 from reports.render.markup import markdown_text
-from reports.render.report_data import HEADINGS, ReportData, number, table, timing_note
+from reports.render.report_data import HEADINGS, ReportData, number, revision_label, table, timing_note
 
 SHOWN = ("engine", "setting", "status", *LEVEL_COLUMNS.values(), "constraint_residual", "run_time", "message")
 SUMMARY_COLUMNS = tuple(HEADINGS.get(c, c) for c in SHOWN)
@@ -33,7 +32,7 @@ def render(data: ReportData) -> str:
         timing_note(whole.frame),
     ]
     if not data.frame.empty:
-        lines[-4:-4] = [f"**{native_line(data.frame)}**", ""]
+        lines[-4:-4] = [f"**{native_line(data.frame, data.native_engine())}**", ""]
         lines += [
             "",
             "## Status and error (position / velocity / acceleration) at each engine's default setting",

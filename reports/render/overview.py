@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from reports.harness.level_error import LEVEL_COLUMNS
+from reports.harness.columns import LEVEL_COLUMNS
 from reports.render.level_plots import MARGINS, finish
 from reports.render.plots import FLOOR, MARKERS, colour, untimed, value_text
 from reports.render.svg_figure import hover

@@ -4,18 +4,34 @@ overview; drawn as SVG by reports.render.svg_figure)."""
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from typing import Any
 
 import numpy as np
 import pandas as pd
 from matplotlib.axes import Axes
 
-from reports.harness.engine_facts import colour as colour  # the engines' colours, declared by their adapters
 from reports.render.markup import figure_text
 
 FLOOR = 1e-17  # errors of exactly zero are drawn here on log axes
 MARKERS = "osD^v<>p*h"
+PALETTE = ("#9467bd", "#8c564b", "#e377c2", "#bcbd22", "#17becf", "#ff7f0e")
+"""The colours of a name the store gives none (an engine that declares none, an imported
+trajectory's label, a store from before colours were stored), chosen by the name so that it keeps
+its colour from one report to the next."""
+_STORED: dict[str, str] = {}
+
+
+def use_stored_colours(colours: Mapping[str, Any]) -> None:
+    """Draw each engine in the colour its store records (the sidecar's `engine_colours`, which the
+    run took from the engine's adapter); ReportData.load calls it."""
+    _STORED.clear()
+    _STORED.update({str(k): str(v) for k, v in colours.items() if isinstance(v, str) and v})
+
+
+def colour(engine: str) -> str:
+    """The colour `engine`'s rows are drawn in: as stored, else one of PALETTE by its name."""
+    return _STORED.get(engine) or PALETTE[sum(map(ord, engine)) % len(PALETTE)]
 
 
 def legend_entries(panels: Iterable[Axes]) -> tuple[list[Any], list[str]]:

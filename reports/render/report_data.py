@@ -11,11 +11,9 @@ from typing import Any
 
 import pandas as pd
 
-import adapters
 from reports.harness.results_store import TRUTH, Key, read_results, read_trajectories
+from reports.render import plots
 from reports.render.drawings import read_drawings
-from scenarios import ScenarioError, catalogue, load
-from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
 TABLE_COLUMNS = (
@@ -67,6 +65,9 @@ class ReportData:
     drawings: dict[str, str] = field(default_factory=dict)
     """{scenario: SVG} of the mechanisms the run drew beside its results (reports.render.drawings)."""
 
+    def __post_init__(self) -> None:
+        plots.use_stored_colours(self.meta.get("engine_colours") or {})  # the figures draw these
+
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> ReportData:
         frame, meta = read_results(path)
@@ -76,12 +77,18 @@ class ReportData:
             trajectories = {}
         return cls(frame, meta, trajectories, read_drawings(path))
 
+    def native_engine(self) -> str:
+        """The native engine's name, as the run stored it ('' for a store from before it did)."""
+        return str(self.meta.get("native_engine") or "")
+
     def scenarios(self) -> list[str]:
-        """Scenarios in catalogue order, unknown ones after them."""
-        return _ordered(self.frame["scenario"].unique(), catalogue(include_stress=True, include_dynamic=True))
+        """Scenarios in catalogue order (as the rows recorded it), unknown ones after them."""
+        return _ordered(self.frame, "scenario", "scenario_rank")
 
     def engines(self) -> list[str]:
-        return _ordered(self.frame["engine"].unique(), adapters.names())
+        """Engines in the registry's order (as the rows recorded it), the others after them in the
+        order of the sidecar's engines (its run's), then by name."""
+        return _ordered(self.frame, "engine", "engine_rank", [str(e) for e in self.meta.get("engines") or []])
 
     def rows(self, scenario: str) -> pd.DataFrame:
         return self.frame[self.frame["scenario"] == scenario]
@@ -131,6 +138,22 @@ def is_swept(frame: pd.DataFrame) -> pd.Series:
     return frame["sweep"].fillna("").astype(str) != ""
 
 
+def map_cell_rows(frame: pd.DataFrame) -> pd.DataFrame:
+    """The rows at a cell of the dynamics' stiffness-step map (their cell recorded with them)."""
+    if "map_stiffness" not in frame:
+        return frame.iloc[0:0]
+    return frame[frame["map_stiffness"].notna()]
+
+
+def revision_label(meta: dict[str, Any]) -> str:
+    """The git revision of stored results as a report states it: the run's revision, and every
+    other revision its rows were made under (rows kept with --keep-stale), so a resume after a new
+    commit never passes old rows off as new ones."""
+    revision = str(meta.get("git_revision", "?"))[:12]
+    others = [str(r)[:12] for r in meta.get("revisions", []) if str(r)[:12] != revision]
+    return f"{revision} (some rows from {', '.join(others)}, marked stale)" if others else revision
+
+
 def timing_note(rows: pd.DataFrame) -> str:
     """Where the run times were measured and alongside how many other runs: parallel workers
     share the machine, so their times are noisier (and often longer) than one-by-one runs'."""
@@ -145,15 +168,6 @@ def timing_note(rows: pd.DataFrame) -> str:
     if counts != [1]:
         note += "; runs made in parallel share the machine, so their times are noisier than serial ones"
     return note + "."
-
-
-def stored_scenario(name: str) -> Scenario | None:
-    """The scenario a stored row names (a family, a variant, a file, a swept point), rebuilt to read
-    its constraints and masses; None where it no longer builds (renamed, or a file since edited)."""
-    try:
-        return load(name)
-    except ScenarioError:
-        return None
 
 
 def cell_text(row: pd.Series | None) -> str:
@@ -198,9 +212,26 @@ def table(rows: pd.DataFrame) -> pd.DataFrame:
     return shown.reset_index(drop=True).rename(columns=HEADINGS)
 
 
-def _ordered(values: Any, preferred: list[str]) -> list[str]:
-    present = [str(v) for v in values]
-    return [v for v in preferred if v in present] + sorted(v for v in present if v not in preferred)
+def _ordered(frame: pd.DataFrame, column: str, rank: str, stored: Iterable[str] = ()) -> list[str]:
+    """The distinct values of `column`: those with a recorded `rank` by it; then the others (a name
+    not listed when its row was made, or a row stored before the ranks were recorded) in the
+    `stored` order, then in the order they were first run (`recorded_at`), then by name."""
+    ranks: dict[str, int] = {}
+    first: dict[str, str] = {}
+    recorded = frame[rank].fillna(-1).astype(int) if rank in frame else pd.Series(-1, frame.index)
+    times = (
+        frame["recorded_at"].fillna("").astype(str) if "recorded_at" in frame else pd.Series("", frame.index)
+    )
+    for value, place, when in zip(frame[column].astype(str), recorded, times, strict=True):
+        ranks[value] = max(ranks.get(value, -1), int(place))
+        first[value] = min(first.get(value, when), when)
+    order = list(stored)
+    listed = sorted((r, v) for v, r in ranks.items() if r >= 0)
+    others = sorted(
+        (v for v, r in ranks.items() if r < 0),
+        key=lambda v: (order.index(v) if v in order else len(order), first[v], v),
+    )
+    return [v for _, v in listed] + others
 
 
 def setting_key(setting: object) -> tuple[tuple[str, int, float, str], ...]:

@@ -1,6 +1,7 @@
 """The stability map as a report section: an HTML fragment and a Markdown section.
 
-Tables, from the verdicts of reports.stress.stability_map (stored results alone):
+Tables, from the verdicts stored in the rows when the run was made (reports.stress.recording; a row
+stored before they were recorded shows "not recorded"):
 - the map: one row per stress case, one column per engine, each cell the verdict of the engine's
   default setting there, with when it happened, the error reached and the worst residual;
 - the settings grids of the cases run at several settings (constraint stiffness against the step,
@@ -16,21 +17,14 @@ import math
 import re
 from collections import Counter
 
-import numpy as np
 import pandas as pd
 
-from reference_solver import constraint_residual
-from reports.harness.metrics import headline_series
+from reports.harness.columns import NOT_RECORDED
 from reports.render import markup
 from reports.render.markdown_table import markdown_table
 from reports.render.report_data import ReportData
-from reports.stress.branch_check import LOST
-from reports.stress.cases import CASES
-from reports.stress.stability_map import Judgement, judge_all
-from scenarios import build
-from scenarios.trajectory import Trajectory
+from reports.render.stored_verdicts import LOST, STRESS_SUITE, Judgement, judgements, stress_rows
 
-STRESS_SUITE = "stress"
 GROWTH = 10.0
 """An engine whose error at a scale or speed is more than this times its nominal error (both
 floored at FLOOR) loses accuracy there."""
@@ -80,20 +74,28 @@ def cell(v: Judgement) -> str:
     return " · ".join(parts)
 
 
-def map_frame(found: list[Judgement], engines: list[str]) -> pd.DataFrame:
-    """case x engine: the default setting's verdict, with the case's probe and expectation."""
-    rows = []
+def map_frame(found: list[Judgement], engines: list[str], rows: pd.DataFrame) -> pd.DataFrame:
+    """case x engine: the default setting's verdict, with the case's probe and expectation (as the
+    rows stored them)."""
+    records = []
     for name in dict.fromkeys(v.scenario for v in found):
-        declared = CASES[name]
-        expected = declared.singular_time()
-        row = {"case": name, "probes": declared.probes, "closed form": "–"}
-        if expected is not None:
-            row["closed form"] = f"singular @{expected:.4g} s"
+        case = rows[rows["scenario"] == name].iloc[0]
+        recorded = int(case["case_rank"]) >= 0
+        expected = float(case["case_singular_time"])
+        record = {
+            "case": name,
+            "probes": case["case_probes"] if recorded else NOT_RECORDED,
+            "closed form": "–",
+        }
+        if not recorded:
+            record["closed form"] = NOT_RECORDED
+        elif math.isfinite(expected):
+            record["closed form"] = f"singular @{expected:.4g} s"
         for engine in engines:
             hit = [v for v in found if v.scenario == name and v.engine == engine and v.is_default]
-            row[engine] = cell(hit[0]) if hit else "not run"
-        rows.append(row)
-    return pd.DataFrame(rows).set_index("case")
+            record[engine] = cell(hit[0]) if hit else "not run"
+        records.append(record)
+    return pd.DataFrame(records).set_index("case")
 
 
 GRID = 3
@@ -165,19 +167,20 @@ def _options(label: str) -> dict[str, str]:
     return {"mode": mode, **dict(p.split("=", 1) for p in pairs if "=" in p)}
 
 
-def similarity_frame(found: list[Judgement], engines: list[str]) -> pd.DataFrame:
+def similarity_frame(found: list[Judgement], engines: list[str], rows: pd.DataFrame) -> pd.DataFrame:
     """The scale and speed cases: each engine's error and its growth over the nominal case's."""
     defaults = {(v.scenario, v.engine): v for v in found if v.is_default}
-    rows = []
-    for name, declared in CASES.items():
-        if declared.similar is None or not any(s == name for s, _ in defaults):
+    nominals = dict(zip(rows["scenario"], rows["case_nominal"].fillna("").astype(str), strict=True))
+    records = []
+    for name in dict.fromkeys(v.scenario for v in found):
+        if not nominals.get(name) or not any(s == name for s, _ in defaults):
             continue
-        row = {"case": name}
+        record = {"case": name}
         for engine in engines:
-            v, nominal = defaults.get((name, engine)), defaults.get((declared.similar.nominal, engine))
-            row[engine] = "–" if v is None else _growth(v, nominal)
-        rows.append(row)
-    return pd.DataFrame(rows).set_index("case") if rows else pd.DataFrame()
+            v, nominal = defaults.get((name, engine)), defaults.get((nominals[name], engine))
+            record[engine] = "–" if v is None else _growth(v, nominal)
+        records.append(record)
+    return pd.DataFrame(records).set_index("case") if records else pd.DataFrame()
 
 
 def _growth(v: Judgement, nominal: Judgement | None) -> str:
@@ -190,56 +193,48 @@ def _growth(v: Judgement, nominal: Judgement | None) -> str:
     return f"{_num(v.error)} (×{factor:.3g}){note}"
 
 
-def drift_frames(data: ReportData) -> dict[str, pd.DataFrame]:
-    """Long cases: each engine's headline error and residual over the first and last revolution."""
+DRIFT = {
+    "err first rev": "error_first_rev",
+    "res first rev": "residual_first_rev",
+    "err last rev": "error_last_rev",
+    "res last rev": "residual_last_rev",
+    "angle err at the end [rad]": "angle_error_end",
+}
+"""The long-horizon table's columns and the stored columns they show."""
+
+
+def drift_frames(data: ReportData, rows: pd.DataFrame) -> dict[str, pd.DataFrame]:
+    """Long cases: each engine's headline error and residual over the first and last revolution, as
+    stored with its default run."""
     frames = {}
-    for name in (n for n, c in CASES.items() if c.drift):
-        truth = data.truth(name)
-        runs = data.default_trajectories(name)
-        if truth is None or not runs:
-            continue
-        scenario = build(name)
-        per_turn = round(scenario.steps / float(scenario.parameter("revolutions")))
-        rows = []
-        for engine, run in runs.items():
-            first, last = slice(0, per_turn + 1), slice(len(run.times) - per_turn - 1, None)
-            errors = headline_series(run, truth, scenario.characteristic_length)
-            row = {"engine": engine}
-            for label, part in (("first", first), ("last", last)):
-                row[f"err {label} rev"] = _num(float(np.nanmax(errors[part])))
-                row[f"res {label} rev"] = _num(float(np.max(constraint_residual(scenario, _cut(run, part)))))
-            row["angle err at the end [rad]"] = _num(_final_angle_error(run, truth))
-            rows.append(row)
-        frames[name] = pd.DataFrame(rows).set_index("engine")
+    recorded = rows[rows["error_first_rev"].notna() & rows["is_default"].astype(bool)]
+    for name in dict.fromkeys(recorded["scenario"]):
+        records = []
+        for engine in data.engines():
+            hit = recorded[(recorded["scenario"] == name) & (recorded["engine"] == engine)]
+            if not hit.empty:
+                records.append(
+                    {"engine": engine} | {t: _num(float(hit.iloc[0][c])) for t, c in DRIFT.items()}
+                )
+        frames[str(name)] = pd.DataFrame(records).set_index("engine")
     return frames
-
-
-def _final_angle_error(run: Trajectory, truth: Trajectory) -> float:
-    """The largest angle error over the bodies at the last time: the phase the run has drifted."""
-    mine, ref = run.select(truth.bodies).position, truth.position
-    return math.nan if mine is None or ref is None else float(np.max(np.abs(mine[-1, :, 2] - ref[-1, :, 2])))
-
-
-def _cut(run: Trajectory, part: slice) -> Trajectory:
-    levels = {lv: None if (a := run.level(lv)) is None else a[part] for lv in run.levels}
-    extras = {k: v[part] for k, v in run.extras.items()}
-    return Trajectory(run.times[part], run.bodies, extras=extras, **levels)  # type: ignore[arg-type]
 
 
 def _tables(data: ReportData) -> list[tuple[str, pd.DataFrame]]:
     if str(data.meta.get("suite", "")) != STRESS_SUITE:  # a default run's near-singular variants
         return []
-    found = judge_all(data)
+    rows = stress_rows(data.frame)
+    found = judgements(rows)
     if not found:
         return []
     engines = data.engines()
-    tables = [("Stability map (each engine's default setting)", map_frame(found, engines))]
-    similar = similarity_frame(found, engines)
+    tables = [("Stability map (each engine's default setting)", map_frame(found, engines, rows))]
+    similar = similarity_frame(found, engines, rows)
     if not similar.empty:
         tables.append(("Scale and speed against the nominal case (error, ×growth)", similar))
     tables += [
         (f"Long horizon, {name}: the first and the last revolution", frame)
-        for name, frame in drift_frames(data).items()
+        for name, frame in drift_frames(data, rows).items()
     ]
     tables += [(f"Settings: {key}", frame) for key, frame in settings_frames(found).items()]
     return tables

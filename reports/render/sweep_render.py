@@ -1,4 +1,4 @@
-"""The swept stability map as a report section (reports.stress.sweep_verdicts gives the data).
+"""The swept stability map as a report section (reports.render.swept_map gives the data).
 
 One heat map per sweep and engine: the first swept parameter across, the second up (a third and
 further ones make one figure per combination of their values); an ok cell is coloured by its log10
@@ -24,7 +24,7 @@ from reports.render import markup, plots, svg_figure
 from reports.render.first_screen import BEST, WORST
 from reports.render.markdown_table import markdown_table
 from reports.render.report_data import ReportData, number
-from reports.stress.sweep_verdicts import SweptMap, Value, swept_maps
+from reports.render.swept_map import SweptMap, Value, swept_maps
 
 ERRORS = plt.get_cmap("RdYlGn_r")
 VERDICT_COLOURS = {

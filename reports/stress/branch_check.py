@@ -28,6 +28,7 @@ from reference_solver.factorization import factorize
 from reference_solver.layout import Layout
 from reference_solver.newton import NewtonSettings, newton
 from reference_solver.system import ConstraintSystem
+from reports.harness.columns import LOST  # farther than it from every closure: `off`
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -37,8 +38,6 @@ CANDIDATE = 1e-3
 """Times where the engine is closer than this to the truth are on its branch without a check."""
 ON_CLOSURE = 1e-2
 """An engine within this of another closure (and nearer it than the truth) sits on that closure."""
-LOST = 0.1
-"""An engine farther than this from every closure has left the mechanism (`off`)."""
 DISTINCT = 1e-6
 """Two closures farther apart than this are different branches."""
 PROJECTION = NewtonSettings(1e-10, 1e-10, max_iterations=50, damped=True)

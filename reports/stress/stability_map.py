@@ -1,7 +1,8 @@
 """The stability map: for every stress case, engine and setting, what became of the run.
 
-The verdict of a stored row, from the stored results alone (rows, the default runs' trajectories
-and the truth; the scenario is rebuilt from its name to read its constraint equations):
+The verdict of a stored row, decided when the run is made (reports.stress.recording stores it in the
+row's verdict columns; the report reads them) from what the store holds: the row, the default runs'
+trajectories and the truth, with the scenario rebuilt from its name to read its constraint equations:
     ok                  a result on the truth's branch (its error may still be large)
     picked a branch     past the truth's end (a singular configuration) the engine went on, on a
                         closure of the mechanism: the same branch or the mirrored one (detail)
@@ -23,15 +24,15 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from reports.harness.columns import LOST
 from reports.harness.metrics import headline_series
-from reports.render.report_data import ReportData, stored_scenario
-from reports.stress.branch_check import LOST, ON_CLOSURE, check_branch
-from reports.stress.cases import CASES
+from reports.stress.branch_check import ON_CLOSURE, check_branch
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -52,24 +53,18 @@ class Judgement:
     detail: str
 
 
-def stress_rows(frame: pd.DataFrame) -> pd.DataFrame:
-    """The rows of the stress cases, in the cases' order."""
-    order = {name: k for k, name in enumerate(CASES)}
-    rows = frame[frame["scenario"].isin(order)]
-    return rows.assign(_order=rows["scenario"].map(order)).sort_values(["_order", "engine"], kind="stable")
+Row = Mapping[str, Any]
+"""A stored row: the store's dict, or a table's row."""
 
 
-def judge_all(data: ReportData) -> list[Judgement]:
-    """The verdict of every stored row of a stress case."""
-    scenarios: dict[str, Scenario | None] = {}
-    out = []
-    for _, row in stress_rows(data.frame).iterrows():
-        name = str(row["scenario"])
-        if name not in scenarios:
-            scenarios[name] = stored_scenario(name)
-        result = data.trajectories.get((name, str(row["engine"]), str(row["setting"])))
-        out.append(judge(row, result, data.truth(name), scenarios[name]))
-    return out
+def columns(judged: Judgement) -> dict[str, Any]:
+    """The verdict as the row's verdict columns (verdict, verdict_time, verdict_error, verdict_detail)."""
+    return {
+        "verdict": judged.verdict,
+        "verdict_time": judged.time,
+        "verdict_error": judged.error,
+        "verdict_detail": judged.detail,
+    }
 
 
 Outcome = tuple[str, float, float, str]
@@ -77,7 +72,7 @@ Outcome = tuple[str, float, float, str]
 
 
 def judge(
-    row: pd.Series, result: Trajectory | None, truth: Trajectory | None, scenario: Scenario | None
+    row: Row, result: Trajectory | None, truth: Trajectory | None, scenario: Scenario | None
 ) -> Judgement:
     """The verdict of one row; the branch check needs the row's trajectory, the truth and the scenario."""
     name, time, error, detail = _outcome(row, result, truth, scenario)
@@ -95,7 +90,7 @@ def judge(
 
 
 def _outcome(
-    row: pd.Series, result: Trajectory | None, truth: Trajectory | None, scenario: Scenario | None
+    row: Row, result: Trajectory | None, truth: Trajectory | None, scenario: Scenario | None
 ) -> Outcome:
     status, message = str(row["status"]), str(row["message"])
     failure_time, nan = float(row["failure_time"]), math.nan

@@ -78,9 +78,7 @@ def test_out_adds_the_row_beside_the_engines(tmp_path: Path, capsys: pytest.Capt
     assert "bodies not in the file, not scored: gear_out" in row["message"]
     assert set(frame["engine"]) == {"reference", "other_tool"}  # the engine's rows are kept
     assert meta["imported"] == {"other_tool": str(csv)}
-    assert meta["engine_colours"] == engine_facts.colours(
-        ["reference", "other_tool"]
-    )  # the run's and the label's
+    assert meta["engine_colours"] == engine_facts.colours(["reference"])  # the label declares none
     assert ("spur_gears", "other_tool", "imported") in read_trajectories(store)
     data = ReportData.load(store)
     assert data.engines() == ["reference", "other_tool"]

@@ -1,14 +1,19 @@
-"""The dynamics stability map's verdicts, from rows of known outcome."""
+"""The dynamics stability map's verdicts, from rows of known outcome, and their recording in the
+rows when the run is made."""
 
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import pandas as pd
 import pytest
 
 from reports.dynamics.cases import map_cells
-from reports.dynamics.stability import DRIFTED, map_rows, verdict
+from reports.dynamics.recording import DEFINITION, record
+from reports.dynamics.stability import DRIFTED, verdict
+from reports.harness.columns import empty_row
+from reports.harness.results_store import ResultsStore
 
 
 def _row(status: str = "ok", error: float = 1e-9, drift: float = 1e-10) -> pd.Series:
@@ -32,15 +37,20 @@ def test_verdicts(row: pd.Series, expected: str) -> None:
     assert verdict(row) == expected
 
 
-def test_map_rows_read_the_cell_from_the_scenario() -> None:
+def test_a_map_cell_row_gets_its_verdict_and_cell_recorded_once(tmp_path: Path) -> None:
     name, values = next(iter(map_cells().items()))
-    at_cell = {"scenario": name, "engine": "e", "mode": "m", "setting": "m dt=1", "is_default": True}
-    elsewhere = {**at_cell, "scenario": "four_bar_gravity"}
-    frame = pd.DataFrame([at_cell | dict(_row(error=0.5)), elsewhere | dict(_row())])
-    (cell,) = map_rows(frame)
-    assert (cell.stiffness, cell.dt, cell.verdict, cell.error) == (
+    at_cell = empty_row() | {"scenario": name, "engine": "e", "setting": "m dt=1", "is_default": True}
+    elsewhere = at_cell | {"scenario": "four_bar_gravity"}
+    store = ResultsStore(tmp_path)
+    store.add(at_cell | dict(_row(error=0.5)))
+    store.add(elsewhere | dict(_row()))
+    assert record(store) == 1
+    stored = store.rows[(name, "e", "m dt=1")]
+    assert (stored["map_stiffness"], stored["map_dt"], stored["verdict"], stored["verdict_detail"]) == (
         values["stiffness"],
         values["dt"],
         "drifted",
-        0.5,
+        DEFINITION,
     )
+    assert store.rows[("four_bar_gravity", "e", "m dt=1")]["verdict"] == ""
+    assert record(store) == 0  # decided once: a recorded verdict is kept

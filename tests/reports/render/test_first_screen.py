@@ -25,7 +25,7 @@ def test_the_native_line_names_the_worst_error_per_level_and_the_other_truths() 
             row("c", "native, tolerance 1e-12, grid refined 4x", "ok", (1e-3, 1e-3, 1e-3)),
         ]
     )
-    line = native_line(frame)
+    line = native_line(frame, "reference")
     assert "on 2 scenarios" in line
     assert "position 3.00e-15 (b)" in line and "velocity 4.00e-14 (a)" in line
     assert "acceleration 5.00e-13 (b)" in line
@@ -45,3 +45,8 @@ def test_the_force_column_shows_the_force_error() -> None:
     forces = pd.Series({**row("a", "closed form", "ok", (1e-15, 2e-6, 3e-4)), "error_force": 8e-5})
     cells = matrix_cells(forces)
     assert 'class="force"' in cells[3] and "8e-05" in cells[3]
+
+
+def test_a_store_that_does_not_record_the_native_engine_says_so() -> None:
+    frame = pd.DataFrame([row("a", "closed form", "ok", (1e-15, 4e-14, 2e-13))])
+    assert "not recorded" in native_line(frame, "")

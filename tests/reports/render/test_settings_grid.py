@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from reports.render.stability_render import settings_frames
-from reports.stress.stability_map import Judgement
+from reports.render.stored_verdicts import Judgement
 
 
 def judgement(setting: str, error: float) -> Judgement:

@@ -16,7 +16,8 @@ from reports.harness.runner import Runner, RunOptions
 from reports.harness.sweep import points
 from reports.render import html, markdown, sweep_render
 from reports.render.report_data import ReportData
-from reports.stress.sweep_verdicts import SINGULAR, swept_maps
+from reports.render.swept_map import SINGULAR, swept_maps
+from reports.stress.recording import record
 
 GROUND, COUPLER, ROCKER, THETA0 = 0.1, 0.1, 0.125, 0.3  # the four_bar family's defaults
 CRANKS, SPEEDS = ("0.05", "0.08"), ("10", "50")
@@ -38,6 +39,9 @@ def data(tmp_path_factory: pytest.TempPathFactory) -> ReportData:
     names = points(["four_bar"], [f"crank_length={','.join(CRANKS)}", f"omega={','.join(SPEEDS)}"])
     options = RunOptions(sweep=False, repeats=1, warmup=0, timeout=120.0)
     Runner(ResultsStore(directory), ["reference"], options, progress=False).run(names)
+    store = ResultsStore(directory)
+    record(store, "")  # as `mbxval run` does once its runs are stored
+    store.save(store.meta)
     return ReportData.load(directory)
 
 

@@ -12,8 +12,8 @@ import pytest
 from reports.cli.main import main
 from reports.harness.results_store import read_results
 from reports.render.report_data import ReportData
+from reports.render.stored_verdicts import Judgement, judgements, stress_rows
 from reports.stress.cases import CASES
-from reports.stress.stability_map import judge_all
 
 FEW = (
     "slider_crank/stress_dead_centre",
@@ -32,6 +32,11 @@ VERDICTS = {
     "timeout",
     "unsupported",
 }
+
+
+def judge_all(data: ReportData) -> list[Judgement]:
+    """The verdicts the run stored with the stress cases' rows."""
+    return judgements(stress_rows(data.frame))
 
 
 def _run(out: Path, *extra: str) -> None:

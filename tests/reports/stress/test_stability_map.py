@@ -17,7 +17,8 @@ from reports.harness.results_store import ResultsStore
 from reports.harness.rows import failure_row, result_row
 from reports.render.report_data import ReportData
 from reports.render.stability_render import html_fragment, markdown_section
-from reports.stress.stability_map import Judgement, judge_all
+from reports.render.stored_verdicts import Judgement, judgements, stress_rows
+from reports.stress.recording import record
 from reports.stress.truth import stress_truth
 from scenarios.trajectory import Trajectory
 
@@ -78,13 +79,14 @@ def stored(tmp_path_factory: pytest.TempPathFactory) -> Path:
         row = failure_row(case, engine, "test", SETTING, True, status, message)  # type: ignore[arg-type]
         row["failure_time"] = when
         store.add(row)
+    record(store, "stress")
     store.save({"suite": "stress"})
     return out
 
 
 @pytest.fixture(scope="module")
 def found(stored: Path) -> dict[tuple[str, str], Judgement]:
-    return {(v.scenario, v.engine): v for v in judge_all(ReportData.load(stored))}
+    return {(v.scenario, v.engine): v for v in judgements(stress_rows(ReportData.load(stored).frame))}
 
 
 def test_a_run_on_the_truth_is_ok(found) -> None:  # type: ignore[no-untyped-def]

@@ -1,6 +1,7 @@
 """The stability map of a parameter sweep, as data: for every swept point and engine, the verdict of
-the engine's default setting (reports.stress.stability_map.judge: ok, wrong branch, drifted,
-diverged, singular detected, ...), its error and when it happened, on the grid of the swept values.
+the engine's default setting as its row stored it when the run was made (reports.stress.recording:
+ok, wrong branch, drifted, diverged, singular detected, ...; "not recorded" in a store from before),
+its error and when it happened, on the grid of the swept values.
 
 The rows of one sweep share a base scenario and the swept parameters (the `sweep` column); the axes
 are those parameters in the order they were swept, each value sorted (numerically where it is a
@@ -15,11 +16,9 @@ from dataclasses import dataclass
 
 import pandas as pd
 
-from reports.render.report_data import ReportData, is_swept, stored_scenario
-from reports.stress.stability_map import judge
-from scenarios.loading import split_point
+from reports.render.report_data import ReportData, is_swept
+from reports.render.stored_verdicts import judgement
 
-NATIVE = "reference"
 SINGULAR = "singular detected"
 Value = float | str
 
@@ -46,10 +45,12 @@ class SweptMap:
     values: tuple[tuple[Value, ...], ...]
     engines: tuple[str, ...]
     cells: tuple[Cell, ...]
+    native: str = ""
+    """The native engine's name as the store records it ('' where it does not)."""
 
     def native_singular(self) -> set[tuple[int, ...]]:
         """Grid positions where the native solver detected a singular configuration."""
-        return {c.index for c in self.cells if c.engine == NATIVE and c.verdict == SINGULAR}
+        return {c.index for c in self.cells if c.engine == self.native and c.verdict == SINGULAR}
 
     def cell(self, engine: str, **values: Value) -> Cell:
         """The cell of `engine` at the given values of every axis (KeyError if there is none)."""
@@ -66,7 +67,7 @@ def swept_maps(data: ReportData) -> list[SweptMap]:
     groups: dict[tuple[str, tuple[str, ...]], list[pd.Series]] = {}
     for _, row in frame.iterrows():
         swept = json.loads(str(row["sweep"]))
-        groups.setdefault((split_point(str(row["scenario"]))[0], tuple(swept)), []).append(row)
+        groups.setdefault((base_name(str(row["scenario"])), tuple(swept)), []).append(row)
     return [_swept_map(data, base, axes, rows) for (base, axes), rows in groups.items()]
 
 
@@ -77,8 +78,9 @@ def _value(text: str) -> Value:
         return text
 
 
-def _point_values(sweep: str) -> dict[str, Value]:
-    return {key: _value(text) for key, text in json.loads(sweep).items()}
+def base_name(point: str) -> str:
+    """The scenario a swept point's name (`base[NAME=VALUE,...]`) was made from."""
+    return point[:-1].partition("[")[0] if point.endswith("]") and "[" in point else point
 
 
 def _sorted(values: set[Value]) -> tuple[Value, ...]:
@@ -96,9 +98,8 @@ def _swept_map(data: ReportData, base: str, axes: tuple[str, ...], rows: list[pd
     for row in rows:
         point = str(row["scenario"])
         index = tuple(values[k].index(points[point][a]) for k, a in enumerate(axes))
-        result = data.trajectories.get((point, str(row["engine"]), str(row["setting"])))
-        judged = judge(row, result, data.truth(point), stored_scenario(point))
+        judged = judgement(row)
         cells.append(
             Cell(point, judged.engine, index, judged.verdict, judged.time, judged.error, judged.detail)
         )
-    return SweptMap(base, axes, values, tuple(engines), tuple(cells))
+    return SweptMap(base, axes, values, tuple(engines), tuple(cells), data.native_engine())
