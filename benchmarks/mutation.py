@@ -62,6 +62,7 @@ MODULES: dict[str, tuple[str, ...]] = {
             "tests/reference_solver/test_constraint_derivatives.py",
             "tests/reference_solver/test_closed_forms.py",
             "tests/reference_solver/test_failures.py",
+            "tests/reference_solver/equations",
         ),
     ),
 }
