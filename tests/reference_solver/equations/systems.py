@@ -31,15 +31,18 @@ def system_of(*constraints: Constraint, length: float = 1.0) -> ConstraintSystem
     return ConstraintSystem(scenario)
 
 
-def coordinates(poses: dict[str, Pose]) -> np.ndarray:
-    """The unknowns with each named body at its pose (the others at the origin)."""
+def coordinates(poses: dict[str, Pose], phis: tuple[float, ...] = ()) -> np.ndarray:
+    """The unknowns with each named body at its pose (the others at the origin), then the cam
+    contacts' profile parameters."""
     q = np.zeros(3 * len(BODIES))
     for body, pose in poses.items():
         k = 3 * BODIES.index(body)
         q[k : k + 3] = pose
-    return q
+    return np.concatenate([q, phis])
 
 
-def residual(constraint: Constraint, poses: dict[str, Pose], t: float = 0.0) -> np.ndarray:
-    """C of one constraint with the bodies at `poses`."""
-    return system_of(constraint).residual(coordinates(poses), t)
+def residual(
+    constraint: Constraint, poses: dict[str, Pose], t: float = 0.0, phis: tuple[float, ...] = ()
+) -> np.ndarray:
+    """C of one constraint with the bodies at `poses` (and a cam's contact at `phis`)."""
+    return system_of(constraint).residual(coordinates(poses, phis), t)

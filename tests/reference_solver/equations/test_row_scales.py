@@ -13,8 +13,11 @@ import pytest
 from scenarios import (
     AbsoluteDriver,
     ConstantSpeed,
+    EccentricDisc,
+    FlatFaceCam,
     GearPair,
     Ground,
+    KnifeEdgeCam,
     Point,
     PointPathDriver,
     Prismatic,
@@ -23,6 +26,7 @@ from scenarios import (
     RelativeRotationDriver,
     Revolute,
     RevoluteRevolute,
+    RollerCam,
 )
 from scenarios.scenario import Constraint
 from tests.reference_solver.equations.systems import Pose, coordinates, system_of
@@ -69,13 +73,27 @@ CASES: dict[str, Case] = {
         ),
         _moved(s),
     ),
+    "knife_edge_cam": lambda s: (
+        KnifeEdgeCam("k", "a", EccentricDisc(0.3 * s, 0.1 * s), Point("b", (0.1 * s, 0.0)), 0.0),
+        _moved(s),
+    ),
+    "roller_cam": lambda s: (
+        RollerCam("k", "a", EccentricDisc(0.3 * s, 0.1 * s), Point("b", (0.1 * s, 0.0)), 0.2 * s, 0.0),
+        _moved(s),
+    ),
+    "flat_face_cam": lambda s: (
+        FlatFaceCam("k", "a", EccentricDisc(0.3 * s, 0.1 * s), Point("b", (0.1 * s, 0.0)), (3.0, 4.0), 0.0),
+        _moved(s),
+    ),
 }
+PHI = 0.7  # a cam contact's profile parameter, an angle
 
 
 def _scaled_residual(case: Case, s: float) -> np.ndarray:
     constraint, poses = case(s)
     system = system_of(constraint, length=s)
-    return system.residual(coordinates(poses), 0.5) / system.row_scales
+    phis = (PHI,) * len(system.layout.contacts)
+    return system.residual(coordinates(poses, phis), 0.5) / system.row_scales
 
 
 @pytest.mark.parametrize("kind", CASES)
