@@ -54,6 +54,13 @@ def test_a_fixed_sun_drives_the_planet_by_the_carrier_alone() -> None:
     np.testing.assert_allclose(residual(gear, held), [0.2 * (0.0 - 0.5) + 0.1 * (0.0 - 0.5)], atol=1e-15)
 
 
+def test_a_gear_that_is_its_own_carrier_locks_the_other_gear_to_it() -> None:
+    """Gear a is also the carrier: it cannot turn relative to the carrier, so neither can b; the slip
+    is r_b (dth_b - dth_a). The row's two terms on a add up (r_a - (r_a + r_b)) rather than replace."""
+    gear = GearPair("m", "a", 0.2, "b", 0.1, "a", False, 0.1, 0.3, 0.1)
+    np.testing.assert_allclose(residual(gear, POSES), [0.1 * (TURNED_B - TURNED_A)], rtol=0, atol=1e-15)
+
+
 def test_a_rack_on_the_ground_along_an_inclined_axis() -> None:
     """The rack's pitch line through the origin along (3, 4) (not unit); the pinion's centre at (1, 2)
     is (3 + 8) / 5 along it from P, so P is -11/5 along u from the centre; the pinion turned by 0.4."""
