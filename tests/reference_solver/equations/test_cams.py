@@ -38,12 +38,12 @@ def test_a_roller_is_its_centre_off_the_normal_and_its_squared_distance_less_its
 
 
 def test_a_flat_face_is_the_tangent_across_its_normal_and_the_profile_point_off_the_face() -> None:
-    """The face's normal (0, 2) (not unit) on b turned by 90 degrees points along (-1, 0); the face
+    """The face's normal (3, 4) (not unit) on b turned by 90 degrees points along (-4, 3)/5; the face
     point (1, 0.5) on b at (0, 5) is at (-0.5, 6). The cam turned as above: u at (-3, 1), tangent
-    (3, -4): h . t = -3 and h . (r_cam - r_face) = -(-3 + 0.5)."""
-    cam = FlatFaceCam("k", "a", DISC, Point("b", (1.0, 0.5)), (0.0, 2.0), 0.0)
+    (3, -4): h . t = (-12 - 12)/5 and h . (r_cam - r_face) = h . (-2.5, -5) = (10 - 15)/5."""
+    cam = FlatFaceCam("k", "a", DISC, Point("b", (1.0, 0.5)), (3.0, 4.0), 0.0)
     c = residual(cam, {**CAM_TURNED, "b": (0.0, 5.0, math.pi / 2)}, phis=CONTACT)
-    np.testing.assert_allclose(c, [-3.0, 2.5], rtol=0, atol=1e-14)
+    np.testing.assert_allclose(c, [-24 / 5, -1.0], rtol=0, atol=1e-14)
 
 
 def test_each_cam_row_is_named_after_its_contact_and_what_it_constrains() -> None:
