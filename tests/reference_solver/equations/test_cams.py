@@ -30,11 +30,11 @@ def test_a_knife_edge_is_the_gap_from_the_profile_point_to_the_tip() -> None:
 def test_a_roller_is_its_centre_off_the_normal_and_its_squared_distance_less_its_radius_squared() -> None:
     """The centre 0.4 * 5 = 2 out along the normal and 0.1 * 5 along the tangent from the contact:
     n = 0.4 (-3, 4) + 0.1 (-4, -3), so n . t = 0.1 * 25 and n . n = 0.16 * 25 + 0.01 * 25, against
-    a roller of radius 2 (the cam unturned at the origin)."""
-    cam = RollerCam("k", "a", DISC, Point("b", (0.0, 0.3)), 2.0, 0.0)
+    a roller of radius 1.5 (the cam unturned at the origin; not 2, whose square is also its double)."""
+    cam = RollerCam("k", "a", DISC, Point("b", (0.0, 0.3)), 1.5, 0.0)
     centre = (0.4 * -3 + 0.1 * -4, 4 + 0.4 * 4 + 0.1 * -3)
     c = residual(cam, {"b": (centre[0], centre[1] - 0.3, 0.0)}, phis=CONTACT)
-    np.testing.assert_allclose(c, [2.5, 4.25 - 4.0], rtol=0, atol=1e-14)
+    np.testing.assert_allclose(c, [2.5, 4.25 - 1.5**2], rtol=0, atol=1e-14)
 
 
 def test_a_flat_face_is_the_tangent_across_its_normal_and_the_profile_point_off_the_face() -> None:
