@@ -56,6 +56,25 @@ LOST = 0.1
 (lengths in characteristic lengths, angles in radians; reports.stress.branch_check)."""
 NOT_RECORDED = "not recorded"
 """What a report shows for a column its store does not hold (written before the column existed)."""
+
+
+@dataclass(frozen=True)
+class Judgement:
+    """One row's verdict, with when it happened, its error and the run's worst residual: what
+    reports.stress.stability_map decides and stores in the verdict columns below, and what the
+    report reads back from them (reports.render.stored_verdicts)."""
+
+    scenario: str
+    engine: str
+    setting: str
+    is_default: bool
+    verdict: str
+    time: float
+    error: float
+    residual: float
+    detail: str
+
+
 RECORDED_COLUMNS: tuple[Column, ...] = (
     Column(
         "verdict",

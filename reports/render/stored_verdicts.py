@@ -5,31 +5,15 @@ never judged. A row stored before the verdicts were recorded shows NOT_RECORDED.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import pandas as pd
 
-from reports.harness.columns import LOST, NOT_RECORDED
+from reports.harness.columns import LOST, NOT_RECORDED, Judgement
 
 STRESS_SUITE = "stress"
 """The suite whose rows the stability map shows."""
 
 __all__ = ["LOST", "NOT_RECORDED", "STRESS_SUITE", "Judgement", "judgement", "judgements", "stress_rows"]
-
-
-@dataclass(frozen=True)
-class Judgement:
-    """One stored row's verdict, with when it happened, its error and the run's worst residual."""
-
-    scenario: str
-    engine: str
-    setting: str
-    is_default: bool
-    verdict: str
-    time: float
-    error: float
-    residual: float
-    detail: str
 
 
 def judgement(row: pd.Series) -> Judgement:

@@ -25,12 +25,11 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from reports.harness.columns import LOST
+from reports.harness.columns import LOST, Judgement
 from reports.harness.metrics import headline_series
 from reports.stress.branch_check import ON_CLOSURE, check_branch
 from scenarios.scenario import Scenario
@@ -38,19 +37,6 @@ from scenarios.trajectory import Trajectory
 
 NO_CONVERGENCE = re.compile(r"converge|newton", re.IGNORECASE)
 FAILURES = {"diverged": "diverged", "singular": "singular detected", "timeout": "timeout"}
-
-
-@dataclass(frozen=True)
-class Judgement:
-    scenario: str
-    engine: str
-    setting: str
-    is_default: bool
-    verdict: str
-    time: float
-    error: float
-    residual: float
-    detail: str
 
 
 Row = Mapping[str, Any]
