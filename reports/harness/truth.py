@@ -26,7 +26,7 @@ from scenarios.closed_form import NoClosedForm, exact
 REFINE = 4
 ATTEMPTS = 3
 """How often the native solve is cut short at the time the solver stopped before giving up."""
-NATIVE = f"native, tolerance {TRUTH_TOLERANCE:g}, grid refined {REFINE}x"
+NATIVE_REFINED = f"native, tolerance {TRUTH_TOLERANCE:g}, grid refined {REFINE}x"
 DYNAMIC_RTOL = 1e-13
 NATIVE_DYNAMIC = f"native dynamics, DOP853 rtol {DYNAMIC_RTOL:g}"
 
@@ -111,7 +111,7 @@ def independent_truth(scenario: Scenario, times: np.ndarray) -> NamedTruth:
     found = closed_form(scenario, grid)
     if found is not None:
         return NamedTruth(with_native_forces(scenario, grid, found), CLOSED_FORM)
-    return NamedTruth(with_native_forces(scenario, grid, native_refined(scenario, grid)), NATIVE)
+    return NamedTruth(with_native_forces(scenario, grid, native_refined(scenario, grid)), NATIVE_REFINED)
 
 
 def with_native_forces(scenario: Scenario, times: np.ndarray, truth: Trajectory) -> Trajectory:

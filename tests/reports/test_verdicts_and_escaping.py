@@ -16,7 +16,7 @@ import pytest
 
 import scenarios
 from reports.cli.main import main
-from reports.harness.truth import CLOSED_FORM, NATIVE, independent_truth
+from reports.harness.truth import CLOSED_FORM, NATIVE_REFINED, independent_truth
 from scenarios.closed_form import NoClosedForm, exact
 from scenarios.files import read_scenario, scenario_toml
 from scenarios.identity import family_twin
@@ -51,7 +51,7 @@ def test_the_readme_example_edited_by_set_scores_round_off(tmp_path: Path, capsy
     csv = tmp_path / "r20.csv"
     assert main(["solve", str(EXAMPLE), "--set", RATE_20, "--out", str(csv)]) == 0
     lines = compare_lines(capsys, str(EXAMPLE), str(csv), "--set", RATE_20)
-    assert lines["truth"] == f"truth: {NATIVE}"
+    assert lines["truth"] == f"truth: {NATIVE_REFINED}"
     for level in ("position", "velocity", "acceleration"):  # was 3.77, 1.34, 1.59 against 50 rad/s
         assert level_error(lines, level) < 1e-12
         assert lines[level].split()[2] == "green"
@@ -65,7 +65,7 @@ def test_an_export_with_its_rate_edited_gets_the_native_truth(tmp_path: Path) ->
         exact(scenario)
     times = np.asarray(scenario.times())
     truth = independent_truth(scenario, times)
-    assert truth.name == NATIVE
+    assert truth.name == NATIVE_REFINED
     # The native truth turns the crank at 20 rad/s, as the file says, not at the table's 50.
     crank = truth.trajectory.velocity[:, 0, 2]  # type: ignore[index]
     assert np.allclose(crank, 20.0, rtol=0, atol=1e-9)
@@ -78,7 +78,7 @@ def test_an_old_files_parameters_table_alone_does_not_choose_a_closed_form(tmp_p
     path.write_text(scenario_toml(scenarios.build("slider_crank")) + "\n[parameters]\nomega = 20.0\n")
     scenario = read_scenario(path)
     assert family_twin(scenario) is None
-    assert independent_truth(scenario, np.asarray(scenario.times())).name == NATIVE
+    assert independent_truth(scenario, np.asarray(scenario.times())).name == NATIVE_REFINED
 
 
 def test_the_family_mechanism_under_another_name_is_still_recognised_by_its_digest(tmp_path: Path) -> None:

@@ -24,7 +24,7 @@ from scipy.interpolate import CubicSpline
 from scipy.optimize import brentq
 
 import scenarios
-from reports.harness.truth import NATIVE, independent_truth
+from reports.harness.truth import NATIVE_REFINED, independent_truth
 from reports.stress.truth import stress_truth
 from scenarios.cam_profiles import EccentricDisc, SplineProfile
 from scenarios.scenario import Scenario
@@ -119,7 +119,7 @@ def harness_truth(name: str) -> tuple[Scenario, np.ndarray, np.ndarray]:
         truth = stress_truth(scenario, times)
     else:
         named = independent_truth(scenario, times)
-        assert named.name == NATIVE
+        assert named.name == NATIVE_REFINED
         truth = named.trajectory
     k = truth.bodies.index("follower")
     levels = [truth.level(level)[:, k, 1] for level in ("position", "velocity", "acceleration")]  # type: ignore[index]

@@ -9,7 +9,7 @@ import pytest
 import reference_solver
 import scenarios
 from reports.harness.level_error import level_errors
-from reports.harness.truth import CLOSED_FORM, NATIVE, NATIVE_DYNAMIC, independent_truth
+from reports.harness.truth import CLOSED_FORM, NATIVE_DYNAMIC, NATIVE_REFINED, independent_truth
 
 FAMILY_DEFAULTS = sorted({scenarios.build(name).family for name in scenarios.catalogue()})
 
@@ -30,7 +30,7 @@ def test_spline_cam_takes_the_refined_native_truth() -> None:
     scenario = scenarios.build("cam_roller/spline")
     times = np.asarray(scenario.times())
     truth = independent_truth(scenario, times)
-    assert truth.name == NATIVE
+    assert truth.name == NATIVE_REFINED
     assert truth.trajectory.position is not None and np.isfinite(truth.trajectory.position).all()
     assert np.array_equal(truth.trajectory.times, times)
 
