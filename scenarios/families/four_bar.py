@@ -111,7 +111,7 @@ FAMILY = Family(
     closed_form=closed_form,
     variants={
         "crossed": {"branch": -1},
-        # Stress variants (the stress suite; reports/stress_cases.py says what each probes).
+        # Stress variants (the stress suite; reports/stress/cases.py says what each probes).
         # Change point, s + l = p + q: all links aligned at th2 = pi. Near it: 1e-6 m short of it.
         "stress_change_point": {"crank_length": 0.04, "coupler_length": 0.08, "rocker_length": 0.06},
         "stress_near_change_point": {"crank_length": 0.04, "coupler_length": 0.08, "rocker_length": 0.060001},

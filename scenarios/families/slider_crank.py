@@ -134,7 +134,7 @@ FAMILY = Family(
         "offset": {"offset": 0.05},
         "slider_drive": {"drive": "slider", "theta0": 1.2},
         "slider_drive_offset": {"drive": "slider", "offset": 0.05, "theta0": 1.2},
-        # Stress variants (the stress suite; reports/stress_cases.py says what each probes).
+        # Stress variants (the stress suite; reports/stress/cases.py says what each probes).
         # Singular: the outer dead centre at t = pi / (2 omega); equal crank and rod at th2 = pi/2.
         "stress_dead_centre": {"drive": "slider", "theta0": 1.2, "stroke_fraction": 1.0},
         "stress_equal_links": {"rod_length": 0.2},
