@@ -19,7 +19,7 @@ from adapters.mujoco.cams import CamPair, Geom
 from adapters.mujoco.equalities import equalities, num
 from adapters.mujoco.laws import Law
 from adapters.mujoco.loads import WORLD_SITE, Loads, site_name
-from adapters.mujoco.tree import Tree, rot
+from adapters.mujoco.tree import Tree, TreeJoint, rot
 from scenarios.bodies import GROUND, Point
 from scenarios.gears import GearPair, RackPinion
 from scenarios.motions import Motion
@@ -66,6 +66,34 @@ def mjcf(
 ) -> str:
     """The model as MJCF text; `keyframe` (qpos, qvel) is stored as the key named 'start'."""
     root = ET.Element("mujoco", model=scenario.name.replace("/", "_"))
+    _options(root, scenario, physics, bool(cams))
+    world = ET.SubElement(root, "worldbody")
+    ET.SubElement(world, "light", pos="0 0 2", dir="0 0 -1", directional="true")
+    elements = {GROUND: world}
+    for joint in tree.joints:
+        elements[joint.child] = _body(elements[joint.parent], scenario, tree, joint.child, physics)
+        if joint.kind != "fixed":
+            elements[joint.child].insert(0, _joint(joint, physics))
+    for law in laws:
+        if law.clock is not None:
+            _clock(world, law, physics)
+    for pair in cams:
+        for geom in (*pair.cam, pair.follower):
+            _geom(elements[geom.body], geom, contact=True)
+    equalities(root, elements, tree, laws)
+    _loads(root, elements, physics.loads)
+    steered = [law for law in laws if law.clock is not None and law.clock.law is not None]
+    _clock_motors(root, steered, physics)
+    if cams:
+        _contact_pairs(root, cams, physics)
+    if keyframe is not None:
+        _keyframe(root, keyframe, physics, steered)
+    ET.indent(root)
+    return ET.tostring(root, encoding="unicode")
+
+
+def _options(root: ET.Element, scenario: Scenario, physics: Physics, cams: bool) -> None:
+    """The compiler, the options (step, integrator, gravity, solver) and the defaults."""
     ET.SubElement(root, "compiler", angle="radian", autolimits="true")
     option = ET.SubElement(
         root,
@@ -84,76 +112,70 @@ def mjcf(
     ET.SubElement(default, "geom", contype="0", conaffinity="0", rgba="0.6 0.7 0.8 1")
     ET.SubElement(default, "equality", solref=num(*physics.solref), solimp=num(*physics.solimp))
     ET.SubElement(default, "site", size=num(0.01 * scenario.characteristic_length), rgba="0.9 0.2 0.2 1")
-    world = ET.SubElement(root, "worldbody")
-    ET.SubElement(world, "light", pos="0 0 2", dir="0 0 -1", directional="true")
-    elements = {GROUND: world}
-    for joint in tree.joints:
-        parent = elements[joint.parent]
-        elements[joint.child] = _body(parent, scenario, tree, joint.child, physics)
-        if joint.kind != "fixed":
-            attrs = {"name": joint.name, "type": joint.kind, "pos": num(*joint.anchor, 0.0)}
-            attrs["axis"] = "0 0 1" if joint.kind == "hinge" else num(*joint.axis, 0.0)
-            if joint.name in physics.springs:
-                k, ref = physics.springs[joint.name]
-                attrs.update(stiffness=num(k), springref=num(ref))
-            hinge_springs = dict(physics.loads.hinge_springs)
-            if joint.name in hinge_springs:
-                spring = hinge_springs[joint.name]
-                attrs.update(
-                    stiffness=num(spring.stiffness),
-                    damping=num(spring.damping),
-                    springref=num(spring.springref),
-                )
-            body = elements[joint.child]
-            body.insert(0, ET.Element("joint", attrs))
-    for law in laws:
-        if law.clock is not None:
-            armature = _armature(physics, law)
-            clock = ET.SubElement(world, "body", name=law.clock.joint)
-            ET.SubElement(
-                clock, "inertial", pos="0 0 0", mass="1", diaginertia=" ".join([f"{CLOCK_INERTIA:g}"] * 3)
-            )
-            ET.SubElement(
-                clock,
-                "joint",
-                name=law.clock.joint,
-                type="hinge",
-                axis="0 0 1",
-                armature=num(armature),
-                stiffness=num(armature * law.clock.omega2),
-            )
+
+
+def _joint(joint: TreeJoint, physics: Physics) -> ET.Element:
+    """A tree joint (hinge or slide) with its spring, where the scenario or the laws give one."""
+    attrs = {"name": joint.name, "type": joint.kind, "pos": num(*joint.anchor, 0.0)}
+    attrs["axis"] = "0 0 1" if joint.kind == "hinge" else num(*joint.axis, 0.0)
+    if joint.name in physics.springs:
+        k, ref = physics.springs[joint.name]
+        attrs.update(stiffness=num(k), springref=num(ref))
+    hinge_springs = dict(physics.loads.hinge_springs)
+    if joint.name in hinge_springs:
+        spring = hinge_springs[joint.name]
+        attrs.update(
+            stiffness=num(spring.stiffness), damping=num(spring.damping), springref=num(spring.springref)
+        )
+    return ET.Element("joint", attrs)
+
+
+def _clock(world: ET.Element, law: Law, physics: Physics) -> None:
+    """A motion law's clock: a body on a hinge whose spring and armature make it turn as the law."""
+    assert law.clock is not None
+    armature = _armature(physics, law)
+    clock = ET.SubElement(world, "body", name=law.clock.joint)
+    ET.SubElement(clock, "inertial", pos="0 0 0", mass="1", diaginertia=" ".join([f"{CLOCK_INERTIA:g}"] * 3))
+    ET.SubElement(
+        clock,
+        "joint",
+        name=law.clock.joint,
+        type="hinge",
+        axis="0 0 1",
+        armature=num(armature),
+        stiffness=num(armature * law.clock.omega2),
+    )
+
+
+def _contact_pairs(root: ET.Element, cams: list[CamPair], physics: Physics) -> None:
+    """One contact pair per cam facet, all on the one follower geom."""
+    contact = ET.SubElement(root, "contact")
     for pair in cams:
-        for geom in (*pair.cam, pair.follower):
-            _geom(elements[geom.body], geom, contact=True)
-    equalities(root, elements, tree, laws)
-    _loads(root, elements, physics.loads)
-    steered = [law for law in laws if law.clock is not None and law.clock.law is not None]
-    _clock_motors(root, steered, physics)
-    if cams:
-        contact = ET.SubElement(root, "contact")
-        for pair in cams:
-            for k, piece in enumerate(pair.cam):  # one pair per facet, all on the one follower geom
-                ET.SubElement(
-                    contact,
-                    "pair",
-                    name=pair.name if len(pair.cam) == 1 else f"{pair.name}_{k}",
-                    geom1=piece.name,
-                    geom2=pair.follower.name,
-                    condim="1",
-                    solref=num(*physics.solref),
-                    solimp=num(*physics.contact_solimp),
-                )
-    if keyframe is not None:
-        key = ET.SubElement(ET.SubElement(root, "keyframe"), "key", name="start")
-        key.set("qpos", num(*keyframe[0]))
-        key.set("qvel", num(*keyframe[1]))
-        # the controls at t = 0 (constant ones hold throughout): the motors', then the steered clocks'
-        ctrl = [motor.law.f(0.0) for motor in physics.loads.motors]
-        ctrl += [_law_of(law).ddf(0.0) for law in steered]
-        if ctrl:
-            key.set("ctrl", num(*ctrl))
-    ET.indent(root)
-    return ET.tostring(root, encoding="unicode")
+        for k, piece in enumerate(pair.cam):
+            ET.SubElement(
+                contact,
+                "pair",
+                name=pair.name if len(pair.cam) == 1 else f"{pair.name}_{k}",
+                geom1=piece.name,
+                geom2=pair.follower.name,
+                condim="1",
+                solref=num(*physics.solref),
+                solimp=num(*physics.contact_solimp),
+            )
+
+
+def _keyframe(
+    root: ET.Element, keyframe: tuple[np.ndarray, np.ndarray], physics: Physics, steered: list[Law]
+) -> None:
+    """The start state as the key 'start', with the controls at t = 0 (constant ones hold
+    throughout): the motors', then the steered clocks'."""
+    key = ET.SubElement(ET.SubElement(root, "keyframe"), "key", name="start")
+    key.set("qpos", num(*keyframe[0]))
+    key.set("qvel", num(*keyframe[1]))
+    ctrl = [motor.law.f(0.0) for motor in physics.loads.motors]
+    ctrl += [_law_of(law).ddf(0.0) for law in steered]
+    if ctrl:
+        key.set("ctrl", num(*ctrl))
 
 
 def _armature(physics: Physics, law: Law) -> float:
