@@ -258,19 +258,14 @@ class Adapter:
             "setting": setting,
             "measures": measures_of(self.measured, setting.mode),
         }
+        grid = np.asarray(scenario.times() if times is None else times, dtype=float)
         try:
             setting = self.check_setting(setting)
         except SettingError as error:
             return RunResult(**base, status="failed", message=str(error))
-        grid = np.asarray(scenario.times() if times is None else times, dtype=float)
-        too_many = _too_many_steps(setting, grid)
-        if too_many:
-            return RunResult(**base, status="failed", message=too_many)
-        reason = self.supports(scenario)
-        if reason is None and scenario.analysis == "dynamic" and not self.dynamics:
-            reason = f"{self.name} is not yet compared on forward dynamics"
-        if reason is not None:
-            return RunResult(**base, status="unsupported", message=reason)
+        refused = self._refusal(scenario, setting, grid)
+        if refused is not None:
+            return RunResult(**base, status=refused[0], message=refused[1])
         caught: list[warnings.WarningMessage] = []
         try:
             with warnings.catch_warnings(record=True) as caught:
@@ -282,22 +277,8 @@ class Adapter:
                     return self.simulate(model, grid)
 
                 best, trajectory = fastest(simulate, repeats, warmup, once_above=once_above)
-        except EngineFailure as failure:
-            return RunResult(
-                **base,
-                status=failure.status,
-                message=_one_line(str(failure)),
-                failure_time=failure.time,
-                warnings=_texts(caught),
-            )
-        except Exception as error:  # an engine's own exception: recorded, never propagated
-            where = traceback.extract_tb(error.__traceback__)[-1]
-            return RunResult(
-                **base,
-                status="failed",
-                message=_one_line(f"{type(error).__name__}: {error} (at {where.name}:{where.lineno})"),
-                warnings=_texts(caught),
-            )
+        except Exception as error:  # an engine's failure, or its own exception: recorded, never raised
+            return RunResult(**base, **_failure(error), warnings=_texts(caught))
         if not trajectory.is_finite():
             return RunResult(
                 **base,
@@ -316,6 +297,17 @@ class Adapter:
             warnings=_texts(caught),
         )
 
+    def _refusal(self, scenario: Scenario, setting: Setting, grid: np.ndarray) -> tuple[Status, str] | None:
+        """Why a checked setting is not run on `scenario` (status and message), or None: more steps
+        than MAX_STEPS, a scenario the engine cannot represent, forward dynamics it does not do."""
+        too_many = _too_many_steps(setting, grid)
+        if too_many:
+            return "failed", too_many
+        reason = self.supports(scenario)
+        if reason is None and scenario.analysis == "dynamic" and not self.dynamics:
+            reason = f"{self.name} is not yet compared on forward dynamics"
+        return ("unsupported", reason) if reason is not None else None
+
     def _safe_version(self) -> str:
         """The engine's version, asked once per adapter (importlib.metadata costs about 0.5 ms)."""
         known: str | None = self.__dict__.get("_known_version")
@@ -326,6 +318,16 @@ class Adapter:
                 known = "unknown"
             self.__dict__["_known_version"] = known
         return known
+
+
+def _failure(error: Exception) -> dict[str, Any]:
+    """A run's status, message and failure time from what its engine raised: an EngineFailure says
+    them itself; any other exception is `failed`, named with where it was raised."""
+    if isinstance(error, EngineFailure):
+        return {"status": error.status, "message": _one_line(str(error)), "failure_time": error.time}
+    where = traceback.extract_tb(error.__traceback__)[-1]
+    message = f"{type(error).__name__}: {error} (at {where.name}:{where.lineno})"
+    return {"status": "failed", "message": _one_line(message)}
 
 
 MAX_STEPS = 1e7
