@@ -5,6 +5,7 @@ elements, with no Python between them. `partitioned_ode` gives it where the cons
 
 from __future__ import annotations
 
+import math
 from types import ModuleType
 
 import numpy as np
@@ -60,11 +61,22 @@ class CompiledPartitioned(Partitioned):
         self.index[self.kernels.SIZES, self.kernels.S_HAS_FACTORS] = 0
 
     def _run(self, level: int, t: float, y: np.ndarray, out: np.ndarray) -> None:
-        status, residual = self.kernels.partitioned(level, t, y, out, *self.arguments)
-        if status == self.kernels.NOT_CONVERGED:  # once more by plain Newton from the last converged q
+        status, _ = self.partitioned(level, t, y, out, *self.arguments)
+        if status != self.ok:
+            self._retry(status, level, t, y, out)
+
+    def _retry(self, status: int, level: int, t: float, y: np.ndarray, out: np.ndarray) -> None:
+        """An unconverged call once more by plain Newton from the last converged q (no predictor,
+        no chord), with four times the iterations; raises if that fails too."""
+        residual = math.nan
+        if status == self.kernels.NOT_CONVERGED:
             self.index[self.kernels.SIZES, self.kernels.S_HAS_FACTORS] = 0
-            status, residual = self.kernels.partitioned(level, t, y, out, *self.arguments)
-        if status != self.kernels.OK:
+            self.index[self.kernels.SIZES, self.kernels.S_NEWTON] = 4 * NEWTON_STEPS
+            try:
+                status, residual = self.partitioned(level, t, y, out, *self.arguments)
+            finally:
+                self.index[self.kernels.SIZES, self.kernels.S_NEWTON] = NEWTON_STEPS
+        if status != self.ok:
             self._fail(status, t, residual)
 
     def _fail(self, status: int, t: float, residual: float) -> None:
@@ -106,9 +118,9 @@ class CompiledPartitioned(Partitioned):
         if not y.flags.c_contiguous:
             y = np.ascontiguousarray(y)  # one compiled version of the kernel: contiguous arrays
         out = np.empty(self.outputs)
-        status, residual = self.partitioned(self.level, t, y, out, *self.arguments)
+        status, _ = self.partitioned(self.level, t, y, out, *self.arguments)
         if status != self.ok:
-            self._fail(status, t, residual)
+            self._retry(status, self.level, t, y, out)
         return out
 
 
