@@ -96,7 +96,9 @@ def run(  # type: ignore[no-untyped-def]
     """The analysis over `grid` into the output arrays; returns (event, time index).
 
     It starts with the mobility: sqrt(rcond_1 rcond_inf) of the scaled C_q at the guess, which bounds
-    the 2-norm reciprocal condition number from below, must exceed `margin`."""
+    the 2-norm reciprocal condition number from below, must exceed `margin`. Long on purpose: the
+    whole grid is one compiled call, and its steps (assembly, Newton with backtracking, the rate
+    solves) share the band factors in local arrays that a split would pass on every time point."""
     n, kl, ku, w = sizes[S_N], sizes[S_KL], sizes[S_KU], sizes[S_WIDTH]
     lu, piv, none, v = np.empty(n * w), np.empty(n, np.int64), np.empty(0), np.zeros((ROWS, n))
     c, q_d, zero, tmp, rhs, dx = v[C], v[Q_D], v[ZERO], v[TMP], v[RHS], v[DX]

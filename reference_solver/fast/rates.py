@@ -94,7 +94,8 @@ def partitioned(  # type: ignore[no-untyped-def]
 ):  # fmt: skip
     """Up to `level` at (t, y), y = (q_I, q'_I, ...); with RATES, out <- (q'_I, q''_I, applied power,
     dissipation, driver power). Returns the status (OK, NOT_CONVERGED, SINGULAR) and the last scaled
-    constraint residual."""
+    constraint residual. Long on purpose: one right-hand side is one compiled call, its steps
+    (predictor, Newton, rates, the reduced solve) marked by comments as in the module's docstring."""
     ind, dep, sizes, piv, pt, rpiv = (
         index[IND],
         index[DEP],

@@ -210,7 +210,8 @@ def _zigzag(a: tuple[float, float], b: tuple[float, float]) -> list[tuple[float,
 
 
 def element(shape: Shape, view: View, colour: str) -> str:
-    """The SVG of one shape, with its hover title."""
+    """The SVG of one shape, with its hover title: one branch per shape kind (a dispatch table of
+    small renderers would spread the page's geometry over a dozen functions of three lines)."""
     pts = [view.at(p) for p in shape.points]
     paint = f' stroke="{colour}" fill="{colour}"'
     kind, title = shape.kind, f"<title>{escape(shape.title)}</title>" if shape.title else ""

@@ -108,6 +108,8 @@ def probing(probe: Probe) -> Settings:
 
 
 def _cases() -> tuple[StressCase, ...]:
+    """The stress suite's cases in the order the report shows them: a table of data, long because
+    there are 32 cases, not because it decides anything."""
     speeds = [(1e-3, "1e-3"), (1e-1, "1e-1"), (1e1, "1e1"), (1e3, "1e3"), (1e4, "1e4")]
     fixed = [(1e-3, "1e-3"), (1e2, "1e2"), (1e3, "1e3"), (1e4, "1e4")]
     scales = [(1e-4, "1e-4"), (1e-2, "1e-2"), (1e1, "1e1"), (1e3, "1e3")]
