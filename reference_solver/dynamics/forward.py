@@ -127,11 +127,10 @@ def simulate(
     (`method="ali3p"`, ali3p.py) at the fixed `step` (default ALI3P_STEP, cut to divide each output
     interval; `rtol` is not used there). `fast` evaluates the constraints on the compiled path
     (compiled_system) and, for the partitioned method, the whole right-hand side in one compiled
-    call (compiled_rates), which callers ask for where no singular passage lets round-off pick the
-    motion (n_four_bar at rtol 1e-12 lost its energy, 0.53, on the compiled constraints alone; the
-    compiled right-hand side held it to 8e-10 of the kinetic energy when measured, the plain
-    path to 9e-9, but round-off picks the outcome there);
-    ALI3-P passes it on either."""
+    call (compiled_rates), equal to the plain one to 1e-12: the native engine asks for it by
+    default, the dynamics suite's truth except through a singular passage, where round-off picks
+    the motion (n_four_bar at rtol 1e-12 held its energy to 8e-10 of the kinetic energy on the
+    compiled right-hand side, to 9e-9 on the plain path); ALI3-P passes it on either."""
     if method not in (*METHODS, ALI3P):
         raise SolverError(f"unknown integrator '{method}' (known: {', '.join((*METHODS, ALI3P))})")
     if step is not None and not (np.isfinite(step) and step > 0):
@@ -152,10 +151,30 @@ def simulate(
     if method == ALI3P:
         stepped, ali3p_works, steps = integrate(system, mass, loads, state, grid, step or ALI3P_STEP)
         return _result(system, mass, grid, stepped, ali3p_works, energy0, steps, 0)
+    scales = (rtol, span, energy_scale)
+    states, works, evaluations, partitions = _partitioned(system, mass, loads, state, grid, method, scales)
+    return _result(system, mass, grid, states, np.array(works), energy0, evaluations, partitions)
+
+
+def _partitioned(
+    system: ConstraintSystem,
+    mass: np.ndarray,
+    loads: Loads,
+    state: State,
+    grid: np.ndarray,
+    method: str,
+    scales: tuple[float, float, float],
+) -> tuple[list[State], list[np.ndarray], int, int]:
+    """The partitioned method over `grid` from `state`: integrated by `method` at the tolerance of
+    `scales` (rtol, the grid's span, the energy scale), partitioned anew wherever the chosen
+    independent coordinates' conditioning degrades REPARTITION times. Returns the states and work
+    at the grid times, the right-hand sides evaluated and the partitions made."""
+    rtol, span, energy_scale = scales
     states: list[State] = [state]
     works: list[np.ndarray] = [np.zeros(3)]
     evaluations, partitions, work = 0, 0, np.zeros(3)
     t, k = float(grid[0]), 1
+    name = system.scenario.name
     while k < len(grid):
         independent = choose_independent(system, state.jac)
         ode = partitioned_ode(system, mass, loads, state.q, independent)
@@ -180,12 +199,10 @@ def simulate(
                 dense_output=True,
             )
         except np.linalg.LinAlgError as error:
-            raise SolverError(
-                f"{scenario.name}: singular augmented matrix after t={t:.6g}: {error}"
-            ) from error
+            raise SolverError(f"{name}: singular augmented matrix after t={t:.6g}: {error}") from error
         evaluations += ode.evaluations
         if sol.status == -1:
-            raise SolverError(f"{scenario.name}: the integrator failed after t={t:.6g}: {sol.message}")
+            raise SolverError(f"{name}: the integrator failed after t={t:.6g}: {sol.message}")
         end = float(sol.t_events[0][0]) if sol.status == 1 else float(grid[-1])
         ode.restart(state.q)
         outputs = grid[k:][grid[k:] <= end]
@@ -199,7 +216,7 @@ def simulate(
         if sol.status == 1:
             t, y = end, sol.y_events[0][0]
             state, work = ode.state(t, y), y[2 * ode.size :].copy()
-    return _result(system, mass, grid, states, np.array(works), energy0, evaluations, partitions)
+    return states, works, evaluations, partitions
 
 
 def _walk(sol: object, outputs: np.ndarray) -> Iterator[tuple[float, np.ndarray, bool]]:
