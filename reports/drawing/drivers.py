@@ -9,7 +9,7 @@ import math
 from reports.drawing.parts import BLOCK_SIZE, Locator, Shape, along, point_text, unit
 from scenarios import GROUND, Scenario
 from scenarios.bodies import Vec2
-from scenarios.drivers import AbsoluteDriver, PointPathDriver, RelativeRotationDriver
+from scenarios.drivers import AbsoluteDriver, Driver, PointPathDriver, RelativeRotationDriver
 from scenarios.forces import AppliedForce, AppliedTorque, SpringDamper
 from scenarios.joints import Revolute
 from scenarios.motions import ConstantSpeed, Harmonic, Motion
@@ -36,68 +36,37 @@ def _pivot(at: Locator, body_i: str, body_j: str) -> Vec2:
 
 def driver_shapes(scenario: Scenario, at: Locator) -> list[Shape]:
     """An arc on a driven angle, an arrow on a driven position, a ring on a driven point."""
-    shapes: list[Shape] = []
-    for d in scenario.drivers:
-        if isinstance(d, AbsoluteDriver):
-            value = d.motion.f(at.t)
-            title = f"driver {d.name}: {d.body}.{d.coordinate} = {value:.6g} at t = {at.t:.6g} s"
-            if d.coordinate == "theta":
-                centre = _pivot(at, d.body, GROUND)
-                shapes.append(
-                    Shape(
-                        "driver_arc",
-                        d.name,
-                        (centre,),
-                        value=_sense(d.motion, at.t),
-                        title=title,
-                        label=d.name,
-                    )
-                )
-            else:
-                pose = at.pose(d.body)
-                u = (1.0, 0.0) if d.coordinate == "x" else (0.0, 1.0)
-                origin = (pose[0], pose[1])  # the arrow starts clear of a slider's block
-                ends = (
-                    along(origin, u, BLOCK_SIZE * at.size),
-                    along(origin, u, (BLOCK_SIZE + 0.5) * at.size),
-                )
-                shapes.append(
-                    Shape(
-                        "driver_line", d.name, ends, value=_sense(d.motion, at.t), title=title, label=d.name
-                    )
-                )
-        elif isinstance(d, RelativeRotationDriver):
-            title = f"driver {d.name}: θ({d.body_i}) - θ({d.body_j}) = {d.motion.f(at.t):.6g} rad"
-            centre = _pivot(at, d.body_i, d.body_j)
-            shapes.append(
-                Shape(
-                    "driver_arc", d.name, (centre,), value=_sense(d.motion, at.t), title=title, label=d.name
-                )
-            )
-        elif isinstance(d, PointPathDriver):
-            p = at.point(d.point)
-            shapes.append(
-                Shape(
-                    "driver_point",
-                    d.name,
-                    (p,),
-                    title=f"driver {d.name}: path point at {point_text(p)}",
-                    label=d.name,
-                )
-            )
-        else:
-            ends = (at.point(d.p_j), at.point(d.p_i))
-            shapes.append(
-                Shape(
-                    "driver_line",
-                    d.name,
-                    ends,
-                    value=0.0,
-                    title=f"driver {d.name}: relative displacement",
-                    label=d.name,
-                )
-            )
-    return shapes
+    return [_driver_shape(d, at) for d in scenario.drivers]
+
+
+def _driver_shape(d: Driver, at: Locator) -> Shape:
+    if isinstance(d, AbsoluteDriver):
+        return _absolute(d, at)
+    if isinstance(d, RelativeRotationDriver):
+        title = f"driver {d.name}: θ({d.body_i}) - θ({d.body_j}) = {d.motion.f(at.t):.6g} rad"
+        centre = _pivot(at, d.body_i, d.body_j)
+        return Shape("driver_arc", d.name, (centre,), value=_sense(d.motion, at.t), title=title, label=d.name)
+    if isinstance(d, PointPathDriver):
+        p = at.point(d.point)
+        title = f"driver {d.name}: path point at {point_text(p)}"
+        return Shape("driver_point", d.name, (p,), title=title, label=d.name)
+    ends = (at.point(d.p_j), at.point(d.p_i))
+    title = f"driver {d.name}: relative displacement"
+    return Shape("driver_line", d.name, ends, value=0.0, title=title, label=d.name)
+
+
+def _absolute(d: AbsoluteDriver, at: Locator) -> Shape:
+    """An arc about the body's pivot for a driven angle; an arrow along x or y for a position."""
+    value = d.motion.f(at.t)
+    title = f"driver {d.name}: {d.body}.{d.coordinate} = {value:.6g} at t = {at.t:.6g} s"
+    if d.coordinate == "theta":
+        centre = _pivot(at, d.body, GROUND)
+        return Shape("driver_arc", d.name, (centre,), value=_sense(d.motion, at.t), title=title, label=d.name)
+    pose = at.pose(d.body)
+    u = (1.0, 0.0) if d.coordinate == "x" else (0.0, 1.0)
+    origin = (pose[0], pose[1])  # the arrow starts clear of a slider's block
+    ends = (along(origin, u, BLOCK_SIZE * at.size), along(origin, u, (BLOCK_SIZE + 0.5) * at.size))
+    return Shape("driver_line", d.name, ends, value=_sense(d.motion, at.t), title=title, label=d.name)
 
 
 def spring_shapes(scenario: Scenario, at: Locator) -> list[Shape]:
