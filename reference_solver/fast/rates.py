@@ -64,9 +64,10 @@ IND, DEP, SIZES, PIV, PIV_TRIAL, RPIV = range(6)
 INDICES = 6
 """Rows of `index`: the independent and dependent columns, the sizes below, the row swaps of the
 LU factors in `mats` (LU and LU_TRIAL) and of the reduced mass matrix."""
-S_N, S_M, S_F, S_DRIVERS, S_NEWTON, S_HAS_FACTORS = range(6)
+S_N, S_M, S_F, S_DRIVERS, S_NEWTON, S_HAS_FACTORS, S_CHORD = range(7)
 """Entries of index[SIZES]: coordinates, rows, independent coordinates, first driver row, Newton's
-iteration limit, and whether the last converged factors exist (the predictor's)."""
+iteration limit, whether the last converged factors exist (the predictor's), and whether Newton
+may correct with them (the chord; 0: C_D factored at every iteration, as the plain path does)."""
 LAST, TRIAL = 0, 1
 """The two slots of `jacs`: the last converged C_q and Newton's (flat, row-major)."""
 LU, LU_TRIAL, REDUCED, X = range(4)
@@ -125,7 +126,9 @@ def partitioned(  # type: ignore[no-untyped-def]
     for k in range(f):
         qt[ind[k]] = y[k]
     previous, residual, converged = math.inf, math.inf, False
-    chord = sizes[S_HAS_FACTORS] != 0  # correct with the last converged factors while they contract
+    chord = (
+        sizes[S_HAS_FACTORS] != 0 and sizes[S_CHORD] != 0
+    )  # the last converged factors, while they contract
     for _ in range(sizes[S_NEWTON]):
         evaluate(ints, reals, qt, zero, t, c, q_d, jt, work, scratch, us)
         residual = _scaled_max(c, scales, m)
