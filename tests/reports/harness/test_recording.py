@@ -70,3 +70,13 @@ def test_a_row_stored_without_ranks_gets_them(tmp_path: Path) -> None:
     assert record(store) == 1
     row = store.rows[("four_bar/crossed", "reference", "default")]
     assert row["engine_rank"] == 0 and row["scenario_rank"] > 0  # four_bar itself comes first
+
+
+def test_a_row_read_with_nan_ranks_gets_them(tmp_path: Path) -> None:
+    """A store whose older parts lack the rank columns reads them as NaN beside a newer part's
+    rows (seen on `compare --out` into a store of the session before): recorded, not a crash."""
+    store = ResultsStore(tmp_path)
+    store.add(_row("reference") | {"scenario": "four_bar", "scenario_rank": np.nan, "engine_rank": np.nan})
+    assert record(store) == 1
+    row = store.rows[("four_bar", "reference", "default")]
+    assert row["engine_rank"] == 0 and row["scenario_rank"] >= 0
