@@ -232,9 +232,11 @@ def _read_rows(path: str | os.PathLike[str]) -> tuple[pd.DataFrame, dict[str, An
         if len(frames) > 1:
             frame = frame.sort_values(list(KEY), kind="stable")
         frame = frame.reset_index(drop=True)
-    for column in DECLARED:
+    for column in DECLARED:  # a column added since: absent from older files, NaN in older parts
         if column.name not in frame.columns:
             frame[column.name] = column.empty
+        elif not _is_nan(column.empty) and frame[column.name].isna().any():
+            frame[column.name] = frame[column.name].where(frame[column.name].notna(), column.empty)
     frame = frame[[c for c in COLUMNS if c in frame.columns]]
     return frame, meta, table
 
@@ -315,3 +317,7 @@ def _trajectory_frame(trajectories: dict[Key, Trajectory]) -> pd.DataFrame:
         part.insert(0, "scenario", scenario)
         parts.append(part)
     return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=list(KEY))
+
+
+def _is_nan(value: Any) -> bool:
+    return isinstance(value, float) and math.isnan(value)

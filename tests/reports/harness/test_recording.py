@@ -8,6 +8,7 @@ import json
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from reports.harness.columns import ERROR_SERIES, empty_row
 from reports.harness.recording import record
@@ -80,3 +81,28 @@ def test_a_row_read_with_nan_ranks_gets_them(tmp_path: Path) -> None:
     assert record(store) == 1
     row = store.rows[("four_bar", "reference", "default")]
     assert row["engine_rank"] == 0 and row["scenario_rank"] >= 0
+
+
+def test_a_part_written_before_a_column_existed_reads_it_as_its_declared_empty(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Parts of one store may differ in columns (each save writes its own code's): an older part's
+    rows read a column added since as the column's declared empty, not as NaN (NaN read as a
+    verdict is the text "nan", a verdict that would never be decided)."""
+    from reports.harness import results_store
+
+    older = tuple(c for c in results_store.COLUMNS if c not in ("verdict", "scenario_rank"))
+    with monkeypatch.context() as patch:
+        patch.setattr(results_store, "COLUMNS", older)
+        first = ResultsStore(tmp_path)
+        for engine in ("a", "c"):  # two rows: the newer one-row part does not absorb this one
+            first.add(_row(engine) | {"scenario": "four_bar"})
+        first.save({})
+    second = ResultsStore(tmp_path)
+    second.add(_row("b") | {"scenario": "four_bar", "verdict": "ok", "scenario_rank": 3})
+    second.save(second.meta)
+    frame, _ = read_results(tmp_path)
+    rows = frame.set_index("engine")
+    assert rows.loc["a", "verdict"] == "" and rows.loc["b", "verdict"] == "ok"
+    assert rows.loc["a", "scenario_rank"] == -1 and rows.loc["b", "scenario_rank"] == 3
+    assert ResultsStore(tmp_path).rows[("four_bar", "a", "default")]["verdict"] == ""
