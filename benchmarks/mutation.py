@@ -82,6 +82,13 @@ MODULES: dict[str, tuple[str, ...]] = {
             "tests/reference_solver/equations",
         ),
     ),
+    "reference_solver/analysis.py": (
+        "tests/reference_solver/test_analysis.py",
+        "tests/reference_solver/test_branch_guard.py",
+        "tests/reference_solver/test_fast_path.py",
+        "tests/reference_solver/test_failures.py",
+        "tests/reference_solver/test_closed_forms.py",
+    ),
 }
 
 _STRICT_ZIP = "zip of two 2-tuples: strict or not, the pairs are the same"
