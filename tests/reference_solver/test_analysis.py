@@ -169,3 +169,15 @@ def test_solve_takes_the_fast_path_by_default(monkeypatch: pytest.MonkeyPatch) -
     assert calls == ["hand_crank"]
     solve(_crank(), [0.0, 0.1], fast=False)
     assert calls == ["hand_crank"]
+
+
+def test_half_steps_that_leave_the_branch_are_refused_too() -> None:
+    """The undercut cam (see test_branch_guard.py) on a grid four times coarser than its own: whole
+    steps jump, and so do some of their halves, which analysis._approach must refuse and halve again
+    (measured: the same configurations as a grid 16 times finer, to 4e-16; accepting the jumping
+    halves ends on another branch, 3.6 rad away)."""
+    scenario = scenarios.build("cam_roller/stress_undercut")
+    coarse = np.asarray(scenario.times(steps=scenario.steps // 4))
+    fine = np.asarray(scenario.times(steps=4 * scenario.steps))
+    reference = analyse(scenario, fine, fast=False).q[::16]
+    np.testing.assert_allclose(analyse(scenario, coarse, fast=False).q, reference, rtol=0, atol=1e-12)
