@@ -10,14 +10,16 @@ with theta' = -A w sin(w t), theta'' = -A w^2 cos(w t).
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
 
 import reference_solver.analysis as analysis
 import scenarios
-from reference_solver import SingularConfigurationError, analyse, solve
+from reference_solver import ConvergenceError, SingularConfigurationError, analyse, solve
 from reference_solver.limits import JUMP_FLOOR, JUMP_FRACTION
+from reference_solver.newton import NewtonResult
 from reference_solver.system import ConstraintSystem
 from scenarios import GROUND, AbsoluteDriver, Body, Harmonic, Point, Revolute
 from scenarios.scenario import Scenario
@@ -181,3 +183,40 @@ def test_half_steps_that_leave_the_branch_are_refused_too() -> None:
     fine = np.asarray(scenario.times(steps=4 * scenario.steps))
     reference = analyse(scenario, fine, fast=False).q[::16]
     np.testing.assert_allclose(analyse(scenario, coarse, fast=False).q, reference, rtol=0, atol=1e-12)
+
+
+def _newton_failing_after(monkeypatch: pytest.MonkeyPatch, limit: float) -> None:
+    """The real Newton-Raphson, made to fail (unconverged, no factors) at any time beyond `limit`."""
+    real = analysis.newton
+
+    def failing(system, q, t, settings):  # type: ignore[no-untyped-def]
+        result = real(system, q, t, settings)
+        return result if t <= limit else NewtonResult(result.q, False, settings.max_iterations, 1.0, None)
+
+    monkeypatch.setattr(analysis, "newton", failing)
+
+
+@pytest.mark.parametrize("limit", [0.5, 0.52])
+def test_a_newton_failure_at_a_regular_configuration_is_a_convergence_error(
+    limit: float, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Beyond `limit` no Newton converges; the crank there is regular (its pin and driver rows
+    never become dependent), so the halved steps end in a ConvergenceError at the last time
+    reached, with the hand-worked configuration of that time. From 0.5 (a grid time) no half step
+    succeeds: the count is the allowed 25 iterations; towards 0.52 some do, and the count is the
+    last successful Newton's (a few)."""
+    _newton_failing_after(monkeypatch, limit)
+    with pytest.raises(ConvergenceError) as caught:
+        analyse(_crank(), fast=False)
+    error = caught.value
+    assert error.time == pytest.approx(limit, abs=1e-12)
+    assert error.q is not None
+    np.testing.assert_allclose(error.q, _by_hand(np.array([error.time]))[0][0], rtol=0, atol=1e-12)
+    message = re.fullmatch(
+        r"hand_crank: Newton-Raphson did not converge at t=0\.55 \(stuck at t=(\S+) after (\d+) "
+        r"iterations\) at a regular configuration",
+        str(error),
+    )
+    assert message is not None, str(error)
+    assert float(message[1]) == pytest.approx(limit, abs=1e-6)
+    assert (int(message[2]) == 25) is (limit == 0.5)
