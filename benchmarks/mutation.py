@@ -154,6 +154,30 @@ EXPLAINED: dict[str, str] = {
         "cam's profile point) pass a Jacobian filled only in the angle column col + 2 and the contact's phi "
         "column (after every body column), so those two entries are 0 before and 1 after either way",
     ),
+    "reference_solver.analysis.x__singular__mutmut_33": "the message's 'unknown' (no dependent rows) -> "
+    "'XXunknownXX': unreachable, rank_report names every row weighing > 0.1 in a unit singular vector, "
+    "so at least one whenever C_q has fewer than 100 rows",
+    "reference_solver.analysis.x__singular__mutmut_34": "the message's 'unknown' -> 'UNKNOWN': "
+    "unreachable, as for _33",
+    "reference_solver.analysis.x__approach__mutmut_2": "the first retaken step 2 (t1 - t0) instead of half "
+    "of it: min/max clip it to t1, where Newton has just failed, so it fails again and is halved to the "
+    "whole step, then to the half: two wasted solves, the same steps after",
+    "reference_solver.analysis.x__approach__mutmut_25": "t1 >= t0 for t1 > t0 (which way to clip the "
+    "step): differs only when t1 == t0, where h = 0 and the halving loop never runs",
+    "reference_solver.analysis.x__approach__mutmut_5": "`last` starts as '' for None: it is only tested "
+    "for truth, and '' is false too",
+    "reference_solver.analysis.x__approach__mutmut_7": "the halving loop's bound >= for >: differs only "
+    "when |h| equals 1e-12 max(|t1|, |t1 - t0|) exactly, and then by one more halving",
+    "reference_solver.analysis.x__approach__mutmut_16": "the step resolution 1e-12 max(|t1|, |t1 + t0|) "
+    "for |t1 - t0|: on a grid of times >= 0 (every scenario's) it is at most twice as coarse (one halving "
+    "fewer), moving a stop time by about 1e-14 s, below what the stroke-end test can bound",
+    "reference_solver.analysis.x__approach__mutmut_54": "rcond > SINGULAR_RCOND for >=: differs only "
+    "on an exact tie of the rcond estimate with 1e-9",
+    "reference_solver.analysis.x__approach__mutmut_85": "the step grows by 3 instead of 2 after a success: "
+    "the answer at t1 is a converged Newton solution either way (the same to the tolerance) and the "
+    "halvings still stop at the same resolution; only the number of solves changes",
+    "reference_solver.analysis.x__approach__mutmut_99": "smallest <= NEAR_SINGULAR for <: differs only "
+    "on an exact tie of the singular value ratio with 1e-4",
 }
 
 KILLED, SURVIVED = 1, 0
