@@ -45,6 +45,18 @@ CLOSED_FORM_TESTS = (
 """The tests of the closed forms, which sit beside their families (Family.closed_form): mutating a
 family module mutates its builder too, which these tests reach only through the native solver."""
 
+PLAIN_PATH_TESTS = (
+    "tests/reference_solver/test_analysis.py",
+    "tests/reference_solver/test_newton.py",
+    "tests/reference_solver/test_constraint_derivatives.py",
+    "tests/reference_solver/test_compiled_system.py",
+    "tests/reference_solver/test_failures.py",
+    "tests/reference_solver/test_closed_forms.py",
+    "tests/reference_solver/equations",
+)
+"""The tests of the plain path's building blocks (system, layout, mobility, factorization): each
+imports or runs them without the compiled kernel (not yet run under mutation)."""
+
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
         (
@@ -89,6 +101,16 @@ MODULES: dict[str, tuple[str, ...]] = {
         "tests/reference_solver/test_failures.py",
         "tests/reference_solver/test_closed_forms.py",
     ),
+    **dict.fromkeys(
+        (
+            "reference_solver/system.py",
+            "reference_solver/layout.py",
+            "reference_solver/mobility.py",
+            "reference_solver/factorization.py",
+        ),
+        PLAIN_PATH_TESTS,
+    ),
+    "reference_solver/residual.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_residual.py"),
 }
 
 _STRICT_ZIP = "zip of two 2-tuples: strict or not, the pairs are the same"
