@@ -106,10 +106,10 @@ MODULES: dict[str, tuple[str, ...]] = {
             "reference_solver/system.py",
             "reference_solver/layout.py",
             "reference_solver/mobility.py",
-            "reference_solver/factorization.py",
         ),
         PLAIN_PATH_TESTS,
     ),
+    "reference_solver/factorization.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_factorization.py"),
     "reference_solver/residual.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_residual.py"),
 }
 
