@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -50,9 +51,17 @@ def test_an_exactly_singular_or_broken_matrix_has_rcond_zero(matrix: list[list[f
         assert factorize(np.array(matrix)).rcond == 0.0
 
 
-def test_an_exactly_singular_matrix_has_determinant_sign_zero() -> None:
-    """[[1, 2], [2, 4]] pivots on the 2: the second pivot is 2 - (1/2) 4 = 0 exactly."""
-    with np.errstate(divide="ignore"):
+def test_a_full_matrix_rcond() -> None:
+    """[[1, 2], [3, 4]]: 1-norm 6 (the second column), its inverse [[-2, 1], [1.5, -0.5]] has 1-norm
+    3.5, so rcond = 1 / 21 (the 2-norm, 5.46, would give another number)."""
+    assert factorize(np.array([[1.0, 2.0], [3.0, 4.0]])).rcond == pytest.approx(1 / 21, rel=1e-12)
+
+
+def test_an_exactly_singular_matrix_has_determinant_sign_zero_without_a_warning() -> None:
+    """[[1, 2], [2, 4]] pivots on the 2: the second pivot is 2 - (1/2) 4 = 0 exactly; log 0 is -inf,
+    silently (factorize's own errstate)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
         f = factorize(np.array([[1.0, 2.0], [2.0, 4.0]]))
     assert f.sign == 0.0 and f.log_abs_determinant == -math.inf
 
