@@ -198,6 +198,47 @@ EXPLAINED: dict[str, str] = {
     "reference_solver.analysis.x__approach__mutmut_85": "the step grows by 3 instead of 2 after a success: "
     "the answer at t1 is a converged Newton solution either way (the same to the tolerance) and the "
     "halvings still stop at the same resolution; only the number of solves changes",
+    "reference_solver.factorization.x_factorize__mutmut_4": "warnings.simplefilter('ignore') without "
+    "LinAlgWarning: the block holds lu_factor alone, whose only warning is LinAlgWarning",
+    "reference_solver.factorization.x_factorize__mutmut_9": "lu_factor's check_finite False -> None: "
+    "only tested for truth",
+    **dict.fromkeys(
+        (
+            "reference_solver.factorization.x_factorize__mutmut_22",
+            "reference_solver.factorization.x_factorize__mutmut_32",
+        ),
+        "dgecon also for a 1-norm of 0: only a zero matrix has it, whose pivots are 0, so rcond is set to 0 "
+        "after anyway",
+    ),
+    **dict.fromkeys(
+        (
+            "reference_solver.factorization.x_factorize__mutmut_26",
+            "reference_solver.factorization.x_factorize__mutmut_29",
+        ),
+        "dgecon's norm='1' dropped or None: scipy's wrapper defaults to the 1-norm",
+    ),
+    "reference_solver.factorization.x_factorize__mutmut_43": "the sign divided by (-1)^swaps instead of "
+    "multiplied: (-1)^k is +1 or -1, its own reciprocal",
+    **dict.fromkeys(
+        (
+            "reference_solver.factorization.x_factorize__mutmut_58",
+            "reference_solver.factorization.x_factorize__mutmut_62",
+        ),
+        "the guard setting rcond 0 for a zero or non-finite pivot weakened: a NaN in the matrix makes its "
+        "1-norm NaN, which `anorm > 0` already sends to 0, and this LAPACK's dgecon itself returns 0 for an "
+        "exactly zero pivot and for an infinite one (checked on [[1e308, 1e308], [-1e308, 1e308]], whose "
+        "second pivot overflows): the guard only protects against a LAPACK that would not",
+    ),
+    **dict.fromkeys(
+        (
+            "reference_solver.factorization.xǁFactorizationǁsolve__mutmut_3",
+            "reference_solver.factorization.xǁFactorizationǁsolve__mutmut_6",
+            "reference_solver.factorization.xǁFactorizationǁsolve__mutmut_7",
+        ),
+        "lu_solve's check_finite False -> None, default or True: differs only on non-finite input, and "
+        "every caller solves with finite factors (rcond > 0 needs a finite diagonal) and a finite "
+        "right-hand side (Newton returns on a non-finite residual before solving)",
+    ),
     "reference_solver.analysis.x__approach__mutmut_99": "smallest <= NEAR_SINGULAR for <: differs only "
     "on an exact tie of the singular value ratio with 1e-4",
 }
