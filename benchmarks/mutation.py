@@ -104,11 +104,11 @@ MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
         (
             "reference_solver/system.py",
-            "reference_solver/layout.py",
             "reference_solver/mobility.py",
         ),
         PLAIN_PATH_TESTS,
     ),
+    "reference_solver/layout.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_layout.py"),
     "reference_solver/factorization.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_factorization.py"),
     "reference_solver/residual.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_residual.py"),
 }
