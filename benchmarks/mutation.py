@@ -45,6 +45,18 @@ CLOSED_FORM_TESTS = (
 """The tests of the closed forms, which sit beside their families (Family.closed_form): mutating a
 family module mutates its builder too, which these tests reach only through the native solver."""
 
+PLAIN_PATH_TESTS = (
+    "tests/reference_solver/test_analysis.py",
+    "tests/reference_solver/test_newton.py",
+    "tests/reference_solver/test_constraint_derivatives.py",
+    "tests/reference_solver/test_compiled_system.py",
+    "tests/reference_solver/test_failures.py",
+    "tests/reference_solver/test_closed_forms.py",
+    "tests/reference_solver/equations",
+)
+"""The tests of the plain path's building blocks (system, layout, mobility, factorization): each
+imports or runs them without the compiled kernel (not yet run under mutation)."""
+
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
         (
@@ -82,6 +94,23 @@ MODULES: dict[str, tuple[str, ...]] = {
             "tests/reference_solver/equations",
         ),
     ),
+    "reference_solver/analysis.py": (
+        "tests/reference_solver/test_analysis.py",
+        "tests/reference_solver/test_branch_guard.py",
+        "tests/reference_solver/test_fast_path.py",
+        "tests/reference_solver/test_failures.py",
+        "tests/reference_solver/test_closed_forms.py",
+    ),
+    **dict.fromkeys(
+        (
+            "reference_solver/system.py",
+            "reference_solver/mobility.py",
+        ),
+        PLAIN_PATH_TESTS,
+    ),
+    "reference_solver/layout.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_layout.py"),
+    "reference_solver/factorization.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_factorization.py"),
+    "reference_solver/residual.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_residual.py"),
 }
 
 _STRICT_ZIP = "zip of two 2-tuples: strict or not, the pairs are the same"
@@ -147,6 +176,71 @@ EXPLAINED: dict[str, str] = {
         "cam's profile point) pass a Jacobian filled only in the angle column col + 2 and the contact's phi "
         "column (after every body column), so those two entries are 0 before and 1 after either way",
     ),
+    "reference_solver.analysis.x__singular__mutmut_33": "the message's 'unknown' (no dependent rows) -> "
+    "'XXunknownXX': unreachable, rank_report names every row weighing > 0.1 in a unit singular vector, "
+    "so at least one whenever C_q has fewer than 100 rows",
+    "reference_solver.analysis.x__singular__mutmut_34": "the message's 'unknown' -> 'UNKNOWN': "
+    "unreachable, as for _33",
+    "reference_solver.analysis.x__approach__mutmut_2": "the first retaken step 2 (t1 - t0) instead of half "
+    "of it: min/max clip it to t1, where Newton has just failed, so it fails again and is halved to the "
+    "whole step, then to the half: two wasted solves, the same steps after",
+    "reference_solver.analysis.x__approach__mutmut_25": "t1 >= t0 for t1 > t0 (which way to clip the "
+    "step): differs only when t1 == t0, where h = 0 and the halving loop never runs",
+    "reference_solver.analysis.x__approach__mutmut_5": "`last` starts as '' for None: it is only tested "
+    "for truth, and '' is false too",
+    "reference_solver.analysis.x__approach__mutmut_7": "the halving loop's bound >= for >: differs only "
+    "when |h| equals 1e-12 max(|t1|, |t1 - t0|) exactly, and then by one more halving",
+    "reference_solver.analysis.x__approach__mutmut_16": "the step resolution 1e-12 max(|t1|, |t1 + t0|) "
+    "for |t1 - t0|: on a grid of times >= 0 (every scenario's) it is at most twice as coarse (one halving "
+    "fewer), moving a stop time by about 1e-14 s, below what the stroke-end test can bound",
+    "reference_solver.analysis.x__approach__mutmut_54": "rcond > SINGULAR_RCOND for >=: differs only "
+    "on an exact tie of the rcond estimate with 1e-9",
+    "reference_solver.analysis.x__approach__mutmut_85": "the step grows by 3 instead of 2 after a success: "
+    "the answer at t1 is a converged Newton solution either way (the same to the tolerance) and the "
+    "halvings still stop at the same resolution; only the number of solves changes",
+    "reference_solver.factorization.x_factorize__mutmut_4": "warnings.simplefilter('ignore') without "
+    "LinAlgWarning: the block holds lu_factor alone, whose only warning is LinAlgWarning",
+    "reference_solver.factorization.x_factorize__mutmut_9": "lu_factor's check_finite False -> None: "
+    "only tested for truth",
+    **dict.fromkeys(
+        (
+            "reference_solver.factorization.x_factorize__mutmut_22",
+            "reference_solver.factorization.x_factorize__mutmut_32",
+        ),
+        "dgecon also for a 1-norm of 0: only a zero matrix has it, whose pivots are 0, so rcond is set to 0 "
+        "after anyway",
+    ),
+    **dict.fromkeys(
+        (
+            "reference_solver.factorization.x_factorize__mutmut_26",
+            "reference_solver.factorization.x_factorize__mutmut_29",
+        ),
+        "dgecon's norm='1' dropped or None: scipy's wrapper defaults to the 1-norm",
+    ),
+    "reference_solver.factorization.x_factorize__mutmut_43": "the sign divided by (-1)^swaps instead of "
+    "multiplied: (-1)^k is +1 or -1, its own reciprocal",
+    **dict.fromkeys(
+        (
+            "reference_solver.factorization.x_factorize__mutmut_58",
+            "reference_solver.factorization.x_factorize__mutmut_62",
+        ),
+        "the guard setting rcond 0 for a zero or non-finite pivot weakened: a NaN in the matrix makes its "
+        "1-norm NaN, which `anorm > 0` already sends to 0, and this LAPACK's dgecon itself returns 0 for an "
+        "exactly zero pivot and for an infinite one (checked on [[1e308, 1e308], [-1e308, 1e308]], whose "
+        "second pivot overflows): the guard only protects against a LAPACK that would not",
+    ),
+    **dict.fromkeys(
+        (
+            "reference_solver.factorization.xǁFactorizationǁsolve__mutmut_3",
+            "reference_solver.factorization.xǁFactorizationǁsolve__mutmut_6",
+            "reference_solver.factorization.xǁFactorizationǁsolve__mutmut_7",
+        ),
+        "lu_solve's check_finite False -> None, default or True: differs only on non-finite input, and "
+        "every caller solves with finite factors (rcond > 0 needs a finite diagonal) and a finite "
+        "right-hand side (Newton returns on a non-finite residual before solving)",
+    ),
+    "reference_solver.analysis.x__approach__mutmut_99": "smallest <= NEAR_SINGULAR for <: differs only "
+    "on an exact tie of the singular value ratio with 1e-4",
 }
 
 KILLED, SURVIVED = 1, 0

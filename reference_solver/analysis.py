@@ -184,7 +184,7 @@ def _approach(
     """
     t, h = t0, (t1 - t0) / 2
     last = None
-    while h > 1e-12 * max(abs(t1), abs(t1 - t0)):
+    while abs(h) > 1e-12 * max(abs(t1), abs(t1 - t0)):
         target = min(t + h, t1) if t1 > t0 else max(t + h, t1)
         predictor = _predict(q, qd, qdd, target - t)
         result = newton(system, predictor, target, settings)

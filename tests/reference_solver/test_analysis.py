@@ -1,0 +1,271 @@
+"""The plain kinematic loop (reference_solver.analysis, fast=False) on a mechanism worked by hand.
+
+A crank of length 2 a pinned at its end to the ground origin, its angle driven by the harmonic law
+theta = m + A cos(w t): its frame origin (the centre) is at a (cos theta, sin theta), so
+    x' = -a sin(theta) theta',  x'' = -a (cos(theta) theta'^2 + sin(theta) theta''),
+    y' =  a cos(theta) theta',  y'' =  a (cos(theta) theta'' - sin(theta) theta'^2),
+with theta' = -A w sin(w t), theta'' = -A w^2 cos(w t).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+from typing import Any
+
+import numpy as np
+import pytest
+
+import reference_solver.analysis as analysis
+import scenarios
+from reference_solver import ConvergenceError, SingularConfigurationError, analyse, solve
+from reference_solver.limits import JUMP_FLOOR, JUMP_FRACTION
+from reference_solver.newton import NewtonResult
+from reference_solver.system import ConstraintSystem
+from scenarios import GROUND, AbsoluteDriver, Body, Harmonic, Point, Revolute
+from scenarios.scenario import Scenario
+
+A_HALF, MEAN, AMPLITUDE, OMEGA = 0.1, 0.4, 0.7, 3.0
+
+
+def _crank(guess: tuple[float, float, float] = (0.09, 0.05, 0.5)) -> Scenario:
+    return Scenario(
+        family="hand_crank",
+        variant="default",
+        bodies=(Body("crank", guess, length=2 * A_HALF),),
+        joints=(Revolute("O", Point(GROUND, (0.0, 0.0)), Point("crank", (-A_HALF, 0.0))),),
+        drivers=(AbsoluteDriver("drive", "crank", "theta", Harmonic(MEAN, AMPLITUDE, OMEGA)),),
+        t_end=1.0,
+        steps=20,
+        characteristic_length=2 * A_HALF,
+    )
+
+
+def _by_hand(t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    th = MEAN + AMPLITUDE * np.cos(OMEGA * t)
+    thd = -AMPLITUDE * OMEGA * np.sin(OMEGA * t)
+    thdd = -AMPLITUDE * OMEGA**2 * np.cos(OMEGA * t)
+    c, s, a = np.cos(th), np.sin(th), A_HALF
+    q = np.stack([a * c, a * s, th], axis=1)
+    qd = np.stack([-a * s * thd, a * c * thd, thd], axis=1)
+    qdd = np.stack([-a * (c * thd**2 + s * thdd), a * (c * thdd - s * thd**2), thdd], axis=1)
+    return q, qd, qdd
+
+
+def test_positions_rates_and_accelerations_are_the_hand_worked_ones() -> None:
+    scenario = _crank()
+    result = analyse(scenario, fast=False)
+    grid = np.asarray(scenario.times())
+    np.testing.assert_array_equal(result.times, grid)
+    for level, expected in zip(("q", "qd", "qdd"), _by_hand(grid), strict=True):
+        np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-12, err_msg=level)
+    assert np.all(result.residual < 1e-12)
+    assert result.iterations[0] == 0 and np.all(result.iterations[1:] >= 1)
+    assert np.all(result.rcond > 0.01)
+
+
+def test_the_predictor_is_the_second_order_taylor_step() -> None:
+    """q + h q' + h^2/2 q'' with h = 0.5: 1 + 0.5 + 0.125 * 2, 2 + 0.5 + 0.125 * 4, 3 + 0.5 + 0.125 * 6."""
+    predicted = analysis._predict(np.array([1.0, 2.0, 3.0]), np.ones(3), np.array([2.0, 4.0, 6.0]), 0.5)
+    np.testing.assert_array_equal(predicted, [1.75, 3.0, 4.25])
+
+
+def test_a_step_has_jumped_when_its_correction_exceeds_half_the_predictors_reach() -> None:
+    """The crank's columns are scaled by L = 0.2 (x, y) and 1 (theta). A step h = 0.1 at theta' = 1
+    reaches 0.1 in theta; at theta'' = 10 (theta' = 0) it reaches h^2 |theta''| = 0.1 too. Half of
+    that, 0.05, is the largest correction on the branch: 0.04 in theta stays, 0.06 jumps, and so
+    does 0.011 in x (0.055 in units of L), while 0.009 in x (0.045) stays."""
+    system = ConstraintSystem(_crank())
+    assert JUMP_FRACTION == 0.5
+    start = np.array([0.1, 0.0, 0.0])
+    for qd, qdd in (([0.0, 0.0, 1.0], [0.0, 0.0, 0.0]), ([0.0, 0.0, 0.0], [0.0, 0.0, 10.0])):
+        for offset, jumps in (((0, 0, 0.04), False), ((0, 0, 0.06), True), ((0.011, 0, 0), True),
+                              ((0, -0.009, 0), False), ((0, 0, -0.06), True)):  # fmt: skip
+            end = start + np.array(offset)
+            assert analysis.jumped(system, np.array(qd), np.array(qdd), 0.1, start, end) is jumps, (
+                qd,
+                offset,
+            )
+
+
+def test_a_step_that_reaches_nothing_has_jumped_beyond_the_floor() -> None:
+    """With zero rates the reach is 0 and the floor JUMP_FLOOR = 1e-6 (scaled units) decides."""
+    system = ConstraintSystem(_crank())
+    still, start = np.zeros(3), np.array([0.1, 0.0, 0.0])
+    assert not analysis.jumped(system, still, still, 0.1, start, start + np.array([0, 0, 0.9 * JUMP_FLOOR]))
+    assert analysis.jumped(system, still, still, 0.1, start, start + np.array([0, 0, 1.1 * JUMP_FLOOR]))
+
+
+def _counting_approach(monkeypatch: pytest.MonkeyPatch) -> list[tuple[float, float]]:
+    """Record each (t0, t1) the real analysis._approach is called on."""
+    calls: list[tuple[float, float]] = []
+    real = analysis._approach
+
+    def counted(*args, **kwargs):  # type: ignore[no-untyped-def]
+        calls.append((args[4], args[5]))
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(analysis, "_approach", counted)
+    return calls
+
+
+@pytest.mark.parametrize(
+    "grid",
+    [
+        pytest.param(np.linspace(1.0, 0.0, 21), id="decreasing"),
+        pytest.param(np.linspace(-1.0, 0.0, 21), id="negative times"),
+    ],
+)
+def test_steps_newton_cannot_take_at_once_are_retaken_in_halves(
+    grid: np.ndarray, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """With two Newton iterations allowed, some whole steps fail and are retaken in halved steps
+    (analysis._approach), forwards and backwards in time alike: the answer is still the hand-worked one."""
+    calls = _counting_approach(monkeypatch)
+    result = analyse(_crank(), grid, max_iterations=2, fast=False)
+    assert calls, "no step was retaken: the test does not reach analysis._approach"
+    for level, expected in zip(("q", "qd", "qdd"), _by_hand(grid), strict=True):
+        np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-12, err_msg=level)
+
+
+def test_the_end_of_a_stroke_is_found_to_the_step_resolution() -> None:
+    """A slider driven 1.2 times beyond its stroke leaves the crank no configuration after
+    t* = asin(1 / 1.2) / omega (omega = 50). The halved steps stop when they are shorter than 1e-12
+    times the time (about 2e-14 s here): the time the error names is within a few of those of t*
+    (measured 1.7e-14 before t*; a resolution 1e-12 / t would leave 1e-10)."""
+    scenario = scenarios.build("slider_crank/slider_drive", overrides={"stroke_fraction": 1.2})
+    with pytest.raises(SingularConfigurationError) as caught:
+        analyse(scenario, fast=False)
+    assert caught.value.time == pytest.approx(math.asin(1 / 1.2) / 50, abs=5e-14)
+
+
+def test_a_dead_centre_loses_exactly_one_rank_and_the_message_names_the_rows() -> None:
+    """At the slider-driven dead centre the crank and the rod line up: one mechanism, one lost
+    direction, so C_q (square) loses exactly one rank. The message lists the dependent rows."""
+    scenario = scenarios.build("slider_crank/slider_drive", overrides={"stroke_fraction": 1.0, "steps": 100})
+    with pytest.raises(SingularConfigurationError) as caught:
+        analyse(scenario, fast=False)
+    error = caught.value
+    assert error.rank_deficiency == 1
+    assert len(error.dependent_rows) >= 2 and "slider_drive.x" in error.dependent_rows
+    assert str(error).endswith(f"C_q rank deficiency 1, dependent rows: {', '.join(error.dependent_rows)}")
+
+
+def test_solve_runs_on_the_times_it_is_given() -> None:
+    times = [0.0, 0.25, 0.5]
+    trajectory = solve(_crank(), times)
+    np.testing.assert_array_equal(trajectory.times, times)
+    assert trajectory.position is not None
+    np.testing.assert_allclose(trajectory.position[:, 0], _by_hand(np.asarray(times))[0], rtol=0, atol=1e-12)
+
+
+def test_solve_takes_the_fast_path_by_default(monkeypatch: pytest.MonkeyPatch) -> None:
+    calls: list[str] = []
+    real = analysis.fast_path.analyse
+
+    def counted(scenario, *args, **kwargs):  # type: ignore[no-untyped-def]
+        calls.append(scenario.name)
+        return real(scenario, *args, **kwargs)
+
+    monkeypatch.setattr(analysis.fast_path, "analyse", counted)
+    solve(_crank(), [0.0, 0.1])
+    assert calls == ["hand_crank"]
+    solve(_crank(), [0.0, 0.1], fast=False)
+    assert calls == ["hand_crank"]
+
+
+def test_half_steps_that_leave_the_branch_are_refused_too() -> None:
+    """The undercut cam (see test_branch_guard.py) on a grid four times coarser than its own: whole
+    steps jump, and so do some of their halves, which analysis._approach must refuse and halve again
+    (measured: the same configurations as a grid 16 times finer, to 4e-16; accepting the jumping
+    halves ends on another branch, 3.6 rad away)."""
+    scenario = scenarios.build("cam_roller/stress_undercut")
+    coarse = np.asarray(scenario.times(steps=scenario.steps // 4))
+    fine = np.asarray(scenario.times(steps=4 * scenario.steps))
+    reference = analyse(scenario, fine, fast=False).q[::16]
+    np.testing.assert_allclose(analyse(scenario, coarse, fast=False).q, reference, rtol=0, atol=1e-12)
+
+
+def _newton_failing_after(monkeypatch: pytest.MonkeyPatch, limit: float) -> None:
+    """The real Newton-Raphson, made to fail (unconverged, no factors) at any time beyond `limit`."""
+    real = analysis.newton
+
+    def failing(system, q, t, settings):  # type: ignore[no-untyped-def]
+        result = real(system, q, t, settings)
+        return result if t <= limit else NewtonResult(result.q, False, settings.max_iterations, 1.0, None)
+
+    monkeypatch.setattr(analysis, "newton", failing)
+
+
+@pytest.mark.parametrize("limit", [0.5, 0.52])
+def test_a_newton_failure_at_a_regular_configuration_is_a_convergence_error(
+    limit: float, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Beyond `limit` no Newton converges; the crank there is regular (its pin and driver rows
+    never become dependent), so the halved steps end in a ConvergenceError at the last time
+    reached, with the hand-worked configuration of that time. From 0.5 (a grid time) no half step
+    succeeds: the count is the allowed 25 iterations; towards 0.52 some do, and the count is the
+    last successful Newton's (a few)."""
+    _newton_failing_after(monkeypatch, limit)
+    with pytest.raises(ConvergenceError) as caught:
+        analyse(_crank(), fast=False)
+    error = caught.value
+    assert error.time == pytest.approx(limit, abs=1e-12)
+    assert error.q is not None
+    np.testing.assert_allclose(error.q, _by_hand(np.array([error.time]))[0][0], rtol=0, atol=1e-12)
+    message = re.fullmatch(
+        r"hand_crank: Newton-Raphson did not converge at t=0\.55 \(stuck at t=(\S+) after (\d+) "
+        r"iterations\) at a regular configuration",
+        str(error),
+    )
+    assert message is not None, str(error)
+    assert float(message[1]) == pytest.approx(limit, abs=1e-6)
+    assert (int(message[2]) == 25) is (limit == 0.5)
+
+
+def test_solve_passes_its_tolerance_on() -> None:
+    """Newton stops once its step and residual are below the tolerance (in units of L): with 0.1 the
+    four-bar's first point keeps the error of its last step, measured 5.1e-9 m from the 1e-12 answer
+    (on the crank above every tolerance gives the same numbers: its pin rows are linear once theta is
+    right). Bounds: a third of that, and the tolerance itself times L."""
+    scenario = scenarios.build("four_bar")
+    loose = solve(scenario, [0.0, 0.001], tolerance=0.1).position
+    tight = solve(scenario, [0.0, 0.001]).position
+    assert loose is not None and tight is not None
+    assert 1.7e-9 < np.max(np.abs(loose - tight)) < 0.1 * scenario.characteristic_length
+
+
+def _renamed(item: Any, suffix: str) -> Any:
+    """A copy of a scenario part whose bodies and constraints carry `suffix` (the ground keeps its name)."""
+    if isinstance(item, tuple):
+        return tuple(_renamed(v, suffix) for v in item)
+    if not dataclasses.is_dataclass(item) or isinstance(item, type):
+        return item
+    changes = {}
+    for f in dataclasses.fields(item):
+        value = getattr(item, f.name)
+        if f.name in ("body", "name") and isinstance(value, str) and value != GROUND:
+            changes[f.name] = value + suffix
+        elif isinstance(value, tuple) or dataclasses.is_dataclass(value):
+            changes[f.name] = _renamed(value, suffix)
+    return dataclasses.replace(item, **changes)
+
+
+def test_two_mechanisms_at_their_stroke_ends_lose_two_ranks() -> None:
+    """Two unconnected copies of the slider-crank driven 1.2 times beyond its stroke reach their
+    stroke ends together: each loses one direction, so C_q loses two ranks and both sliders' driver
+    rows are named. There the smallest singular value ratios are about 1.5e-7 (measured), lost for
+    the singularity report's threshold NEAR_SINGULAR = 1e-4, not for the rank's default 1e-8."""
+    one = scenarios.build("slider_crank/slider_drive", overrides={"stroke_fraction": 1.2})
+    two = dataclasses.replace(
+        one,
+        bodies=one.bodies + _renamed(one.bodies, "_2"),
+        joints=one.joints + _renamed(one.joints, "_2"),
+        drivers=one.drivers + _renamed(one.drivers, "_2"),
+        outputs=(),
+    )
+    with pytest.raises(SingularConfigurationError) as caught:
+        analyse(two, fast=False)
+    assert caught.value.rank_deficiency == 2
+    assert {"slider_drive.x", "slider_drive_2.x"} <= set(caught.value.dependent_rows)
