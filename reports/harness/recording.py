@@ -107,19 +107,10 @@ def _record_ranks(store: ResultsStore) -> int:
     """The ranks of rows stored without them (a name still not listed keeps -1, unrewritten)."""
     done = 0
     for key, row in list(store.rows.items()):
-        if _rank(row, "scenario_rank") >= 0 and _rank(row, "engine_rank") >= 0:
+        if int(row.get("scenario_rank", -1)) >= 0 and int(row.get("engine_rank", -1)) >= 0:
             continue
         found = ranks(str(row["scenario"]), str(row["engine"]))
-        if any(_rank(row, k) != v for k, v in found.items()):
+        if any(int(row.get(k, -1)) != v for k, v in found.items()):
             store.rows[key] = {**row, **found}
             done += 1
     return done
-
-
-def _rank(row: dict[str, Any], column: str) -> int:
-    """A stored rank, -1 where the row has none: absent, or NaN in a store written before ranks."""
-    value = row.get(column, -1)
-    try:
-        return int(value)
-    except (TypeError, ValueError):  # None, or NaN
-        return -1

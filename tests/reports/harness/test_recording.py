@@ -73,12 +73,26 @@ def test_a_row_stored_without_ranks_gets_them(tmp_path: Path) -> None:
     assert row["engine_rank"] == 0 and row["scenario_rank"] > 0  # four_bar itself comes first
 
 
-def test_a_row_read_with_nan_ranks_gets_them(tmp_path: Path) -> None:
-    """A store whose older parts lack the rank columns reads them as NaN beside a newer part's
-    rows (seen on `compare --out` into a store of the session before): recorded, not a crash."""
+def test_rows_of_a_part_written_before_the_ranks_get_them(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A store whose older part lacks the rank columns, beside a newer part that has them (seen on
+    `compare --out` into a store of the session before): its rows read the ranks as missing (-1,
+    the declared empty) and are recorded, not a crash."""
+    from reports.harness import results_store
+
+    older = tuple(c for c in results_store.COLUMNS if c not in ("scenario_rank", "engine_rank"))
+    with monkeypatch.context() as patch:
+        patch.setattr(results_store, "COLUMNS", older)
+        first = ResultsStore(tmp_path)
+        for scenario in ("four_bar", "slider_crank"):  # two rows: the newer part does not absorb them
+            first.add(_row("reference") | {"scenario": scenario})
+        first.save({})
+    second = ResultsStore(tmp_path)
+    second.add(_row("mujoco") | {"scenario": "four_bar", "scenario_rank": 3, "engine_rank": 1})
+    second.save(second.meta)
     store = ResultsStore(tmp_path)
-    store.add(_row("reference") | {"scenario": "four_bar", "scenario_rank": np.nan, "engine_rank": np.nan})
-    assert record(store) == 1
+    assert record(store) >= 2
     row = store.rows[("four_bar", "reference", "default")]
     assert row["engine_rank"] == 0 and row["scenario_rank"] >= 0
 
