@@ -62,8 +62,9 @@ def run_group(
     """The rows of one scenario-engine group: each job run isolated (a crash or a hang costs its
     row), timed and compared with the truth; `done(label)` after each. The runs are made by the
     engine's warm worker in `workers` (kept for the next group; by default, a worker for this group
-    alone), forked after this process has warmed the scenario. Stores nothing, so that it runs the
-    same here and in a Dask task."""
+    alone). This process warms the scenario first: a worker forked from now on (the first, or one
+    after a crash) inherits it; a worker kept from an earlier group warms it in its child, in the
+    untimed warm-up run. Stores nothing, so that it runs the same here and in a Dask task."""
     timed_out: set[str] = set()
     out: list[Stored] = []
     if not jobs:
