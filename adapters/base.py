@@ -8,7 +8,8 @@ A subclass provides exactly:
     version() -> str                           the installed engine's version
     supports(scenario) -> str | None           None, or why the engine cannot represent it faithfully
     default_setting(scenario) -> Setting       the setting used by `mbxval solve` and the status matrix
-    sweep(scenario) -> list[Setting]           settings for the work-precision curves
+    ladder(scenario) -> list[Setting]          the settings ladder: settings for the work-precision
+                                               curves (`sweep`, its old name, still works: deprecated)
     build(scenario, setting) -> model          the engine's own model (not timed)
     simulate(model, times) -> Trajectory       the timed part; must not depend on earlier calls.
 It may also provide export(scenario, setting, path) in the engine's own file format, and call
@@ -190,6 +191,8 @@ class Adapter:
     palette, reports.harness.engine_facts)."""
     packages: ClassVar[tuple[str, ...]] = ()
     """The distributions (as pip names them) whose installed versions a run records beside ours."""
+    _ladder_is_sweep: ClassVar[bool] = False
+    """Set on a class whose `ladder` is its deprecated `sweep` (__init_subclass__)."""
 
     def __init__(self) -> None:
         self._steps = 0
@@ -204,8 +207,29 @@ class Adapter:
     def default_setting(self, scenario: Scenario) -> Setting:
         raise NotImplementedError
 
-    def sweep(self, scenario: Scenario) -> list[Setting]:
+    def ladder(self, scenario: Scenario) -> list[Setting]:
+        """The settings ladder: the settings the work-precision curves run over (by default the
+        default setting alone). Not the parameter sweep of `mbxval run --sweep`."""
         return [self.default_setting(scenario)]
+
+    def sweep(self, scenario: Scenario) -> list[Setting]:
+        """Deprecated: the old name of `ladder`. The ladder of the nearest class that declares one
+        as `ladder` (so that an old subclass's `super().sweep()` reaches its parent's ladder)."""
+        warnings.warn(LADDER_RENAMED, DeprecationWarning, stacklevel=2)
+        for owner in type(self).__mro__:
+            if "ladder" in owner.__dict__ and not owner.__dict__.get("_ladder_is_sweep", False):
+                ladder: Any = owner.__dict__["ladder"]
+                return list(ladder(self, scenario))
+        raise AssertionError("Adapter declares ladder")  # pragma: no cover
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        """A subclass (a plug-in engine written before the rename) that defines `sweep` and no
+        `ladder` has its `sweep` taken as its ladder, with a DeprecationWarning."""
+        super().__init_subclass__(**kwargs)
+        if "sweep" in cls.__dict__ and "ladder" not in cls.__dict__:
+            warnings.warn(f"{cls.__qualname__}: {LADDER_RENAMED}", DeprecationWarning, stacklevel=2)
+            cls.ladder = cls.__dict__["sweep"]  # type: ignore[method-assign]
+            cls._ladder_is_sweep = True
 
     def build(self, scenario: Scenario, setting: Setting) -> Any:
         raise NotImplementedError
@@ -329,6 +353,8 @@ def _failure(error: Exception) -> dict[str, Any]:
     message = f"{type(error).__name__}: {error} (at {where.name}:{where.lineno})"
     return {"status": "failed", "message": _one_line(message)}
 
+
+LADDER_RENAMED = "Adapter.sweep is deprecated: the settings ladder is now `ladder(scenario)`"
 
 MAX_STEPS = 1e7
 """A setting whose step `dt` would take more engine steps than this over the grid is refused: such

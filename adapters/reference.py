@@ -1,7 +1,7 @@
 """The native textbook solver presented as one more engine, so the runner treats it like the others.
 
 Kinematic scenarios (mode newton): its one knob is the Newton-Raphson tolerance (on both |dq| and
-|C|, relative to the scenario's characteristic length); its sweep traces the native solver's own
+|C|, relative to the scenario's characteristic length); its ladder traces the native solver's own
 work-precision curve. `inverse_dynamics=1` adds the drivers' forces, the joints' reactions and the
 energies as extra columns. Dynamic scenarios (modes DOP853 and Radau, coordinate partitioning):
 the knob is the integrator's relative tolerance `rtol`; mode ali3p, the second native method (index-3
@@ -92,7 +92,7 @@ class ReferenceAdapter(Adapter):
             return Setting.of("DOP853", rtol=1e-12)
         return Setting.of("newton", tolerance=1e-12)
 
-    def sweep(self, scenario: Scenario) -> list[Setting]:
+    def ladder(self, scenario: Scenario) -> list[Setting]:
         if scenario.analysis == "dynamic":
             return [Setting.of("DOP853", rtol=tol) for tol in RTOLS]
         return [Setting.of("newton", tolerance=tol) for tol in TOLERANCES]

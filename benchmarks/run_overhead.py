@@ -66,7 +66,7 @@ def run_phase(label: str, names: list[str], engines: list[str], suite: Suite, ou
         finally:
             spent[0] += time.perf_counter() - start
 
-    options = RunOptions(suite.sweep, suite.repeats, suite.warmup, suite.timeout)
+    options = RunOptions(suite.ladder, suite.repeats, suite.warmup, suite.timeout)
     store = ResultsStore(out)
     runner = Runner(store, engines, options, truth=timed_truth, progress=False, settings=suite.settings)
     start = time.perf_counter()

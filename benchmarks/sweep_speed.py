@@ -23,7 +23,7 @@ from reports.harness.runner import Runner, RunOptions
 from reports.harness.sweep import points
 
 SWEEP = ("omega=log:10:1e4:50", "crank_length=lin:0.05:0.2:4")
-OPTIONS = RunOptions(sweep=False, repeats=1, warmup=0)
+OPTIONS = RunOptions(ladder=False, repeats=1, warmup=0)
 
 
 def main(argv: list[str] | None = None) -> None:

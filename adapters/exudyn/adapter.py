@@ -42,7 +42,7 @@ from adapters.base import Adapter, Option, Setting, Unsupported
 from adapters.exudyn.initial_state import released_start
 from adapters.exudyn.loads import FORCES
 from adapters.exudyn.model import ExudynModel, ModelError, build_model
-from adapters.exudyn.settings import STEPS_PER_PERIOD, rule_default, rule_sweep
+from adapters.exudyn.settings import STEPS_PER_PERIOD, rule_default, rule_ladder
 from adapters.exudyn.simulation import Plan, States, assemble, march, quiet, simulation_settings, trajectory
 from adapters.modes import ENGINE, Mode
 from scenarios.cam_linkage import CAM_MODELS, default_cam_model, linkage_reason
@@ -178,10 +178,10 @@ class ExudynAdapter(Adapter):
         setting = rule_default(scenario)
         return setting.replace(cam_model=default_cam_model(scenario)) if scenario.cams else setting
 
-    def sweep(self, scenario: Scenario) -> list[Setting]:
+    def ladder(self, scenario: Scenario) -> list[Setting]:
         """adapters.exudyn.settings' ladders (the explicit integrators refuse joints, see
         EXPLICIT_REASON)."""
-        return rule_sweep(scenario)
+        return rule_ladder(scenario)
 
     def build(self, scenario: Scenario, setting: Setting) -> ExudynRun:
         if setting.mode not in MODES:

@@ -1,8 +1,8 @@
 """Exudyn's settings by the one rule (adapters.step_rule): generalized-alpha (index 3) at a fixed
 number of steps per shortest period of the motion, whatever the output grid.
 
-The sweep runs each implicit integrator (generalized-alpha at spectral radius 0.9 and 0.5, with full
-and with Exudyn's modified Newton; the index-2 trapezoidal rule) over a ladder of steps per period,
+The ladder runs each implicit integrator (generalized-alpha at spectral radius 0.9 and 0.5, with full
+and with Exudyn's modified Newton; the index-2 trapezoidal rule) over rungs of steps per period,
 and GA3's spectral radius at the default step (RHOS); kinematic scenes add the static solve per
 output time. A rung whose run would take more than STEP_BUDGET steps over the horizon (weighted by
 bodies / 8 above 8 bodies) is left out, the coarsest always kept: past it the error sits on the
@@ -24,7 +24,7 @@ LADDERS = {
     "GA3-modified": (600, 2000),
     "TR2": (200, 600, 2000, 6000),
 }
-"""Steps per shortest period in the sweep, per mode."""
+"""Steps per shortest period in the ladder, per mode."""
 RHOS = (0.0, 0.6)
 """GA3's spectral radius swept at the default step beside the modes' 0.9 and 0.5."""
 STEP_BUDGET = 6.0e4
@@ -36,7 +36,7 @@ def rule_default(scenario: Scenario) -> Setting:
     return Setting.of("GA3", dt=rule_step(scenario, STEPS_PER_PERIOD))
 
 
-def rule_sweep(scenario: Scenario) -> list[Setting]:
+def rule_ladder(scenario: Scenario) -> list[Setting]:
     """Each mode over its ladder within the budget, GA3's spectral radius at the default step, and
     (kinematic scenes) the static solve."""
     weight = max(1.0, len(scenario.bodies) / 8)

@@ -49,7 +49,7 @@ from adapters.mujoco.settings import (
     TC_STEPS,
     probe_settings,
     rule_default,
-    rule_sweep,
+    rule_ladder,
     time_constant,
 )
 from adapters.mujoco.simulation import advance, read_outputs, record, side_step, soften
@@ -169,12 +169,12 @@ class MujocoAdapter(Adapter):
     def probe_settings(self, probe: Probe, scenario: Scenario) -> list[Setting] | None:
         return probe_settings(probe, scenario, self.default_setting(scenario))
 
-    def sweep(self, scenario: Scenario) -> list[Setting]:
+    def ladder(self, scenario: Scenario) -> list[Setting]:
         dynamic = scenario.analysis == "dynamic"
-        swept = rule_sweep(scenario, DYNAMIC_MODES if dynamic else KINEMATIC_MODES, closes_loops(scenario))
+        rungs = rule_ladder(scenario, DYNAMIC_MODES if dynamic else KINEMATIC_MODES, closes_loops(scenario))
         base = self.default_setting(scenario)
         extra = {k: v for k, v in base.options if k not in ("dt", "tc", "impedance")}
-        settings = [s.replace(**extra) if extra else s for s in swept]
+        settings = [s.replace(**extra) if extra else s for s in rungs]
         if base.get("cam_model") == "linkage":  # MuJoCo's own cam contact: its step ladders
             contact: dict[str, OptionValue] = {
                 "cam_model": "contact",

@@ -7,7 +7,7 @@ at tc / dt steps. At 2 steps (MuJoCo's floor) RK4 under-resolves it and the acce
 ringing (slider-crank 4.0e-3); TC_STEPS resolves it at the same cost. Softness ((1 - d) tc^2) grows
 with tc, so positions lose a little of what accelerations gain.
 
-The sweep (one work-precision curve per integrator): each integrator over a ladder of steps per
+The ladder (one work-precision curve per integrator): each integrator over rungs of steps per
 period; RK4's time constant over TC_LADDER steps at the default step and at a tenth of it; the
 impedance (solimp) at the default. A rung whose run takes more than STEP_BUDGET steps over the
 horizon (weighted by bodies / 8 above 8 bodies) is left out, the coarsest always kept: the suite's
@@ -35,7 +35,7 @@ LADDERS = {
     "implicit": (600, 2000, 6000, 20000),
     "Euler": (60, 200, 600, 2000, 6000, 20000),
 }
-"""Steps per shortest period in the sweep, per integrator."""
+"""Steps per shortest period in the ladder, per integrator."""
 KINEMATIC_MODES = ("RK4", "implicitfast")
 """The integrators swept on driven mechanisms (implicit equals implicitfast there, Euler lies
 beneath implicitfast)."""
@@ -54,7 +54,7 @@ def rule_default(scenario: Scenario) -> Setting:
     return Setting.of("RK4", dt=dt, tc=TC_STEPS * dt, impedance=IMPEDANCE)
 
 
-def rule_sweep(scenario: Scenario, modes: tuple[str, ...], closes_loops: bool) -> list[Setting]:
+def rule_ladder(scenario: Scenario, modes: tuple[str, ...], closes_loops: bool) -> list[Setting]:
     """Each of `modes` over its ladder within the budget, then (where a loop is closed) RK4's time
     constant at two steps and the impedance at the default."""
     default = rule_default(scenario)

@@ -46,7 +46,7 @@ from adapters.pinocchio.settings import (
     KINEMATIC,
     PER_PERIOD,
     STEPS_PER_PERIOD,
-    dynamic_sweep,
+    dynamic_ladder,
     probe_settings,
     rule_setting,
 )
@@ -107,7 +107,7 @@ MEASURED = tuple(
 """What each mode measures; the aliases (kinematics, dynamics) measure what their modes do and are
 marked as aliases, so that `mbxval list` gives one name per mode."""
 TOLERANCES = (1e-5, 1e-9, 1e-15)
-"""Newton residual bounds in the kinematic sweep; the default is the last."""
+"""Newton residual bounds in the kinematic ladder; the default is the last."""
 
 
 @dataclass
@@ -177,9 +177,9 @@ class PinocchioAdapter(Adapter):
     def probe_settings(self, probe: Probe, scenario: Scenario) -> list[Setting] | None:
         return probe_settings(probe, scenario, self.default_setting(scenario))
 
-    def sweep(self, scenario: Scenario) -> list[Setting]:
+    def ladder(self, scenario: Scenario) -> list[Setting]:
         if scenario.analysis == "dynamic":
-            return dynamic_sweep(scenario)
+            return dynamic_ladder(scenario)
         settings = [self.default_setting(scenario).replace(tol=tol) for tol in TOLERANCES]
         # cams run in the dynamic modes too, but their contact solve per evaluation makes a step
         # cost 5-15 ms of Python: swept only on request

@@ -2,7 +2,7 @@
 of steps per shortest period of the motion, whatever the output grid, and their Baumgarte gains
 are critically damped with a time constant of one radian of that period.
 
-The sweep runs each dynamic mode over a ladder of steps per period (PER_PERIOD) and the Baumgarte
+The ladder runs each dynamic mode over rungs of steps per period (PER_PERIOD) and the Baumgarte
 gains at the default step scaled by GAIN_FACTORS; a rung whose run would take more than
 STEP_BUDGET steps over the horizon is left out (the first rung always stays): past it the error
 sits on the mode's floor or the run costs minutes of Python for nothing new.
@@ -25,11 +25,11 @@ PER_PERIOD = {
     BAUMGARTE: (100, 300, 1000, 3000, 10000),
     EULER: (1000, 3000, 10000, 30000),
 }
-"""Steps per shortest period in the sweep, per mode."""
+"""Steps per shortest period in the ladder, per mode."""
 GAIN_FACTORS = (0.25, 4.0)
 """Baumgarte's rate w (kp = w^2, kd = 2 w) times these, swept at the default step."""
 STEP_BUDGET = 3.0e4
-"""Steps over the horizon above which a sweep rung is left out (a step of more than 8 bodies
+"""Steps over the horizon above which a ladder rung is left out (a step of more than 8 bodies
 counts as bodies / 8 steps)."""
 
 
@@ -49,7 +49,7 @@ def rule_setting(scenario: Scenario, mode: str, steps_per_period: float | None =
     return Setting.of(mode, dt=rule_step(scenario, per_period), kp=kp, kd=kd)
 
 
-def dynamic_sweep(scenario: Scenario) -> list[Setting]:
+def dynamic_ladder(scenario: Scenario) -> list[Setting]:
     """Each dynamic mode over its ladder within the budget, then the gains at the default step."""
     weight = max(1.0, len(scenario.bodies) / 8)
     settings = [

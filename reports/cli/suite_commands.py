@@ -79,7 +79,7 @@ def _run_options(args: argparse.Namespace, suite: Suite, rerun: bool) -> RunOpti
     if not (math.isfinite(timeout) and 0 < timeout <= MAX_TIMEOUT):
         raise UsageError(f"--timeout must be in (0, {MAX_TIMEOUT:g}] seconds, got {timeout}")
     return RunOptions(
-        sweep=suite.sweep,
+        ladder=suite.ladder,
         repeats=repeats,
         warmup=warmup,
         timeout=timeout,

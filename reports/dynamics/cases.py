@@ -8,7 +8,7 @@
   tolerance given; the native engine is then run no tighter than JUDGED_MARGIN times that, so the
   truth is always far tighter than what it judges;
 - the map cells run each engine's modes with the cell's output step as their step `dt` (the default
-  mode first: the map shows it), the other scenarios each engine's sweep.
+  mode first: the map shows it), the other scenarios each engine's ladder.
 """
 
 from __future__ import annotations
@@ -70,12 +70,12 @@ def truth(scenario: Scenario, times: Any) -> NamedTruth:
 def settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
     """The suite's settings hook (reports.harness.suites): a map cell runs each engine's modes at the
     cell's step; the native engine, whose forward dynamics is the truth, runs no
-    tighter than JUDGED_MARGIN times the truth's tolerance; otherwise each engine's own sweep."""
+    tighter than JUDGED_MARGIN times the truth's tolerance; otherwise each engine's own ladder."""
     if scenario.name in map_cells():
         return _at_step(scenario, adapter)
     if adapter.name == NATIVE and scenario.analysis == "dynamic":
         loosest = truth_rtol(scenario) * JUDGED_MARGIN
-        chosen = [adapter.default_setting(scenario), *adapter.sweep(scenario)]
+        chosen = [adapter.default_setting(scenario), *adapter.ladder(scenario)]
         return _unique([s.replace(rtol=max(float(s["rtol"]), loosest)) for s in chosen])
     return None
 
@@ -86,7 +86,7 @@ def _at_step(scenario: Scenario, adapter: Adapter) -> list[Setting]:
     step = scenario.t_end / scenario.steps
     default = adapter.default_setting(scenario)
     firsts: dict[str, Setting] = {}
-    for setting in (default, *adapter.sweep(scenario)):
+    for setting in (default, *adapter.ladder(scenario)):
         firsts.setdefault(setting.mode, setting)
     stepped = [at_step(s, step) for s in firsts.values() if s.get("dt") is not None]
     return _unique(stepped) if stepped and stepped[0].mode == default.mode else [default]

@@ -1,11 +1,11 @@
 """The regression gate: results compared cell by cell with a committed baseline.
 
-A cell is one scenario x engine at the engine's default setting, or one sweep setting (matched by
+A cell is one scenario x engine at the engine's default setting, or one ladder setting (matched by
 its label). A cell regresses when its status gets worse (ok, then unsupported, then any failure),
 or when both runs are ok and its headline error exceeds `factor` times the baseline's; errors below
 ERROR_FLOOR count as ERROR_FLOOR, so round-off near machine precision does not trip the gate.
 Baseline cells of a scenario-engine pair the current results cover but lack are regressions too;
-sweep settings the current results did not run (a quick subset) are not compared. Run times are
+ladder settings the current results did not run (a quick subset) are not compared. Run times are
 not gated: they depend on the machine.
 
 Every level is compared, keyed per level: the `error_position`, `error_velocity` and

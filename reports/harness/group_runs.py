@@ -30,9 +30,9 @@ LONG_RUN = 0.25  # seconds: a simulation this long is timed once after the warm-
 
 @dataclass(frozen=True)
 class RunOptions:
-    """How each engine run is made: `sweep` False runs only each engine's default setting."""
+    """How each engine run is made: `ladder` False runs only each engine's default setting."""
 
-    sweep: bool = True
+    ladder: bool = True
     repeats: int = 3
     warmup: int = 1
     timeout: float = 60.0

@@ -28,10 +28,10 @@ class Group:
 
 
 def plan_engine(
-    scenario: Scenario, engine: str, adapter: Adapter | str, sweep: bool, settings: SettingsHook | None
+    scenario: Scenario, engine: str, adapter: Adapter | str, ladder: bool, settings: SettingsHook | None
 ) -> Group:
     """The group of `engine` on `scenario`; `adapter` is the loaded engine or why it cannot be loaded,
-    `sweep` False plans only the default setting, `settings` is the suite's hook."""
+    `ladder` False plans only the default setting, `settings` is the suite's hook."""
     if isinstance(adapter, str):
         row = failure_row(scenario, engine, "unavailable", None, True, "failed", adapter)
         return Group(scenario, engine, None, "unavailable", reason_row=row)
@@ -43,7 +43,7 @@ def plan_engine(
             group.reason_row = failure_row(scenario, engine, version, None, True, "unsupported", reason)
             return group
         default = adapter.default_setting(scenario)
-        planned = adapter.sweep(scenario) if sweep else []
+        planned = adapter.ladder(scenario) if ladder else []
         chosen = settings(scenario, adapter) if settings else None
         if chosen:
             default, planned = chosen[0], chosen

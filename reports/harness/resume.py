@@ -124,7 +124,7 @@ class StoredRuns:
         """Make the stored rows of this scenario-engine pair agree with the plan (`planned` setting
         labels, None when the pair does not run): a pair that no longer runs keeps only its reason
         row; one that runs loses its old reason row; stored settings outside the plan (another
-        suite's sweep) stay, but are no longer the default."""
+        suite's ladder) stay, but are no longer the default."""
         rows, trajectories = self.store.rows, self.store.trajectories
         for key in [k for k in self.by_pair.pop((scenario, engine), []) if k in rows]:
             if (planned is not None) == (key[2] == NOT_RUN):

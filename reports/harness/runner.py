@@ -151,7 +151,7 @@ class Runner:
         except ScenarioError as error:
             raise ScenarioError(f"suite scenario {name} cannot be built: {error}") from error
         return [
-            plan_engine(scenario, e, self.adapters[e], self.options.sweep, self.settings)
+            plan_engine(scenario, e, self.adapters[e], self.options.ladder, self.settings)
             for e in self.engines
         ]
 

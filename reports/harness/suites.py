@@ -22,17 +22,17 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class Suite:
-    """`scenarios()` names the scenarios; `sweep` False runs each engine's default setting only.
+    """`scenarios()` names the scenarios; `ladder` False runs each engine's default setting only.
 
     `truth(scenario, times)` replaces the runner's reference truth; `settings(scenario, adapter)`
     gives a scenario's settings for an engine (the first one its default), or None for the engine's
-    own default and sweep.
+    own default and ladder.
     """
 
     name: str
     description: str
     scenarios: Callable[[], list[str]]
-    sweep: bool = True
+    ladder: bool = True
     repeats: int = 3
     warmup: int = 1
     timeout: float = 60.0
@@ -67,7 +67,7 @@ def main_scenarios() -> list[str]:
 register(
     Suite(
         "default",
-        "every family's default and main variants; every engine over its sweep",
+        "every family's default and main variants; every engine over its ladder",
         main_scenarios,
     )
 )
@@ -76,7 +76,7 @@ register(
         "quick",
         "the default suite's scenarios at each engine's default setting only, timed once (for `check`)",
         main_scenarios,
-        sweep=False,
+        ladder=False,
         repeats=1,
         warmup=0,
     )
@@ -109,7 +109,7 @@ register(
         "stress",
         "singular, extreme and long cases: where each engine breaks, and how (the stability map)",
         stress_scenarios,
-        sweep=False,
+        ladder=False,
         repeats=1,
         warmup=0,
         timeout=120.0,  # the long horizon's MuJoCo run takes 15-40 s on 2 loaded cores
@@ -122,7 +122,7 @@ register(
 register(
     Suite(
         "dynamics",
-        "forward dynamics against the native truth: every dynamic scenario over each engine's sweep, "
+        "forward dynamics against the native truth: every dynamic scenario over each engine's ladder, "
         "and the stiffness-step stability map",
         dynamics_cases.scenario_names,
         warmup=0,  # the minimum of the repeats drops a first call's cost; a long run is run once

@@ -158,7 +158,8 @@ def html_fragment(data: ReportData, image: Callable[[Figure | None, str], str]) 
         parts += [
             '<p class="muted">Each engine\'s default setting on each dynamic scenario: errors against the '
             "native truth (dimensionless, as above), energy drift, the constraint residual at the end, "
-            "the run time per engine step, and the best position error over the engine's sweep.</p>",
+            "the run time per engine step, and the best position error over the engine's ladder of "
+            "settings.</p>",
             f'<div class="wide">{table.to_html(index=False, escape=True, border=0, classes="matrix")}</div>',
         ]
     if not cells.empty:

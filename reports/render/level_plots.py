@@ -1,5 +1,5 @@
 """The per-scenario figures at all three levels side by side: work-precision (error against run time
-over each engine-mode's sweep) and each default run's deviation from the truth over time (which says
+over each engine-mode's ladder) and each default run's deviation from the truth over time (which says
 more than overlaid trajectories that lie on top of each other)."""
 
 from __future__ import annotations
@@ -170,7 +170,7 @@ def finish(figure: Figure, axes_row: Sequence[Axes], title: str) -> None:
 def light_log_axes(axes: Axes) -> None:
     """Log-log axes with a few decades labelled in plain text (1e-06): many-decade ranges otherwise
     label, typeset and measure dozens of ticks per panel, most of a report's render time. An axis
-    spanning less than NARROW decades (a sweep's run times) is labelled at 1, 2 and 5 of each decade,
+    spanning less than NARROW decades (a ladder's run times) is labelled at 1, 2 and 5 of each decade,
     so that it carries at least two labels."""
     for axis, (low, high) in ((axes.xaxis, axes.get_xlim()), (axes.yaxis, axes.get_ylim())):
         if axis.get_scale() != "log":

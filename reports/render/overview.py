@@ -1,8 +1,8 @@
 """Error against run time across the whole suite, per engine and mode, summarised over scenarios.
 
-Each engine's sweep point (its k-th step size dt from the coarsest, or its k-th tolerance where it has
-no step; the steps scale with each scenario's period) is summarised over the scenarios it ran
-with a shifted geometric mean, as qpbenchmark does: exp(mean(log(x + s))) - s,
+Each rung of an engine's settings ladder (its k-th step size dt from the coarsest, or its k-th
+tolerance where it has no step; the steps scale with each scenario's period) is summarised over the
+scenarios it ran with a shifted geometric mean, as qpbenchmark does: exp(mean(log(x + s))) - s,
 so that neither an error of exactly zero nor a few very fast runs dominate. A run that did not end
 `ok` counts with error FAILED_ERROR (off by the whole characteristic scale) and run time the time
 limit, so that a setting cannot look good by failing on the hard scenarios. A row that ended `ok`
@@ -65,8 +65,8 @@ def step_of(label: str) -> float:
     return math.nan
 
 
-def sweep_points(runs: pd.DataFrame) -> pd.Series:
-    """Each run's place in its engine-mode's sweep on its scenario, 1 for the coarsest step: step
+def ladder_rungs(runs: pd.DataFrame) -> pd.Series:
+    """Each run's place in its engine-mode's ladder on its scenario, 1 for the coarsest step: step
     sizes scale with each scenario's period, so the same place, not the same dt, is summarised."""
     steps = pd.Series([step_of(str(s)) for s in runs["setting"]], index=runs.index).fillna(0.0)
     keys = [runs["scenario"], runs["engine"], runs["mode"]]
@@ -88,18 +88,18 @@ def untimed_note(frame: pd.DataFrame) -> str:
 
 
 def summary(frame: pd.DataFrame, timeout: float) -> pd.DataFrame:
-    """One row per engine, mode and sweep point: its shifted geometric mean run time and error per
+    """One row per engine, mode and ladder rung: its shifted geometric mean run time and error per
     level, how many scenarios it ran and how many did not end ok (untimed rows left out)."""
     runs = frame[(frame["mode"].astype(str) != "") & ~untimed(frame)].copy()
-    runs["point"] = sweep_points(runs)
+    runs["rung"] = ladder_rungs(runs)
     records: list[dict[str, Any]] = []
-    for (engine, mode, point), group in runs.groupby(["engine", "mode", "point"], sort=True):
+    for (engine, mode, rung), group in runs.groupby(["engine", "mode", "rung"], sort=True):
         ok = group["status"] == "ok"
         times = np.where(ok & group["run_time"].notna(), group["run_time"], timeout)
         record: dict[str, Any] = {
             "engine": engine,
             "mode": mode,
-            "point": point,
+            "rung": rung,
             "scenarios": int(group["scenario"].nunique()),
             "not_ok": int((~ok).sum()),
             "default": bool(group["is_default"].mean() >= 0.5),
@@ -163,7 +163,7 @@ def overview_figure(table: pd.DataFrame, truth: str) -> Figure | None:
 def _point_title(row: pd.Series, level: str, column: str) -> str:
     """The hover text of one overview point: what it summarises and its values."""
     return (
-        f"{row['engine']} {row['mode']}, step {int(row['point'])} from the coarsest, over "
+        f"{row['engine']} {row['mode']}, step {int(row['rung'])} from the coarsest, over "
         f"{int(row['scenarios'])} scenarios ({int(row['not_ok'])} not ok)\n"
         f"{level} error {value_text(float(row[column]))}, run time {value_text(float(row['run_time']))} s"
     )

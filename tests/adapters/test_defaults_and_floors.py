@@ -1,4 +1,4 @@
-"""Each engine's default by the settings rule and the floor of its sweep, held two-sided
+"""Each engine's default by the settings rule and the floor of its ladder, held two-sided
 (tests.support.bounds: within a factor 3 of the value measured when the rule landed, either way), so
 a change in the rule, an adapter or an engine shows. Round-off values are held from above only.
 
@@ -64,7 +64,7 @@ FLOORS: dict[tuple[str, str], tuple[float, float, float]] = {
     ("andrews_squeezer", "pinocchio"): (1.3e-12, 2.3e-12, 2.0e-11),
     ("slider_crank", "exudyn"): (1.1e-15, 1.6e-8, 5.4e-6),
 }
-"""(scenario, engine): the errors at the floor of the engine's sweep (each test below says which
+"""(scenario, engine): the errors at the floor of the engine's ladder (each test below says which
 setting that is), measured."""
 
 
@@ -86,26 +86,26 @@ def test_mujoco_s_acceleration_floor_is_the_impedance_s() -> None:
     default = adapter.default_setting(scenarios.load("slider_crank"))
     finer = at_step(default, float(default["dt"]) / 10)
     floor = finer.replace(tc=8 * float(finer["dt"]))
-    assert floor in adapter.sweep(scenarios.load("slider_crank"))
+    assert floor in adapter.ladder(scenarios.load("slider_crank"))
     held(errors("slider_crank", "mujoco", floor), FLOORS[("slider_crank", "mujoco")])
 
 
 @pytest.mark.slow
 def test_pinocchio_s_floor_on_andrews_squeezer() -> None:
-    """The sweep's finest RK4 without gains (10000 steps per period): the native truth's level."""
+    """The ladder's finest RK4 without gains (10000 steps per period): the native truth's level."""
     adapter = adapters.load("pinocchio")
     scenario = scenarios.load("andrews_squeezer")
     finest = adapter.free_setting(scenario, "dynamic", 10000)
-    assert finest in adapter.sweep(scenario)
+    assert finest in adapter.ladder(scenario)
     held(errors("andrews_squeezer", "pinocchio", finest), FLOORS[("andrews_squeezer", "pinocchio")])
 
 
 @pytest.mark.slow
 def test_exudyn_s_floor_on_the_slider_crank() -> None:
-    """GA3 at the sweep's finest step (20000 per turn): velocities O(h^2) a hundred times below the
+    """GA3 at the ladder's finest step (20000 per turn): velocities O(h^2) a hundred times below the
     default's, the start-up transient of the accelerations a thousand times smaller."""
     adapter = adapters.load("exudyn")
     scenario = scenarios.load("slider_crank")
-    finest = adapter.sweep(scenario)[4]
+    finest = adapter.ladder(scenario)[4]
     assert finest.mode == "GA3"
     held(errors("slider_crank", "exudyn", finest), FLOORS[("slider_crank", "exudyn")])

@@ -20,7 +20,7 @@ def test_measures_names_who_computes_and_the_derived_levels() -> None:
 
 
 @pytest.mark.parametrize("name", adapters.names())
-def test_every_default_and_sweep_mode_is_declared(name: str) -> None:
+def test_every_default_and_ladder_mode_is_declared(name: str) -> None:
     from scenarios.registry import build
 
     adapter = adapters.load(name)
@@ -29,5 +29,5 @@ def test_every_default_and_sweep_mode_is_declared(name: str) -> None:
     for scenario in ("slider_crank", "cam_roller"):
         built = build(scenario)
         if adapter.supports(built) is None:
-            modes = {s.mode for s in [adapter.default_setting(built), *adapter.sweep(built)]}
+            modes = {s.mode for s in [adapter.default_setting(built), *adapter.ladder(built)]}
             assert modes <= declared

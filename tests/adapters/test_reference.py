@@ -19,7 +19,7 @@ def test_reference_runs_through_the_contract() -> None:
     np.testing.assert_allclose(result.trajectory.position, exact(scenario).position, atol=1e-12)  # type: ignore[arg-type]
 
 
-def test_tolerance_sweep_trades_accuracy_for_work() -> None:
+def test_tolerance_ladder_trades_accuracy_for_work() -> None:
     engine = adapters.load("reference")
     scenario = scenarios.build("slider_crank", overrides={"steps": 20})
     truth = exact(scenario).position

@@ -13,11 +13,11 @@ from tests.support.engines import COMPARED
 
 
 @pytest.mark.parametrize("engine", adapters.names())
-def test_defaults_and_sweeps_pass_their_own_declarations(engine: str) -> None:
+def test_defaults_and_ladders_pass_their_own_declarations(engine: str) -> None:
     adapter = adapters.load(engine)
     for name in ("slider_crank", "spur_gears", "cam_roller"):
         scenario = scenarios.build(name)
-        for setting in [adapter.default_setting(scenario), *adapter.sweep(scenario)]:
+        for setting in [adapter.default_setting(scenario), *adapter.ladder(scenario)]:
             assert adapter.check_setting(setting).mode == setting.mode
 
 

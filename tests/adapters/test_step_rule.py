@@ -116,7 +116,7 @@ def test_a_driven_mechanism_s_outputs_do_not_depend_on_the_grid(engine: str) -> 
     holding every other of its times."""
     adapter = adapters.load(engine)
     scenario = scenarios.build("slider_crank", overrides={"steps": 40})
-    setting = adapter.sweep(scenario)[-1] if engine == "pinocchio" else adapter.default_setting(scenario)
+    setting = adapter.ladder(scenario)[-1] if engine == "pinocchio" else adapter.default_setting(scenario)
     coarse = adapter.run(scenario, setting, np.asarray(scenario.times())[::2])
     fine = adapter.run(scenario, setting, np.asarray(scenario.times()))
     assert coarse.trajectory is not None and fine.trajectory is not None, (coarse.message, fine.message)

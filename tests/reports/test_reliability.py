@@ -36,7 +36,7 @@ OPTIONS = RunOptions(repeats=1, warmup=0, timeout=10.0)
 class QuickFake(FakeAdapter):
     """The fake engine with two good settings and one that raises (no slow modes)."""
 
-    def sweep(self, scenario):  # type: ignore[no-untyped-def]
+    def ladder(self, scenario):  # type: ignore[no-untyped-def]
         from adapters.base import Setting
 
         return [*GOOD, Setting.of("raise")]

@@ -50,7 +50,7 @@ class FakeAdapter(Adapter):
     def default_setting(self, scenario: Scenario) -> Setting:
         return GOOD[1]
 
-    def sweep(self, scenario: Scenario) -> list[Setting]:
+    def ladder(self, scenario: Scenario) -> list[Setting]:
         return [*GOOD, *BAD]
 
     def build(self, scenario: Scenario, setting: Setting) -> tuple[Scenario, Setting]:
@@ -84,7 +84,7 @@ class WorkerKiller(FakeAdapter):
 
     name = "killer"
 
-    def sweep(self, scenario: Scenario) -> list[Setting]:
+    def ladder(self, scenario: Scenario) -> list[Setting]:
         return [GOOD[1]]
 
     def simulate(self, model: tuple[Scenario, Setting], times: np.ndarray) -> Trajectory:

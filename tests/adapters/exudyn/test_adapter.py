@@ -1,5 +1,5 @@
 """Exudyn adapter: every scenario of the catalogue against its closed form (the reference solver for
-spline cams), masses that do not matter, the convergence orders of the step-size sweep, honest
+spline cams), masses that do not matter, the convergence orders of the step-size ladder, honest
 failures and unsupported scenarios, and runs that write no file and print nothing.
 
 Measured with Exudyn 1.13.6, errors relative to the largest value of the level over the run (the
@@ -116,14 +116,14 @@ def test_every_scenario_matches_its_truth(name: str, mode: str) -> None:
         np.testing.assert_allclose(trajectory.extras[extra], values, rtol=0, atol=1e-12)
 
 
-def test_default_is_generalized_alpha_and_in_the_sweep() -> None:
+def test_default_is_generalized_alpha_and_in_the_ladder() -> None:
     scenario = scenarios.build("slider_crank")
-    default, sweep = ADAPTER.default_setting(scenario), ADAPTER.sweep(scenario)
-    assert default.mode == "GA3" and default in sweep
-    assert {s.mode for s in sweep} == {"GA3", "GA3-rho0.5", "GA3-modified", "TR2", "STATIC"}
-    assert {s.get("rho") for s in sweep} == {None, 0.0, 0.6}
+    default, ladder = ADAPTER.default_setting(scenario), ADAPTER.ladder(scenario)
+    assert default.mode == "GA3" and default in ladder
+    assert {s.mode for s in ladder} == {"GA3", "GA3-rho0.5", "GA3-modified", "TR2", "STATIC"}
+    assert {s.get("rho") for s in ladder} == {None, 0.0, 0.6}
     period = shortest_period(scenario)
-    for setting in sweep:  # the rule's ladder of steps per period, never the output grid's
+    for setting in ladder:  # the rule's ladder of steps per period, never the output grid's
         if setting.mode != "STATIC":
             per_period = period / setting["dt"]
             assert abs(per_period - round(per_period)) < 1e-6 * per_period

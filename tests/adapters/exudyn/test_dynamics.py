@@ -104,7 +104,7 @@ def test_explicit_integrators_are_unsupported_on_jointed_scenes(mode: str) -> No
 def test_the_static_solver_is_not_offered_for_free_dynamics() -> None:
     s = scenario("compound_pendulum")
     assert ADAPTER.run(s, Setting.of("STATIC")).status == "unsupported"
-    assert {setting.mode for setting in ADAPTER.sweep(s)} == {"GA3", "GA3-rho0.5", "GA3-modified", "TR2"}
+    assert {setting.mode for setting in ADAPTER.ladder(s)} == {"GA3", "GA3-rho0.5", "GA3-modified", "TR2"}
 
 
 def test_a_non_uniform_grid_reads_the_same_march() -> None:

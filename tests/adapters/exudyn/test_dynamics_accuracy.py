@@ -56,7 +56,7 @@ def andrews_digits(setting: Setting | None) -> np.ndarray:
 
 # measured digits of beta, theta, gamma, phi, delta, omega, epsilon at t = 0.03 s
 DEFAULT_DIGITS = (3.26, 3.16, 2.74, 3.61, 5.13, 3.61, 5.68)  # GA3, dt = 1e-4 s
-BEST_DIGITS = (4.22, 4.12, 3.65, 4.52, 6.04, 4.52, 6.59)  # GA3, dt = 1e-3 / 30 s, the sweep's best
+BEST_DIGITS = (4.22, 4.12, 3.65, 4.52, 6.04, 4.52, 6.59)  # GA3, dt = 1e-3 / 30 s, the ladder's best
 
 
 @pytest.mark.parametrize(

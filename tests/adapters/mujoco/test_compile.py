@@ -69,7 +69,7 @@ def test_constant_speed_and_harmonic_drives_are_linear_laws_without_a_motor(name
     assert root.find("actuator") is None
     for equality in [*root.iterfind("equality/joint"), *root.iterfind("equality/tendon")]:
         assert [float(a) for a in equality.get("polycoef", "").split()][2:] == [0.0, 0.0, 0.0]
-    assert all(s.get("polynomial") is None for s in ADAPTER.sweep(scenario))
+    assert all(s.get("polynomial") is None for s in ADAPTER.ladder(scenario))
 
 
 @pytest.mark.parametrize("mode", ("implicitfast", "Euler", "RK4"))

@@ -32,7 +32,7 @@ SHORT = {"t_end": 0.25, "steps": 25}
 def test_the_adapter_runs_dynamics_with_mujocos_integrators() -> None:
     scenario = scenarios.load("four_bar_gravity")
     assert ADAPTER.dynamics
-    assert {s.mode for s in ADAPTER.sweep(scenario)} == {"RK4", "implicit", "implicitfast", "Euler"}
+    assert {s.mode for s in ADAPTER.ladder(scenario)} == {"RK4", "implicit", "implicitfast", "Euler"}
     dt = shortest_period(scenario) / STEPS_PER_PERIOD
     expected = Setting.of("RK4", dt=dt, tc=TC_STEPS * dt, impedance=0.9999)
     assert ADAPTER.default_setting(scenario) == expected

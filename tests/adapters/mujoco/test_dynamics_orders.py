@@ -23,7 +23,7 @@ from tests.adapters.mujoco.truths import ADAPTER, errors
 FOUR_BAR = {"t_end": 0.25, "steps": 25}
 PENDULUM = {"t_end": 1.0, "steps": 25}
 BEST = Setting.of("RK4", dt=3e-6, tc_steps=4.0, impedance=0.9999)
-"""The best of the default sweep on Andrews' squeezer."""
+"""The best of the default ladder on Andrews' squeezer."""
 
 
 def order(name: str, mode: str, steps: tuple[float, ...], overrides: dict[str, float]) -> float:
@@ -73,7 +73,7 @@ def andrews_digits(setting: Setting | None) -> np.ndarray:
     [
         # the default, RK4 at 1e-4 s: 300 steps through the squeezer's 1e4 rad/s^2
         (None, (4.61, 4.52, 3.59, 4.58, 6.01, 4.58, 5.72)),
-        # the sweep's best, RK4 at its finest step 3e-6 s
+        # the ladder's best, RK4 at its finest step 3e-6 s
         (BEST, (7.86, 7.76, 6.64, 7.77, 8.41, 7.77, 8.89)),
         pytest.param(
             Setting.of("RK4", dt=1e-6, tc_steps=4.0, impedance=0.9999),

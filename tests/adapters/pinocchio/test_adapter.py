@@ -96,7 +96,7 @@ def test_gear_pairs_become_mimic_joints(name: str) -> None:
 
 
 def test_loose_tolerance_costs_accuracy() -> None:
-    """The sweep's tolerances really trade accuracy: a 1e-5 residual bound leaves errors near it."""
+    """The ladder's tolerances really trade accuracy: a 1e-5 residual bound leaves errors near it."""
     scenario, loose = run_ok("four_bar", tol=1e-5)
     _, tight = run_ok("four_bar")
     truth = exact(scenario, tight.trajectory.times)

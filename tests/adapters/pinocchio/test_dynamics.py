@@ -60,12 +60,12 @@ def test_baumgarte_gains_reduce_drift_of_the_slider_drive() -> None:
     assert damped[0] < plain[0] / 5
 
 
-def test_sweep_has_the_three_curves_where_dynamics_is_supported() -> None:
+def test_ladder_has_the_three_curves_where_dynamics_is_supported() -> None:
     adapter = PinocchioAdapter()
-    modes = [s.mode for s in adapter.sweep(scenarios.build("four_bar"))]
+    modes = [s.mode for s in adapter.ladder(scenarios.build("four_bar"))]
     assert sorted(set(modes)) == ["baumgarte", "dynamic", "kinematic"]
     # the cams' dynamic modes run (test_cam_dynamics.py) but cost 5-15 ms a step: not swept
-    assert {s.mode for s in adapter.sweep(scenarios.build("cam_roller"))} == {"kinematic"}
+    assert {s.mode for s in adapter.ladder(scenarios.build("cam_roller"))} == {"kinematic"}
 
 
 def test_driven_motion_does_not_depend_on_the_masses() -> None:

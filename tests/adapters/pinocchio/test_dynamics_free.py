@@ -9,7 +9,7 @@ Measured (2-core machine shared with other jobs):
     largest kinetic energy of 0.121 J (3.8e-7); compound_pendulum 2.4e-10 J of 4.5 J (5e-11)
     Andrews at t = 0.03 s, correct digits of beta theta gamma phi delta omega epsilon:
         default (baumgarte, dt = 1.25e-4)              5.35 5.25 4.77 5.64 7.37 5.65 6.71
-        best of the sweep (baumgarte, dt = 1.5625e-5)  8.79 8.69 8.78 9.63 10.86 9.64 10.47
+        best of the ladder (baumgarte, dt = 1.5625e-5)  8.79 8.69 8.78 9.63 10.86 9.64 10.47
 """
 
 from __future__ import annotations
@@ -108,13 +108,13 @@ def test_andrews_default_setting_digits() -> None:
     assert np.median(digits) > 5.0
 
 
-def test_andrews_best_setting_of_the_sweep_digits() -> None:
-    """The finest Baumgarte setting of the sweep (10000 steps per shortest period), within about
+def test_andrews_best_setting_of_the_ladder_digits() -> None:
+    """The finest Baumgarte setting of the ladder (10000 steps per shortest period), within about
     one digit of what the reference carries (about 10)."""
     scenario = scenarios.load("andrews_squeezer")
     adapter = PinocchioAdapter()
     best = adapter.free_setting(scenario, "baumgarte", 10000)
-    assert best in adapter.sweep(scenario)
+    assert best in adapter.ladder(scenario)
     digits = andrews_digits(best)
     assert np.all(digits > 8.2), dict(zip(ANGLES, digits.round(2), strict=True))
 

@@ -18,7 +18,7 @@ from reports.harness.results_store import KEY, ResultsStore, read_results
 from reports.harness.runner import Runner, RunOptions
 from tests.support.fake_engine import fake_loader, fake_truth
 
-QUICK = RunOptions(sweep=False, repeats=1, warmup=0, timeout=120.0)
+QUICK = RunOptions(ladder=False, repeats=1, warmup=0, timeout=120.0)
 TIMING = ["build_time", "run_time", "recorded_at", "host", "workers"]
 SCENARIOS = ["slider_crank", "four_bar[crank_length=0.08]"]  # the second meets a dead point
 ENGINES = ["reference", "mujoco"]

@@ -27,7 +27,7 @@ COMPARED = ("status", "error", "is_default", "mode")
 class QuickFake(FakeAdapter):
     """The fake engine without its slow modes: two good settings and one that raises."""
 
-    def sweep(self, scenario):  # type: ignore[no-untyped-def]
+    def ladder(self, scenario):  # type: ignore[no-untyped-def]
         return [*GOOD, Setting.of("raise")]
 
 

@@ -135,7 +135,7 @@ def test_a_later_plan_reconciles_the_stored_rows(first_run, tmp_path: Path) -> N
         return available("fake" if name == "absent" else name)
 
     store = ResultsStore(directory)
-    quick = RunOptions(sweep=False, repeats=1, warmup=0, timeout=5.0)
+    quick = RunOptions(ladder=False, repeats=1, warmup=0, timeout=5.0)
     Runner(store, ["fake", "absent"], quick, loader=loader, truth=fake_truth, progress=False).run([SCENARIO])
     after, _ = read_results(directory)
     fake = after[after["engine"] == "fake"]
@@ -147,9 +147,9 @@ def test_a_later_plan_reconciles_the_stored_rows(first_run, tmp_path: Path) -> N
 
 def test_rerun_redoes_stored_rows(first_run, tmp_path: Path) -> None:
     log = tmp_path / "calls.log"
-    options = RunOptions(sweep=False, repeats=1, warmup=0, timeout=5.0)
+    options = RunOptions(ladder=False, repeats=1, warmup=0, timeout=5.0)
     run(tmp_path, log, options, engines=("fake",))
     run(tmp_path, log, options, engines=("fake",))
     assert len(log.read_text().splitlines()) == 1
-    run(tmp_path, log, RunOptions(sweep=False, repeats=1, warmup=0, timeout=5.0, rerun=True), ("fake",))
+    run(tmp_path, log, RunOptions(ladder=False, repeats=1, warmup=0, timeout=5.0, rerun=True), ("fake",))
     assert len(log.read_text().splitlines()) == 2

@@ -21,7 +21,7 @@ from scenarios import Scenario
 from scenarios import load as build_scenario
 from tests.support.fake_engine import GOOD, fake_loader, fake_truth
 
-OPTIONS = RunOptions(sweep=True, repeats=1, warmup=0, timeout=3.0)
+OPTIONS = RunOptions(ladder=True, repeats=1, warmup=0, timeout=3.0)
 TIMING = ["build_time", "run_time", "recorded_at", "host", "workers", "revision"]
 
 
@@ -81,7 +81,7 @@ from reports.harness.results_store import ResultsStore
 from reports.harness.runner import Runner, RunOptions
 if sys.argv[2] == "cold":
     group_runs.warm = lambda scenario: None  # the previous path: the forked runs load the kernels
-options = RunOptions(sweep=True, repeats=1, warmup=0)
+options = RunOptions(ladder=True, repeats=1, warmup=0)
 Runner(ResultsStore(Path(sys.argv[1])), ["reference"], options, progress=False).run(
     ["four_bar[omega=12]", "slider_crank"]
 )

@@ -1,4 +1,4 @@
-"""The suite overview's summary: shifted geometric means over scenarios, per engine-mode sweep point."""
+"""The suite overview's summary: shifted geometric means over scenarios, per engine-mode ladder rung."""
 
 from __future__ import annotations
 
@@ -33,7 +33,7 @@ def test_the_kth_step_is_summarised_across_scenarios_and_failures_count() -> Non
             row("b", "RK4 dt=0.01", "diverged", math.nan, math.nan),
         ]
     )
-    table = summary(frame, timeout=10.0).set_index("point")
+    table = summary(frame, timeout=10.0).set_index("rung")
     assert list(table.index) == [1, 2]
     coarse, fine = table.loc[1], table.loc[2]
     assert coarse["scenarios"] == 2 and coarse["not_ok"] == 0 and bool(coarse["default"])

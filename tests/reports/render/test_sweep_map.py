@@ -37,7 +37,7 @@ def dead_point_time(crank: float, omega: float) -> float:
 def data(tmp_path_factory: pytest.TempPathFactory) -> ReportData:
     directory = tmp_path_factory.mktemp("sweep")
     names = points(["four_bar"], [f"crank_length={','.join(CRANKS)}", f"omega={','.join(SPEEDS)}"])
-    options = RunOptions(sweep=False, repeats=1, warmup=0, timeout=120.0)
+    options = RunOptions(ladder=False, repeats=1, warmup=0, timeout=120.0)
     Runner(ResultsStore(directory), ["reference"], options, progress=False).run(names)
     store = ResultsStore(directory)
     record(store, "")  # as `mbxval run` does once its runs are stored

@@ -39,7 +39,7 @@ def test_every_stress_variant_is_a_declared_case_and_none_is_in_the_default_suit
 
 def test_the_stress_suite_has_its_truth_and_settings_hooks() -> None:
     suite = suites.get("stress")
-    assert suite.truth is not None and suite.settings is not None and not suite.sweep
+    assert suite.truth is not None and suite.settings is not None and not suite.ladder
 
 
 def test_a_singular_case_has_a_truth_up_to_its_singular_time_and_none_after() -> None:

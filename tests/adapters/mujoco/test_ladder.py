@@ -1,4 +1,4 @@
-"""MuJoCo's work-precision sweep: RK4 and implicitfast over a ladder of steps per period, the time
+"""MuJoCo's work-precision ladder: RK4 and implicitfast over rungs of steps per period, the time
 constant and the impedance beside them (adapters.mujoco.settings).
 
 With the constraint time constant tied to the step (4 steps), both integrators converge in position
@@ -18,12 +18,12 @@ from scenarios.closed_form import exact
 ADAPTER = MujocoAdapter()
 
 
-def _sweep_errors(name: str, mode: str, column: slice = slice(0, 2)) -> tuple[np.ndarray, np.ndarray]:
-    """Engine steps and maximum position errors (lengths by default) of the sweep's settings in
+def _ladder_errors(name: str, mode: str, column: slice = slice(0, 2)) -> tuple[np.ndarray, np.ndarray]:
+    """Engine steps and maximum position errors (lengths by default) of the ladder's settings in
     `mode`."""
     scenario = scenarios.build(name)
     steps, errors = [], []
-    for setting in ADAPTER.sweep(scenario):
+    for setting in ADAPTER.ladder(scenario):
         if setting.mode != mode or setting["tc"] != pytest.approx(TC_STEPS * setting["dt"]):
             continue
         if setting["impedance"] != IMPEDANCE:
@@ -39,29 +39,29 @@ def _sweep_errors(name: str, mode: str, column: slice = slice(0, 2)) -> tuple[np
     return np.array(steps), np.array(errors)
 
 
-def test_sweep_is_rk4_and_implicitfast_over_steps_time_constants_and_impedance() -> None:
-    sweep = ADAPTER.sweep(scenarios.build("four_bar"))
-    assert sorted({s.mode for s in sweep}) == ["RK4", "implicitfast"]
-    assert len({s["dt"] for s in sweep if s.mode == "RK4"}) >= 5
-    assert {round(s["tc"] / s["dt"]) for s in sweep} == {2, 4, 8, 16}
-    assert {s["impedance"] for s in sweep} == {0.99, 0.9999}
+def test_ladder_is_rk4_and_implicitfast_over_steps_time_constants_and_impedance() -> None:
+    ladder = ADAPTER.ladder(scenarios.build("four_bar"))
+    assert sorted({s.mode for s in ladder}) == ["RK4", "implicitfast"]
+    assert len({s["dt"] for s in ladder if s.mode == "RK4"}) >= 5
+    assert {round(s["tc"] / s["dt"]) for s in ladder} == {2, 4, 8, 16}
+    assert {s["impedance"] for s in ladder} == {0.99, 0.9999}
 
 
 @pytest.mark.parametrize("mode", ["RK4", "implicitfast"])
 def test_position_error_converges_at_second_order(mode: str) -> None:
-    steps, errors = _sweep_errors("slider_crank", mode)
+    steps, errors = _ladder_errors("slider_crank", mode)
     orders = np.diff(np.log(errors)) / np.diff(np.log(steps))
     assert np.all((orders > 1.75) & (orders < 2.2)), orders
 
 
 def test_rk4_is_far_more_accurate_than_implicitfast_at_the_same_step() -> None:
-    rk4_steps, rk4 = _sweep_errors("four_bar", "RK4")
-    implicit_steps, implicit = _sweep_errors("four_bar", "implicitfast")
+    rk4_steps, rk4 = _ladder_errors("four_bar", "RK4")
+    implicit_steps, implicit = _ladder_errors("four_bar", "implicitfast")
     same = np.isin(rk4_steps, implicit_steps)
     assert same.sum() >= 4
     assert np.all(implicit[np.isin(implicit_steps, rk4_steps)] > 100.0 * rk4[same])
 
 
-def test_gears_stay_at_round_off_across_the_rk4_sweep() -> None:
-    _, angles = _sweep_errors("spur_gears", "RK4", slice(2, 3))
+def test_gears_stay_at_round_off_across_the_rk4_ladder() -> None:
+    _, angles = _ladder_errors("spur_gears", "RK4", slice(2, 3))
     assert 0.0 < angles.max() < 5e-11
