@@ -2,8 +2,10 @@
 
 A subclass provides exactly:
     name: str                                  the engine's name on the command line
-    modes: tuple[str, ...]                     its modes (integrators, solvers), the first the default
-    measured: tuple[Mode, ...]                 what each mode measures (adapters.modes)
+    measured: tuple[Mode, ...]                 its modes (integrators, solvers), each with what it
+                                               measures (adapters.modes), the first the default;
+                                               `modes`, their names, is derived from it (an engine
+                                               without `measured` declares `modes` alone)
     options: tuple[Option, ...]                every option a setting may carry, typed and ranged
     version() -> str                           the installed engine's version
     supports(scenario) -> str | None           None, or why the engine cannot represent it faithfully
@@ -178,10 +180,12 @@ class Adapter:
     """Base class of engine adapters; see the module docstring for what a subclass provides."""
 
     name: ClassVar[str] = ""
-    modes: ClassVar[tuple[str, ...]] = ()
-    options: ClassVar[tuple[Option, ...]] = ()
     measured: ClassVar[tuple[Mode, ...]] = ()
-    """What each mode measures (adapters.modes), one declaration per name in `modes`."""
+    """The engine's modes, each with what it measures (adapters.modes): the one declaration of them."""
+    modes: ClassVar[tuple[str, ...]] = ()
+    """The names of `measured` in its order, derived (__init_subclass__); declared only by an engine
+    that declares no `measured`."""
+    options: ClassVar[tuple[Option, ...]] = ()
     rule: ClassVar[str] = ""
     """How the engine applies the settings rule (adapters.step_rule): its constants, one line."""
     dynamics: ClassVar[bool] = False
@@ -223,9 +227,12 @@ class Adapter:
         raise AssertionError("Adapter declares ladder")  # pragma: no cover
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
-        """A subclass (a plug-in engine written before the rename) that defines `sweep` and no
-        `ladder` has its `sweep` taken as its ladder, with a DeprecationWarning."""
+        """A subclass's `modes` from its `measured`; and a subclass (a plug-in engine written before
+        the rename) that defines `sweep` and no `ladder` has its `sweep` taken as its ladder, with a
+        DeprecationWarning."""
         super().__init_subclass__(**kwargs)
+        if "measured" in cls.__dict__ and "modes" not in cls.__dict__:
+            cls.modes = tuple(mode.name for mode in cls.measured)
         if "sweep" in cls.__dict__ and "ladder" not in cls.__dict__:
             warnings.warn(f"{cls.__qualname__}: {LADDER_RENAMED}", DeprecationWarning, stacklevel=2)
             cls.ladder = cls.__dict__["sweep"]  # type: ignore[method-assign]

@@ -65,7 +65,6 @@ class ReferenceAdapter(Adapter):
             "(trapezoidal rule at a fixed step)",
         ),
     )
-    modes = ("newton", *METHODS, ALI3P)
     options = (
         Option("tolerance", float, 0.0, 0.1, low_open=True, help="Newton tolerance, scaled units"),
         Option("rtol", float, 0.0, 0.1, low_open=True, help="integrator relative tolerance (dynamics)"),

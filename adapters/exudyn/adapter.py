@@ -137,7 +137,6 @@ class ExudynAdapter(Adapter):
             ),
         ),
     )
-    modes = tuple(MODES)
     options = (
         Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
         Option("rho", float, 0.0, 1.0, help="spectral radius of generalized-alpha"),

@@ -59,7 +59,6 @@ from scenarios.cam_linkage import CAM_MODELS, cam_model_scenario, default_cam_mo
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
-MODES = ("RK4", "implicitfast", "Euler", "kinematic", "implicit")
 KINEMATIC = "kinematic"
 RUN_IN = 50
 """Steps run before t = 0 from the assembled start, so soft constraints begin in steady state."""
@@ -114,7 +113,6 @@ class MujocoAdapter(Adapter):
             ),
         ),
     )
-    modes = MODES
     dynamics = True
     rule = (
         f"RK4 at 1/{STEPS_PER_PERIOD} of the shortest period, the equalities' time constant tc = "

@@ -133,7 +133,6 @@ class PinocchioAdapter(Adapter):
         "damped at one radian of it"
     )
     measured = MEASURED
-    modes = tuple(MODES)
     dynamics = True
     options = (
         Option("tol", float, 0.0, 1.0, low_open=True, help="Newton residual bound, in the rows' sizes"),
