@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from reports.harness.results_store import ResultsStore, read_results
-from reports.harness.runner import Runner, RunOptions
+from reports.harness.runner import RunConfig, Runner
 from reports.harness.suites import Suite, main_scenarios
 from reports.harness.suites import get as suite_named
 from reports.harness.sweep import points
@@ -66,9 +66,9 @@ def run_phase(label: str, names: list[str], engines: list[str], suite: Suite, ou
         finally:
             spent[0] += time.perf_counter() - start
 
-    options = RunOptions(suite.ladder, suite.repeats, suite.warmup, suite.timeout)
+    config = RunConfig(suite.ladder, suite.repeats, suite.warmup, suite.timeout)
     store = ResultsStore(out)
-    runner = Runner(store, engines, options, truth=timed_truth, progress=False, settings=suite.settings)
+    runner = Runner(store, engines, config, truth=timed_truth, progress=False, settings=suite.settings)
     start = time.perf_counter()
     runner.run(names)
     seconds = time.perf_counter() - start

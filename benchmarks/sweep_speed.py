@@ -4,7 +4,7 @@
 
 The sweep: the four-bar over 50 crank speeds (log-spaced, 10 to 1e4 rad/s) and 4 crank lengths
 (0.05 to 0.2 m: from 0.08 m on the linkage meets a dead point, where the native solver stops), 200
-points, each engine at its default setting timed once without warm-up (the quick suite's options).
+points, each engine at its default setting timed once without warm-up (the quick suite's configuration).
 Both runs start from an empty store and include everything the runner does (truths, forked runs,
 saving the store after each group); the Dask run includes starting the cluster. With --out, the Dask
 run's results and report (with the swept stability map) are kept there.
@@ -19,11 +19,11 @@ from pathlib import Path
 
 from reports.harness.dask_backend import DaskRunner
 from reports.harness.results_store import ResultsStore
-from reports.harness.runner import Runner, RunOptions
+from reports.harness.runner import RunConfig, Runner
 from reports.harness.sweep import points
 
 SWEEP = ("omega=log:10:1e4:50", "crank_length=lin:0.05:0.2:4")
-OPTIONS = RunOptions(ladder=False, repeats=1, warmup=0)
+CONFIG = RunConfig(ladder=False, repeats=1, warmup=0)
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -39,12 +39,12 @@ def main(argv: list[str] | None = None) -> None:
     print(f"{len(names)} points x {len(engines)} engines ({', '.join(engines)}), {args.workers} workers")
     with tempfile.TemporaryDirectory(prefix="mbxval-sweep-") as temporary:
         start = time.perf_counter()
-        Runner(ResultsStore(Path(temporary) / "serial"), engines, OPTIONS, progress=False).run(names)
+        Runner(ResultsStore(Path(temporary) / "serial"), engines, CONFIG, progress=False).run(names)
         serial = time.perf_counter() - start
         print(f"serial:           {serial:8.1f} s")
         out = Path(args.out) if args.out else Path(temporary) / "dask"
         start = time.perf_counter()
-        runner = DaskRunner(ResultsStore(out), engines, OPTIONS, progress=False, workers=args.workers)
+        runner = DaskRunner(ResultsStore(out), engines, CONFIG, progress=False, workers=args.workers)
         runner.run(names)
         parallel = time.perf_counter() - start
     print(f"--workers {args.workers}:     {parallel:8.1f} s")

@@ -21,7 +21,7 @@ from reports.harness import baselines, gate, gate_files, scenario_identity, stop
 from reports.harness import recording as harness_recording
 from reports.harness.atomic_write import output_target
 from reports.harness.results_store import ResultsStore, read_results
-from reports.harness.runner import Runner, RunOptions
+from reports.harness.runner import RunConfig, Runner
 from reports.harness.store_lock import WriterLock
 from reports.harness.suites import Suite
 from scenarios import Scenario, limits
@@ -67,8 +67,8 @@ def _selection(args: argparse.Namespace) -> tuple[Suite, list[str], list[str]]:
     return suite, names, engines
 
 
-def _run_options(args: argparse.Namespace, suite: Suite, rerun: bool) -> RunOptions:
-    """The run's options, each checked against its range (UsageError naming it)."""
+def _run_config(args: argparse.Namespace, suite: Suite, rerun: bool) -> RunConfig:
+    """The run's configuration, each value checked against its range (UsageError naming it)."""
     repeats = suite.repeats if args.repeats is None else args.repeats
     warmup = suite.warmup if args.warmup is None else args.warmup
     timeout = suite.timeout if args.timeout is None else args.timeout
@@ -78,7 +78,7 @@ def _run_options(args: argparse.Namespace, suite: Suite, rerun: bool) -> RunOpti
         raise UsageError(f"--warmup must be in [0, {MAX_REPEATS}], got {warmup}")
     if not (math.isfinite(timeout) and 0 < timeout <= MAX_TIMEOUT):
         raise UsageError(f"--timeout must be in (0, {MAX_TIMEOUT:g}] seconds, got {timeout}")
-    return RunOptions(
+    return RunConfig(
         ladder=suite.ladder,
         repeats=repeats,
         warmup=warmup,
@@ -120,18 +120,18 @@ class Selection:
     suite: Suite
     names: list[str]
     engines: list[str]
-    options: RunOptions
+    config: RunConfig
     backend: Backend = Backend()
 
 
 def select(args: argparse.Namespace, out: Path, rerun: bool = False) -> Selection:
-    """The selection and run options of the command line, checked (UsageError) before any write."""
+    """The selection and run configuration of the command line, checked (UsageError) before any write."""
     suite, names, engines = _selection(args)
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} is a file, not a directory")
-    options = _run_options(args, suite, rerun or args.rerun)
-    check_scenario_names(args.scenario, out, options.rerun)
-    return Selection(suite, names, engines, options, _backend(args))
+    config = _run_config(args, suite, rerun or args.rerun)
+    check_scenario_names(args.scenario, out, config.rerun)
+    return Selection(suite, names, engines, config, _backend(args))
 
 
 def check_scenario_names(names: list[str], out: Path, rerun: bool) -> None:
@@ -160,12 +160,12 @@ def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = 
         "settings": suite.settings,
     }
     if backend == Backend():
-        runner = Runner(ResultsStore(out), selection.engines, selection.options, **arguments)
+        runner = Runner(ResultsStore(out), selection.engines, selection.config, **arguments)
     else:  # Dask is imported only here
         from reports.harness.dask_backend import DaskRunner
 
         runner = DaskRunner(
-            ResultsStore(out), selection.engines, selection.options, **arguments, **vars(backend)
+            ResultsStore(out), selection.engines, selection.config, **arguments, **vars(backend)
         )
     runner.run(selection.names)
     record_verdicts(out, suite.name)

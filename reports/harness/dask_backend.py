@@ -24,7 +24,7 @@ from collections.abc import Iterator, Sequence
 from typing import Any
 
 from adapters.base import Setting
-from reports.harness.group_runs import RunOptions, Stored, failure, run_group
+from reports.harness.group_runs import RunConfig, Stored, failure, run_group
 from reports.harness.metrics import Residual
 from reports.harness.planning import Group
 from reports.harness.runner import Loader, Runner, Truth, progress_bar, solve_truth
@@ -98,12 +98,12 @@ def group_task(
     group: Group,
     jobs: list[tuple[Setting, bool]],
     truth: NamedTruth | str,
-    options: RunOptions,
+    config: RunConfig,
     residual: Residual | None,
 ) -> list[Stored]:
     """One group's rows, made on a worker with the engine loaded there."""
     group.adapter = loader(group.engine)
-    return run_group(group, jobs, truth, options, residual)
+    return run_group(group, jobs, truth, config, residual)
 
 
 class DaskRunner(Runner):
@@ -140,7 +140,7 @@ class DaskRunner(Runner):
         """One truth task per scenario, one task per group that takes its scenario's truth."""
         truths: dict[str, Any] = {}
         futures: dict[str, tuple[Any, Group, list[tuple[Setting, bool]]]] = {}
-        timeout = self.options.truth_timeout
+        timeout = self.config.truth_timeout
         for group, jobs in todo:
             name = group.scenario.name
             if name not in truths:
@@ -149,7 +149,7 @@ class DaskRunner(Runner):
                 )
             shipped = Group(group.scenario, group.engine, None, group.version)  # the adapter loads there
             future = client.submit(
-                group_task, self.loader, shipped, jobs, truths[name], self.options, self.residual,
+                group_task, self.loader, shipped, jobs, truths[name], self.config, self.residual,
                 pure=False, retries=0,
             )  # fmt: skip
             futures[future.key] = (future, group, jobs)

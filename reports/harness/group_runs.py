@@ -29,8 +29,9 @@ LONG_RUN = 0.25  # seconds: a simulation this long is timed once after the warm-
 
 
 @dataclass(frozen=True)
-class RunOptions:
-    """How each engine run is made: `ladder` False runs only each engine's default setting."""
+class RunConfig:
+    """How each engine run is made: the run's configuration (an engine's options are its Setting's).
+    `ladder` False runs only each engine's default setting."""
 
     ladder: bool = True
     repeats: int = 3
@@ -54,7 +55,7 @@ def run_group(
     group: Group,
     jobs: list[tuple[Setting, bool]],
     truth: NamedTruth | str,
-    options: RunOptions,
+    config: RunConfig,
     residual: Residual | None,
     done: Callable[[str], None] | None = None,
     workers: Workers | None = None,
@@ -72,14 +73,14 @@ def run_group(
     warm(group.scenario)  # before a fork: a worker inherits the kernels and the program
     with contextlib.ExitStack() as stack:
         if workers is None:
-            workers = stack.enter_context(Workers(options, residual))
+            workers = stack.enter_context(Workers(config, residual))
         for setting, is_default in jobs:
             if setting.mode in timed_out:
                 message = "not run: a cheaper setting of this mode hit the time limit"
                 out.append((failure(group, setting, is_default, "timeout", message), None))
             else:
                 outcome = workers.measure(group, truth, setting)
-                out.append(_stored(outcome, group, setting, is_default, truth, options, timed_out))
+                out.append(_stored(outcome, group, setting, is_default, truth, config, timed_out))
             if done is not None:
                 done(setting.label)
     return out
@@ -98,8 +99,8 @@ class Workers:
     process holds it. A worker is sent a group's scenario and truth (pickled, about 60 kB) with
     the group's first run in its child. Use it as a context manager: leaving it ends the workers."""
 
-    def __init__(self, options: RunOptions, residual: Residual | None) -> None:
-        self.options, self.residual = options, residual
+    def __init__(self, config: RunConfig, residual: Residual | None) -> None:
+        self.config, self.residual = config, residual
         self.workers: dict[int, Worker[Order, Measured]] = {}
         self.held: dict[int, Group] = {}
         """By adapter: the group whose scenario and truth its worker's child holds."""
@@ -109,12 +110,12 @@ class Workers:
         key = id(group.adapter)
         worker = self.workers.get(key)
         if worker is None:
-            measure = functools.partial(_measure, group.adapter, self.options, self.residual, {})
+            measure = functools.partial(_measure, group.adapter, self.config, self.residual, {})
             worker = self.workers[key] = Worker(measure)
         holds = worker.ready and self.held.get(key) is group
         self.held[key] = group
         order: Order = (None if holds else (group.scenario, truth), setting)
-        return worker.call(order, self.options.timeout)
+        return worker.call(order, self.config.timeout)
 
     def __enter__(self) -> Workers:
         return self
@@ -127,7 +128,7 @@ class Workers:
 
 
 def _measure(
-    adapter: Adapter | None, opts: RunOptions, residual: Residual | None, held: dict[str, Any], order: Order
+    adapter: Adapter | None, config: RunConfig, residual: Residual | None, held: dict[str, Any], order: Order
 ) -> Measured:
     """One run, timed and compared with the truth (in the worker's child, which keeps the group's
     scenario and truth in `held` for the group's next runs)."""
@@ -136,7 +137,7 @@ def _measure(
         held["group"] = sent
     scenario, truth = held["group"]
     assert adapter is not None
-    result, repeats = timed_run(adapter, scenario, setting, np.asarray(scenario.times()), opts)
+    result, repeats = timed_run(adapter, scenario, setting, np.asarray(scenario.times()), config)
     against = truth.trajectory if isinstance(truth, NamedTruth) else truth
     return (result, repeats, *measure(scenario, result, against, residual))
 
@@ -147,7 +148,7 @@ def _stored(
     setting: Setting,
     is_default: bool,
     truth: NamedTruth | str,
-    opts: RunOptions,
+    config: RunConfig,
     timed_out: set[str],
 ) -> Stored:
     """The row of a run (and its trajectory when kept), from what became of it."""
@@ -158,7 +159,7 @@ def _stored(
     if outcome.kind != "ok" or outcome.value is None:
         return failure(group, setting, is_default, "failed", outcome.message), None
     result, repeats, metrics, levels, note = outcome.value
-    row = result_row(scenario, result, is_default, repeats, opts.warmup, metrics, levels, note)
+    row = result_row(scenario, result, is_default, repeats, config.warmup, metrics, levels, note)
     row["engine"] = group.engine  # the name it was asked by, whatever the adapter calls itself
     row["truth"] = truth.name if isinstance(truth, NamedTruth) else ""
     keep = result.trajectory if is_default and result.status == "ok" else None
@@ -171,14 +172,14 @@ def failure(group: Group, setting: Setting, is_default: bool, status: Any, messa
 
 
 def timed_run(
-    adapter: Adapter, scenario: Scenario, setting: Setting, times: np.ndarray, opts: RunOptions
+    adapter: Adapter, scenario: Scenario, setting: Setting, times: np.ndarray, config: RunConfig
 ) -> tuple[RunResult, int]:
-    """The adapter's run (one build), timed as the minimum of `opts.repeats` after the warm-up,
+    """The adapter's run (one build), timed as the minimum of `config.repeats` after the warm-up,
     except that a run longer than LONG_RUN is timed once (its timing noise is small against its
     length). Returns the result and the number of timed repeats."""
     result = adapter.run(
-        scenario, setting, times, repeats=opts.repeats, warmup=opts.warmup, once_above=LONG_RUN
+        scenario, setting, times, repeats=config.repeats, warmup=config.warmup, once_above=LONG_RUN
     )
     if result.status != "ok" or result.run_time > LONG_RUN:
         return result, 1
-    return result, max(1, opts.repeats)
+    return result, max(1, config.repeats)

@@ -9,7 +9,7 @@ timed apart, simulation timed as the minimum of repeats after a warm-up by the a
 errors against the truth computed beside it, in a warm forked worker per engine, kept from group
 to group, with a time limit per run): a crash, a hang or a divergence costs that row only. Rows
 already stored are skipped unless `rerun`; the store is saved after a group when
-`RunOptions.save_interval` has passed since the last save, and at the end. A Dask task
+`RunConfig.save_interval` has passed since the last save, and at the end. A Dask task
 (reports.harness.dask_backend) runs a group with the same `run_group`.
 """
 
@@ -33,7 +33,7 @@ from reports.harness import provenance, stop
 from reports.harness.common_start import common_start
 from reports.harness.engine_facts import colours, engine_packages
 from reports.harness.forces import TRUTH_TOLERANCE
-from reports.harness.group_runs import RunOptions, Workers, run_group
+from reports.harness.group_runs import RunConfig, Workers, run_group
 from reports.harness.isolation import run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.metrics import (
@@ -68,7 +68,7 @@ class Runner:
         self,
         store: ResultsStore,
         engines: Sequence[str],
-        options: RunOptions,
+        config: RunConfig,
         loader: Loader = adapters.load,
         truth: Truth | None = None,  # None: independent_truth (closed form, else refined native)
         residual: Residual | None = None,  # None: reference_solver.constraint_residual
@@ -76,7 +76,7 @@ class Runner:
         suite: str = "",
         settings: SettingsHook | None = None,
     ) -> None:
-        self.store, self.engines, self.options = store, list(engines), options
+        self.store, self.engines, self.config = store, list(engines), config
         self.truth, self.progress, self.suite = truth or independent_truth, progress, suite
         self.settings, self.loader = settings, loader
         self.residual = residual if residual is not None else reference_residual()
@@ -91,7 +91,7 @@ class Runner:
         )  # machine, packages, revision: once, not per save
         self.saved_at = -math.inf
         """When the store was last saved (time.monotonic); a run counts its interval from its start."""
-        self.policy = ResumePolicy(options.rerun, options.keep_failures, options.keep_stale)
+        self.policy = ResumePolicy(config.rerun, config.keep_failures, config.keep_stale)
         self.stored = StoredRuns(store, self.revision, self.policy)
         for name in self.engines:
             try:
@@ -103,7 +103,7 @@ class Runner:
     """Runs made at the same time (the `workers` column): one by one here."""
 
     def run(self, scenario_names: Sequence[str]) -> None:
-        """Plan every group, then run what is not stored yet, saving as RunOptions.save_interval says
+        """Plan every group, then run what is not stored yet, saving as RunConfig.save_interval says
         and at the end."""
         self.saved_at = time.monotonic()
         groups = [g for name in scenario_names for g in self._plan(name)]
@@ -124,7 +124,7 @@ class Runner:
         """Run each group's pending jobs here, one after another (unavailable groups left out)."""
         total = sum(len(jobs) for _, jobs in groups)  # the bar counts runs: a truth is not one
         truths: dict[str, NamedTruth | str] = {}
-        workers = Workers(self.options, self.residual)  # one per engine, kept from group to group
+        workers = Workers(self.config, self.residual)  # one per engine, kept from group to group
         with progress_bar(total, self.progress, "run") as bar, workers:
             for group, jobs in groups:
                 name = group.scenario.name
@@ -134,11 +134,11 @@ class Runner:
                     continue
                 if jobs and name not in truths:
                     bar.set_description(f"{name} truth", refresh=False)
-                    truths[name] = solve_truth(self.truth, group.scenario, self.options.truth_timeout)
+                    truths[name] = solve_truth(self.truth, group.scenario, self.config.truth_timeout)
                     self._put_truth(group.scenario, truths[name])
                 done = functools.partial(tick, bar, f"{name} {group.engine}")
                 truth = truths.get(name, "")
-                made = run_group(group, jobs, truth, self.options, self.residual, done, workers)
+                made = run_group(group, jobs, truth, self.config, self.residual, done, workers)
                 for row, trajectory in made:
                     self._add(row, trajectory)
                 self._save()
@@ -151,7 +151,7 @@ class Runner:
         except ScenarioError as error:
             raise ScenarioError(f"suite scenario {name} cannot be built: {error}") from error
         return [
-            plan_engine(scenario, e, self.adapters[e], self.options.ladder, self.settings)
+            plan_engine(scenario, e, self.adapters[e], self.config.ladder, self.settings)
             for e in self.engines
         ]
 
@@ -171,8 +171,8 @@ class Runner:
         self.made[str(row["status"])] += 1
 
     def _save(self, clean: bool = False) -> None:
-        """Save the store when it is due (RunOptions.save_interval), or now when `clean`."""
-        if not clean and time.monotonic() - self.saved_at < self.options.save_interval:
+        """Save the store when it is due (RunConfig.save_interval), or now when `clean`."""
+        if not clean and time.monotonic() - self.saved_at < self.config.save_interval:
             return
         versions = {
             name: (a if isinstance(a, str) else a._safe_version()) for name, a in self.adapters.items()
@@ -184,9 +184,9 @@ class Runner:
             "engines": versions,
             "engine_colours": colours(self.engines),
             "native_engine": adapters.NATIVE,
-            "repeats": self.options.repeats,
-            "warmup": self.options.warmup,
-            "timeout": self.options.timeout,
+            "repeats": self.config.repeats,
+            "warmup": self.config.warmup,
+            "timeout": self.config.timeout,
             "revisions": sorted({str(r.get("revision") or "unknown") for r in self.store.rows.values()}),
             "resume": self.stored.log.lines(),
             "truth": (

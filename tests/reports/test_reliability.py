@@ -22,7 +22,7 @@ from reports.cli import suite_commands
 from reports.cli.main import main
 from reports.harness import gate, store_files
 from reports.harness.results_store import RESULTS, TRAJECTORIES, ResultsStore, read_results, read_trajectories
-from reports.harness.runner import Runner, RunOptions
+from reports.harness.runner import RunConfig, Runner
 from reports.harness.store_files import StoreDamaged
 from reports.harness.store_lock import StoreBusy, WriterLock
 from tests.support.fake_engine import GOOD, FakeAdapter, fake_truth
@@ -30,7 +30,7 @@ from tests.support.stores import table_files, write_schema_1
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENARIO = "slider_crank"
-OPTIONS = RunOptions(repeats=1, warmup=0, timeout=10.0)
+CONFIG = RunConfig(repeats=1, warmup=0, timeout=10.0)
 
 
 class QuickFake(FakeAdapter):
@@ -42,9 +42,7 @@ class QuickFake(FakeAdapter):
         return [*GOOD, Setting.of("raise")]
 
 
-def fake_run(
-    directory: Path, options: RunOptions = OPTIONS, loader=None, version: str | None = None
-) -> Runner:  # type: ignore[no-untyped-def]
+def fake_run(directory: Path, config: RunConfig = CONFIG, loader=None, version: str | None = None) -> Runner:  # type: ignore[no-untyped-def]
     log = directory.parent / "calls.log"
 
     def load(name: str) -> FakeAdapter:
@@ -54,7 +52,7 @@ def fake_run(
         return adapter
 
     runner = Runner(
-        ResultsStore(directory), ["fake"], options, loader=loader or load, truth=fake_truth, progress=False
+        ResultsStore(directory), ["fake"], config, loader=loader or load, truth=fake_truth, progress=False
     )
     runner.run([SCENARIO])
     return runner
@@ -139,7 +137,7 @@ def test_a_deleted_trajectories_file_is_rebuilt_on_resume(stored: Path, tmp_path
 
     shutil.rmtree((out / "current" / TRAJECTORIES).resolve())
     assert ResultsStore(out).lost_trajectories
-    fake_run(out, dataclasses.replace(OPTIONS, keep_failures=True))
+    fake_run(out, dataclasses.replace(CONFIG, keep_failures=True))
     assert set(read_trajectories(out)) == expected
     assert len(rows(out)) == len(rows(stored))
 
@@ -181,7 +179,7 @@ def test_a_store_without_its_status_column_is_refused(stored: Path, tmp_path: Pa
 
 def test_a_store_from_before_generations_is_read_and_converted(stored: Path, tmp_path: Path) -> None:
     out = write_schema_1(tmp_path / "legacy", stored, generations=False)
-    fake_run(out, dataclasses.replace(OPTIONS, keep_failures=True))
+    fake_run(out, dataclasses.replace(CONFIG, keep_failures=True))
     assert (out / "current").is_symlink() and (out / RESULTS).is_symlink()
     assert rows(out).drop(columns=["recorded_at"]).equals(rows(stored).drop(columns=["recorded_at"]))
 
@@ -202,7 +200,7 @@ def test_an_unavailable_engine_keeps_its_rows(stored: Path, tmp_path: Path, caps
 def test_failures_are_retried_unless_kept(stored: Path, tmp_path: Path) -> None:
     out = copy(stored, tmp_path / "out")
     log = tmp_path / "calls.log"
-    fake_run(out, dataclasses.replace(OPTIONS, keep_failures=True))
+    fake_run(out, dataclasses.replace(CONFIG, keep_failures=True))
     assert not log.exists() or "raise" not in log.read_text()
     fake_run(out)
     assert log.read_text().splitlines() == [f"{SCENARIO} raise"]  # the failed row, and only it
@@ -212,11 +210,11 @@ def test_failures_are_retried_unless_kept(stored: Path, tmp_path: Path) -> None:
 def test_stale_rows_are_rerun_or_kept_marked(stored: Path, tmp_path: Path, capsys) -> None:
     out = copy(stored, tmp_path / "out")
     log = tmp_path / "calls.log"
-    fake_run(out, dataclasses.replace(OPTIONS, keep_failures=True, keep_stale=True), version="0.1-fake")
+    fake_run(out, dataclasses.replace(CONFIG, keep_failures=True, keep_stale=True), version="0.1-fake")
     after = rows(out)
     assert after["stale"].all() and not log.exists()
     assert "keeping 3 stale rows, marked stale (3 from fake 0.0-fake)" in capsys.readouterr().err
-    fake_run(out, dataclasses.replace(OPTIONS, keep_failures=True), version="0.1-fake")
+    fake_run(out, dataclasses.replace(CONFIG, keep_failures=True), version="0.1-fake")
     assert "rerunning 3 stale rows" in capsys.readouterr().err
     after = rows(out)
     assert not after["stale"].any() and set(after["engine_version"]) == {"0.1-fake"}
@@ -230,7 +228,7 @@ def test_rows_carry_the_revision_they_were_made_under(stored: Path, tmp_path: Pa
         row["revision"] = "0" * 40
     store.save(store.meta)
     log = tmp_path / "calls.log"
-    fake_run(out, dataclasses.replace(OPTIONS, keep_failures=True))
+    fake_run(out, dataclasses.replace(CONFIG, keep_failures=True))
     assert len(log.read_text().splitlines()) == 3  # every row made again under this revision
     assert "0" * 40 not in set(rows(out)["revision"])
 
@@ -316,7 +314,7 @@ def test_check_runs_what_it_compares_unless_results_is_given(tmp_path: Path) -> 
     args = suite_commands_parser(
         ["check", "--baseline", "b.json", "--out", str(tmp_path), "--scenario", SCENARIO]
     )
-    assert suite_commands.select(args, tmp_path, rerun=True).options.rerun
+    assert suite_commands.select(args, tmp_path, rerun=True).config.rerun
 
 
 def suite_commands_parser(argv: list[str]):  # type: ignore[no-untyped-def]

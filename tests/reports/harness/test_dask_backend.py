@@ -15,10 +15,10 @@ from distributed import Client
 from reports.cli.main import main
 from reports.harness.dask_backend import DaskRunner, local_cluster
 from reports.harness.results_store import KEY, ResultsStore, read_results
-from reports.harness.runner import Runner, RunOptions
+from reports.harness.runner import RunConfig, Runner
 from tests.support.fake_engine import fake_loader, fake_truth
 
-QUICK = RunOptions(ladder=False, repeats=1, warmup=0, timeout=120.0)
+QUICK = RunConfig(ladder=False, repeats=1, warmup=0, timeout=120.0)
 TIMING = ["build_time", "run_time", "recorded_at", "host", "workers"]
 SCENARIOS = ["slider_crank", "four_bar[crank_length=0.08]"]  # the second meets a dead point
 ENGINES = ["reference", "mujoco"]

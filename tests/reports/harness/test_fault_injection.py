@@ -15,11 +15,11 @@ import pytest
 from adapters.base import Setting
 from reports.harness import store_files
 from reports.harness.results_store import ResultsStore, read_results, read_trajectories
-from reports.harness.runner import Runner, RunOptions
+from reports.harness.runner import RunConfig, Runner
 from tests.support.fake_engine import GOOD, FakeAdapter, fake_truth
 
 SCENARIOS = ["slider_crank", "four_bar"]
-OPTIONS = RunOptions(repeats=1, warmup=0, timeout=10.0, save_interval=0.0)  # a save per group
+CONFIG = RunConfig(repeats=1, warmup=0, timeout=10.0, save_interval=0.0)  # a save per group
 KILLS = 20
 COMPARED = ("status", "error", "is_default", "mode")
 
@@ -36,7 +36,7 @@ def run(directory: Path) -> None:
     runner = Runner(
         ResultsStore(directory),
         ["fake"],
-        OPTIONS,
+        CONFIG,
         loader=lambda name: QuickFake(log),
         truth=fake_truth,
         progress=False,

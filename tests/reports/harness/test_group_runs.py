@@ -10,13 +10,13 @@ import numpy as np
 
 from adapters.base import Setting
 from reports.harness.common_start import common_start
-from reports.harness.group_runs import RunOptions, Workers, run_group
+from reports.harness.group_runs import RunConfig, Workers, run_group
 from reports.harness.planning import plan_engine
 from reports.harness.truth import NamedTruth
 from scenarios import load as build_scenario
 from tests.support.fake_engine import GOOD, FakeAdapter, fake_truth
 
-OPTIONS = RunOptions(repeats=1, warmup=0, timeout=10.0)
+CONFIG = RunConfig(repeats=1, warmup=0, timeout=10.0)
 
 
 def crash_between(scenario, adapter):  # type: ignore[no-untyped-def]
@@ -29,11 +29,11 @@ def test_one_worker_serves_every_group_of_an_engine(tmp_path: Path) -> None:
     for name in ("slider_crank", "four_bar", "slider_crank[offset=0.05]"):  # other bodies, grids
         scenario = common_start(build_scenario(name))
         groups.append(plan_engine(scenario, "fake", adapter, True, crash_between))
-    with Workers(OPTIONS, None) as workers:
+    with Workers(CONFIG, None) as workers:
         made = []
         for group in groups:
             truth = NamedTruth(fake_truth(group.scenario, np.asarray(group.scenario.times())), "fake")
-            made += run_group(group, group.jobs, truth, OPTIONS, None, workers=workers)
+            made += run_group(group, group.jobs, truth, CONFIG, None, workers=workers)
         (worker,) = workers.workers.values()
         assert worker.forks == 1 + len(groups)  # the first, then one after each crash
     statuses = [row["status"] for row, _ in made]

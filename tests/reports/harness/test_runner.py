@@ -11,18 +11,18 @@ import pandas as pd
 import pytest
 
 from reports.harness.results_store import TRUTH, ResultsStore, read_results, read_trajectories
-from reports.harness.runner import HOOK_TRUTH, Runner, RunOptions
+from reports.harness.runner import HOOK_TRUTH, RunConfig, Runner
 from tests.support.fake_engine import BAD, GOOD, fake_loader, fake_truth
 from tests.support.stores import copy_entry
 
 SCENARIO = "slider_crank"
-OPTIONS = RunOptions(repeats=2, warmup=1, timeout=1.5)
+CONFIG = RunConfig(repeats=2, warmup=1, timeout=1.5)
 
 
-def run(directory: Path, log: Path, options: RunOptions = OPTIONS, engines=("fake", "absent")) -> None:
+def run(directory: Path, log: Path, config: RunConfig = CONFIG, engines=("fake", "absent")) -> None:
     store = ResultsStore(directory)
     runner = Runner(
-        store, engines, options, loader=fake_loader(log), truth=fake_truth, progress=False, suite="test"
+        store, engines, config, loader=fake_loader(log), truth=fake_truth, progress=False, suite="test"
     )
     runner.run([SCENARIO])
 
@@ -114,7 +114,7 @@ def test_a_resumed_run_redoes_only_the_missing_rows(first_run, tmp_path: Path) -
     del store.rows[(SCENARIO, "fake", "good dt=0.01")]  # as if interrupted before that run
     store.save(meta)
     log = directory / "calls.log"
-    run(directory, log, dataclasses.replace(OPTIONS, keep_failures=True))  # failures kept, not retried
+    run(directory, log, dataclasses.replace(CONFIG, keep_failures=True))  # failures kept, not retried
     assert log.read_text().splitlines() == [f"{SCENARIO} good dt=0.01"] * 3  # warm-up + 2 repeats
     after, _ = read_results(directory)
     assert len(after) == len(frame)
@@ -135,7 +135,7 @@ def test_a_later_plan_reconciles_the_stored_rows(first_run, tmp_path: Path) -> N
         return available("fake" if name == "absent" else name)
 
     store = ResultsStore(directory)
-    quick = RunOptions(ladder=False, repeats=1, warmup=0, timeout=5.0)
+    quick = RunConfig(ladder=False, repeats=1, warmup=0, timeout=5.0)
     Runner(store, ["fake", "absent"], quick, loader=loader, truth=fake_truth, progress=False).run([SCENARIO])
     after, _ = read_results(directory)
     fake = after[after["engine"] == "fake"]
@@ -147,9 +147,9 @@ def test_a_later_plan_reconciles_the_stored_rows(first_run, tmp_path: Path) -> N
 
 def test_rerun_redoes_stored_rows(first_run, tmp_path: Path) -> None:
     log = tmp_path / "calls.log"
-    options = RunOptions(ladder=False, repeats=1, warmup=0, timeout=5.0)
-    run(tmp_path, log, options, engines=("fake",))
-    run(tmp_path, log, options, engines=("fake",))
+    config = RunConfig(ladder=False, repeats=1, warmup=0, timeout=5.0)
+    run(tmp_path, log, config, engines=("fake",))
+    run(tmp_path, log, config, engines=("fake",))
     assert len(log.read_text().splitlines()) == 1
-    run(tmp_path, log, RunOptions(ladder=False, repeats=1, warmup=0, timeout=5.0, rerun=True), ("fake",))
+    run(tmp_path, log, RunConfig(ladder=False, repeats=1, warmup=0, timeout=5.0, rerun=True), ("fake",))
     assert len(log.read_text().splitlines()) == 2

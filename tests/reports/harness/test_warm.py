@@ -16,12 +16,12 @@ from adapters.base import Adapter, Setting
 from reports.harness import warm
 from reports.harness.isolation import run_isolated
 from reports.harness.results_store import KEY, ResultsStore, read_results
-from reports.harness.runner import Runner, RunOptions
+from reports.harness.runner import RunConfig, Runner
 from scenarios import Scenario
 from scenarios import load as build_scenario
 from tests.support.fake_engine import GOOD, fake_loader, fake_truth
 
-OPTIONS = RunOptions(ladder=True, repeats=1, warmup=0, timeout=3.0)
+CONFIG = RunConfig(ladder=True, repeats=1, warmup=0, timeout=3.0)
 TIMING = ["build_time", "run_time", "recorded_at", "host", "workers", "revision"]
 
 
@@ -59,7 +59,7 @@ def crash_hang_then_good(scenario: Scenario, adapter: Adapter) -> list[Setting]:
 def test_a_crash_and_a_hang_after_the_warm_up_cost_their_own_rows(tmp_path: Path) -> None:
     store = ResultsStore(tmp_path / "out")
     Runner(
-        store, ["fake"], OPTIONS, loader=fake_loader(tmp_path / "log"), truth=fake_truth, progress=False,
+        store, ["fake"], CONFIG, loader=fake_loader(tmp_path / "log"), truth=fake_truth, progress=False,
         settings=crash_hang_then_good,
     ).run(["four_bar"])  # fmt: skip
     frame, _ = read_results(tmp_path / "out")
@@ -78,11 +78,11 @@ import sys
 from pathlib import Path
 import reports.harness.group_runs as group_runs
 from reports.harness.results_store import ResultsStore
-from reports.harness.runner import Runner, RunOptions
+from reports.harness.runner import Runner, RunConfig
 if sys.argv[2] == "cold":
     group_runs.warm = lambda scenario: None  # the previous path: the forked runs load the kernels
-options = RunOptions(ladder=True, repeats=1, warmup=0)
-Runner(ResultsStore(Path(sys.argv[1])), ["reference"], options, progress=False).run(
+config = RunConfig(ladder=True, repeats=1, warmup=0)
+Runner(ResultsStore(Path(sys.argv[1])), ["reference"], config, progress=False).run(
     ["four_bar[omega=12]", "slider_crank"]
 )
 from reports.harness import warm

@@ -12,7 +12,7 @@ import pytest
 from matplotlib.colors import to_rgba
 
 from reports.harness.results_store import ResultsStore
-from reports.harness.runner import Runner, RunOptions
+from reports.harness.runner import RunConfig, Runner
 from reports.harness.sweep import points
 from reports.render import html, markdown, sweep_render
 from reports.render.report_data import ReportData
@@ -37,8 +37,8 @@ def dead_point_time(crank: float, omega: float) -> float:
 def data(tmp_path_factory: pytest.TempPathFactory) -> ReportData:
     directory = tmp_path_factory.mktemp("sweep")
     names = points(["four_bar"], [f"crank_length={','.join(CRANKS)}", f"omega={','.join(SPEEDS)}"])
-    options = RunOptions(ladder=False, repeats=1, warmup=0, timeout=120.0)
-    Runner(ResultsStore(directory), ["reference"], options, progress=False).run(names)
+    config = RunConfig(ladder=False, repeats=1, warmup=0, timeout=120.0)
+    Runner(ResultsStore(directory), ["reference"], config, progress=False).run(names)
     store = ResultsStore(directory)
     record(store, "")  # as `mbxval run` does once its runs are stored
     store.save(store.meta)
