@@ -15,8 +15,8 @@ from types import ModuleType
 import numpy as np
 
 from reference_solver.fast import dense_kernels
+from reference_solver.fast.constraint_rows import NotCompiled
 from reference_solver.fast.program import compile_dense
-from reference_solver.fast.rows import NotCompiled
 from reference_solver.system import ConstraintSystem
 from scenarios.scenario import Scenario
 

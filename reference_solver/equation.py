@@ -1,18 +1,20 @@
 """The base of every constraint's equations in the stacked system.
 
 A subclass sets, in its __init__ after calling the base's:
-    labels   one name per row, e.g. ("A.x", "A.y")
-    powers   the power of length of each row's units (0 angle, 1 length, 2 area): rows are divided
-             by L**power when tolerances and conditioning are judged
-and implements rows(q, qd, t) -> tuple of Row (value, Jacobian over `columns`, Q_d). A driver also
-overrides c_t(t). Everything else (gathering poses, building points) is here.
+    labels   one name per constraint row (one scalar equation of C), e.g. ("A.x", "A.y")
+    powers   the power of length of each constraint row's units (0 angle, 1 length, 2 area): they
+             are divided by L**power when tolerances and conditioning are judged
+and implements constraint_rows(q, qd, t) -> tuple of ConstraintRow (value, Jacobian over `columns`,
+Q_d). A driver also overrides c_t(t). Everything else (gathering poses, building points) is here.
+"Constraint row" is the name of one equation of C everywhere (never a bare "row", which is a
+results table's).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from reference_solver.kinematic_vectors import KinematicVector, Row, body_point, body_vector
+from reference_solver.kinematic_vectors import ConstraintRow, KinematicVector, body_point, body_vector
 from reference_solver.layout import Layout
 from scenarios.bodies import GROUND, Point
 
@@ -39,11 +41,11 @@ class Equation:
     def size(self) -> int:
         return len(self.labels)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
         raise NotImplementedError
 
     def c_t(self, t: float) -> np.ndarray:
-        """Partial derivative of the rows in time; zero for a time-independent constraint."""
+        """Partial derivative of the constraint rows in time; zero for a time-independent constraint."""
         return np.zeros(self.size)
 
     # --- building blocks for subclasses ---------------------------------------------------------
@@ -68,7 +70,9 @@ class Equation:
         pose, rate = self.state(q, qd, body)
         return body_vector(np.asarray(local, dtype=float), pose, rate, self.local(body), self.width)
 
-    def linear_row(self, q: np.ndarray, terms: dict[tuple[str, int], float], constant: float) -> Row:
+    def linear_constraint_row(
+        self, q: np.ndarray, terms: dict[tuple[str, int], float], constant: float
+    ) -> ConstraintRow:
         """sum of coefficient * q[body, coordinate] - constant, over `terms`; ground terms vanish."""
         jac = np.zeros(self.width)
         value = -constant
@@ -78,4 +82,4 @@ class Equation:
                 continue
             value += coefficient * q[col + coordinate]
             jac[self._local[body] + coordinate] += coefficient
-        return Row(value, jac, 0.0)
+        return ConstraintRow(value, jac, 0.0)

@@ -38,7 +38,7 @@ class KinematicVector:
 
 
 @dataclass(frozen=True)
-class Row:
+class ConstraintRow:
     """One scalar constraint row: value C, Jacobian over the local columns, and Q_d."""
 
     value: float
@@ -100,14 +100,14 @@ def profile_vector(
     return KinematicVector(au, jac, dot, acc)
 
 
-def inner(a: KinematicVector, b: KinematicVector) -> Row:
-    """The row a . b."""
+def inner(a: KinematicVector, b: KinematicVector) -> ConstraintRow:
+    """The constraint row a . b."""
     value = float(a.value @ b.value)
     jac = a.jac.T @ b.value + b.jac.T @ a.value
     acc = float(a.acc @ b.value + 2.0 * (a.dot @ b.dot) + a.value @ b.acc)
-    return Row(value, jac, -acc)
+    return ConstraintRow(value, jac, -acc)
 
 
-def components(v: KinematicVector) -> tuple[Row, Row]:
-    """The two rows v_x and v_y."""
-    return tuple(Row(float(v.value[k]), v.jac[k], -float(v.acc[k])) for k in (0, 1))  # type: ignore[return-value]
+def components(v: KinematicVector) -> tuple[ConstraintRow, ConstraintRow]:
+    """The two constraint rows v_x and v_y."""
+    return tuple(ConstraintRow(float(v.value[k]), v.jac[k], -float(v.acc[k])) for k in (0, 1))  # type: ignore[return-value]

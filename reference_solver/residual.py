@@ -69,7 +69,7 @@ def _plain_residual(scenario: Scenario, trajectory: Trajectory) -> np.ndarray:
             q[layout.phi_column(c)] = trajectory.extras[f"{c}.phi"][k]
         worst = 0.0
         for eq, scale in zip(equations, scales, strict=True):
-            values = np.array([row.value for row in eq.rows(q, zero, float(t))]) / scale
+            values = np.array([row.value for row in eq.constraint_rows(q, zero, float(t))]) / scale
             worst = max(worst, float(np.max(np.abs(values))))
         out[k] = worst
     return out

@@ -80,7 +80,7 @@ class ConstraintSystem:
         jac = np.zeros((self.size, self.unknowns))
         q_d = np.empty(self.size)
         for eq, start in zip(self.equations, self.offsets, strict=False):
-            for k, row in enumerate(eq.rows(q, qd, t)):
+            for k, row in enumerate(eq.constraint_rows(q, qd, t)):
                 c[start + k] = row.value
                 jac[start + k, eq.columns] = row.jac
                 q_d[start + k] = row.q_d

@@ -72,7 +72,7 @@ EXPLICIT_REASON = (
     "Exudyn's explicit integrators (RK44, DOPRI5, ...) refuse joint constraints: they eliminate only "
     "coordinate constraints to the ground, and this scenario has {what}"
 )
-ROWS: dict[type, int] = {
+CONSTRAINT_ROWS: dict[type, int] = {  # how many constraint rows each item adds
     Revolute: 2,
     Prismatic: 2,
     RevoluteRevolute: 1,
@@ -155,7 +155,7 @@ class ExudynAdapter(Adapter):
 
     def supports(self, scenario: Scenario) -> str | None:
         for item in (*scenario.joints, *scenario.drivers):
-            if type(item) not in ROWS:
+            if type(item) not in CONSTRAINT_ROWS:
                 return f"no Exudyn element for {type(item).__name__} '{getattr(item, 'name', '?')}'"
             if isinstance(item, RevoluteRevolute) and not item.length > 0.0:
                 return f"Exudyn's distance connector needs a positive length ('{item.name}': {item.length})"
@@ -164,11 +164,11 @@ class ExudynAdapter(Adapter):
                 return f"no Exudyn element for {type(force).__name__} '{force.name}'"
         if scenario.analysis == "dynamic":
             return None
-        rows = sum(ROWS[type(item)] for item in (*scenario.joints, *scenario.drivers))
+        count = sum(CONSTRAINT_ROWS[type(item)] for item in (*scenario.joints, *scenario.drivers))
         unknowns = 3 * len(scenario.bodies) + len(scenario.cams)
-        if rows != unknowns:
+        if count != unknowns:
             return (
-                f"not kinematically driven ({unknowns} coordinates, {rows} constraint equations): "
+                f"not kinematically driven ({unknowns} coordinates, {count} constraint equations): "
                 "Exudyn would integrate free dynamics that depend on the masses"
             )
         return None

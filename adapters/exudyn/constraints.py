@@ -2,11 +2,12 @@
 the scenario's own equations (formulation.md), for Exudyn's `ObjectConnectorCoordinateVector` with
 constraint and Jacobian user functions.
 
-Each constraint names the bodies whose coordinates (x, y, theta) it reads, in order, and how many
-extra unknowns (a cam's contact parameter phi) follow them. `evaluate(poses, extra, t)` returns the
-residual C, one Jacobian block (rows x 3) per body (the ground's is ignored by the caller), the
-block of the extra unknowns (rows x extra) and C_t. Exudyn calls these a few times per step, so
-they are written in scalar Python, not numpy: a call costs a few microseconds.
+Each constraint names the bodies whose coordinates (x, y, theta) it reads, in order, how many
+extra unknowns (a cam's contact parameter phi) follow them, and its `size`, how many constraint rows
+it has. `evaluate(poses, extra, t)` returns the residual C, one Jacobian block (size x 3) per body
+(the ground's is ignored by the caller), the block of the extra unknowns (size x extra) and C_t.
+Exudyn calls these a few times per step, so they are written in scalar Python, not numpy: a call
+costs a few microseconds.
 """
 
 from __future__ import annotations
@@ -36,7 +37,7 @@ class UserConstraint(Protocol):
     @property
     def extra(self) -> int: ...
     @property
-    def rows(self) -> int: ...
+    def size(self) -> int: ...
 
     def evaluate(self, poses: Sequence[Sequence[float]], extra: Sequence[float], t: float) -> Evaluation: ...
 
@@ -90,7 +91,7 @@ class KnifeEdgeContact:
     surface: _Surface
     tip: Vec
     extra: int = 1
-    rows: int = 2
+    size: int = 2
 
     def evaluate(self, poses: Sequence[Sequence[float]], extra: Sequence[float], t: float) -> Evaluation:
         r, r_theta, tangent, _, _ = self.surface.at(poses[0], extra[0])
@@ -110,7 +111,7 @@ class RollerContact:
     centre: Vec
     radius: float
     extra: int = 1
-    rows: int = 2
+    size: int = 2
 
     def evaluate(self, poses: Sequence[Sequence[float]], extra: Sequence[float], t: float) -> Evaluation:
         r, r_theta, tan, tan_theta, tan_phi = self.surface.at(poses[0], extra[0])
@@ -136,7 +137,7 @@ class FlatFaceContact:
     face: Vec
     normal: Vec
     extra: int = 1
-    rows: int = 2
+    size: int = 2
 
     def evaluate(self, poses: Sequence[Sequence[float]], extra: Sequence[float], t: float) -> Evaluation:
         r, r_theta, tan, tan_theta, tan_phi = self.surface.at(poses[0], extra[0])
@@ -162,7 +163,7 @@ class RackPinionMesh:
     radius: float
     offset: float
     extra: int = 0
-    rows: int = 1
+    size: int = 1
 
     def evaluate(self, poses: Sequence[Sequence[float]], extra: Sequence[float], t: float) -> Evaluation:
         c, c_theta = _point(poses[0], self.centre)
@@ -184,7 +185,7 @@ class PointDisplacement:
     points: tuple[Vec, Vec]
     motions: tuple[Motion, Motion]
     extra: int = 0
-    rows: int = 2
+    size: int = 2
 
     def evaluate(self, poses: Sequence[Sequence[float]], extra: Sequence[float], t: float) -> Evaluation:
         ri, ri_theta = _point(poses[0], self.points[0])

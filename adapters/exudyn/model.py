@@ -374,7 +374,7 @@ class _Builder:
         self.mbs.AddObject(
             ObjectConnectorCoordinateVector(
                 markerNumbers=markers,
-                scalingMarker0=np.zeros((constraint.rows, 1)),
+                scalingMarker0=np.zeros((constraint.size, 1)),
                 constraintUserFunction=functions[0],
                 jacobianUserFunction=functions[1],
             )

@@ -55,7 +55,7 @@ def constraint_functions(constraint: UserConstraint, width: int) -> tuple[Any, A
         residual, blocks, extra_block, c_t = constraint.evaluate(poses, q[size - constraint.extra : size], t)
         jac = [
             [value for k in moving for value in blocks[k][row]] + extra_block[row] + padding
-            for row in range(constraint.rows)
+            for row in range(constraint.size)
         ]
         last[0], last[1] = key, (residual, jac, c_t)
         return residual, jac, c_t

@@ -32,13 +32,13 @@ import pinocchio as pin
 from adapters.base import Adapter, EngineFailure, Option, Setting, Unsupported
 from adapters.modes import ADAPTER, ENGINE, Mode
 from adapters.pinocchio.cam_dynamics import CamDynamicSolver
+from adapters.pinocchio.constraint_rows import ConstraintRows, force_labels
 from adapters.pinocchio.dynamics import DynamicSolver, dynamic_support
 from adapters.pinocchio.free_start import free_start
 from adapters.pinocchio.kinematics import KinematicSolver, body_motion
 from adapters.pinocchio.loads import Loads
 from adapters.pinocchio.model import PinModel, build_model
 from adapters.pinocchio.row_dynamics import RowDynamicSolver
-from adapters.pinocchio.rows import Rows, force_labels
 from adapters.pinocchio.settings import (
     BAUMGARTE,
     DYNAMIC,
@@ -187,8 +187,8 @@ class PinocchioAdapter(Adapter):
                 settings += [rule_setting(scenario, mode, n) for n in PER_PERIOD[mode][:3]]
         return settings
 
-    def _structure(self, scenario: Scenario, mimic_gears: bool) -> tuple[Tree, PinModel, Rows]:
-        """The tree, the Pinocchio model and the rows; Unsupported if the rows do not make a square
+    def _structure(self, scenario: Scenario, mimic_gears: bool) -> tuple[Tree, PinModel, ConstraintRows]:
+        """The tree, the Pinocchio model and the constraint rows; Unsupported if they do not make a square
         system in the unknowns (kinematic scenarios) or leave no freedom (dynamic ones)."""
         dynamic = scenario.analysis == "dynamic"
         if dynamic and scenario.cams:
@@ -201,11 +201,11 @@ class PinocchioAdapter(Adapter):
         except TreeError as error:
             raise Unsupported(str(error)) from None
         pm = build_model(scenario, tree)
-        rows = Rows.of(scenario, pm)
-        solver = KinematicSolver(pm, rows, length=scenario.characteristic_length)
+        constraint_rows = ConstraintRows.of(scenario, pm)
+        solver = KinematicSolver(pm, constraint_rows, length=scenario.characteristic_length)
         count = (
-            rows.evaluate(solver.snapshot(self._guess(scenario, pm))).val.size
-            if rows.closures or rows.drivers
+            constraint_rows.evaluate(solver.snapshot(self._guess(scenario, pm))).val.size
+            if constraint_rows.closures or constraint_rows.drivers
             else 0
         )
         unknowns = pm.model.nq + len(scenario.cams)
@@ -219,7 +219,7 @@ class PinocchioAdapter(Adapter):
                 f"the loop-closure and driver rows ({count}) do not match the unknowns ({unknowns}): "
                 "not a kinematically driven mechanism"
             )
-        return tree, pm, rows
+        return tree, pm, constraint_rows
 
     @staticmethod
     def _guess(scenario: Scenario, pm: PinModel) -> np.ndarray:
@@ -235,10 +235,15 @@ class PinocchioAdapter(Adapter):
                 "or euler"
             )
         gears = str(setting.get("gears", "mimic"))
-        tree, pm, rows = self._structure(scenario, mimic_gears=mode == KINEMATIC and gears == "mimic")
+        tree, pm, constraint_rows = self._structure(
+            scenario, mimic_gears=mode == KINEMATIC and gears == "mimic"
+        )
         tol = float(setting.get("tol", TOLERANCES[-1]))
         kinematics = KinematicSolver(
-            pm, rows, tol=tol if mode == KINEMATIC else TOLERANCES[-1], length=scenario.characteristic_length
+            pm,
+            constraint_rows,
+            tol=tol if mode == KINEMATIC else TOLERANCES[-1],
+            length=scenario.characteristic_length,
         )
         dynamics: DynamicSolver | None = None
         if mode != KINEMATIC:
@@ -253,7 +258,7 @@ class PinocchioAdapter(Adapter):
                 dynamics = CamDynamicSolver(kinematics, phi0, dt, gains, loads, method)
             else:
                 solver = DynamicSolver if dynamic_support(scenario, tree) is None else RowDynamicSolver
-                dynamics = solver(pm, rows, dt, gains, loads, method)
+                dynamics = solver(pm, constraint_rows, dt, gains, loads, method)
         built = Built(scenario, mode, pm, kinematics, dynamics)
         built.start = self._start(built, float(scenario.times()[0]))
         return built

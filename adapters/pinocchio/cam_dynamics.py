@@ -35,7 +35,7 @@ class CamDynamicSolver(RowDynamicSolver):
     def __init__(
         self, kinematics: KinematicSolver, phi0: np.ndarray, *args: object, **kwargs: object
     ) -> None:
-        super().__init__(kinematics.pm, kinematics.rows, *args, **kwargs)  # type: ignore[arg-type]
+        super().__init__(kinematics.pm, kinematics.constraint_rows, *args, **kwargs)  # type: ignore[arg-type]
         self.kinematics = kinematics
         self.restart(phi0)
 
@@ -56,8 +56,8 @@ class CamDynamicSolver(RowDynamicSolver):
             q_last, jac_last = self.last
             phi = phi - np.linalg.lstsq(jac_last[:, nq:], jac_last[:, :nq] @ (q - q_last), rcond=None)[0]
         for _ in range(NEWTON):
-            rows = self.all_rows.evaluate(self.kinematics.snapshot(np.concatenate([q, phi])))
-            gap = rows.val - self.all_rows.targets(rows.val.size, t, 0)
+            rows = self.all_constraint_rows.evaluate(self.kinematics.snapshot(np.concatenate([q, phi])))
+            gap = rows.val - self.all_constraint_rows.targets(rows.val.size, t, 0)
             step = np.linalg.lstsq(rows.jac[:, nq:], -gap, rcond=None)[0]
             size = float(np.max(np.abs(step)))
             if size > 0.5 * previous and size <= PHI_FLOOR:  # no longer converging: at rounding
@@ -75,9 +75,9 @@ class CamDynamicSolver(RowDynamicSolver):
         phi, jac = self._contact(q, t)
         size = jac.shape[0]
         jq, jphi = jac[:, :nq], jac[:, nq:]
-        phi_rate = np.linalg.lstsq(jphi, self.all_rows.targets(size, t, 1) - jq @ v, rcond=None)[0]
+        phi_rate = np.linalg.lstsq(jphi, self.all_constraint_rows.targets(size, t, 1) - jq @ v, rcond=None)[0]
         state = np.concatenate([q, phi]), np.concatenate([v, phi_rate])
-        rows = self.all_rows.evaluate(self.kinematics.snapshot(*state))
+        rows = self.all_constraint_rows.evaluate(self.kinematics.snapshot(*state))
         jq, jphi = rows.jac[:, :nq], rows.jac[:, nq:]
         project = null_space(jphi.T).T  # N^T: N^T dg/dphi = 0
         return self.forward(t, q, v, project @ jq, project @ self.wanted(rows, t))

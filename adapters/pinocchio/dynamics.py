@@ -17,9 +17,9 @@ import pinocchio as pin
 from scipy.linalg import lapack
 
 from adapters.base import EngineFailure, Singular
+from adapters.pinocchio.constraint_rows import ConstraintRows, Snapshot
 from adapters.pinocchio.loads import Loads
 from adapters.pinocchio.model import PinModel, se3
-from adapters.pinocchio.rows import Rows, Snapshot
 from adapters.pinocchio.simulation import RK4, march
 from adapters.pinocchio.tree import Tree, point_pose
 from scenarios.bodies import GROUND
@@ -67,7 +67,7 @@ class DynamicSolver:
     def __init__(
         self,
         pm: PinModel,
-        rows: Rows,
+        constraint_rows: ConstraintRows,
         dt: float,
         gains: tuple[float, float],
         loads: Loads | None = None,
@@ -75,11 +75,18 @@ class DynamicSolver:
     ) -> None:
         if not dt > 0.0:
             raise EngineFailure(f"dt must be positive, got {dt}")
-        self.pm, self.rows, self.dt, self.gains, self.loads, self.method = pm, rows, dt, gains, loads, method
+        self.pm, self.constraint_rows, self.dt, self.gains, self.loads, self.method = (
+            pm,
+            constraint_rows,
+            dt,
+            gains,
+            loads,
+            method,
+        )
         model = pm.model
         self.data, self.kin_data = model.createData(), model.createData()
         self.cmodels = pin.StdVec_RigidConstraintModel()
-        for item in rows.closures:
+        for item in constraint_rows.closures:
             assert isinstance(item, Revolute)
             self.cmodels.append(_constraint(pm, item, gains))
         self.cdatas = pin.StdVec_RigidConstraintData()
@@ -113,15 +120,17 @@ class DynamicSolver:
         """The acceleration and the drive rows' forces mu: the drives apply tau + J^T mu."""
         tau = self.tau(t, q, v)
         a0 = self._forward(q, v, tau)
-        if not self.rows.drivers:
+        if not self.constraint_rows.drivers:
             return a0, self.empty
-        drive = self.rows.drive_rows(Snapshot(self.pm, self.kin_data, (q, v, self.empty, self.empty), 0))
-        size, rows = drive.val.size, self.rows
+        drive = self.constraint_rows.drive_rows(
+            Snapshot(self.pm, self.kin_data, (q, v, self.empty, self.empty), 0)
+        )
+        size, constraint_rows = drive.val.size, self.constraint_rows
         kp, kd = self.gains
-        wanted = rows.targets(size, t, 2) - drive.drift - drive.jac @ a0
+        wanted = constraint_rows.targets(size, t, 2) - drive.drift - drive.jac @ a0
         if kp or kd:
-            wanted -= kp * (drive.val - rows.targets(size, t, 0))
-            wanted -= kd * (drive.rate - rows.targets(size, t, 1))
+            wanted -= kp * (drive.val - constraint_rows.targets(size, t, 0))
+            wanted -= kd * (drive.rate - constraint_rows.targets(size, t, 1))
         response = np.array([self._forward(q, v, tau + row) for row in drive.jac]).T - a0[:, None]
         _, _, multipliers, info = lapack.dgesv(drive.jac @ response, wanted)
         if info != 0:

@@ -28,9 +28,9 @@ def free_start(scenario: Scenario, kin: KinematicSolver) -> tuple[np.ndarray, np
     """(q0, v0) consistent with the loop rows, from the scenario's body guesses and rates."""
     pm = kin.pm
     q = pm.q_guess()
-    if kin.rows.closures:
+    if kin.constraint_rows.closures:
         for _ in range(POLISH):
-            rows = kin.rows.evaluate(kin.snapshot(q))
+            rows = kin.constraint_rows.evaluate(kin.snapshot(q))
             if float(np.max(np.abs(rows.val))) <= ROUNDOFF * scenario.characteristic_length:
                 break
             q = q + np.linalg.lstsq(rows.jac, -rows.val, rcond=None)[0]
@@ -47,7 +47,7 @@ def free_start(scenario: Scenario, kin: KinematicSolver) -> tuple[np.ndarray, np
     )
     rates = np.concatenate([np.asarray(b.rate, dtype=float) for b in scenario.bodies])
     v = np.linalg.lstsq(jac, rates, rcond=None)[0]
-    if kin.rows.closures:
-        loop = kin.rows.evaluate(kin.snapshot(q)).jac
+    if kin.constraint_rows.closures:
+        loop = kin.constraint_rows.evaluate(kin.snapshot(q)).jac
         v = v - loop.T @ np.linalg.lstsq(loop @ loop.T, loop @ v, rcond=None)[0]
     return q, v

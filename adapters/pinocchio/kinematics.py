@@ -17,10 +17,10 @@ import numpy as np
 import pinocchio as pin
 
 from adapters.base import EngineFailure, Singular
+from adapters.pinocchio.constraint_rows import LWA, ConstraintRows, Snapshot
 from adapters.pinocchio.linalg import SINGULAR_COND, Factor, factorize, solve
 from adapters.pinocchio.model import PinModel
 from adapters.pinocchio.quantity import Quantity
-from adapters.pinocchio.rows import LWA, Rows, Snapshot
 from scenarios.bodies import Point
 
 ROUNDOFF = 4.0 * np.finfo(float).eps
@@ -45,7 +45,7 @@ class KinematicSolver:
     """Position, velocity and acceleration of a kinematically driven mechanism at given times."""
 
     pm: PinModel
-    rows: Rows
+    constraint_rows: ConstraintRows
     tol: float = 1e-13
     max_iter: int = 25
     length: float = 1.0
@@ -57,7 +57,7 @@ class KinematicSolver:
 
     def __post_init__(self) -> None:
         self.data = self.pm.model.createData()
-        self.cams = len(self.rows.contacts)
+        self.cams = len(self.constraint_rows.contacts)
         self.sizes = np.ones(self.pm.model.nq + self.cams)
         for edge in self.pm.tree.edges:
             k = self.pm.q_index(edge.name) if edge.kind == "prismatic" else None
@@ -79,8 +79,8 @@ class KinematicSolver:
         return Snapshot(self.pm, self.data, (z[:nq], rate[:nq], z[nq:], rate[nq:]), self.cams)
 
     def _system(self, z: np.ndarray, t: float) -> tuple[Quantity, np.ndarray]:
-        rows = self.rows.evaluate(self.snapshot(z))
-        return rows, rows.val - self.rows.targets(rows.val.size, t, 0)
+        rows = self.constraint_rows.evaluate(self.snapshot(z))
+        return rows, rows.val - self.constraint_rows.targets(rows.val.size, t, 0)
 
     def position(self, z: np.ndarray, t: float, max_iter: int | None = None) -> tuple[np.ndarray, Factor]:
         """Newton from the guess z; the factorized row Jacobian at the solution."""
@@ -111,9 +111,9 @@ class KinematicSolver:
     def rates(self, z: np.ndarray, factor: Factor, t: float) -> tuple[np.ndarray, np.ndarray]:
         """z' from J z' = f', then z'' from J z'' = f'' - drift with the drift at (z, z')."""
         size = z.size
-        z_rate = factor.solve(self.rows.targets(size, t, 1))
-        moving = self.rows.evaluate(self.snapshot(z, z_rate))
-        z_acc = factor.solve(self.rows.targets(size, t, 2) - moving.drift)
+        z_rate = factor.solve(self.constraint_rows.targets(size, t, 1))
+        moving = self.constraint_rows.evaluate(self.snapshot(z, z_rate))
+        z_acc = factor.solve(self.constraint_rows.targets(size, t, 2) - moving.drift)
         return z_rate, z_acc
 
     def assemble(self, z_guess: np.ndarray, t: float) -> np.ndarray:

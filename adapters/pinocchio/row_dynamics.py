@@ -19,28 +19,30 @@ import numpy as np
 import pinocchio as pin
 
 from adapters.base import Singular
+from adapters.pinocchio.constraint_rows import ConstraintRows, Snapshot
 from adapters.pinocchio.dynamics import DynamicSolver
 from adapters.pinocchio.model import PinModel
 from adapters.pinocchio.quantity import Quantity
-from adapters.pinocchio.rows import Rows, Snapshot
 
 
 class RowDynamicSolver(DynamicSolver):
     """RK4 on (q, v) with accelerations from `pin.forwardDynamics` on the stacked rows."""
 
-    def __init__(self, pm: PinModel, rows: Rows, *args: Any, **kwargs: Any) -> None:
+    def __init__(self, pm: PinModel, constraint_rows: ConstraintRows, *args: Any, **kwargs: Any) -> None:
         """As DynamicSolver (dt, gains, loads, method), the drive rows held by forwardDynamics too."""
-        super().__init__(pm, Rows((), rows.drivers, {}, rows.motions), *args, **kwargs)
-        self.all_rows = rows
+        super().__init__(
+            pm, ConstraintRows((), constraint_rows.drivers, {}, constraint_rows.motions), *args, **kwargs
+        )
+        self.all_constraint_rows = constraint_rows
 
     def wanted(self, rows: Quantity, t: float) -> np.ndarray:
         """The rows' wanted accelerations J z'' = f'' - drift - kp (g - f) - kd (g' - f')."""
         size = rows.val.size
         kp, kd = self.gains
-        wanted = self.all_rows.targets(size, t, 2) - rows.drift
+        wanted = self.all_constraint_rows.targets(size, t, 2) - rows.drift
         if kp or kd:
-            wanted -= kp * (rows.val - self.all_rows.targets(size, t, 0))
-            wanted -= kd * (rows.rate - self.all_rows.targets(size, t, 1))
+            wanted -= kp * (rows.val - self.all_constraint_rows.targets(size, t, 0))
+            wanted -= kd * (rows.rate - self.all_constraint_rows.targets(size, t, 1))
         return wanted
 
     def forward(
@@ -54,11 +56,15 @@ class RowDynamicSolver(DynamicSolver):
         return acc.copy()  # type: ignore[no-any-return]
 
     def acceleration(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-        rows = self.all_rows.evaluate(Snapshot(self.pm, self.kin_data, (q, v, self.empty, self.empty), 0))
+        rows = self.all_constraint_rows.evaluate(
+            Snapshot(self.pm, self.kin_data, (q, v, self.empty, self.empty), 0)
+        )
         return self.forward(t, q, v, rows.jac, self.wanted(rows, t))
 
     def drive_forces(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
         """The drive rows' multipliers (the last rows: closures first), the forces they apply."""
         self.acceleration(t, q, v)
-        drives = self.all_rows.drive_rows(Snapshot(self.pm, self.kin_data, (q, v, self.empty, self.empty), 0))
+        drives = self.all_constraint_rows.drive_rows(
+            Snapshot(self.pm, self.kin_data, (q, v, self.empty, self.empty), 0)
+        )
         return np.asarray(self.data.lambda_c)[-drives.val.size :].copy() if drives.val.size else self.empty

@@ -15,9 +15,9 @@ from reference_solver.dynamics.loads import Loads, LoadState
 from reference_solver.dynamics.partition import NEWTON_STEPS, RESIDUAL, STALLED, Partitioned, State
 from reference_solver.errors import ConvergenceError
 from reference_solver.fast import rates_kernels
+from reference_solver.fast.constraint_rows import NotCompiled
 from reference_solver.fast.load_program import compile_loads
 from reference_solver.fast.program import WIDTH
-from reference_solver.fast.rows import NotCompiled
 from reference_solver.system import ConstraintSystem
 
 RETRY_STALLED = 1e-10

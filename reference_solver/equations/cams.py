@@ -6,8 +6,8 @@ import numpy as np
 
 from reference_solver.equation import Equation
 from reference_solver.kinematic_vectors import (
+    ConstraintRow,
     KinematicVector,
-    Row,
     components,
     inner,
     profile_vector,
@@ -47,7 +47,7 @@ class KnifeEdgeEquation(CamEquation):
         self.labels = (f"{contact.name}.x", f"{contact.name}.y")
         self.powers = (1, 1)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
         point, _ = self.profile(q, qd)
         return components(point - self.point(q, qd, self.tip))
 
@@ -62,11 +62,11 @@ class RollerEquation(CamEquation):
         self.labels = (f"{contact.name}.tangent", f"{contact.name}.distance")
         self.powers = (2, 2)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
         point, tangent = self.profile(q, qd)
         n = self.point(q, qd, self.centre) - point
         distance = inner(n, n)
-        return inner(n, tangent), Row(distance.value - self.radius**2, distance.jac, distance.q_d)
+        return inner(n, tangent), ConstraintRow(distance.value - self.radius**2, distance.jac, distance.q_d)
 
 
 class FlatFaceEquation(CamEquation):
@@ -81,7 +81,7 @@ class FlatFaceEquation(CamEquation):
         self.labels = (f"{contact.name}.tangent", f"{contact.name}.distance")
         self.powers = (1, 1)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
         point, tangent = self.profile(q, qd)
         h = self.direction(q, qd, self.face.body, self.normal)
         return inner(h, tangent), inner(h, point - self.point(q, qd, self.face))

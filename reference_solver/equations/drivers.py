@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from reference_solver.equation import Equation
-from reference_solver.kinematic_vectors import Row, components
+from reference_solver.kinematic_vectors import ConstraintRow, components
 from reference_solver.layout import Layout
 from scenarios.drivers import (
     AbsoluteDriver,
@@ -18,9 +18,9 @@ from scenarios.motions import Motion
 COORDINATES = {"x": 0, "y": 1, "theta": 2}
 
 
-def _driven(row: Row, motion: Motion, t: float) -> Row:
+def _driven(row: ConstraintRow, motion: Motion, t: float) -> ConstraintRow:
     """row - f(t), with C_tt = -f'' moved into Q_d."""
-    return Row(row.value - motion.f(t), row.jac, row.q_d + motion.ddf(t))
+    return ConstraintRow(row.value - motion.f(t), row.jac, row.q_d + motion.ddf(t))
 
 
 class AbsoluteDriverEquation(Equation):
@@ -33,8 +33,8 @@ class AbsoluteDriverEquation(Equation):
         self.labels = (f"{driver.name}.{driver.coordinate}",)
         self.powers = (0 if driver.coordinate == "theta" else 1,)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
-        row = self.linear_row(q, {(self.driver.body, self.coordinate): 1.0}, 0.0)
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
+        row = self.linear_constraint_row(q, {(self.driver.body, self.coordinate): 1.0}, 0.0)
         return (_driven(row, self.driver.motion, t),)
 
     def c_t(self, t: float) -> np.ndarray:
@@ -50,9 +50,9 @@ class RelativeRotationDriverEquation(Equation):
         self.labels = (f"{driver.name}.theta",)
         self.powers = (0,)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
         d = self.driver
-        row = self.linear_row(q, {(d.body_i, 2): 1.0, (d.body_j, 2): -1.0}, 0.0)
+        row = self.linear_constraint_row(q, {(d.body_i, 2): 1.0, (d.body_j, 2): -1.0}, 0.0)
         return (_driven(row, d.motion, t),)
 
     def c_t(self, t: float) -> np.ndarray:
@@ -68,7 +68,7 @@ class PointPathDriverEquation(Equation):
         self.labels = (f"{driver.name}.x", f"{driver.name}.y")
         self.powers = (1, 1)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
         rx, ry = components(self.point(q, qd, self.driver.point))
         return _driven(rx, self.driver.motion_x, t), _driven(ry, self.driver.motion_y, t)
 
@@ -85,7 +85,7 @@ class RelativeDisplacementDriverEquation(Equation):
         self.labels = (f"{driver.name}.x", f"{driver.name}.y")
         self.powers = (1, 1)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
         d = self.driver
         rx, ry = components(self.point(q, qd, d.p_i) - self.point(q, qd, d.p_j))
         return _driven(rx, d.motion_x, t), _driven(ry, d.motion_y, t)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from reference_solver.equation import Equation
-from reference_solver.kinematic_vectors import Row, inner
+from reference_solver.kinematic_vectors import ConstraintRow, inner
 from reference_solver.layout import Layout
 from scenarios.gears import GearPair, RackPinion
 from scenarios.geometry import unit
@@ -20,14 +20,14 @@ class GearPairEquation(Equation):
         self.labels = (f"{gear.name}.mesh",)
         self.powers = (1,)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
         g = self.gear
         ri, rj = g.radius_i, (-g.radius_j if g.internal else g.radius_j)
         terms: dict[tuple[str, int], float] = {}
         for body, coefficient in ((g.gear_i, ri), (g.gear_j, rj), (g.carrier, -(ri + rj))):
             terms[(body, 2)] = terms.get((body, 2), 0.0) + coefficient
         constant = ri * g.theta0_i + rj * g.theta0_j - (ri + rj) * g.theta0_carrier
-        return (self.linear_row(q, terms, constant),)
+        return (self.linear_constraint_row(q, terms, constant),)
 
 
 class RackPinionEquation(Equation):
@@ -40,9 +40,11 @@ class RackPinionEquation(Equation):
         self.labels = (f"{gear.name}.mesh",)
         self.powers = (1,)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
         g = self.gear
         u = self.direction(q, qd, g.rack.body, self.axis)
         travel = inner(u, self.point(q, qd, g.rack) - self.point(q, qd, g.centre))
-        turn = self.linear_row(q, {(g.centre.body, 2): g.radius, (g.rack.body, 2): -g.radius}, -g.offset)
-        return (Row(travel.value - turn.value, travel.jac - turn.jac, travel.q_d),)
+        turn = self.linear_constraint_row(
+            q, {(g.centre.body, 2): g.radius, (g.rack.body, 2): -g.radius}, -g.offset
+        )
+        return (ConstraintRow(travel.value - turn.value, travel.jac - turn.jac, travel.q_d),)

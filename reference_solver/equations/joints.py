@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from reference_solver.equation import Equation
-from reference_solver.kinematic_vectors import Row, components, inner
+from reference_solver.kinematic_vectors import ConstraintRow, components, inner
 from reference_solver.layout import Layout
 from scenarios.geometry import unit
 from scenarios.joints import Ground, Prismatic, Revolute, RevoluteRevolute
@@ -20,9 +20,9 @@ class GroundEquation(Equation):
         self.labels = tuple(f"{joint.name}.{c}" for c in ("x", "y", "theta"))
         self.powers = (1, 1, 0)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
         body = self.joint.body
-        return tuple(self.linear_row(q, {(body, k): 1.0}, self.joint.pose[k]) for k in range(3))
+        return tuple(self.linear_constraint_row(q, {(body, k): 1.0}, self.joint.pose[k]) for k in range(3))
 
 
 class RevoluteEquation(Equation):
@@ -34,7 +34,7 @@ class RevoluteEquation(Equation):
         self.labels = (f"{joint.name}.x", f"{joint.name}.y")
         self.powers = (1, 1)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
         return components(self.point(q, qd, self.joint.p_i) - self.point(q, qd, self.joint.p_j))
 
 
@@ -49,9 +49,9 @@ class PrismaticEquation(Equation):
         self.labels = (f"{joint.name}.angle", f"{joint.name}.normal")
         self.powers = (0, 1)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
         j = self.joint
-        angle = self.linear_row(q, {(j.p_i.body, 2): 1.0, (j.p_j.body, 2): -1.0}, j.angle)
+        angle = self.linear_constraint_row(q, {(j.p_i.body, 2): 1.0, (j.p_j.body, 2): -1.0}, j.angle)
         h = self.direction(q, qd, j.p_i.body, self.normal)
         return angle, inner(h, self.point(q, qd, j.p_i) - self.point(q, qd, j.p_j))
 
@@ -65,7 +65,7 @@ class RevoluteRevoluteEquation(Equation):
         self.labels = (f"{joint.name}.length",)
         self.powers = (2,)
 
-    def rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[Row, ...]:
+    def constraint_rows(self, q: np.ndarray, qd: np.ndarray, t: float) -> tuple[ConstraintRow, ...]:
         d = self.point(q, qd, self.joint.p_i) - self.point(q, qd, self.joint.p_j)
         row = inner(d, d)
-        return (Row(row.value - self.joint.length**2, row.jac, row.q_d),)
+        return (ConstraintRow(row.value - self.joint.length**2, row.jac, row.q_d),)

@@ -14,6 +14,14 @@ import math
 import numpy as np
 from numba import njit
 
+from reference_solver.fast.constraint_rows import (
+    COMPONENT_X,
+    COMPONENT_Y,
+    DIRECTION,
+    INNER,
+    POINT,
+    PROFILE_POINT,
+)
 from reference_solver.fast.program import (
     DISC,
     K_KIND,
@@ -39,7 +47,6 @@ from reference_solver.fast.program import (
     X_TERM_SIGN,
     X_TERM_U,
 )
-from reference_solver.fast.rows import COMPONENT_X, COMPONENT_Y, DIRECTION, INNER, POINT, PROFILE_POINT
 from scenarios.cam_profiles import disc_radii, lobed_radii
 
 COS, SIN, VECTOR, ROW = 0, 1, 2, 4

@@ -11,8 +11,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from reference_solver.fast.constraint_rows import NotCompiled
 from reference_solver.fast.program import motion_code
-from reference_solver.fast.rows import NotCompiled
 from reference_solver.layout import Layout
 from scenarios.forces import AppliedForce, AppliedTorque, Force, RotationalSpringDamper, SpringDamper
 from scenarios.motions import Motion

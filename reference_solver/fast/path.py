@@ -17,10 +17,10 @@ import numpy as np
 
 from reference_solver.diagnostics import RANK_TOLERANCE
 from reference_solver.fast.cache_guard import refresh
+from reference_solver.fast.constraint_rows import NotCompiled
 from reference_solver.fast.loop import EVENTS, OK
 from reference_solver.fast.loop import run as run_kernel
 from reference_solver.fast.program import Program, compile_program
-from reference_solver.fast.rows import NotCompiled
 from reference_solver.layout import Layout
 from reference_solver.limits import ASSEMBLY_ITERATIONS, BACKTRACK_HALVINGS, SINGULAR_RCOND
 from reference_solver.solution import Analysis

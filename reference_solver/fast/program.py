@@ -15,16 +15,16 @@ from typing import NamedTuple
 import numpy as np
 
 from reference_solver.equation import Equation
-from reference_solver.fast.rows import (
+from reference_solver.fast.constraint_rows import (
     COMPONENT_X,
     COMPONENT_Y,
     POINT,
     PROFILE_POINT,
     PROFILE_TANGENT,
+    ConstraintRowSpec,
     NotCompiled,
-    RowSpec,
     Term,
-    rows_of,
+    constraint_rows_of,
 )
 from reference_solver.fast.structure import Band, StructurallySingular, band_of
 from reference_solver.system import ConstraintSystem
@@ -116,7 +116,7 @@ def profile_tables(profiles: list[Profile]) -> tuple[np.ndarray, np.ndarray]:
     return table, np.concatenate(blocks)
 
 
-def _pattern(spec: RowSpec, eq: Equation, linear: np.ndarray) -> set[int]:
+def _pattern(spec: ConstraintRowSpec, eq: Equation, linear: np.ndarray) -> set[int]:
     """The local slots where the row's Jacobian can be non-zero."""
     slots = {int(s) for s in np.flatnonzero(linear)}
     for term in spec.a + spec.b:
@@ -132,7 +132,7 @@ def _pattern(spec: RowSpec, eq: Equation, linear: np.ndarray) -> set[int]:
     return slots
 
 
-def _padded(spec: RowSpec) -> tuple[Term | None, ...]:
+def _padded(spec: ConstraintRowSpec) -> tuple[Term | None, ...]:
     if len(spec.a) > 2 or len(spec.b) > 2:
         raise NotCompiled("a row vector has more than two terms")
     return (*(*spec.a, None, None)[:2], *(*spec.b, None, None)[:2])
@@ -148,7 +148,7 @@ class _Rows:
         self.reals = np.zeros((m, REAL_COLUMNS))
         self.patterns: list[set[int]] = []
 
-    def add(self, r: int, spec: RowSpec, eq: Equation, reuse: bool) -> None:
+    def add(self, r: int, spec: ConstraintRowSpec, eq: Equation, reuse: bool) -> None:
         ints, reals = self.ints[r], self.reals[r]
         ints[K_KIND], ints[K_REUSE], ints[K_WIDTH] = spec.kind, reuse, eq.width
         ints[K_MOTION], params = motion_code(spec.motion)
@@ -250,7 +250,7 @@ def _instruction_rows(system: ConstraintSystem) -> _Rows:
     constraints = system.scenario.joints + system.scenario.drivers
     r = 0
     for constraint, eq in zip(constraints, system.equations, strict=True):
-        specs = rows_of(constraint)
+        specs = constraint_rows_of(constraint)
         assert len(specs) == eq.size, constraint
         if eq.width > WIDTH:
             raise NotCompiled(f"{eq.name} touches {eq.width} columns, more than {WIDTH}")

@@ -48,7 +48,7 @@ def linear() -> OneUnknown:
     return OneUnknown(lambda q: q - 0.5, lambda q: 1.0)
 
 
-def test_a_linear_row_converges_on_the_second_iteration_with_its_residual() -> None:
+def test_a_linear_constraint_row_converges_on_the_second_iteration_with_its_residual() -> None:
     # iteration 0: C = -0.5, step to 0.5; iteration 1: C = 0 but the step was 0.5; iteration 2: done
     result = newton(linear(), np.array([0.0]), 0.0, NewtonSettings())  # type: ignore[arg-type]
     assert result.converged is True and result.iterations == 2 and result.residual == 0.0

@@ -1,6 +1,7 @@
-"""Loop-closure, gear, cam and driver rows written with Pinocchio's frame placements, frame Jacobians
-(LOCAL_WORLD_ALIGNED, x and y rows only: the out-of-plane rows are dropped) and classical frame
-accelerations, on the unknowns z = [q ; phi] (joint coordinates, then one parameter per cam contact).
+"""Loop-closure, gear, cam and driver constraint rows written with Pinocchio's frame placements,
+frame Jacobians (LOCAL_WORLD_ALIGNED, x and y rows only: the out-of-plane rows are dropped) and
+classical frame accelerations, on the unknowns z = [q ; phi] (joint coordinates, then one parameter
+per cam contact).
 """
 
 from __future__ import annotations
@@ -165,8 +166,8 @@ def motions_of(driver: Driver) -> tuple[Motion, ...]:
 
 
 @dataclass(frozen=True)
-class Rows:
-    """The rows of a scenario that the Pinocchio tree does not satisfy by construction: loop
+class ConstraintRows:
+    """The constraint rows of a scenario that the Pinocchio tree does not satisfy by construction: loop
     closures (target zero) first, then drivers (target f(t))."""
 
     closures: tuple[object, ...]
@@ -175,7 +176,7 @@ class Rows:
     motions: tuple[Motion, ...]
 
     @classmethod
-    def of(cls, scenario: Scenario, pm: PinModel) -> Rows:
+    def of(cls, scenario: Scenario, pm: PinModel) -> ConstraintRows:
         items = {j.name: j for j in scenario.joints}
         contacts = {c.name: k for k, c in enumerate(scenario.cams)}
         motions = tuple(m for d in scenario.drivers for m in motions_of(d))

@@ -4,7 +4,7 @@
 
 where A and B are sums of signed terms (a point R + A u, a direction A u, a cam's profile point
 R + A u(phi) or its tangent A u'(phi)). Each function mirrors one equation class of the plain path
-(reference_solver.equations: joints, gears, cams, drivers) row for row.
+(reference_solver.equations: joints, gears, cams, drivers) constraint row for constraint row.
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ class Term:
 
 
 @dataclass(frozen=True)
-class RowSpec:
+class ConstraintRowSpec:
     kind: int
     a: tuple[Term, ...] = ()
     b: tuple[Term, ...] = ()
@@ -64,83 +64,93 @@ def _unit(v: Vec2) -> Vec2:
 
 
 def _components(vector: tuple[Term, ...], motions: tuple[Motion | None, Motion | None] = (None, None)):  # type: ignore[no-untyped-def]
-    return RowSpec(COMPONENT_X, vector, motion=motions[0]), RowSpec(COMPONENT_Y, vector, motion=motions[1])
+    return ConstraintRowSpec(COMPONENT_X, vector, motion=motions[0]), ConstraintRowSpec(
+        COMPONENT_Y, vector, motion=motions[1]
+    )
 
 
-def _ground(j: joints.Ground) -> tuple[RowSpec, ...]:
-    return tuple(RowSpec(NONLINEAR_NONE, linear=((j.body, k, 1.0),), constant=j.pose[k]) for k in range(3))
+def _ground(j: joints.Ground) -> tuple[ConstraintRowSpec, ...]:
+    return tuple(
+        ConstraintRowSpec(NONLINEAR_NONE, linear=((j.body, k, 1.0),), constant=j.pose[k]) for k in range(3)
+    )
 
 
-def _revolute(j: joints.Revolute) -> tuple[RowSpec, ...]:
+def _revolute(j: joints.Revolute) -> tuple[ConstraintRowSpec, ...]:
     return _components(_difference(j.p_i, j.p_j))  # type: ignore[no-any-return]
 
 
-def _prismatic(j: joints.Prismatic) -> tuple[RowSpec, ...]:
+def _prismatic(j: joints.Prismatic) -> tuple[ConstraintRowSpec, ...]:
     ax, ay = _unit(j.axis)
-    angle = RowSpec(NONLINEAR_NONE, linear=((j.p_i.body, 2, 1.0), (j.p_j.body, 2, -1.0)), constant=j.angle)
-    normal = RowSpec(INNER, (Term(DIRECTION, j.p_i.body, (-ay, ax)),), _difference(j.p_i, j.p_j))
+    angle = ConstraintRowSpec(
+        NONLINEAR_NONE, linear=((j.p_i.body, 2, 1.0), (j.p_j.body, 2, -1.0)), constant=j.angle
+    )
+    normal = ConstraintRowSpec(INNER, (Term(DIRECTION, j.p_i.body, (-ay, ax)),), _difference(j.p_i, j.p_j))
     return angle, normal
 
 
-def _revolute_revolute(j: joints.RevoluteRevolute) -> tuple[RowSpec, ...]:
+def _revolute_revolute(j: joints.RevoluteRevolute) -> tuple[ConstraintRowSpec, ...]:
     d = _difference(j.p_i, j.p_j)
-    return (RowSpec(INNER, d, d, constant=j.length**2),)
+    return (ConstraintRowSpec(INNER, d, d, constant=j.length**2),)
 
 
-def _gear_pair(g: gears.GearPair) -> tuple[RowSpec, ...]:
+def _gear_pair(g: gears.GearPair) -> tuple[ConstraintRowSpec, ...]:
     ri, rj = g.radius_i, (-g.radius_j if g.internal else g.radius_j)
     terms = ((g.gear_i, 2, ri), (g.gear_j, 2, rj), (g.carrier, 2, -(ri + rj)))
     constant = ri * g.theta0_i + rj * g.theta0_j - (ri + rj) * g.theta0_carrier
-    return (RowSpec(NONLINEAR_NONE, linear=terms, constant=constant),)
+    return (ConstraintRowSpec(NONLINEAR_NONE, linear=terms, constant=constant),)
 
 
-def _rack_pinion(g: gears.RackPinion) -> tuple[RowSpec, ...]:
+def _rack_pinion(g: gears.RackPinion) -> tuple[ConstraintRowSpec, ...]:
     axis = (Term(DIRECTION, g.rack.body, _unit(g.axis)),)
     turn = ((g.centre.body, 2, -g.radius), (g.rack.body, 2, g.radius))
-    return (RowSpec(INNER, axis, _difference(g.rack, g.centre), turn, constant=g.offset),)
+    return (ConstraintRowSpec(INNER, axis, _difference(g.rack, g.centre), turn, constant=g.offset),)
 
 
 def _profile(contact: cams.CamContact, kind: int, sign: float = 1.0) -> Term:
     return Term(kind, contact.cam, sign=sign, profile=contact.profile, contact=contact.name)
 
 
-def _knife_edge(c: cams.KnifeEdgeCam) -> tuple[RowSpec, ...]:
+def _knife_edge(c: cams.KnifeEdgeCam) -> tuple[ConstraintRowSpec, ...]:
     return _components((_profile(c, PROFILE_POINT), _point(c.tip, -1.0)))  # type: ignore[no-any-return]
 
 
-def _roller(c: cams.RollerCam) -> tuple[RowSpec, ...]:
+def _roller(c: cams.RollerCam) -> tuple[ConstraintRowSpec, ...]:
     n = (_point(c.centre), _profile(c, PROFILE_POINT, -1.0))
-    tangent = RowSpec(INNER, n, (_profile(c, PROFILE_TANGENT),))
-    return tangent, RowSpec(INNER, n, n, constant=c.roller_radius**2)
+    tangent = ConstraintRowSpec(INNER, n, (_profile(c, PROFILE_TANGENT),))
+    return tangent, ConstraintRowSpec(INNER, n, n, constant=c.roller_radius**2)
 
 
-def _flat_face(c: cams.FlatFaceCam) -> tuple[RowSpec, ...]:
+def _flat_face(c: cams.FlatFaceCam) -> tuple[ConstraintRowSpec, ...]:
     h = (Term(DIRECTION, c.face.body, _unit(c.normal)),)
-    tangent = RowSpec(INNER, h, (_profile(c, PROFILE_TANGENT),))
-    return tangent, RowSpec(INNER, h, (_profile(c, PROFILE_POINT), _point(c.face, -1.0)))
+    tangent = ConstraintRowSpec(INNER, h, (_profile(c, PROFILE_TANGENT),))
+    return tangent, ConstraintRowSpec(INNER, h, (_profile(c, PROFILE_POINT), _point(c.face, -1.0)))
 
 
 COORDINATES = {"x": 0, "y": 1, "theta": 2}
 
 
-def _absolute(d: drivers.AbsoluteDriver) -> tuple[RowSpec, ...]:
-    return (RowSpec(NONLINEAR_NONE, linear=((d.body, COORDINATES[d.coordinate], 1.0),), motion=d.motion),)
+def _absolute(d: drivers.AbsoluteDriver) -> tuple[ConstraintRowSpec, ...]:
+    return (
+        ConstraintRowSpec(
+            NONLINEAR_NONE, linear=((d.body, COORDINATES[d.coordinate], 1.0),), motion=d.motion
+        ),
+    )
 
 
-def _relative_rotation(d: drivers.RelativeRotationDriver) -> tuple[RowSpec, ...]:
+def _relative_rotation(d: drivers.RelativeRotationDriver) -> tuple[ConstraintRowSpec, ...]:
     terms = ((d.body_i, 2, 1.0), (d.body_j, 2, -1.0))
-    return (RowSpec(NONLINEAR_NONE, linear=terms, motion=d.motion),)
+    return (ConstraintRowSpec(NONLINEAR_NONE, linear=terms, motion=d.motion),)
 
 
-def _point_path(d: drivers.PointPathDriver) -> tuple[RowSpec, ...]:
+def _point_path(d: drivers.PointPathDriver) -> tuple[ConstraintRowSpec, ...]:
     return _components((_point(d.point),), (d.motion_x, d.motion_y))  # type: ignore[no-any-return]
 
 
-def _relative_displacement(d: drivers.RelativeDisplacementDriver) -> tuple[RowSpec, ...]:
+def _relative_displacement(d: drivers.RelativeDisplacementDriver) -> tuple[ConstraintRowSpec, ...]:
     return _components(_difference(d.p_i, d.p_j), (d.motion_x, d.motion_y))  # type: ignore[no-any-return]
 
 
-ROWS: dict[type, Callable[..., tuple[RowSpec, ...]]] = {
+CONSTRAINT_ROWS: dict[type, Callable[..., tuple[ConstraintRowSpec, ...]]] = {
     joints.Ground: _ground,
     joints.Revolute: _revolute,
     joints.Prismatic: _prismatic,
@@ -157,9 +167,9 @@ ROWS: dict[type, Callable[..., tuple[RowSpec, ...]]] = {
 }
 
 
-def rows_of(constraint: Constraint) -> tuple[RowSpec, ...]:
-    """The rows of one constraint, in the plain path's order."""
+def constraint_rows_of(constraint: Constraint) -> tuple[ConstraintRowSpec, ...]:
+    """The constraint rows of one constraint, in the plain path's order."""
     try:
-        return ROWS[type(constraint)](constraint)
+        return CONSTRAINT_ROWS[type(constraint)](constraint)
     except KeyError:
         raise NotCompiled(f"no fast kernel for {type(constraint).__name__}") from None
