@@ -249,7 +249,7 @@ def march(
     if len(times) == 1:
         return start, 0
     if plan.solver == "STATIC":
-        return _static_sweep(model, times, settings, plan.tolerance), len(times) - 1
+        return _static_load_steps(model, times, settings, plan.tolerance), len(times) - 1
     return _integrate(model, plan, times, settings)
 
 
@@ -341,7 +341,8 @@ def _on_grid(lattice: States, times: np.ndarray, h: float) -> States:
     return out
 
 
-def _static_sweep(model: ExudynModel, times: np.ndarray, settings: Any, tolerance: float) -> States:
+def _static_load_steps(model: ExudynModel, times: np.ndarray, settings: Any, tolerance: float) -> States:
+    """The static solve at each grid time, as Exudyn's load steps (one per grid interval)."""
     static = settings.staticSolver
     static.newton.relativeTolerance, static.newton.absoluteTolerance = tolerance, tolerance
     static.numberOfLoadSteps = len(times) - 1
