@@ -42,7 +42,7 @@ def kernels(built: Built) -> tuple[float, float]:
     tau = solver.tau(0.0, q, v)
     if isinstance(solver, RowDynamicSolver):
         jac = np.zeros((0, model.nv))
-        rows = solver.all_rows.evaluate(built.kinematics.snapshot(q, v))
+        rows = solver.all_constraint_rows.evaluate(built.kinematics.snapshot(q, v))
         jac, gamma = rows.jac, rows.drift
         dynamics = per_call(lambda: pin.forwardDynamics(model, data, q, v, tau, jac, gamma, 0.0))
     elif solver.cmodels:
