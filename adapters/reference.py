@@ -76,7 +76,7 @@ class ReferenceAdapter(Adapter):
             int,
             0,
             1,
-            help="dynamics: 1 (default) the compiled right-hand side, 0 the plain one (each checks the other)",
+            help="dynamics: 1 (default) the compiled right-hand side, 0 the plain one, which checks it",
         ),
     )
     dynamics = True

@@ -70,7 +70,9 @@ class CompiledPartitioned(Partitioned):
 
     def anchor(self, t: float, y: np.ndarray) -> None:
         k = self.kernels
-        if not (self.vec[k.TIMES, 0] == t and np.array_equal(self.vec[k.Q, self.independent], y[: self.size])):
+        if not (
+            self.vec[k.TIMES, 0] == t and np.array_equal(self.vec[k.Q, self.independent], y[: self.size])
+        ):
             self.positions(t, y[: self.size])
         k.anchor(self.index, self.vec, self.jacs, self.matrices)
 

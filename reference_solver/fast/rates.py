@@ -138,9 +138,7 @@ def partitioned(  # type: ignore[no-untyped-def]
     for k in range(f):
         qt[ind[k]] = y[k]
     previous, residual, converged = math.inf, math.inf, False
-    chord = (
-        sizes[S_HAS_FACTORS] != 0 and sizes[S_CHORD] != 0
-    )  # the anchor's factors, while they contract
+    chord = sizes[S_HAS_FACTORS] != 0 and sizes[S_CHORD] != 0  # the anchor's factors, while they contract
     for _ in range(sizes[S_NEWTON]):
         evaluate(ints, reals, qt, zero, t, c, q_d, jt, work, scratch, us)
         residual = _scaled_max(c, scales, m)
