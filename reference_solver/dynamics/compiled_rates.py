@@ -84,10 +84,12 @@ class CompiledPartitioned(Partitioned):
     def _retry(self, status: int, level: int, t: float, y: np.ndarray, out: np.ndarray) -> None:
         """An unconverged call once more as the plain path makes it, from the tangent predictor with
         C_D factored at every iteration (no chord), and stalled accepted below RETRY_STALLED rather
-        than STALLED; raises if that fails too. Measured on slider_crank_spring/undamped at rtol
-        1e-6: Newton on the compiled rows stalled at 3.9e-12 at t=0.78, where the plain rows' round-
-        off let it stop below 1e-12; and plain Newton from the last converged q, without the
-        predictor, found the mechanism's other assembly there (its error went from 3e-3 to 24)."""
+        than STALLED; raises if that fails too. It was added for slider_crank_spring/undamped at
+        rtol 1e-6, where Newton on the compiled rows stalled at 3.9e-12 at t=0.78: a symptom of
+        Newton started from rejected trial stages (the rod's angle had wandered to -1.9e5 rad, where
+        sin and cos carry 3e-11 of round-off). Since Newton starts from the last accepted step
+        (`anchor`), no call of the dynamics suite's scenes at rtol 1e-6, 1e-8 or 1e-10 reaches it
+        (counted); it stays as the plain path's own Newton behind the chord."""
         residual = math.nan
         k = self.kernels
         if status == k.NOT_CONVERGED:
