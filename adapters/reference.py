@@ -37,7 +37,7 @@ class ReferenceModel:
     mode: str = "newton"
     inverse: bool = False
     step: float | None = None
-    compiled: bool = False
+    compiled: bool = True
 
 
 class ReferenceAdapter(Adapter):
@@ -75,7 +75,7 @@ class ReferenceAdapter(Adapter):
             int,
             0,
             1,
-            help="dynamics: 1 the compiled right-hand side (about 60x faster), 0 (default) the plain one",
+            help="dynamics: 1 (default) the compiled right-hand side, 0 the plain one, which checks it",
         ),
     )
     dynamics = True
@@ -103,7 +103,7 @@ class ReferenceAdapter(Adapter):
             raise EngineFailure(f"mode '{setting.mode}' does not apply to {scenario.name} (known: {known})")
         tolerance = float(setting.get("rtol" if dynamic else "tolerance", 1e-12))
         step = float(setting.get("dt", ALI3P_STEP)) if setting.mode == ALI3P else None
-        inverse, compiled = bool(setting.get("inverse_dynamics", 0)), bool(setting.get("compiled", 0))
+        inverse, compiled = bool(setting.get("inverse_dynamics", 0)), bool(setting.get("compiled", 1))
         return ReferenceModel(scenario, tolerance, setting.mode, inverse, step, compiled)
 
     def simulate(self, model: ReferenceModel, times: np.ndarray) -> Trajectory:

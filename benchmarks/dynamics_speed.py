@@ -8,6 +8,9 @@ Right-hand sides per second are printed for the plain path (`simulate`'s default
 one (`fast=True`: reference_solver.compiled_system's constraints, the whole right-hand side in one
 numba call, reference_solver.dynamics.compiled_rates), with their ratio; the two take turns in each
 repeat, so that the ratio is measured side by side; the dynamics column is the compiled path.
+Those rates divide the whole integration by its right-hand sides, scipy's own step included; the
+`call` columns time the right-hand-side call alone, plain and compiled in turns, over the calls of
+one integration replayed (benchmarks.rhs_replay), and their ratio.
 
 Forward dynamics: coordinate partitioning with DOP853 at rtol 1e-12 (truth quality); its cost per
 point depends on how many integrator steps fall between output points, so the right-hand-side
@@ -23,6 +26,7 @@ from collections.abc import Callable
 from functools import partial
 
 import scenarios
+from benchmarks.rhs_replay import rhs_seconds
 from reference_solver import analyse
 from reference_solver.dynamics import simulate
 
@@ -60,7 +64,7 @@ def main(argv: list[str] | None = None) -> None:
     print(f"microseconds per output point ({POINTS} points over each horizon); best of {args.repeats}")
     header = (
         f"{'scenario':<22}{'n':>4}{'dynamics':>12}{'evals/pt':>10}{'rhs/s plain':>13}{'compiled':>10}"
-        f"{'ratio':>7}{'kinematic':>12}{'fast':>10}"
+        f"{'ratio':>7}{'call us plain':>15}{'compiled':>10}{'ratio':>7}{'kinematic':>12}{'fast':>10}"
     )
     print(header + "  (kinematic family)")
     for name, kinematic in PAIRS:
@@ -73,6 +77,8 @@ def main(argv: list[str] | None = None) -> None:
         dynamic, unfast = min(compiled) / (POINTS + 1), min(plain_runs) / (POINTS + 1)
         per_point = evaluations / (POINTS + 1)
         rates = f"{per_point / unfast:13.0f}{per_point / dynamic:10.0f}{unfast / dynamic:7.1f}"
+        slow_call, fast_call = rhs_seconds(scenario, grid, args.repeats)
+        calls = f"{1e6 * slow_call:15.0f}{1e6 * fast_call:10.1f}{slow_call / fast_call:7.0f}"
         plain = fast = "-"
         if kinematic is not None:
             driven = scenarios.build(kinematic)
@@ -82,7 +88,7 @@ def main(argv: list[str] | None = None) -> None:
             plain, fast = f"{1e6 * slow / (POINTS + 1):12.0f}", f"{1e6 * quick / (POINTS + 1):10.0f}"
         size = 3 * len(scenario.bodies)
         print(
-            f"{name:<22}{size:>4}{1e6 * dynamic:12.0f}{per_point:10.1f}{rates}"
+            f"{name:<22}{size:>4}{1e6 * dynamic:12.0f}{per_point:10.1f}{rates}{calls}"
             f"{plain:>12}{fast:>10}  ({kinematic or '-'})"
         )
 

@@ -43,7 +43,7 @@ class CompiledPartitioned(Partitioned):
         n, m, f = system.unknowns, system.size, independent.size
         self.n, self.m = n, m
         self.vec = np.zeros((k.VECTORS, n + m))
-        self.vec[k.Q, :n], self.vec[k.GRAVITY, :n], self.vec[k.MASS, :n] = q, forces.gravity, mass
+        self.vec[k.GRAVITY, :n], self.vec[k.MASS, :n] = forces.gravity, mass
         self.vec[k.ROW_SCALE, :m], self.vec[k.COL_SCALE, :n] = system.row_scales, system.column_scales
         self.vec[k.TOL, :2] = RESIDUAL, STALLED
         self.index = np.zeros((k.INDICES, max(n, m, 7)), np.int64)
@@ -51,19 +51,30 @@ class CompiledPartitioned(Partitioned):
         drivers = int(system.offsets[len(system.scenario.joints)])
         sizes = [k.S_N, k.S_M, k.S_F, k.S_DRIVERS, k.S_NEWTON, k.S_CHORD]
         self.index[k.SIZES, sizes] = n, m, f, drivers, NEWTON_STEPS, 1
-        self.jacs = np.zeros((2, m * n))
+        self.jacs = np.zeros((k.JACOBIANS, m * n))
         side, width = max(m, f), max(len(system.layout.bodies), WIDTH)
-        matrices, work = np.zeros((k.MATRICES, side, side)), np.zeros((k.POINTS + 2, width))
+        self.matrices, work = np.zeros((k.MATRICES, side, side)), np.zeros((k.POINTS + 2, width))
         self.arguments = (
             *(program.ints, program.reals, forces.ints, forces.reals, self.index, self.vec, self.jacs),
-            *(matrices, work, np.zeros((2, 2, WIDTH)), np.zeros((0, 4, 2))),
+            *(self.matrices, work, np.zeros((2, 2, WIDTH)), np.zeros((0, 4, 2))),
         )
         self.nothing = np.zeros(0)
         self.partitioned, self.outputs, self.level, self.ok = k.partitioned, 2 * f + 3, k.RATES, k.OK
+        self.restart(q)
 
     def restart(self, q: np.ndarray) -> None:
-        self.vec[self.kernels.Q, : self.n] = q
-        self.index[self.kernels.SIZES, self.kernels.S_HAS_FACTORS] = 0
+        k = self.kernels
+        self.vec[k.Q, : self.n] = self.vec[k.Q_ANCHOR, : self.n] = q
+        self.vec[k.TIMES, 0] = math.nan
+        self.index[k.SIZES, k.S_HAS_FACTORS] = 0
+
+    def anchor(self, t: float, y: np.ndarray) -> None:
+        k = self.kernels
+        if not (
+            self.vec[k.TIMES, 0] == t and np.array_equal(self.vec[k.Q, self.independent], y[: self.size])
+        ):
+            self.positions(t, y[: self.size])
+        k.anchor(self.index, self.vec, self.jacs, self.matrices)
 
     def _run(self, level: int, t: float, y: np.ndarray, out: np.ndarray) -> None:
         status, _ = self.partitioned(level, t, y, out, *self.arguments)
@@ -73,10 +84,12 @@ class CompiledPartitioned(Partitioned):
     def _retry(self, status: int, level: int, t: float, y: np.ndarray, out: np.ndarray) -> None:
         """An unconverged call once more as the plain path makes it, from the tangent predictor with
         C_D factored at every iteration (no chord), and stalled accepted below RETRY_STALLED rather
-        than STALLED; raises if that fails too. Measured on slider_crank_spring/undamped at rtol
-        1e-6: Newton on the compiled rows stalled at 3.9e-12 at t=0.78, where the plain rows' round-
-        off let it stop below 1e-12; and plain Newton from the last converged q, without the
-        predictor, found the mechanism's other assembly there (its error went from 3e-3 to 24)."""
+        than STALLED; raises if that fails too. It was added for slider_crank_spring/undamped at
+        rtol 1e-6, where Newton on the compiled rows stalled at 3.9e-12 at t=0.78: a symptom of
+        Newton started from rejected trial stages (the rod's angle had wandered to -1.9e5 rad, where
+        sin and cos carry 3e-11 of round-off). Since Newton starts from the last accepted step
+        (`anchor`), no call of the dynamics suite's scenes at rtol 1e-6, 1e-8 or 1e-10 reaches it
+        (counted); it stays as the plain path's own Newton behind the chord."""
         residual = math.nan
         k = self.kernels
         if status == k.NOT_CONVERGED:

@@ -2,19 +2,24 @@
 steps of reference_solver.dynamics.partition (positions, rates, state) over the compiled
 constraint rows (fast.evaluate), force elements (fast.load_kernel) and small dense LU (fast.dense_lu).
 
-    positions  the tangent predictor C_D dq_D = -(C_I dq_I + C_t(t) - C_t(t_last)), then Newton on
+    positions  from the anchor (the configuration of the integrator's last accepted step), the
+               tangent predictor C_D dq_D = -(C_I dq_I + C_t(t) - C_t(t_anchor)), then Newton on
                the dependent coordinates until C holds to RESIDUAL (scaled) or stalls below STALLED;
-               its corrections use the last converged LU of C_D (a chord method) while each cuts
-               the residual to CHORD_CONTRACTION of the one before, C_D's own LU from the first
-               one that does not (the plain path factors at every iteration); C_D is factored
-               where Newton stops, for what follows
+               its corrections use the anchor's LU of C_D (a chord method) while each cuts the
+               residual to CHORD_CONTRACTION of the one before, C_D's own LU from the first one
+               that does not (the plain path factors at every iteration); C_D is factored where
+               Newton stops, for what follows
     rates      C_D q'_D = -C_t - C_I q'_I
     state      Q_d, Q_e, and q'', lambda from M q'' + C_q^T lambda = Q_e, C_q q'' = Q_d, reduced to
                the independent accelerations through C_D's LU (the plain path solves the augmented
                matrix whole: each checks the other)
 
-`partitioned` does them up to `level` and keeps the last converged q, C_q and LU of C_D in its
-arguments for the next call, as Partitioned does in its attributes. Every array is made by the
+`partitioned` does them up to `level` and keeps the converged q, C_q and LU of C_D in its
+arguments; `anchor` makes them the next calls' start once the integrator accepts a step, as
+Partitioned does in its attributes. Starting every call from the last evaluation instead let a
+rejected trial stage far off the motion (slider_crank_spring/undamped at rtol 1e-6: the crank's
+rate 1764 rad/s in a stage against 92 in the step before) carry Newton onto the mechanism's other
+assembly for every later stage. Every array is made by the
 caller (fast.rates' caller, dynamics.compiled_rates); the rows of `vec` are the vectors below.
 """
 
@@ -52,28 +57,33 @@ OK, NOT_CONVERGED, SINGULAR = 0, 1, 2
     RHS,
     TOTALS,
     TOL,
-) = range(19)
+    Q_ANCHOR,
+    CT_ANCHOR,
+    TIMES,
+) = range(22)
 CHORD_CONTRACTION = 0.01
 """A chord step must cut Newton's residual to this fraction or less, else C_D is factored anew
 (measured: a fresh chord contracts by 1e-3 to 2e-3 a step; after a long jump of the integrator's
 trial state, by 0.09, which ran out of iterations at 1.2e-14 on four_bar_gravity)."""
-VECTORS = 19
+VECTORS = 22
 """Rows of `vec`, each n + m long: Q the last converged positions, QT Newton's iterate, TOTALS the
-potential energy, applied power and dissipation of the last state, TOL Newton's (RESIDUAL, STALLED)."""
-IND, DEP, SIZES, PIV, PIV_TRIAL, RPIV = range(6)
-INDICES = 6
+potential energy, applied power and dissipation of the last state, TOL Newton's (RESIDUAL, STALLED),
+Q_ANCHOR and CT_ANCHOR the anchor's q and C_t, TIMES the time of Q (entry 0)."""
+IND, DEP, SIZES, PIV, PIV_TRIAL, RPIV, PIV_ANCHOR = range(7)
+INDICES = 7
 """Rows of `index`: the independent and dependent columns, the sizes below, the row swaps of the
-LU factors in `mats` (LU and LU_TRIAL) and of the reduced mass matrix."""
+LU factors in `mats` (LU, LU_TRIAL and LU_ANCHOR) and of the reduced mass matrix."""
 S_N, S_M, S_F, S_DRIVERS, S_NEWTON, S_HAS_FACTORS, S_CHORD = range(7)
 """Entries of index[SIZES]: coordinates, rows, independent coordinates, first driver row, Newton's
-iteration limit, whether the last converged factors exist (the predictor's), and whether Newton
-may correct with them (the chord; 0: C_D factored at every iteration, as the plain path does)."""
-LAST, TRIAL = 0, 1
-"""The two slots of `jacs`: the last converged C_q and Newton's (flat, row-major)."""
-LU, LU_TRIAL, REDUCED, X = range(4)
-MATRICES = 4
+iteration limit, whether the anchor has factors (the predictor's), and whether Newton may correct
+with them (the chord; 0: C_D factored at every iteration, as the plain path does)."""
+LAST, TRIAL, ANCHOR = 0, 1, 2
+JACOBIANS = 3
+"""The slots of `jacs`: the last converged C_q, Newton's and the anchor's (flat, row-major)."""
+LU, LU_TRIAL, REDUCED, X, LU_ANCHOR = range(5)
+MATRICES = 5
 """Slots of `mats`, each max(m, f) square: C_D's last converged LU factors and Newton's, the reduced
-mass matrix and X = C_D^-1 C_I."""
+mass matrix, X = C_D^-1 C_I and the anchor's LU factors of C_D."""
 POINTS = 5
 """Rows POINTS, POINTS + 1 of `work` (after evaluate's) hold the load kernel's point scratch."""
 
@@ -97,13 +107,14 @@ def partitioned(  # type: ignore[no-untyped-def]
     dissipation, driver power). Returns the status (OK, NOT_CONVERGED, SINGULAR) and the last scaled
     constraint residual. Long on purpose: one right-hand side is one compiled call, its steps
     (predictor, Newton, rates, the reduced solve) marked by comments as in the module's docstring."""
-    ind, dep, sizes, piv, pt, rpiv = (
+    ind, dep, sizes, piv, pt, rpiv, pa = (
         index[IND],
         index[DEP],
         index[SIZES],
         index[PIV],
         index[PIV_TRIAL],
         index[RPIV],
+        index[PIV_ANCHOR],
     )
     n, m, f = sizes[S_N], sizes[S_M], sizes[S_F]
     lu, lt, reduced, x, tol = mats[LU], mats[LU_TRIAL], mats[REDUCED], mats[X], vec[TOL]
@@ -111,24 +122,23 @@ def partitioned(  # type: ignore[no-untyped-def]
     ct, ct_last, move = vec[CT], vec[CT_LAST], vec[MOVE]
     jac, jt = jacs[LAST], jacs[TRIAL]
     c, q_d, scales = vec[C], vec[Q_D], vec[ROW_SCALE]
+    qa, ja, la = vec[Q_ANCHOR, :n], jacs[ANCHOR], mats[LU_ANCHOR]
     for i in range(n):
-        qt[i] = q[i]
+        qt[i] = qa[i]
     if sizes[S_HAS_FACTORS]:  # tangent predictor
         c_t(ints, reals, t, ct)
         for r in range(m):
             s = 0.0
             for k in range(f):
-                s += jac[r * n + ind[k]] * (y[k] - q[ind[k]])
-            move[r] = s + ct[r] - ct_last[r]
-        lu_solve(lu, m, piv, move)
+                s += ja[r * n + ind[k]] * (y[k] - qa[ind[k]])
+            move[r] = s + ct[r] - vec[CT_ANCHOR, r]
+        lu_solve(la, m, pa, move)
         for k in range(m):
             qt[dep[k]] -= move[k]
     for k in range(f):
         qt[ind[k]] = y[k]
     previous, residual, converged = math.inf, math.inf, False
-    chord = (
-        sizes[S_HAS_FACTORS] != 0 and sizes[S_CHORD] != 0
-    )  # the last converged factors, while they contract
+    chord = sizes[S_HAS_FACTORS] != 0 and sizes[S_CHORD] != 0  # the anchor's factors, while they contract
     for _ in range(sizes[S_NEWTON]):
         evaluate(ints, reals, qt, zero, t, c, q_d, jt, work, scratch, us)
         residual = _scaled_max(c, scales, m)
@@ -146,7 +156,7 @@ def partitioned(  # type: ignore[no-untyped-def]
         for r in range(m):
             move[r] = c[r]
         if chord:
-            lu_solve(lu, m, piv, move)
+            lu_solve(la, m, pa, move)
         else:
             lu_solve(lt, m, pt, move)
         for k in range(m):
@@ -162,7 +172,7 @@ def partitioned(  # type: ignore[no-untyped-def]
         for k in range(m):
             lu[r, k] = lt[r, k]
     c_t(ints, reals, t, ct_last)
-    sizes[S_HAS_FACTORS] = 1
+    vec[TIMES, 0] = t
     if level == POSITIONS:
         return OK, residual
 
@@ -195,6 +205,22 @@ def partitioned(  # type: ignore[no-untyped-def]
         out[k], out[f + k] = qd[ind[k]], qdd[ind[k]]
     out[2 * f], out[2 * f + 1], out[2 * f + 2] = totals[1], totals[2], power
     return OK, residual
+
+
+@njit(cache=True, error_model="numpy")
+def anchor(index, vec, jacs, mats):  # type: ignore[no-untyped-def]
+    """The last converged q, C_t, C_q and LU of C_D become the start of the calls that follow."""
+    n, m = index[SIZES, S_N], index[SIZES, S_M]
+    for i in range(n):
+        vec[Q_ANCHOR, i] = vec[Q, i]
+    for r in range(m):
+        vec[CT_ANCHOR, r] = vec[CT_LAST, r]
+        index[PIV_ANCHOR, r] = index[PIV, r]
+        for k in range(m):
+            mats[LU_ANCHOR, r, k] = mats[LU, r, k]
+    for i in range(m * n):
+        jacs[ANCHOR, i] = jacs[LAST, i]
+    index[SIZES, S_HAS_FACTORS] = 1
 
 
 @njit(cache=True, error_model="numpy")

@@ -66,13 +66,13 @@ def test_the_two_native_dynamic_methods_check_each_other_through_the_contract() 
 
 
 def test_the_compiled_and_the_plain_right_hand_side_give_one_motion_through_the_contract() -> None:
-    """The native engine's dynamics run the plain right-hand side unless `compiled=1`: both on
+    """The native engine's dynamics run the compiled right-hand side unless `compiled=0`: both on
     the four-bar under gravity at rtol 1e-12 agree to rtol's order (positions over the
     characteristic length, velocities and accelerations over their own largest values)."""
     engine = adapters.load("reference")
     scenario = scenarios.build("four_bar_gravity", overrides={"t_end": 0.5, "steps": 20})
-    compiled = engine.run(scenario, Setting.of("DOP853", rtol=1e-12, compiled=1)).trajectory
-    plain = engine.run(scenario, Setting.of("DOP853", rtol=1e-12)).trajectory
+    compiled = engine.run(scenario, Setting.of("DOP853", rtol=1e-12)).trajectory
+    plain = engine.run(scenario, Setting.of("DOP853", rtol=1e-12, compiled=0)).trajectory
     assert compiled is not None and plain is not None
     for level in ("position", "velocity", "acceleration"):
         a, b = getattr(compiled, level), getattr(plain, level)
