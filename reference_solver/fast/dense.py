@@ -53,11 +53,12 @@ class DenseKernels:
         return c, store.reshape(self.rows, self.columns), q_d
 
     def residuals(self, qs: np.ndarray, times: np.ndarray, row_scales: np.ndarray) -> np.ndarray:
-        """The largest scaled |C| at each (qs[k], times[k]) (`residuals`)."""
+        """The largest scaled |C| at each (qs[k], times[k]) (`residuals`), in scratch of its own: a
+        system kept for many trajectories may be asked from more than one thread."""
         out = np.empty(len(times))
         qs, times = np.ascontiguousarray(qs, dtype=float), np.ascontiguousarray(times, dtype=float)
-        p = self.program
-        residuals(p.ints, p.reals, qs, times, row_scales, out, self.work, self.scratch, self.points)
+        p, work, scratch = self.program, np.zeros_like(self.work), np.zeros_like(self.scratch)
+        residuals(p.ints, p.reals, qs, times, row_scales, out, work, scratch, self.points)
         return out
 
     def c_t(self, t: float) -> np.ndarray:
