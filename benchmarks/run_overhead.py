@@ -15,12 +15,22 @@ issue's target names (the native sweep in at most 3 times a one-point solve).
 
 The per-run overhead the issue bounds (10 ms beyond the run's own time) is measured apart, on the
 same sweep run by a Runner in this process: its run phase (no start-up, no report), less the
-truths' time (one per sweep point, timed apart) and the work, over the rows.
+truths' time (one per sweep point, timed apart) and the work, over the rows. On a shared machine
+that wall time mostly measures the other processes (a run waits for a core before and after each
+hand-over between this process and its worker), so the same overhead is also given in CPU time:
+this process's CPU less the truths', plus the worker children's CPU less what they spent inside
+the timed runs (build, warm-up and repeats), over the rows: what the harness itself computes.
+
+The native + MuJoCo sweep of the issue's target, serial and on a local Dask cluster:
+
+    python -m benchmarks.run_overhead --engines reference,mujoco --points 200 --workers 2 --scenarios 0
 """
 
 from __future__ import annotations
 
 import argparse
+import multiprocessing
+import resource
 import subprocess
 import sys
 import tempfile
@@ -29,6 +39,7 @@ from pathlib import Path
 
 import numpy as np
 
+from reports.harness import group_runs
 from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import RunConfig, Runner
 from reports.harness.suites import Suite, main_scenarios
@@ -55,31 +66,69 @@ def work_of(out: Path) -> tuple[int, float, float]:
 
 
 def run_phase(label: str, names: list[str], engines: list[str], suite: Suite, out: Path) -> None:
-    """The per-run overhead of the run phase, in this process: wall - truths - work, per row."""
-    spent = [0.0]
+    """The per-run overhead of the run phase, in this process: wall - truths - work, per row; and
+    in CPU time (see the module's docstring)."""
+    spent, spent_cpu = [0.0], [0.0]
     truth = suite.truth or independent_truth
 
     def timed_truth(scenario: Scenario, times: np.ndarray) -> Trajectory | NamedTruth:
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), time.process_time()
         try:
             return truth(scenario, times)
         finally:
             spent[0] += time.perf_counter() - start
+            spent_cpu[0] += time.process_time() - cpu
 
     config = RunConfig(suite.ladder, suite.repeats, suite.warmup, suite.timeout)
     store = ResultsStore(out)
     runner = Runner(store, engines, config, truth=timed_truth, progress=False, settings=suite.settings)
-    start = time.perf_counter()
-    runner.run(names)
-    seconds = time.perf_counter() - start
+    timed_cpu = multiprocessing.get_context("fork").Value("d", 0.0)  # shared with the forked workers
+    timed_run = group_runs.timed_run
+
+    def cpu_timed_run(*arguments: object, **keywords: object) -> object:
+        cpu = time.process_time()
+        try:
+            return timed_run(*arguments, **keywords)  # type: ignore[arg-type]
+        finally:
+            with timed_cpu.get_lock():
+                timed_cpu.value += time.process_time() - cpu
+
+    group_runs.timed_run = cpu_timed_run  # type: ignore[assignment]
+    children_before = _children_cpu()
+    start, cpu = time.perf_counter(), time.process_time()
+    try:
+        runner.run(names)
+    finally:
+        group_runs.timed_run = timed_run
+    seconds, parent_cpu = time.perf_counter() - start, time.process_time() - cpu
+    for child in multiprocessing.active_children():  # the released workers: reaped, their CPU counted
+        child.join(10.0)
+    children_cpu = _children_cpu() - children_before
     count, _, work = work_of(out)
-    per_run = (seconds - spent[0] - work) / max(count, 1)
+    rows = max(count, 1)
+    per_run = (seconds - spent[0] - work) / rows
+    parent_part = (parent_cpu - spent_cpu[0]) / rows
+    child_part = (children_cpu - timed_cpu.value) / rows
     print(
         f"{label}, run phase in-process: {count} rows in {seconds:.2f} s, of which truths "
         f"{spent[0]:.2f} s ({1000 * spent[0] / max(len(names), 1):.0f} ms per scenario) "
         f"and work {work:.3f} s; "
-        f"overhead {1000 * per_run:.1f} ms per run (target: at most 10)"
+        f"overhead {1000 * per_run:.1f} ms per run (target: at most 10); in CPU time "
+        f"{1000 * (parent_part + child_part):.1f} ms per run (this process {1000 * parent_part:.1f}, "
+        f"workers {1000 * child_part:.1f}); load {_load()}"
     )
+
+
+def _children_cpu() -> float:
+    """CPU seconds of this process's reaped children."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def _load() -> str:
+    """The 1-minute load average (other processes share the cores)."""
+    with open("/proc/loadavg") as loadavg:
+        return loadavg.read().split()[0]
 
 
 def measure(label: str, arguments: list[str], out: Path) -> dict[str, float]:

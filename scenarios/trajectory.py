@@ -61,6 +61,10 @@ class Trajectory:
 
     def to_frame(self) -> pd.DataFrame:
         """Column t, then <body>.x <body>.y <body>.theta <body>.vx ... per body, then extras."""
+        return pd.DataFrame(self.columns())
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The columns of `to_frame` by name, as arrays (without building a frame)."""
         data: dict[str, np.ndarray] = {"t": np.asarray(self.times, dtype=float)}
         for k, body in enumerate(self.bodies):
             for level, names in COLUMNS.items():
@@ -69,7 +73,7 @@ class Trajectory:
                     for c, name in enumerate(names):
                         data[f"{body}.{name}"] = values[:, k, c]
         data.update(self.extras)
-        return pd.DataFrame(data)
+        return data
 
     @classmethod
     def from_frame(cls, frame: pd.DataFrame) -> Trajectory:

@@ -7,6 +7,7 @@ group runs the same in the Runner and in a Dask task."""
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import functools
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -63,14 +64,11 @@ def run_group(
     """The rows of one scenario-engine group: each job run isolated (a crash or a hang costs its
     row), timed and compared with the truth; `done(label)` after each. The runs are made by the
     engine's warm worker in `workers` (kept for the next group; by default, a worker for this group
-    alone). This process warms the scenario first: a worker forked from now on (the first, or one
-    after a crash) inherits it; a worker kept from an earlier group warms it in its child, in the
-    untimed warm-up run. Stores nothing, so that it runs the same here and in a Dask task."""
+    alone). Stores nothing, so that it runs the same here and in a Dask task."""
     timed_out: set[str] = set()
     out: list[Stored] = []
     if not jobs:
         return out
-    warm(group.scenario)  # before a fork: a worker inherits the kernels and the program
     with contextlib.ExitStack() as stack:
         if workers is None:
             workers = stack.enter_context(Workers(config, residual))
@@ -79,7 +77,7 @@ def run_group(
                 message = "not run: a cheaper setting of this mode hit the time limit"
                 out.append((failure(group, setting, is_default, "timeout", message), None))
             else:
-                outcome = workers.measure(group, truth, setting)
+                outcome = workers.measure(group, truth, setting, is_default)
                 out.append(_stored(outcome, group, setting, is_default, truth, config, timed_out))
             if done is not None:
                 done(setting.label)
@@ -88,16 +86,20 @@ def run_group(
 
 Measured = tuple[RunResult, int, dict[str, float], tuple[str, ...], str]
 """A run's result, its number of timed repeats, and its comparison (metrics, levels, note)."""
-Order = tuple[tuple[Scenario, NamedTruth | str] | None, Setting]
+Order = tuple[tuple[Scenario, NamedTruth | str] | None, Setting, bool]
 """What a worker is sent for one run: the group's scenario and truth with the group's first run in
-that worker's child (None after: the child holds them), and the setting."""
+that worker's child (None after: the child holds them), the setting, and whether the run's
+trajectory is kept (the default setting's: the others' are not sent back)."""
 
 
 class Workers:
     """Warm workers for the runs, one per engine adapter, kept from group to group: each forked
     once (and again after a crash or a timeout), not once per group, with the adapter as this
     process holds it. A worker is sent a group's scenario and truth (pickled, about 60 kB) with
-    the group's first run in its child. Use it as a context manager: leaving it ends the workers."""
+    the group's first run in its child. Before a fork this process warms the group's scenario
+    (reports.harness.warm), so the child inherits the kernels and the scenario's program; a worker
+    kept from an earlier group builds a later scenario's program in its untimed warm-up run (warming
+    it here would serve no child). Use it as a context manager: leaving it ends the workers."""
 
     def __init__(self, config: RunConfig, residual: Residual | None) -> None:
         self.config, self.residual = config, residual
@@ -105,16 +107,21 @@ class Workers:
         self.held: dict[int, Group] = {}
         """By adapter: the group whose scenario and truth its worker's child holds."""
 
-    def measure(self, group: Group, truth: NamedTruth | str, setting: Setting) -> Outcome[Measured]:
-        """One run of the group at `setting` in the worker of the group's adapter."""
+    def measure(
+        self, group: Group, truth: NamedTruth | str, setting: Setting, keep: bool = True
+    ) -> Outcome[Measured]:
+        """One run of the group at `setting` in the worker of the group's adapter (its trajectory
+        sent back when `keep`)."""
         key = id(group.adapter)
         worker = self.workers.get(key)
         if worker is None:
             measure = functools.partial(_measure, group.adapter, self.config, self.residual, {})
             worker = self.workers[key] = Worker(measure)
+        if not worker.ready:
+            warm(group.scenario)  # before the fork: the child inherits the kernels and the program
         holds = worker.ready and self.held.get(key) is group
         self.held[key] = group
-        order: Order = (None if holds else (group.scenario, truth), setting)
+        order: Order = (None if holds else (group.scenario, truth), setting, keep)
         return worker.call(order, self.config.timeout)
 
     def __enter__(self) -> Workers:
@@ -132,14 +139,17 @@ def _measure(
 ) -> Measured:
     """One run, timed and compared with the truth (in the worker's child, which keeps the group's
     scenario and truth in `held` for the group's next runs)."""
-    sent, setting = order
+    sent, setting, keep = order
     if sent is not None:
         held["group"] = sent
     scenario, truth = held["group"]
     assert adapter is not None
     result, repeats = timed_run(adapter, scenario, setting, np.asarray(scenario.times()), config)
     against = truth.trajectory if isinstance(truth, NamedTruth) else truth
-    return (result, repeats, *measure(scenario, result, against, residual))
+    compared = measure(scenario, result, against, residual)
+    if not keep:  # a trajectory not kept is not pickled back (tens of kB a run)
+        result = dataclasses.replace(result, trajectory=None)
+    return (result, repeats, *compared)
 
 
 def _stored(

@@ -44,3 +44,18 @@ def test_one_worker_serves_every_group_of_an_engine(tmp_path: Path) -> None:
         else:
             assert "SIGSEGV" in row["message"]
     assert [row["scenario"] for row, _ in made][::3] == [g.scenario.name for g in groups]
+
+
+def test_only_a_kept_trajectory_comes_back_from_the_worker(tmp_path: Path) -> None:
+    """A run's trajectory crosses the pipe only when the row keeps it (the default setting's):
+    the others' errors are measured in the child, and their trajectories stay there."""
+    adapter = FakeAdapter(tmp_path / "log")
+    scenario = common_start(build_scenario("four_bar"))
+    group = plan_engine(scenario, "fake", adapter, True, None)
+    truth = NamedTruth(fake_truth(scenario, np.asarray(scenario.times())), "fake")
+    with Workers(CONFIG, None) as workers:
+        kept = workers.measure(group, truth, GOOD[1], keep=True)
+        dropped = workers.measure(group, truth, GOOD[0], keep=False)
+    assert kept.kind == dropped.kind == "ok" and kept.value is not None and dropped.value is not None
+    assert kept.value[0].trajectory is not None and dropped.value[0].trajectory is None
+    assert np.isclose(dropped.value[2]["position_length_max"], 0.01, rtol=1e-12)  # measured all the same

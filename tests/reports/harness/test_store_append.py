@@ -256,3 +256,26 @@ def test_every_part_is_a_hard_link_shared_by_the_generations(store: ResultsStore
     assert [p.stat().st_ino for p in first] == [p.stat().st_ino for p in second]
     assert store_files.KEEP == 3
     assert Repair(out).run()[-1].startswith("nothing to repair")
+
+
+def test_trajectories_of_differing_columns_read_back_as_written(tmp_path: Path) -> None:
+    """One part holds trajectories with and without accelerations and extras (a truth's forces
+    beside an engine's bare positions): each reads back with its own columns and values."""
+    generator = np.random.default_rng(7)
+    times = np.linspace(0.0, 1.0, 5)
+    full = Trajectory(
+        times, ("crank",), *(generator.normal(size=(5, 1, 3)) for _ in range(3)),
+        extras={"crank_drive.torque": generator.normal(size=5)},
+    )  # fmt: skip
+    bare = Trajectory(np.linspace(0.0, 2.0, 7), ("crank", "rod"), generator.normal(size=(7, 2, 3)))
+    made = ResultsStore(tmp_path / "out")
+    made.put_truth("four_bar", "closed form", full)
+    made.put_truth("slider_crank", "closed form", bare)
+    made.save(dict(META))
+    again = ResultsStore(tmp_path / "out").trajectories
+    for key, written in (("four_bar", full), ("slider_crank", bare)):
+        (read,) = [t for k, t in again.items() if k[0] == key]
+        assert read.bodies == written.bodies and set(read.extras) == set(written.extras)
+        for name, values in written.columns().items():
+            np.testing.assert_array_equal(read.columns()[name], values)
+        assert read.acceleration is None if written.acceleration is None else read.acceleration is not None
