@@ -57,6 +57,26 @@ PLAIN_PATH_TESTS = (
 """The tests of the plain path's building blocks (system, layout, mobility, factorization): each
 imports or runs them without the compiled kernel (not yet run under mutation)."""
 
+DYNAMICS = "tests/reference_solver/dynamics/"
+FORCE_ELEMENT_TESTS = (
+    f"{DYNAMICS}test_force_elements.py",
+    "tests/reference_solver/test_fast_load_kernel.py",
+)
+DRIVEN_DYNAMICS_TESTS = (
+    f"{DYNAMICS}test_inverse_dynamics.py",
+    f"{DYNAMICS}test_pendulum.py",
+    f"{DYNAMICS}test_energy.py",
+)
+"""The native dynamics' fast tests: the force elements against finite differences, inverse dynamics
+against the rate of kinetic energy and a static torque, the pendulum's closed forms, energy balance."""
+ALI3P_FAST_TESTS = (
+    f"{DYNAMICS}test_ali3p.py::test_the_same_motion_as_the_partitioned_method_to_second_order[compound_pendulum]",
+    f"{DYNAMICS}test_ali3p.py::test_the_same_motion_as_the_partitioned_method_to_second_order[four_bar_gravity]",
+    f"{DYNAMICS}test_ali3p.py::test_constraints_hold_to_round_off_and_the_energy_balance_closes_to_second_order",
+)
+"""ALI3-P's cheaper tests (a few seconds each): two without force elements (P = M), one with a
+spring and damper (P dense, with K and D)."""
+
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
         (
@@ -106,6 +126,14 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/layout.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_layout.py"),
     "reference_solver/factorization.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_factorization.py"),
     "reference_solver/residual.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_residual.py"),
+    # --- native dynamics (session 8, s8-mut2) ---
+    "reference_solver/dynamics/loads.py": (*FORCE_ELEMENT_TESTS, *DRIVEN_DYNAMICS_TESTS),
+    "reference_solver/dynamics/mass.py": (f"{DYNAMICS}test_mass.py", *DRIVEN_DYNAMICS_TESTS),
+    "reference_solver/dynamics/inverse.py": (f"{DYNAMICS}test_inverse_dynamics.py",),
+    "reference_solver/dynamics/augmented.py": (*DRIVEN_DYNAMICS_TESTS, f"{DYNAMICS}test_andrews.py"),
+    "reference_solver/dynamics/projection.py": (f"{DYNAMICS}test_projection.py", *ALI3P_FAST_TESTS),
+    "reference_solver/dynamics/tangent.py": (f"{DYNAMICS}test_tangent.py", *ALI3P_FAST_TESTS),
+    # --- end of native dynamics ---
 }
 
 _STRICT_ZIP = "zip of two 2-tuples: strict or not, the pairs are the same"

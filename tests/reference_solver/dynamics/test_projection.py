@@ -1,0 +1,95 @@
+"""ALI3-P's projection of the rates onto C_q x = b against the P-orthogonal projection in closed form,
+x = r - P^-1 C_q^T mu with mu = (C_q P^-1 C_q^T)^-1 (C_q r - b), on a hand-built step (a dense P,
+W = P + h^2/4 C_q^T diag(alpha) C_q solved directly, every solve counted)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from reference_solver.dynamics.projection import PROJECTION_STEPS, project
+
+RNG = np.random.default_rng(281)
+N, H = 6, 0.01
+
+
+class DenseStep:
+    """A time step of P = `weight` and penalties alpha_i = penalty 4/h^2 / (C_q P^-1 C_q^T)_ii (as
+    ALI3-P sets them, so the iteration contracts by about 1/(1 + penalty) per pass)."""
+
+    def __init__(self, weight: np.ndarray, jac: np.ndarray, penalty: float) -> None:
+        self.h = H
+        inertia = np.einsum("ij,ji->i", jac, np.linalg.solve(weight, jac.T))
+        self.alpha = penalty * 4 / (H * H) / inertia
+        self.weight = weight
+        self.w = weight + H * H / 4 * jac.T @ np.diag(self.alpha) @ jac
+        self.solves = 0
+
+    def weigh(self, x: np.ndarray) -> np.ndarray:
+        return self.weight @ x  # type: ignore[no-any-return]
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        self.solves += 1
+        return np.linalg.solve(self.w, rhs)  # type: ignore[no-any-return]
+
+
+def spd(n: int) -> np.ndarray:
+    a = RNG.uniform(-1.0, 1.0, (n, n))
+    return a @ a.T + n * np.eye(n)  # type: ignore[no-any-return]
+
+
+def closed_form(weight: np.ndarray, jac: np.ndarray, rates: np.ndarray, target: np.ndarray):  # type: ignore[no-untyped-def]
+    inverse_ct = np.linalg.solve(weight, jac.T)
+    mu = np.linalg.solve(jac @ inverse_ct, jac @ rates - target)
+    return rates - inverse_ct @ mu, mu
+
+
+@pytest.mark.parametrize("penalty", [1e8, 1e3, 30.0])
+def test_the_projection_is_the_p_orthogonal_one_with_its_multipliers(penalty: float) -> None:
+    weight, jac = spd(N), RNG.uniform(-1.0, 1.0, (2, N))
+    rates, target = RNG.uniform(-1.0, 1.0, N), RNG.uniform(-1.0, 1.0, 2)
+    step = DenseStep(weight, jac, penalty)
+    given = rates.copy()
+    x, mu = project(step, jac, rates, target)
+    expected_x, expected_mu = closed_form(weight, jac, given, target)
+    np.testing.assert_allclose(x, expected_x, rtol=0, atol=1e-13)
+    # mu = h^2/4 sigma carries alpha times C's round-off: about 1e-16 penalty relative
+    np.testing.assert_allclose(mu, expected_mu, rtol=max(1e-15 * penalty, 1e-12))
+    np.testing.assert_allclose(jac @ x, target, rtol=0, atol=1e-14)
+    np.testing.assert_array_equal(rates, given)  # the rates given are left as they were
+    # Each pass shrinks the constraint's error by about 1/(1 + penalty): it is settled (a move below
+    # 1e-15 of the rates) after about 15 / log10(1 + penalty) passes, plus the first and the last.
+    assert 2 <= step.solves <= np.ceil(15 / np.log10(1 + penalty)) + 2 < PROJECTION_STEPS
+
+
+def test_rates_already_on_the_constraint_are_returned_after_one_solve() -> None:
+    weight, jac = spd(N), RNG.uniform(-1.0, 1.0, (3, N))
+    rates = RNG.uniform(-1.0, 1.0, N)
+    step = DenseStep(weight, jac, 1e8)
+    x, mu = project(step, jac, rates, jac @ rates)
+    np.testing.assert_allclose(x, rates, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(mu, 0.0, atol=1e-12)
+    assert step.solves == 1
+
+
+def test_zero_rates_project_onto_the_target() -> None:
+    """x = P^-1 C^T (C P^-1 C^T)^-1 b from x* = 0 (the relative move then has no scale of its own)."""
+    weight, jac = spd(N), RNG.uniform(-1.0, 1.0, (2, N))
+    target = np.array([0.5, -2.0])
+    x, mu = project(DenseStep(weight, jac, 1e4), jac, np.zeros(N), target)
+    expected_x, expected_mu = closed_form(weight, jac, np.zeros(N), target)
+    np.testing.assert_allclose(x, expected_x, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(mu, expected_mu, rtol=1e-11)
+
+
+def test_a_repeated_row_still_gives_the_projection_and_multipliers_that_balance_it() -> None:
+    """C_q without full rank (a row repeated, its target too): x is the projection onto the distinct
+    rows, and P (x - x*) + C_q^T mu = 0 for the mu returned (which splits between the two copies)."""
+    weight, distinct = spd(N), RNG.uniform(-1.0, 1.0, (2, N))
+    jac = np.vstack([distinct, distinct[:1]])
+    rates, target = RNG.uniform(-1.0, 1.0, N), RNG.uniform(-1.0, 1.0, 2)
+    x, mu = project(DenseStep(weight, jac, 1e4), jac, rates, np.append(target, target[0]))
+    expected_x, expected_mu = closed_form(weight, distinct, rates, target)
+    np.testing.assert_allclose(x, expected_x, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(weight @ (x - rates) + jac.T @ mu, 0.0, atol=4e-11)  # measured 1.3e-11
+    np.testing.assert_allclose([mu[0] + mu[2], mu[1]], expected_mu, rtol=1e-11)
