@@ -130,7 +130,11 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/dynamics/loads.py": (*FORCE_ELEMENT_TESTS, *DRIVEN_DYNAMICS_TESTS),
     "reference_solver/dynamics/mass.py": (f"{DYNAMICS}test_mass.py", *DRIVEN_DYNAMICS_TESTS),
     "reference_solver/dynamics/inverse.py": (f"{DYNAMICS}test_inverse_dynamics.py",),
-    "reference_solver/dynamics/augmented.py": (*DRIVEN_DYNAMICS_TESTS, f"{DYNAMICS}test_andrews.py"),
+    "reference_solver/dynamics/augmented.py": (
+        f"{DYNAMICS}test_augmented.py",
+        *DRIVEN_DYNAMICS_TESTS,
+        f"{DYNAMICS}test_andrews.py",
+    ),
     "reference_solver/dynamics/projection.py": (f"{DYNAMICS}test_projection.py", *ALI3P_FAST_TESTS),
     "reference_solver/dynamics/tangent.py": (f"{DYNAMICS}test_tangent.py", *ALI3P_FAST_TESTS),
     # --- end of native dynamics ---
