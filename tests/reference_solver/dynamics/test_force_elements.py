@@ -153,7 +153,9 @@ def test_every_element_at_once_adds_up() -> None:
     for q, qd, t in STATES[:5]:
         alone = [loads(case)(q, qd, t) for case in CASES.values()]
         state = loads(every)(q, qd, t)
-        np.testing.assert_allclose(state.generalized, sum(s.generalized for s in alone), rtol=1e-13, atol=1e-13)
+        np.testing.assert_allclose(
+            state.generalized, sum(s.generalized for s in alone), rtol=1e-13, atol=1e-13
+        )
         for field in ("potential", "applied_power", "dissipation"):
             assert getattr(state, field) == pytest.approx(sum(getattr(s, field) for s in alone), rel=1e-13)
 

@@ -93,3 +93,24 @@ def test_a_repeated_row_still_gives_the_projection_and_multipliers_that_balance_
     np.testing.assert_allclose(x, expected_x, rtol=0, atol=1e-12)
     np.testing.assert_allclose(weight @ (x - rates) + jac.T @ mu, 0.0, atol=4e-11)  # measured 1.3e-11
     np.testing.assert_allclose([mu[0] + mu[2], mu[1]], expected_mu, rtol=1e-11)
+
+
+def test_the_stopping_rule_is_relative_to_the_rates() -> None:
+    """Rates and target of order 1e-9 are projected to the same relative accuracy as those of order 1."""
+    weight, jac = spd(N), RNG.uniform(-1.0, 1.0, (2, N))
+    rates, target = 1e-9 * RNG.uniform(-1.0, 1.0, N), 1e-9 * RNG.uniform(-1.0, 1.0, 2)
+    x, _ = project(DenseStep(weight, jac, 1e3), jac, rates, target)
+    expected_x, _ = closed_form(weight, jac, rates, target)
+    np.testing.assert_allclose(x, expected_x, rtol=0, atol=1e-22)
+
+
+def test_a_projection_that_cannot_settle_stops_after_its_thirty_passes() -> None:
+    """A penalty of 0.5 contracts the error by only about 1/(1 + 0.5 s^2) per pass: still moving
+    after PROJECTION_STEPS (30) passes, it stops there, nearer the constraint than it started."""
+    weight, jac = spd(N), RNG.uniform(-1.0, 1.0, (2, N))
+    rates, target = RNG.uniform(-1.0, 1.0, N), RNG.uniform(-1.0, 1.0, 2)
+    step = DenseStep(weight, jac, 0.5)
+    x, _ = project(step, jac, rates, target)
+    assert step.solves == PROJECTION_STEPS == 30
+    gap = np.max(np.abs(jac @ x - target))
+    assert 1e-12 < gap < 1e-3 * np.max(np.abs(jac @ rates - target))

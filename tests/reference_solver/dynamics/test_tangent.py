@@ -11,7 +11,8 @@ import scenarios
 from reference_solver.dynamics.tangent import Tangent
 from reference_solver.layout import Layout
 from reference_solver.system import ConstraintSystem
-from scenarios import Body, Scenario
+from scenarios import Body, Point, Scenario
+from scenarios.joints import Revolute
 
 RNG = np.random.default_rng(28)
 
@@ -80,3 +81,19 @@ def test_a_singular_banded_w_is_refused_with_lapack_s_pivot() -> None:
     with pytest.raises(np.linalg.LinAlgError) as raised:
         tangent.factor(np.zeros(system.unknowns), jac, np.zeros(system.size), 1.0)
     assert str(raised.value) == "ALI3-P's iteration matrix is singular (LAPACK dgbtrf info 1)"
+
+
+@pytest.mark.parametrize(("bodies", "banded"), [(14, False), (15, True)])
+def test_the_band_is_taken_when_four_half_bandwidths_fit_in_the_size(bodies: int, banded: bool) -> None:
+    """Free bodies and one pin between the first and the fourth: columns 0 to 2 and 9 to 11 share a
+    row, a half-bandwidth of 11; 4 x 11 = 44 fits in 45 coordinates, not in 42."""
+    free = tuple(Body(f"b{k}", (float(k), 0.0, 0.0)) for k in range(bodies))
+    pin = Revolute("pin", Point("b0", (0.5, 0.0)), Point("b3", (-2.5, 0.0)))
+    system = ConstraintSystem(Scenario("pinned", "default", free, (pin,), (), 1.0, 1, 1.0))
+    tangent = Tangent(system, dense_weight=False)
+    assert (tangent.width, tangent.banded) == (11, banded)
+    jac, mass, alpha = random_state(system)
+    tangent.factor(mass if banded else np.diag(mass), jac, alpha, 0.5)
+    rhs = RNG.uniform(-1.0, 1.0, system.unknowns)
+    w = np.diag(mass) + 0.5 * jac.T @ np.diag(alpha) @ jac
+    np.testing.assert_allclose(w @ tangent.solve(rhs), rhs, rtol=0, atol=1e-12)
