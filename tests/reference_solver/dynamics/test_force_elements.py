@@ -24,7 +24,8 @@ CASES: dict[str, tuple[Force, ...]] = {
     "damper": (SpringDamper("s", Point("a", (0.3, -0.1)), Point("b", (-0.2, 0.15)), 0.0, 3.0, 0.25),),
     "torsion": (RotationalSpringDamper("r", "a", "b", 7.0, 0.0, 0.3),),
     "torsion_damper": (RotationalSpringDamper("r", GROUND, "b", 0.0, 1.5, 0.0),),
-    "force": (AppliedForce("f", Point("a", (0.2, -0.3)), Constant(3.0), Harmonic(0.5, 2.0, 4.0)),),
+    "torsion_damper_pair": (RotationalSpringDamper("r", "a", "b", 0.0, 2.0, 0.0),),
+    "force": (AppliedForce("f", Point("a", (0.2, -0.3)), Harmonic(3.0, 1.0, 2.5), Harmonic(0.5, 2.0, 4.0)),),
     "torque": (AppliedTorque("t", "a", Harmonic(1.0, 0.5, 3.0), reaction="b"),),
 }
 RNG = np.random.default_rng(14)
@@ -62,7 +63,7 @@ def test_gravity_is_minus_the_gradient_of_its_potential() -> None:
         np.testing.assert_allclose(element(q, qd, t).generalized, expected, rtol=1e-8, atol=1e-8)
 
 
-@pytest.mark.parametrize("case", ["damper", "torsion_damper"])
+@pytest.mark.parametrize("case", ["damper", "torsion_damper", "torsion_damper_pair"])
 def test_dampers_are_minus_the_velocity_gradient_of_half_their_dissipation(case: str) -> None:
     element = loads(CASES[case])
     for q, qd, t in STATES:
@@ -152,12 +153,13 @@ def test_every_element_at_once_adds_up() -> None:
     every = tuple(f for case in CASES.values() for f in case)
     for q, qd, t in STATES[:5]:
         alone = [loads(case)(q, qd, t) for case in CASES.values()]
-        state = loads(every)(q, qd, t)
-        np.testing.assert_allclose(
-            state.generalized, sum(s.generalized for s in alone), rtol=1e-13, atol=1e-13
-        )
-        for field in ("potential", "applied_power", "dissipation"):
-            assert getattr(state, field) == pytest.approx(sum(getattr(s, field) for s in alone), rel=1e-13)
+        for order in (every, every[::-1]):  # an element that set a sum would undo those before it
+            state = loads(order)(q, qd, t)
+            total = sum(s.generalized for s in alone)
+            np.testing.assert_allclose(state.generalized, total, rtol=1e-13, atol=1e-13)
+            for field in ("potential", "applied_power", "dissipation"):
+                expected = sum(getattr(s, field) for s in alone)
+                assert getattr(state, field) == pytest.approx(expected, rel=1e-13)
 
 
 def test_an_unknown_force_element_is_refused_by_its_type() -> None:
