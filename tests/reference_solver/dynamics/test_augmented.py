@@ -33,16 +33,19 @@ def test_a_body_with_prescribed_accelerations_of_its_centre_turns_under_its_torq
     np.testing.assert_allclose(lam, [(1.0 - 2.0 * 0.25) / 2, (-4.0 + 2.0 * 0.5) / 3], rtol=1e-15)
 
 
-def test_the_row_scaling_leaves_the_solution_of_the_unscaled_system() -> None:
-    rng = np.random.default_rng(7)
-    mass = rng.uniform(0.5, 2.0, 6)
-    jac = rng.uniform(-1.0, 1.0, (3, 6)) * np.array([[1e-3], [1.0], [1e3]])  # rows in very different units
-    q_e, q_d = rng.uniform(-1.0, 1.0, 6), rng.uniform(-1.0, 1.0, 3)
-    kkt = np.block([[np.diag(mass), jac.T], [jac, np.zeros((3, 3))]])
-    expected = np.linalg.solve(kkt, np.concatenate([q_e, q_d]))
-    qdd, lam = accelerations(jac, mass, q_e, q_d)
-    np.testing.assert_allclose(qdd, expected[:6], rtol=1e-12)
-    np.testing.assert_allclose(lam, expected[6:], rtol=1e-12)
+def test_rows_in_very_different_units_give_the_accelerations_to_round_off() -> None:
+    """Masses from 1e-12 to 1 and rows from 1e-6 to 1e6 (a gram-millimetre body beside a kilogram one),
+    the answer chosen first (Q_e = M q'' + C_q^T lambda, Q_d = C_q q''): q'' within 1e-13 on six draws
+    (measured 2.8e-14; the same solve without the rows scaled to unit length: 3.2e-12)."""
+    mass = np.array([1e-6, 1e-6, 1e-12, 1.0, 1.0, 1e-3])
+    units = np.array([1e6, 1e-6, 1.0, 1e3])
+    for seed in range(6):
+        rng = np.random.default_rng(seed)
+        jac = rng.uniform(-1.0, 1.0, (4, 6)) * units[:, None]
+        qdd, lam = rng.uniform(-1.0, 1.0, 6), rng.uniform(-1.0, 1.0, 4) / units
+        found, multipliers = accelerations(jac, mass, mass * qdd + jac.T @ lam, jac @ qdd)
+        np.testing.assert_allclose(found, qdd, rtol=0, atol=1e-13)
+        np.testing.assert_allclose(multipliers * units, lam * units, rtol=0, atol=2e-15)  # measured 6.7e-16
 
 
 def test_a_constraint_row_of_zeros_is_refused_as_singular() -> None:
