@@ -114,3 +114,15 @@ def test_a_projection_that_cannot_settle_stops_after_its_thirty_passes() -> None
     assert step.solves == PROJECTION_STEPS == 30
     gap = np.max(np.abs(jac @ x - target))
     assert 1e-12 < gap < 1e-3 * np.max(np.abs(jac @ rates - target))
+
+
+def test_rates_a_round_off_away_from_the_constraint_take_two_passes() -> None:
+    """Rates 1e-14 (relative) off the constraint: the first move, below STALLED but above SETTLED,
+    has no earlier move to be compared with; the second is settled."""
+    weight, jac = spd(N), RNG.uniform(-1.0, 1.0, (2, N))
+    on, _ = closed_form(weight, jac, RNG.uniform(-1.0, 1.0, N), RNG.uniform(-1.0, 1.0, 2))
+    rates = on + 1e-14 * RNG.uniform(-1.0, 1.0, N)
+    step = DenseStep(weight, jac, 1e8)
+    x, _ = project(step, jac, rates, jac @ on)
+    np.testing.assert_allclose(x, on, rtol=0, atol=1e-14)
+    assert step.solves == 2
