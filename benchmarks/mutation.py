@@ -296,6 +296,56 @@ EXPLAINED: dict[str, str] = {
     ),
     "reference_solver.analysis.x__approach__mutmut_99": "smallest <= NEAR_SINGULAR for <: differs only "
     "on an exact tie of the singular value ratio with 1e-4",
+    # --- native dynamics (session 8, s8-mut2) ---
+    **dict.fromkeys(
+        (
+            "reference_solver.dynamics.loads.xǁLoadsǁ__init____mutmut_16",
+            "reference_solver.dynamics.loads.xǁLoadsǁ__init____mutmut_18",
+            "reference_solver.dynamics.loads.xǁLoadsǁ_point__mutmut_3",
+            "reference_solver.dynamics.loads.xǁLoadsǁ_point__mutmut_5",
+            "reference_solver.dynamics.loads.xǁLoadsǁ_at_point__mutmut_9",
+            "reference_solver.dynamics.loads.xǁLoadsǁ_at_point__mutmut_11",
+        ),
+        _DTYPE + " (gravity and a point's local coordinates are numbers: times a float mass, rotated, "
+        "or subtracted from a float position they give the same floats; an integer ground point is "
+        "only ever subtracted from or added to float arrays)",
+    ),
+    **dict.fromkeys(
+        tuple(f"reference_solver.dynamics.inverse.x_inverse_dynamics__mutmut_{k}" for k in (23, 28, 29)),
+        "zip(times, q, qd, qdd, strict=True) -> None, dropped, False: the four arrays are one "
+        "analysis's, one row per grid time, so they are never of different lengths",
+    ),
+    **dict.fromkeys(
+        (
+            *(f"reference_solver.dynamics.inverse.x_inverse_dynamics__mutmut_{k}" for k in (47, 50, 53)),
+            *(
+                f"reference_solver.dynamics.augmented.x_accelerations__mutmut_{k}"
+                for k in (31, 33, 34, 38, 41, 44)
+            ),
+        ),
+        "check_finite False -> None, default or True: differs only on a non-finite matrix or right-hand "
+        "side, which no scenario gives (a spring of zero length would make Q_e NaN: NaN results from the "
+        "original, a ValueError from the mutant)",
+    ),
+    "reference_solver.dynamics.augmented.x_accelerations__mutmut_12": "a zero row's norm set to 2 "
+    "instead of 1: the row stays 0 whatever it is divided by, and the saddle-point matrix is singular "
+    "either way (refused by LU's warning)",
+    **dict.fromkeys(
+        tuple(f"reference_solver.dynamics.augmented.x_accelerations__mutmut_{k}" for k in (24, 26)),
+        "warnings.simplefilter('error') without LinAlgWarning: the block holds lu_factor alone, whose "
+        "only warning is LinAlgWarning",
+    ),
+    **dict.fromkeys(
+        tuple(f"reference_solver.dynamics.augmented.x_constraint_outputs__mutmut_{k}" for k in (6, 10)),
+        "zip(constraints, equations, offsets, strict=False) -> None or dropped: the same as False (offsets "
+        "has one entry more, the end, which the loop never needs)",
+    ),
+    **dict.fromkeys(
+        tuple(f"reference_solver.dynamics.augmented.x_constraint_outputs__mutmut_{k}" for k in (28, 31, 32)),
+        "zip(labels, rows, strict=True) -> None, dropped, False: a driver's equation has one label per "
+        "row by construction (equations/drivers.py)",
+    ),
+    # --- end of native dynamics ---
 }
 
 KILLED, SURVIVED = 1, 0
