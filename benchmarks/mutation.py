@@ -330,11 +330,11 @@ EXPLAINED: dict[str, str] = {
     "reference_solver.dynamics.augmented.x_accelerations__mutmut_12": "a zero row's norm set to 2 "
     "instead of 1: the row stays 0 whatever it is divided by, and the saddle-point matrix is singular "
     "either way (refused by LU's warning)",
-    **dict.fromkeys(
-        tuple(f"reference_solver.dynamics.augmented.x_accelerations__mutmut_{k}" for k in (24, 26)),
-        "warnings.simplefilter('error') without LinAlgWarning: the block holds lu_factor alone, whose "
-        "only warning is LinAlgWarning",
-    ),
+    "reference_solver.dynamics.augmented.x_accelerations__mutmut_26": "warnings.simplefilter('error') "
+    "without LinAlgWarning: the block holds lu_factor alone, whose only warning is LinAlgWarning",
+    "reference_solver.dynamics.augmented.x_constraint_outputs__mutmut_48": "a joint's force taken over "
+    "the columns x, y and theta instead of x and y: the third entry is computed and never read (fx and fy "
+    "take entries 0 and 1)",
     **dict.fromkeys(
         tuple(f"reference_solver.dynamics.augmented.x_constraint_outputs__mutmut_{k}" for k in (6, 10)),
         "zip(constraints, equations, offsets, strict=False) -> None or dropped: the same as False (offsets "
@@ -344,6 +344,11 @@ EXPLAINED: dict[str, str] = {
         tuple(f"reference_solver.dynamics.augmented.x_constraint_outputs__mutmut_{k}" for k in (28, 31, 32)),
         "zip(labels, rows, strict=True) -> None, dropped, False: a driver's equation has one label per "
         "row by construction (equations/drivers.py)",
+    ),
+    **dict.fromkeys(
+        tuple(f"reference_solver.dynamics.projection.x_project__mutmut_{k}" for k in (43, 45, 46)),
+        "the stopping rule's <= SETTLED, < STALLED, > 0.5 previous turned to <, <=, >=: differ only on an "
+        "exact tie of a relative move with the bound (or with half the move before)",
     ),
     # --- end of native dynamics ---
 }
