@@ -152,6 +152,7 @@ _LATER_REPORT = (
     "structurally dependent system has the same rank and dependent rows (rows repeating others "
     "everywhere) at every point"
 )
+_TANGENT = "reference_solver.dynamics.tangent.xǁTangentǁ"
 EXPLAINED: dict[str, str] = {
     **dict.fromkeys(
         tuple(
@@ -349,6 +350,42 @@ EXPLAINED: dict[str, str] = {
         tuple(f"reference_solver.dynamics.projection.x_project__mutmut_{k}" for k in (43, 45, 46)),
         "the stopping rule's <= SETTLED, < STALLED, > 0.5 previous turned to <, <=, >=: differ only on an "
         "exact tie of a relative move with the bound (or with half the move before)",
+    ),
+    **dict.fromkeys(
+        tuple(f"{_TANGENT}__init____mutmut_{k}" for k in (4, 7)),
+        "zip(equations, offsets, strict=False) -> None or dropped: the same as False (offsets has one "
+        "entry more, the end, which the loop never needs)",
+    ),
+    **dict.fromkeys(
+        (
+            *(f"{_TANGENT}__init____mutmut_{k}" for k in (11, 13)),
+            f"{_TANGENT}factor__mutmut_28",
+        ),
+        _DTYPE + " (an equation's columns are ints, a bincount with weights is float64)",
+    ),
+    f"{_TANGENT}__init____mutmut_20": "meshgrid's indexing 'ij' -> default 'xy': for a grid of one vector "
+    "with itself 'xy' is the transpose, so (first, second) runs over the same pairs in another order, "
+    "and W is a sum over them",
+    **dict.fromkeys(
+        tuple(f"{_TANGENT}__init____mutmut_{k}" for k in (50, 59)),
+        "first or second np.zeros(1) for a system without constraint rows: the rows' index stays empty, "
+        "so the band's index (2w + first - second) n + second broadcasts to empty all the same",
+    ),
+    f"{_TANGENT}__init____mutmut_73": "n > BANDED_FROM for >=: differs only on a system of "
+    "exactly 40 coordinates, and then only in which factorization solves W "
+    "(both give W^-1 to round-off: the choice is speed)",
+    f"{_TANGENT}__init____mutmut_76": "4 width < n for <=: differs only when n is exactly 4 "
+    "times the half-bandwidth, and then only in which factorization solves W (both give W^-1 to round-off)",
+    f"{_TANGENT}__init____mutmut_78": "factors start as '' for None: only `solve` reads them, "
+    "after `factor` has set them (ALI3-P factors at each step's first Newton "
+    "iteration, before its first solve)",
+    **dict.fromkeys(
+        (
+            *(f"{_TANGENT}factor__mutmut_{k}" for k in (4, 6, 10)),
+            *(f"{_TANGENT}solve__mutmut_{k}" for k in (5, 8, 9)),
+        ),
+        "check_finite False -> None, default or True: W (M plus the penalty term) and the residual are "
+        "finite at any finite state; differs only on non-finite input, which no scenario gives",
     ),
     # --- end of native dynamics ---
 }
