@@ -57,6 +57,26 @@ PLAIN_PATH_TESTS = (
 """The tests of the plain path's building blocks (system, layout, mobility, factorization): each
 imports or runs them without the compiled kernel (not yet run under mutation)."""
 
+DYNAMICS = "tests/reference_solver/dynamics/"
+FORCE_ELEMENT_TESTS = (
+    f"{DYNAMICS}test_force_elements.py",
+    "tests/reference_solver/test_fast_load_kernel.py",
+)
+DRIVEN_DYNAMICS_TESTS = (
+    f"{DYNAMICS}test_inverse_dynamics.py",
+    f"{DYNAMICS}test_pendulum.py",
+    f"{DYNAMICS}test_energy.py",
+)
+"""The native dynamics' fast tests: the force elements against finite differences, inverse dynamics
+against the rate of kinetic energy and a static torque, the pendulum's closed forms, energy balance."""
+ALI3P_FAST_TESTS = (
+    f"{DYNAMICS}test_ali3p.py::test_the_same_motion_as_the_partitioned_method_to_second_order[compound_pendulum]",
+    f"{DYNAMICS}test_ali3p.py::test_the_same_motion_as_the_partitioned_method_to_second_order[four_bar_gravity]",
+    f"{DYNAMICS}test_ali3p.py::test_constraints_hold_to_round_off_and_the_energy_balance_closes_to_second_order",
+)
+"""ALI3-P's cheaper tests (a few seconds each): two without force elements (P = M), one with a
+spring and damper (P dense, with K and D)."""
+
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
         (
@@ -106,6 +126,18 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/layout.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_layout.py"),
     "reference_solver/factorization.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_factorization.py"),
     "reference_solver/residual.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_residual.py"),
+    # --- native dynamics (session 8, s8-mut2) ---
+    "reference_solver/dynamics/loads.py": (*FORCE_ELEMENT_TESTS, *DRIVEN_DYNAMICS_TESTS),
+    "reference_solver/dynamics/mass.py": (f"{DYNAMICS}test_mass.py", *DRIVEN_DYNAMICS_TESTS),
+    "reference_solver/dynamics/inverse.py": (f"{DYNAMICS}test_inverse_dynamics.py",),
+    "reference_solver/dynamics/augmented.py": (
+        f"{DYNAMICS}test_augmented.py",
+        *DRIVEN_DYNAMICS_TESTS,
+        f"{DYNAMICS}test_andrews.py",
+    ),
+    "reference_solver/dynamics/projection.py": (f"{DYNAMICS}test_projection.py", *ALI3P_FAST_TESTS),
+    "reference_solver/dynamics/tangent.py": (f"{DYNAMICS}test_tangent.py", *ALI3P_FAST_TESTS),
+    # --- end of native dynamics ---
 }
 
 _STRICT_ZIP = "zip of two 2-tuples: strict or not, the pairs are the same"
@@ -120,6 +152,7 @@ _LATER_REPORT = (
     "structurally dependent system has the same rank and dependent rows (rows repeating others "
     "everywhere) at every point"
 )
+_TANGENT = "reference_solver.dynamics.tangent.xǁTangentǁ"
 EXPLAINED: dict[str, str] = {
     **dict.fromkeys(
         tuple(
@@ -264,6 +297,97 @@ EXPLAINED: dict[str, str] = {
     ),
     "reference_solver.analysis.x__approach__mutmut_99": "smallest <= NEAR_SINGULAR for <: differs only "
     "on an exact tie of the singular value ratio with 1e-4",
+    # --- native dynamics (session 8, s8-mut2) ---
+    **dict.fromkeys(
+        (
+            "reference_solver.dynamics.loads.xǁLoadsǁ__init____mutmut_16",
+            "reference_solver.dynamics.loads.xǁLoadsǁ__init____mutmut_18",
+            "reference_solver.dynamics.loads.xǁLoadsǁ_point__mutmut_3",
+            "reference_solver.dynamics.loads.xǁLoadsǁ_point__mutmut_5",
+            "reference_solver.dynamics.loads.xǁLoadsǁ_at_point__mutmut_9",
+            "reference_solver.dynamics.loads.xǁLoadsǁ_at_point__mutmut_11",
+        ),
+        _DTYPE + " (gravity and a point's local coordinates are numbers: times a float mass, rotated, "
+        "or subtracted from a float position they give the same floats; an integer ground point is "
+        "only ever subtracted from or added to float arrays)",
+    ),
+    **dict.fromkeys(
+        tuple(f"reference_solver.dynamics.inverse.x_inverse_dynamics__mutmut_{k}" for k in (23, 28, 29)),
+        "zip(times, q, qd, qdd, strict=True) -> None, dropped, False: the four arrays are one "
+        "analysis's, one row per grid time, so they are never of different lengths",
+    ),
+    **dict.fromkeys(
+        (
+            *(f"reference_solver.dynamics.inverse.x_inverse_dynamics__mutmut_{k}" for k in (47, 50, 53)),
+            *(
+                f"reference_solver.dynamics.augmented.x_accelerations__mutmut_{k}"
+                for k in (31, 33, 34, 38, 41, 44)
+            ),
+        ),
+        "check_finite False -> None, default or True: differs only on a non-finite matrix or right-hand "
+        "side, which no scenario gives (a spring of zero length would make Q_e NaN: NaN results from the "
+        "original, a ValueError from the mutant)",
+    ),
+    "reference_solver.dynamics.augmented.x_accelerations__mutmut_12": "a zero row's norm set to 2 "
+    "instead of 1: the row stays 0 whatever it is divided by, and the saddle-point matrix is singular "
+    "either way (refused by LU's warning)",
+    "reference_solver.dynamics.augmented.x_accelerations__mutmut_26": "warnings.simplefilter('error') "
+    "without LinAlgWarning: the block holds lu_factor alone, whose only warning is LinAlgWarning",
+    "reference_solver.dynamics.augmented.x_constraint_outputs__mutmut_48": "a joint's force taken over "
+    "the columns x, y and theta instead of x and y: the third entry is computed and never read (fx and fy "
+    "take entries 0 and 1)",
+    **dict.fromkeys(
+        tuple(f"reference_solver.dynamics.augmented.x_constraint_outputs__mutmut_{k}" for k in (6, 10)),
+        "zip(constraints, equations, offsets, strict=False) -> None or dropped: the same as False (offsets "
+        "has one entry more, the end, which the loop never needs)",
+    ),
+    **dict.fromkeys(
+        tuple(f"reference_solver.dynamics.augmented.x_constraint_outputs__mutmut_{k}" for k in (28, 31, 32)),
+        "zip(labels, rows, strict=True) -> None, dropped, False: a driver's equation has one label per "
+        "row by construction (equations/drivers.py)",
+    ),
+    **dict.fromkeys(
+        tuple(f"reference_solver.dynamics.projection.x_project__mutmut_{k}" for k in (43, 45, 46)),
+        "the stopping rule's <= SETTLED, < STALLED, > 0.5 previous turned to <, <=, >=: differ only on an "
+        "exact tie of a relative move with the bound (or with half the move before)",
+    ),
+    **dict.fromkeys(
+        tuple(f"{_TANGENT}__init____mutmut_{k}" for k in (4, 7)),
+        "zip(equations, offsets, strict=False) -> None or dropped: the same as False (offsets has one "
+        "entry more, the end, which the loop never needs)",
+    ),
+    **dict.fromkeys(
+        (
+            *(f"{_TANGENT}__init____mutmut_{k}" for k in (11, 13)),
+            f"{_TANGENT}factor__mutmut_28",
+        ),
+        _DTYPE + " (an equation's columns are ints, a bincount with weights is float64)",
+    ),
+    f"{_TANGENT}__init____mutmut_20": "meshgrid's indexing 'ij' -> default 'xy': for a grid of one vector "
+    "with itself 'xy' is the transpose, so (first, second) runs over the same pairs in another order, "
+    "and W is a sum over them",
+    **dict.fromkeys(
+        tuple(f"{_TANGENT}__init____mutmut_{k}" for k in (50, 59)),
+        "first or second np.zeros(1) for a system without constraint rows: the rows' index stays empty, "
+        "so the band's index (2w + first - second) n + second broadcasts to empty all the same",
+    ),
+    f"{_TANGENT}__init____mutmut_73": "n > BANDED_FROM for >=: differs only on a system of "
+    "exactly 40 coordinates, and then only in which factorization solves W "
+    "(both give W^-1 to round-off: the choice is speed)",
+    f"{_TANGENT}__init____mutmut_76": "4 width < n for <=: differs only when n is exactly 4 "
+    "times the half-bandwidth, and then only in which factorization solves W (both give W^-1 to round-off)",
+    f"{_TANGENT}__init____mutmut_78": "factors start as '' for None: only `solve` reads them, "
+    "after `factor` has set them (ALI3-P factors at each step's first Newton "
+    "iteration, before its first solve)",
+    **dict.fromkeys(
+        (
+            *(f"{_TANGENT}factor__mutmut_{k}" for k in (4, 6, 10)),
+            *(f"{_TANGENT}solve__mutmut_{k}" for k in (5, 8, 9)),
+        ),
+        "check_finite False -> None, default or True: W (M plus the penalty term) and the residual are "
+        "finite at any finite state; differs only on non-finite input, which no scenario gives",
+    ),
+    # --- end of native dynamics ---
 }
 
 KILLED, SURVIVED = 1, 0

@@ -34,7 +34,6 @@ class Loads:
     """Gravity and every force element of a scenario, evaluated together."""
 
     def __init__(self, scenario: Scenario, layout: Layout, mass: np.ndarray):
-        self.scenario = scenario
         self.layout = layout
         self.gravity = np.zeros(layout.size)
         for k in range(len(layout.bodies)):

@@ -48,7 +48,8 @@ class Tangent:
         values = factor * alpha[self.rows] * jac[self.rows, self.first] * jac[self.rows, self.second]
         # LAPACK band storage for gbtrf: W[i, j] at ab[2w + i - j, j] (w extra rows for the fill-in)
         flat = (2 * w + self.first - self.second) * n + self.second
-        ab = np.bincount(flat, weights=values, minlength=(3 * w + 1) * n).reshape(3 * w + 1, n)
+        # bincount of no weights (a system without constraint rows) counts in integers: float it
+        ab = np.bincount(flat, weights=values, minlength=(3 * w + 1) * n).astype(float).reshape(3 * w + 1, n)
         ab[2 * w] += weight
         lu, pivots, info = lapack.dgbtrf(ab, w, w)
         if info != 0:

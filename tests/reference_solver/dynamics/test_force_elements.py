@@ -24,7 +24,8 @@ CASES: dict[str, tuple[Force, ...]] = {
     "damper": (SpringDamper("s", Point("a", (0.3, -0.1)), Point("b", (-0.2, 0.15)), 0.0, 3.0, 0.25),),
     "torsion": (RotationalSpringDamper("r", "a", "b", 7.0, 0.0, 0.3),),
     "torsion_damper": (RotationalSpringDamper("r", GROUND, "b", 0.0, 1.5, 0.0),),
-    "force": (AppliedForce("f", Point("a", (0.2, -0.3)), Constant(3.0), Harmonic(0.5, 2.0, 4.0)),),
+    "torsion_damper_pair": (RotationalSpringDamper("r", "a", "b", 0.0, 2.0, 0.0),),
+    "force": (AppliedForce("f", Point("a", (0.2, -0.3)), Harmonic(3.0, 1.0, 2.5), Harmonic(0.5, 2.0, 4.0)),),
     "torque": (AppliedTorque("t", "a", Harmonic(1.0, 0.5, 3.0), reaction="b"),),
 }
 RNG = np.random.default_rng(14)
@@ -62,7 +63,7 @@ def test_gravity_is_minus_the_gradient_of_its_potential() -> None:
         np.testing.assert_allclose(element(q, qd, t).generalized, expected, rtol=1e-8, atol=1e-8)
 
 
-@pytest.mark.parametrize("case", ["damper", "torsion_damper"])
+@pytest.mark.parametrize("case", ["damper", "torsion_damper", "torsion_damper_pair"])
 def test_dampers_are_minus_the_velocity_gradient_of_half_their_dissipation(case: str) -> None:
     element = loads(CASES[case])
     for q, qd, t in STATES:
@@ -102,3 +103,65 @@ def test_applied_torque_does_the_virtual_work_of_a_relative_rotation() -> None:
         state = element(q, qd, t)
         np.testing.assert_allclose(state.generalized, expected, rtol=1e-8, atol=1e-8)
         assert state.applied_power == pytest.approx(state.generalized @ qd, rel=1e-12, abs=1e-12)
+
+
+# --- values in closed form: the derivative tests above hold for any consistent offset or factor ---
+def test_gravity_pulls_each_body_s_centre_with_its_weight() -> None:
+    q = np.array([0.1, 0.2, 0.3, -0.2, 0.4, 1.1])
+    state = loads((), gravity=(0.3, -9.81))(q, np.zeros(6), 0.0)
+    np.testing.assert_allclose(state.generalized, [0.6, -19.62, 0.0, 0.15, -4.905, 0.0], rtol=1e-15)
+    assert state.potential == pytest.approx(-(0.6 * 0.1 - 19.62 * 0.2 + 0.15 * -0.2 - 4.905 * 0.4), rel=1e-15)
+    assert state.applied_power == state.dissipation == 0.0
+
+
+def test_a_spring_damper_from_a_ground_point_pulls_with_its_tension_along_the_line() -> None:
+    """Point (0.1, 0) of body b at (0.2, 0.4), unturned: 0.5 m from the ground's origin along
+    u = (0.6, 0.8), moving at (0.6, 0.8), so l' = 1: tension 80 (0.5 - 0.4) + 3 x 1 = 11 pulls the
+    point by -11 u, whose moment about b's centre is 0.1 x (-8.8)."""
+    spring = SpringDamper("s", Point(GROUND, (0.0, 0.0)), Point("b", (0.1, 0.0)), 80.0, 3.0, 0.4)
+    q, qd = np.array([0.0, 0.0, 0.0, 0.2, 0.4, 0.0]), np.array([0.0, 0.0, 0.0, 0.6, 0.8, 0.0])
+    state = loads((spring,))(q, qd, 0.0)
+    np.testing.assert_allclose(state.generalized, [0.0, 0.0, 0.0, -6.6, -8.8, -0.88], rtol=1e-14, atol=1e-15)
+    assert state.potential == pytest.approx(0.5 * 80.0 * 0.1**2, rel=1e-14)
+    assert state.dissipation == pytest.approx(3.0, rel=1e-14)
+
+
+@pytest.mark.parametrize("grounded", ["i", "j"])
+def test_a_torsion_spring_damper_to_the_ground_turns_its_body_back_to_its_free_angle(grounded: str) -> None:
+    """T = k (theta_j - theta_i - theta0) + c (omega_j - omega_i), +T on i and -T on j, the ground's
+    angle and rate 0: with k = 7, theta0 = 0.3, c = 1.5, body a at 1.0 turning at 2 rad/s."""
+    i, j = (GROUND, "a") if grounded == "i" else ("a", GROUND)
+    element = RotationalSpringDamper("r", i, j, 7.0, 1.5, 0.3)
+    q, qd = np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0]), np.array([0.0, 0.0, 2.0, 0.0, 0.0, 0.0])
+    state = loads((element,))(q, qd, 0.0)
+    stretch, rate = (1.0 - 0.3, 2.0) if grounded == "i" else (-1.0 - 0.3, -2.0)
+    torque = 7.0 * stretch + 1.5 * rate
+    np.testing.assert_allclose(state.generalized, [0.0, 0.0, -torque if grounded == "i" else torque, 0, 0, 0])
+    assert state.potential == pytest.approx(0.5 * 7.0 * stretch**2, rel=1e-15)
+    assert state.dissipation == pytest.approx(1.5 * 4.0, rel=1e-15)
+
+
+def test_a_torque_against_the_ground_does_work_at_its_body_s_rate() -> None:
+    element = AppliedTorque("t", "b", Constant(2.5))
+    state = loads((element,))(np.zeros(6), np.array([0.0, 0.0, 9.0, 0.0, 0.0, -3.0]), 0.0)
+    np.testing.assert_allclose(state.generalized, [0.0, 0.0, 0.0, 0.0, 0.0, 2.5])
+    assert state.applied_power == -7.5
+
+
+def test_every_element_at_once_adds_up() -> None:
+    """Q_e, potential, power and dissipation of all the cases together: the sums of each alone."""
+    every = tuple(f for case in CASES.values() for f in case)
+    for q, qd, t in STATES[:5]:
+        alone = [loads(case)(q, qd, t) for case in CASES.values()]
+        for order in (every, every[::-1]):  # an element that set a sum would undo those before it
+            state = loads(order)(q, qd, t)
+            total = sum(s.generalized for s in alone)
+            np.testing.assert_allclose(state.generalized, total, rtol=1e-13, atol=1e-13)
+            for field in ("potential", "applied_power", "dissipation"):
+                expected = sum(getattr(s, field) for s in alone)
+                assert getattr(state, field) == pytest.approx(expected, rel=1e-13)
+
+
+def test_an_unknown_force_element_is_refused_by_its_type() -> None:
+    with pytest.raises(TypeError, match=r"^no generalized force for Body$"):
+        loads((BODIES[0],))(np.zeros(6), np.zeros(6), 0.0)  # type: ignore[arg-type]
