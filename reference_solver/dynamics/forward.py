@@ -288,7 +288,9 @@ def _result(
         }
     )
     extras.update(angle_columns(system.scenario, system.layout, q))
-    residual = np.array([np.max(np.abs(system.residual(s.q, s.t) / system.row_scales)) for s in states])
+    residual = np.array(
+        [np.max(np.abs(system.residual(s.q, s.t) / system.row_scales), initial=0.0) for s in states]
+    )
     motion = Analysis(
         system.layout,
         grid.copy(),
