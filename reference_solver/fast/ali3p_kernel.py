@@ -13,6 +13,11 @@ and the projections finish the same way. What is left: a step ending next to a s
 rad, the round-off of C over s, and its rates with it, tilted by the crossing branches; the output
 at that instant, interpolated from them, with them.
 
+The trapezoidal rates are formed from the step's increment, q' = 2/h (q - q_n) - q'_n and
+q'' = 4/h^2 (q - q_n) - 4/h q'_n - q''_n, not from q itself as dynamics.ali3p writes them
+(2/h q + qhat'_n): on A02, whose coordinates reach 40 m, that form gives q'' the round-off of
+4/h^2 40 eps (1e-4 rad/s^2 at h = 2e-5), and the energy a drift that grew as h shrank.
+
 Arrays come in as in fast.rates: rows of `vec` are the vectors named below, `sizes` the integers.
 """
 
@@ -27,7 +32,7 @@ from reference_solver.fast.evaluate import c_t, evaluate
 from reference_solver.fast.program import K_SLOT_COL, K_WIDTH, WIDTH
 
 (Q, QD, QDD, LAM, MASS, QE, COL_SCALE, ROW_SCALE, ALPHA) = range(9)
-(HAT_V, HAT_A, C, Q_D, RES, PUSH, GAP, TARGET, GIVEN, KKT, DMU, COLUMN, IMAGE, ZERO) = range(9, 23)
+(STEP, HAT_A, C, Q_D, RES, PUSH, GAP, TARGET, GIVEN, KKT, DMU, COLUMN, IMAGE, ZERO) = range(9, 23)
 VECTORS = 23
 """Rows of `vec`, each max(n, m) long: the state (Q, QD, QDD, the multipliers LAM), the constants
 (MASS, QE the constant generalized loads, the column and row scales, ALPHA the penalties, set at
@@ -259,14 +264,14 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
     h = params[P_H]
     weight = h * h / 4.0
     q, qd, qdd, lam, mass, qe = vec[Q], vec[QD], vec[QDD], vec[LAM], vec[MASS], vec[QE]
-    hat_v, hat_a, c, q_d, res, push = vec[HAT_V], vec[HAT_A], vec[C], vec[Q_D], vec[RES], vec[PUSH]
+    step, hat_a, c, q_d, res, push = vec[STEP], vec[HAT_A], vec[C], vec[Q_D], vec[RES], vec[PUSH]
     alpha, cols, rows, zero, target = vec[ALPHA], vec[COL_SCALE], vec[ROW_SCALE], vec[ZERO], vec[TARGET]
     for _ in range(count):
         t = params[P_T] + h
         for i in range(n):  # predictor
-            hat_v[i] = -(2.0 / h * q[i] + qd[i])
-            hat_a[i] = -(4.0 / (h * h) * q[i] + 4.0 / h * qd[i] + qdd[i])
-            q[i] += h * qd[i] + h * h / 2.0 * qdd[i]
+            step[i] = h * qd[i] + h * h / 2.0 * qdd[i]
+            hat_a[i] = -(4.0 / h * qd[i] + qdd[i])
+            q[i] += step[i]
         slow, converged, previous = False, False, math.inf
         floor = 0.0
         for i in range(n):
@@ -287,13 +292,14 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
                 push[r] = alpha[r] * c[r] + lam[r]
             _jac_t_times(ints, store, m, n, push, res)
             for i in range(n):
-                res[i] = weight * (mass[i] * (4.0 / (h * h) * q[i] + hat_a[i]) + res[i] - qe[i])
+                res[i] = weight * (mass[i] * (4.0 / (h * h) * step[i] + hat_a[i]) + res[i] - qe[i])
             solve(band, n, w, res)
             if slow:
                 _kkt_correction(ints, store, vec, sizes, band, weight, schur, pivots, res, c, lam)
             size, violation = 0.0, 0.0
             for i in range(n):
                 q[i] -= res[i]
+                step[i] -= res[i]
                 size = max(size, abs(res[i] / cols[i]))
             for r in range(m):
                 violation = max(violation, abs(c[r] / rows[r]))
@@ -317,8 +323,8 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
         params[P_T] = t
         evaluate(ints, reals, q, zero, t, c, q_d, store, work, scratch, us)  # projections
         for i in range(n):
-            qd[i] = 2.0 / h * q[i] + hat_v[i]
-            qdd[i] = 4.0 / (h * h) * q[i] + hat_a[i]
+            qd[i] = 2.0 / h * step[i] - qd[i]
+            qdd[i] = 4.0 / (h * h) * step[i] + hat_a[i]
         c_t(ints, reals, t, target)
         for r in range(m):
             target[r] = -target[r]

@@ -12,7 +12,8 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import scenarios
-from reference_solver.dynamics import DynamicAnalysis, simulate
+from reference_solver.dynamics import DynamicAnalysis, ali3p_grid, simulate
+from reference_solver.dynamics.ali3p import Ali3p
 from reference_solver.errors import SolverError
 
 SHORT = {
@@ -120,19 +121,26 @@ def test_a_reduced_a02_passes_its_singular_position_at_second_order() -> None:
     assert np.all((np.array(fine) < FACTOR * measured) & (np.array(fine) > measured / FACTOR)), fine
 
 
-@pytest.mark.parametrize(("count", "measured"), [(8000, 1.43e-12), (8005, 3.60e-9)])
+@pytest.mark.parametrize(
+    ("count", "plain", "compiled"), [(8000, 1.43e-12, 2.24e-12), (8005, 3.60e-9, 1.03e-10)]
+)
 def test_the_rockers_leave_the_crank_by_what_the_step_s_phase_at_the_passage_allows(
-    count: int, measured: float
+    count: int, plain: float, compiled: float, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """The rocker-to-crank angle is not a smooth function of h: it depends on where the singular
     instant falls within a step. 8000 steps over 0.8 s put it at 0.55 of a step, 8005 steps at 0.02
     (a step ends next to the singular configuration, where C_q holds the chain's extra freedoms only
-    to second order): measured 1.4e-12 and 3.6e-9 (at 0.34, 0.23, 0.81 of a step: 1.4e-11, 2.0e-11,
-    2.4e-10; at h = 5e-5 with the instant at 0.11 and 0.004 of a step: 1.2e-9, 8.4e-10)."""
+    to second order). The plain step stops there at its stalled augmented Lagrangian: measured
+    1.4e-12 and 3.6e-9 (at 0.34, 0.23, 0.81 of a step: 1.4e-11, 2.0e-11, 2.4e-10; at h = 5e-5 with
+    the instant at 0.11 and 0.004 of a step: 1.2e-9, 8.4e-10). The compiled step continues through
+    the Schur complement (fast.ali3p_kernel): measured 2.2e-12 and 1.0e-10."""
     scenario, grid, reduced = _chain(2, 0.8)
-    analysis = simulate(scenario, grid, method="ali3p", step=0.8 / count * (1 + 1e-9), fast=True)
-    parallel = _a02_errors(analysis, reduced)[1]
-    assert measured / FACTOR < parallel < FACTOR * measured
+    step = 0.8 / count * (1 + 1e-9)
+    analysis = simulate(scenario, grid, method="ali3p", step=step, fast=True)
+    assert compiled / FACTOR < _a02_errors(analysis, reduced)[1] < FACTOR * compiled
+    monkeypatch.setattr(ali3p_grid, "ali3p_stepper", Ali3p)  # the plain step on the same rows
+    analysis = simulate(scenario, grid, method="ali3p", step=step, fast=True)
+    assert plain / FACTOR < _a02_errors(analysis, reduced)[1] < FACTOR * plain
 
 
 def test_unknown_method_and_bad_step_are_refused() -> None:
