@@ -13,6 +13,7 @@ from dataclasses import replace
 import numpy as np
 
 from reference_solver.dynamics.ali3p import Ali3p, StepState
+from reference_solver.dynamics.compiled_ali3p import CompiledAli3p, ali3p_stepper
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.partition import State, driver_power
 from reference_solver.system import ConstraintSystem
@@ -43,32 +44,46 @@ def integrate(
     number of constraint evaluations."""
     span = float(grid[-1]) - start.t
     count = max(1, int(np.ceil(span / step * (1 - 1e-12))))
-    stepper = Ali3p(system, mass, loads, span / count)
+    stepper = ali3p_stepper(system, mass, loads, span / count)
     h = stepper.h
     states, works = [start], [np.zeros(3)]
     current = StepState(start.t, start.q, start.qd, start.qdd, start.lam.copy(), start.jac)
-    power, work = _powers(system, start), np.zeros(3)
-    k = 1
-    for n in range(count):
-        before, work_before = current, work
-        current = stepper.step(current)
-        if n == count - 1:  # end exactly on the grid's last time
-            current = replace(current, t=float(grid[-1]))
-        now = _powers(system, _state(loads, current, current.multipliers))
-        work = work + h / 2 * (power + now)
-        power = now
-        while k < len(grid) and grid[k] <= current.t + SAME_TIME * h:
-            fraction = min(1.0, (float(grid[k]) - before.t) / h)
-            point = (
-                current
-                if fraction >= 1.0 - SAME_TIME
-                else _interpolate(system, before, current, fraction, float(grid[k]))
-            )
-            load = loads(point.q, point.qd, point.t).generalized
-            states.append(_state(loads, point, stepper.multipliers(point, load)))
-            works.append(work_before + fraction * (work - work_before))
-            k += 1
+    before, power, work = current, _powers(system, start), np.zeros(3)
+    work_before, done = work, 0
+    for time in grid[1:]:
+        # the first step ending at or after this time (within SAME_TIME of a step)
+        last = min(count, max(1, int(np.ceil((float(time) - start.t) / h - SAME_TIME))))
+        if last > done:
+            current, power, work = _advance(stepper, loads, current, last - 1 - done, power, work)
+            before, work_before = current, work
+            current, power, work = _advance(stepper, loads, current, 1, power, work)
+            done = last
+            if done == count:  # end exactly on the grid's last time
+                current = replace(current, t=float(grid[-1]))
+        fraction = min(1.0, (float(time) - before.t) / h)
+        point = (
+            current
+            if fraction >= 1.0 - SAME_TIME
+            else _interpolate(system, before, current, fraction, float(time))
+        )
+        load = loads(point.q, point.qd, point.t).generalized
+        states.append(_state(loads, point, stepper.multipliers(point, load)))
+        works.append(work_before + fraction * (work - work_before))
     return states, np.array(works), stepper.evaluations
+
+
+def _advance(
+    stepper: Ali3p, loads: Loads, s: StepState, count: int, power: np.ndarray, work: np.ndarray
+) -> tuple[StepState, np.ndarray, np.ndarray]:
+    """`count` steps from s, the work integrals by the trapezoidal rule on the powers at the steps."""
+    if isinstance(stepper, CompiledAli3p):
+        return stepper.run(s, count, power, work)
+    for _ in range(count):
+        s = stepper.step(s)
+        now = _powers(stepper.system, _state(loads, s, s.multipliers))
+        work = work + stepper.h / 2 * (power + now)
+        power = now
+    return s, power, work
 
 
 def _interpolate(

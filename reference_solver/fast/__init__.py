@@ -59,7 +59,12 @@ def rates_kernels() -> tuple[ModuleType | None, str]:
     return _kernels("rates")
 
 
-@lru_cache(maxsize=2)
+def ali3p_kernels() -> tuple[ModuleType | None, str]:
+    """ALI3-P's time-step module (forward dynamics, fast.ali3p_kernel), or None and why."""
+    return _kernels("ali3p_kernel")
+
+
+@lru_cache(maxsize=3)
 def _kernels(name: str) -> tuple[ModuleType | None, str]:
     if not AVAILABLE:
         return None, "numba is not installed"

@@ -173,7 +173,7 @@ class _Rows:
                 ints[K_TERM_PHI_SLOT + k] = eq.phi_local
         self.patterns.append(_pattern(spec, eq, reals[X_LINEAR : X_LINEAR + WIDTH]))
 
-    def place(self, band: Band | DenseStore, row_scale: np.ndarray, col_scale: np.ndarray) -> None:
+    def place(self, band: Band | DenseStore | RowStore, row_scale: np.ndarray, col_scale: np.ndarray) -> None:
         """Each pattern slot's position in the band (or dense) store and its scale."""
         for r, slots in enumerate(self.patterns):
             for s in slots:
@@ -191,6 +191,19 @@ class DenseStore:
 
     def position(self, row: int, col: int) -> int:
         return row * self.columns + col
+
+
+class RowStore:
+    """An m x WIDTH store of the unscaled C_q row by row: row r's entry at its local slot s (column
+    ints[r, K_SLOT_COL + s]) at r * WIDTH + s, so a kernel walking a sparse C_q (ALI3-P's) writes and
+    reads only the entries a row can have."""
+
+    def __init__(self, ints: np.ndarray) -> None:
+        self.ints = ints
+
+    def position(self, row: int, col: int) -> int:
+        slots = [int(c) for c in self.ints[row, K_SLOT_COL : K_SLOT_COL + WIDTH]]
+        return row * WIDTH + slots.index(col)
 
 
 def compile_program(system: ConstraintSystem) -> Program:
@@ -222,15 +235,15 @@ def compile_program(system: ConstraintSystem) -> Program:
     )
 
 
-def compile_dense(system: ConstraintSystem) -> Program:
+def compile_dense(system: ConstraintSystem, by_rows: bool = False) -> Program:
     """The instruction table of any constraint system with a DenseStore for its unscaled C_q (the
-    band fields empty); NotCompiled if it cannot have one."""
+    band fields empty), or with `by_rows` a RowStore; NotCompiled if it cannot have one."""
     m, n = system.size, system.unknowns
     if m == 0 or n == 0:
         raise NotCompiled(f"{m} constraint rows for {n} unknowns: nothing to compile")
     rows = _instruction_rows(system)
     rows.ints[:, K_SLOT_POS : K_SLOT_POS + WIDTH] = -1  # a slot off the pattern is written nowhere
-    rows.place(DenseStore(n), np.ones(m), np.ones(n))
+    rows.place(RowStore(rows.ints) if by_rows else DenseStore(n), np.ones(m), np.ones(n))
     profiles, splines = profile_tables([cam.profile for cam in system.scenario.cams])
     return Program(
         ints=rows.ints,

@@ -1,0 +1,340 @@
+"""ALI3-P's time steps (reference_solver.dynamics.ali3p) in numba, for scenarios without force
+elements (P = M, so W = M + h^2/4 C_q^T diag(alpha) C_q is symmetric positive definite): the compiled
+constraint rows (fast.evaluate, C_q stored row by row, program.RowStore), W's banded Cholesky
+factors, the Newton iteration with multiplier updates and the projections of the rates.
+
+Where the augmented Lagrangian contracts slowly (a step ending next to a singular configuration: it
+contracts by 1/(1 + PENALTY s^2) along a direction whose scaled singular value s vanishes there), the
+plain path stops at a stalled update, leaving the rockers of A02 off the crank by up to 8e-9 rad.
+Here Newton then continues on positions and multipliers together, through the Schur complement
+S = h^2/4 C_q W^-1 C_q^T (dense, factored by fast.dense_lu), to the round-off of C divided by s,
+and the projections finish the same way. What is left: a step ending next to a singular instant
+(measured: within a tenth of a step on A02) leaves the rockers off the crank by 1e-10 to 6e-10
+rad, the round-off of C over s, and its rates with it, tilted by the crossing branches; the output
+at that instant, interpolated from them, with them.
+
+The trapezoidal rates are formed from the step's increment, q' = 2/h (q - q_n) - q'_n and
+q'' = 4/h^2 (q - q_n) - 4/h q'_n - q''_n, not from q itself as dynamics.ali3p writes them
+(2/h q + qhat'_n): on A02, whose coordinates reach 40 m, that form gives q'' the round-off of
+4/h^2 40 eps (1e-4 rad/s^2 at h = 2e-5), and the energy a drift that grew as h shrank.
+
+Arrays come in as in fast.rates: rows of `vec` are the vectors named below, `sizes` the integers.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from reference_solver.fast.dense_lu import lu_factor, lu_solve
+from reference_solver.fast.evaluate import c_t, evaluate
+from reference_solver.fast.program import K_SLOT_COL, K_WIDTH, WIDTH
+
+(Q, QD, QDD, LAM, MASS, QE, COL_SCALE, ROW_SCALE, ALPHA) = range(9)
+(STEP, HAT_A, C, Q_D, RES, PUSH, GAP, TARGET, GIVEN, KKT, DMU, COLUMN, IMAGE, ZERO) = range(9, 23)
+VECTORS = 23
+"""Rows of `vec`, each max(n, m) long: the state (Q, QD, QDD, the multipliers LAM), the constants
+(MASS, QE the constant generalized loads, the column and row scales, ALPHA the penalties, set at
+the first factorization), then scratch."""
+S_N, S_M, S_W, S_DRIVERS, S_EVALUATIONS, S_SLOW, S_ITERATIONS = range(7)
+"""Entries of `sizes`: coordinates, rows, W's half-bandwidth, first driver row; counters of
+constraint evaluations and slow (Schur) factorizations, and the last step's Newton iterations."""
+P_H, P_T, P_PENALTY, P_WORK, P_POWER = range(5)
+"""Entries of `params`: the step, the time, the penalty (dynamics.ali3p.PENALTY), the drivers' work
+and the last state's driver power."""
+OK, NOT_CONVERGED, NOT_POSITIVE = 0, 1, 2
+NEWTON_STEPS = 60
+TOLERANCE = 1e-13
+"""As in dynamics.ali3p: the scaled constraint residual and update Newton must reach."""
+SLOW = 0.9
+STALLED = 1e-9
+EPSILON = 2.220446049250313e-16
+"""A Newton update that shrinks by less than SLOW has stalled. Above the round-off floor, the
+augmented Lagrangian is slow: Newton continues through the Schur complement. Below it, or once
+through it, the stall is round-off, and Newton stops there if the update is below STALLED and C
+holds, as dynamics.ali3p does. The floor: the penalty times C's round-off (EPSILON |q|), pushed
+along a direction of small s, moves q by up to PENALTY^(1/2) EPSILON |q| / 2 (scaled), measured
+1e-13 to 3e-11 next to A02's passages; without it, the Schur complement ran at 7000 of the 50000
+steps of A02's first 1.5 s at h = 3e-5, with it at 6, the rockers held as well."""
+SLOW_START = 0.01
+"""A projection is slow where no move before its stall shrank by this factor (1 + PENALTY s^2 <
+1 / SLOW_START)."""
+PROJECTION_STEPS = 30
+SETTLED = 1e-15
+PROJECTION_STALLED = 1e-13
+"""A projection stops at a move below SETTLED (relative to the rates' largest), or below
+PROJECTION_STALLED when no longer halving (dynamics.projection); a slow one (see _project)
+finishes through the Schur complement."""
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _jac_times(ints, store, m, x, out):  # type: ignore[no-untyped-def]
+    """out[:m] <- C_q x."""
+    for r in range(m):
+        s = 0.0
+        for k in range(ints[r, K_WIDTH]):
+            col = ints[r, K_SLOT_COL + k]
+            if col >= 0:
+                s += store[r * WIDTH + k] * x[col]
+        out[r] = s
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _jac_t_times(ints, store, m, n, y, out):  # type: ignore[no-untyped-def]
+    """out[:n] <- C_q^T y."""
+    for i in range(n):
+        out[i] = 0.0
+    for r in range(m):
+        for k in range(ints[r, K_WIDTH]):
+            col = ints[r, K_SLOT_COL + k]
+            if col >= 0:
+                out[col] += store[r * WIDTH + k] * y[r]
+
+
+@njit(cache=True, error_model="numpy")
+def factor(ints, store, vec, sizes, band, weight):  # type: ignore[no-untyped-def]
+    """band <- the Cholesky factor L of W = M + weight C_q^T diag(alpha) C_q (L[i, j] at band[i, i - j]);
+    False if W is not numerically positive definite."""
+    n, m, w = sizes[S_N], sizes[S_M], sizes[S_W]
+    mass, alpha = vec[MASS], vec[ALPHA]
+    for i in range(n):
+        band[i, 0] = mass[i]
+        for k in range(1, w + 1):
+            band[i, k] = 0.0
+    for r in range(m):
+        for a in range(ints[r, K_WIDTH]):
+            ca = ints[r, K_SLOT_COL + a]
+            if ca < 0:
+                continue
+            va = weight * alpha[r] * store[r * WIDTH + a]
+            for b in range(ints[r, K_WIDTH]):
+                cb = ints[r, K_SLOT_COL + b]
+                if 0 <= cb <= ca:
+                    band[ca, ca - cb] += va * store[r * WIDTH + b]
+    for j in range(n):
+        s = band[j, 0]
+        for k in range(1, min(j, w) + 1):
+            s -= band[j, k] * band[j, k]
+        if not s > 0.0:
+            return False
+        d = math.sqrt(s)
+        band[j, 0] = d
+        for i in range(j + 1, min(n, j + w + 1)):
+            s = band[i, i - j]
+            for p in range(max(0, i - w), j):
+                s -= band[i, i - p] * band[j, j - p]
+            band[i, i - j] = s / d
+    return True
+
+
+@njit(cache=True, error_model="numpy")
+def solve(band, n, w, b):  # type: ignore[no-untyped-def]
+    """b[:n] <- W^-1 b from factor's L (L y = b, then L^T x = y)."""
+    for i in range(n):
+        s = b[i]
+        for p in range(max(0, i - w), i):
+            s -= band[i, i - p] * b[p]
+        b[i] = s / band[i, 0]
+    for i in range(n - 1, -1, -1):
+        s = b[i]
+        for p in range(i + 1, min(n, i + w + 1)):
+            s -= band[p, p - i] * b[p]
+        b[i] = s / band[i, 0]
+
+
+@njit(cache=True, error_model="numpy")
+def _schur(ints, store, vec, sizes, band, weight, schur, pivots):  # type: ignore[no-untyped-def]
+    """schur <- the LU factors of S = weight C_q W^-1 C_q^T (dense)."""
+    n, m, w = sizes[S_N], sizes[S_M], sizes[S_W]
+    column, image = vec[COLUMN], vec[IMAGE]
+    for r in range(m):
+        for i in range(n):
+            column[i] = 0.0
+        for k in range(ints[r, K_WIDTH]):
+            col = ints[r, K_SLOT_COL + k]
+            if col >= 0:
+                column[col] += weight * store[r * WIDTH + k]
+        solve(band, n, w, column)
+        _jac_times(ints, store, m, column, image)
+        for i in range(m):
+            schur[i, r] = image[i]
+    lu_factor(schur, m, pivots)
+    sizes[S_SLOW] += 1
+
+
+@njit(cache=True, error_model="numpy")
+def _kkt_correction(ints, store, vec, sizes, band, weight, schur, pivots, move, gap, multiplier):  # type: ignore[no-untyped-def]
+    """With move = W^-1 f on entry: the Newton correction of [W, weight C_q^T; C_q, 0] [dx; dmu] =
+    -[f; gap]. move <- -dx, multiplier += dmu."""
+    n, m, w = sizes[S_N], sizes[S_M], sizes[S_W]
+    dmu, pushed = vec[DMU], vec[PUSH]
+    _jac_times(ints, store, m, move, dmu)
+    for r in range(m):
+        dmu[r] = gap[r] - dmu[r]
+    lu_solve(schur, m, pivots, dmu)
+    _jac_t_times(ints, store, m, n, dmu, pushed)
+    for i in range(n):
+        pushed[i] *= weight
+    solve(band, n, w, pushed)
+    for i in range(n):
+        move[i] += pushed[i]
+    for r in range(m):
+        multiplier[r] += dmu[r]
+
+
+@njit(cache=True, error_model="numpy")
+def _project(ints, store, vec, sizes, band, weight, schur, pivots, rates, target, slow):  # type: ignore[no-untyped-def]
+    """rates <- their M-orthogonal projection onto C_q x = target: the augmented Lagrangian iteration
+    of dynamics.projection, through the Schur complement where Newton went through it (`slow`: S
+    factored next to this C_q). Where Newton did not and the projection is slow (stalled, no move
+    before it shrinking by SLOW_START), it stops as the positions did, short of the directions C_q
+    is losing: an exact projection there, from positions held only by the augmented Lagrangian,
+    set the rockers of a two-loop A02 off the crank by 1e-8 rad, this by 3e-9."""
+    n, m, w = sizes[S_N], sizes[S_M], sizes[S_W]
+    mass, alpha, move, gap = vec[MASS], vec[ALPHA], vec[RES], vec[GAP]
+    given, kkt = vec[GIVEN], vec[KKT]
+    scale = 1e-300
+    for i in range(n):
+        given[i] = rates[i]
+        scale = max(scale, abs(rates[i]))
+    for r in range(m):
+        kkt[r] = 0.0
+    _jac_times(ints, store, m, rates, gap)
+    for r in range(m):
+        gap[r] -= target[r]
+    previous, best = math.inf, math.inf
+    for _ in range(PROJECTION_STEPS):
+        for r in range(m):
+            gap[r] = alpha[r] * gap[r] + kkt[r]
+        _jac_t_times(ints, store, m, n, gap, move)
+        for i in range(n):
+            move[i] = mass[i] * (rates[i] - given[i]) + weight * move[i]
+        solve(band, n, w, move)
+        if slow:
+            _jac_times(ints, store, m, rates, gap)
+            for r in range(m):
+                gap[r] -= target[r]
+            _kkt_correction(ints, store, vec, sizes, band, weight, schur, pivots, move, gap, kkt)
+        size = 0.0
+        for i in range(n):
+            rates[i] -= move[i]
+            size = max(size, abs(move[i]))
+        size /= scale
+        _jac_times(ints, store, m, rates, gap)
+        for r in range(m):
+            gap[r] -= target[r]
+            if not slow:
+                kkt[r] += alpha[r] * gap[r]
+        if size <= SETTLED:
+            return
+        if size > 0.5 * previous and (slow or size < PROJECTION_STALLED or best >= SLOW_START):
+            return  # stalled: round-off, or slow where Newton was not (see above)
+        if previous < math.inf:
+            best = min(best, size / previous)
+        previous = size
+
+
+@njit(cache=True, error_model="numpy")
+def _penalties(ints, store, vec, sizes, params):  # type: ignore[no-untyped-def]
+    """alpha_i = PENALTY 4/h^2 / (C_q M^-1 C_q^T)_ii, as dynamics.ali3p (at the first factorization)."""
+    m, mass, alpha, h = sizes[S_M], vec[MASS], vec[ALPHA], params[P_H]
+    typical = 0.0
+    for r in range(m):
+        s = 0.0
+        for k in range(ints[r, K_WIDTH]):
+            col = ints[r, K_SLOT_COL + k]
+            if col >= 0:
+                s += store[r * WIDTH + k] ** 2 / mass[col]
+        alpha[r] = s
+        typical = max(typical, s)
+    if typical == 0.0:
+        typical = 1.0
+    for r in range(m):
+        alpha[r] = params[P_PENALTY] * 4.0 / (h * h) / max(alpha[r], 1e-12 * typical)
+
+
+@njit(cache=True, error_model="numpy")
+def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, work, scratch, us):  # type: ignore[no-untyped-def]
+    """`count` ALI3-P steps from the state in vec (Q, QD, QDD, LAM) at params[P_T], in place, the
+    drivers' work accumulated by the trapezoidal rule. Returns OK, NOT_CONVERGED (the state is then
+    Newton's last iterate) or NOT_POSITIVE. Long on purpose: the step of dynamics.ali3p, its parts
+    (predictor, Newton, projections, power) marked by comments."""
+    n, m, w = sizes[S_N], sizes[S_M], sizes[S_W]
+    h = params[P_H]
+    weight = h * h / 4.0
+    q, qd, qdd, lam, mass, qe = vec[Q], vec[QD], vec[QDD], vec[LAM], vec[MASS], vec[QE]
+    step, hat_a, c, q_d, res, push = vec[STEP], vec[HAT_A], vec[C], vec[Q_D], vec[RES], vec[PUSH]
+    alpha, cols, rows, zero, target = vec[ALPHA], vec[COL_SCALE], vec[ROW_SCALE], vec[ZERO], vec[TARGET]
+    for _ in range(count):
+        t = params[P_T] + h
+        for i in range(n):  # predictor
+            step[i] = h * qd[i] + h * h / 2.0 * qdd[i]
+            hat_a[i] = -(4.0 / h * qd[i] + qdd[i])
+            q[i] += step[i]
+        slow, converged, previous = False, False, math.inf
+        floor = 0.0
+        for i in range(n):
+            floor = max(floor, abs(q[i] / cols[i]))
+        floor *= math.sqrt(params[P_PENALTY]) * EPSILON
+        for iteration in range(1, NEWTON_STEPS + 1):  # Newton, then Newton through S where slow
+            evaluate(ints, reals, q, zero, t, c, q_d, store, work, scratch, us)
+            sizes[S_EVALUATIONS] += 1
+            if iteration == 1:
+                if alpha[0] == 0.0:
+                    _penalties(ints, store, vec, sizes, params)
+                if not factor(ints, store, vec, sizes, band, weight):
+                    return NOT_POSITIVE
+            elif not slow:
+                for r in range(m):
+                    lam[r] += alpha[r] * c[r]
+            for r in range(m):
+                push[r] = alpha[r] * c[r] + lam[r]
+            _jac_t_times(ints, store, m, n, push, res)
+            for i in range(n):
+                res[i] = weight * (mass[i] * (4.0 / (h * h) * step[i] + hat_a[i]) + res[i] - qe[i])
+            solve(band, n, w, res)
+            if slow:
+                _kkt_correction(ints, store, vec, sizes, band, weight, schur, pivots, res, c, lam)
+            size, violation = 0.0, 0.0
+            for i in range(n):
+                q[i] -= res[i]
+                step[i] -= res[i]
+                size = max(size, abs(res[i] / cols[i]))
+            for r in range(m):
+                violation = max(violation, abs(c[r] / rows[r]))
+            sizes[S_ITERATIONS] = iteration
+            if violation <= TOLERANCE and size <= TOLERANCE:
+                converged = True
+                break
+            if iteration >= 2:
+                ratio = size / previous
+                if ratio > SLOW:  # stalled: round-off, or a slow augmented Lagrangian
+                    if slow or size < floor:
+                        if size < STALLED and violation <= TOLERANCE:
+                            converged = True
+                            break
+                    else:
+                        _schur(ints, store, vec, sizes, band, weight, schur, pivots)
+                        slow = True
+            previous = size
+        if not converged:
+            return NOT_CONVERGED
+        params[P_T] = t
+        evaluate(ints, reals, q, zero, t, c, q_d, store, work, scratch, us)  # projections
+        for i in range(n):
+            qd[i] = 2.0 / h * step[i] - qd[i]
+            qdd[i] = 4.0 / (h * h) * step[i] + hat_a[i]
+        c_t(ints, reals, t, target)
+        for r in range(m):
+            target[r] = -target[r]
+        _project(ints, store, vec, sizes, band, weight, schur, pivots, qd, target, slow)
+        evaluate(ints, reals, q, qd, t, c, target, store[:0], work, scratch, us)
+        _project(ints, store, vec, sizes, band, weight, schur, pivots, qdd, target, slow)
+        _jac_times(ints, store, m, qd, push)  # the drivers' power, -lambda* . C_q q' over their rows
+        power = 0.0
+        for r in range(sizes[S_DRIVERS], m):
+            power -= lam[r] * push[r]
+        params[P_WORK] += h / 2.0 * (params[P_POWER] + power)
+        params[P_POWER] = power
+    return OK
