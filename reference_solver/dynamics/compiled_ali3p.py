@@ -18,8 +18,8 @@ from reference_solver.dynamics.ali3p import PENALTY, Ali3p, StepState
 from reference_solver.dynamics.loads import Loads
 from reference_solver.errors import ConvergenceError
 from reference_solver.fast import ali3p_kernels
-from reference_solver.fast.program import K_SLOT_COL, WIDTH, compile_dense
 from reference_solver.fast.constraint_rows import NotCompiled
+from reference_solver.fast.program import K_SLOT_COL, WIDTH, compile_dense
 from reference_solver.system import ConstraintSystem
 
 

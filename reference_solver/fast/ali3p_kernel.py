@@ -27,6 +27,7 @@ import math
 
 from numba import njit
 
+from reference_solver.fast.ali3p_matrix import factor, jac_t_times, jac_times, solve
 from reference_solver.fast.dense_lu import lu_factor, lu_solve
 from reference_solver.fast.evaluate import c_t, evaluate
 from reference_solver.fast.program import K_SLOT_COL, K_WIDTH, WIDTH
@@ -68,81 +69,6 @@ PROJECTION_STALLED when no longer halving (dynamics.projection); a slow one (see
 finishes through the Schur complement."""
 
 
-@njit(cache=True, error_model="numpy", inline="always")
-def _jac_times(ints, store, m, x, out):  # type: ignore[no-untyped-def]
-    """out[:m] <- C_q x."""
-    for r in range(m):
-        s = 0.0
-        for k in range(ints[r, K_WIDTH]):
-            col = ints[r, K_SLOT_COL + k]
-            if col >= 0:
-                s += store[r * WIDTH + k] * x[col]
-        out[r] = s
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _jac_t_times(ints, store, m, n, y, out):  # type: ignore[no-untyped-def]
-    """out[:n] <- C_q^T y."""
-    for i in range(n):
-        out[i] = 0.0
-    for r in range(m):
-        for k in range(ints[r, K_WIDTH]):
-            col = ints[r, K_SLOT_COL + k]
-            if col >= 0:
-                out[col] += store[r * WIDTH + k] * y[r]
-
-
-@njit(cache=True, error_model="numpy")
-def factor(ints, store, vec, sizes, band, weight):  # type: ignore[no-untyped-def]
-    """band <- the Cholesky factor L of W = M + weight C_q^T diag(alpha) C_q (L[i, j] at band[i, i - j]);
-    False if W is not numerically positive definite."""
-    n, m, w = sizes[S_N], sizes[S_M], sizes[S_W]
-    mass, alpha = vec[MASS], vec[ALPHA]
-    for i in range(n):
-        band[i, 0] = mass[i]
-        for k in range(1, w + 1):
-            band[i, k] = 0.0
-    for r in range(m):
-        for a in range(ints[r, K_WIDTH]):
-            ca = ints[r, K_SLOT_COL + a]
-            if ca < 0:
-                continue
-            va = weight * alpha[r] * store[r * WIDTH + a]
-            for b in range(ints[r, K_WIDTH]):
-                cb = ints[r, K_SLOT_COL + b]
-                if 0 <= cb <= ca:
-                    band[ca, ca - cb] += va * store[r * WIDTH + b]
-    for j in range(n):
-        s = band[j, 0]
-        for k in range(1, min(j, w) + 1):
-            s -= band[j, k] * band[j, k]
-        if not s > 0.0:
-            return False
-        d = math.sqrt(s)
-        band[j, 0] = d
-        for i in range(j + 1, min(n, j + w + 1)):
-            s = band[i, i - j]
-            for p in range(max(0, i - w), j):
-                s -= band[i, i - p] * band[j, j - p]
-            band[i, i - j] = s / d
-    return True
-
-
-@njit(cache=True, error_model="numpy")
-def solve(band, n, w, b):  # type: ignore[no-untyped-def]
-    """b[:n] <- W^-1 b from factor's L (L y = b, then L^T x = y)."""
-    for i in range(n):
-        s = b[i]
-        for p in range(max(0, i - w), i):
-            s -= band[i, i - p] * b[p]
-        b[i] = s / band[i, 0]
-    for i in range(n - 1, -1, -1):
-        s = b[i]
-        for p in range(i + 1, min(n, i + w + 1)):
-            s -= band[p, p - i] * b[p]
-        b[i] = s / band[i, 0]
-
-
 @njit(cache=True, error_model="numpy")
 def _schur(ints, store, vec, sizes, band, weight, schur, pivots):  # type: ignore[no-untyped-def]
     """schur <- the LU factors of S = weight C_q W^-1 C_q^T (dense)."""
@@ -156,7 +82,7 @@ def _schur(ints, store, vec, sizes, band, weight, schur, pivots):  # type: ignor
             if col >= 0:
                 column[col] += weight * store[r * WIDTH + k]
         solve(band, n, w, column)
-        _jac_times(ints, store, m, column, image)
+        jac_times(ints, store, m, column, image)
         for i in range(m):
             schur[i, r] = image[i]
     lu_factor(schur, m, pivots)
@@ -169,11 +95,11 @@ def _kkt_correction(ints, store, vec, sizes, band, weight, schur, pivots, move, 
     -[f; gap]. move <- -dx, multiplier += dmu."""
     n, m, w = sizes[S_N], sizes[S_M], sizes[S_W]
     dmu, pushed = vec[DMU], vec[PUSH]
-    _jac_times(ints, store, m, move, dmu)
+    jac_times(ints, store, m, move, dmu)
     for r in range(m):
         dmu[r] = gap[r] - dmu[r]
     lu_solve(schur, m, pivots, dmu)
-    _jac_t_times(ints, store, m, n, dmu, pushed)
+    jac_t_times(ints, store, m, n, dmu, pushed)
     for i in range(n):
         pushed[i] *= weight
     solve(band, n, w, pushed)
@@ -200,19 +126,19 @@ def _project(ints, store, vec, sizes, band, weight, schur, pivots, rates, target
         scale = max(scale, abs(rates[i]))
     for r in range(m):
         kkt[r] = 0.0
-    _jac_times(ints, store, m, rates, gap)
+    jac_times(ints, store, m, rates, gap)
     for r in range(m):
         gap[r] -= target[r]
     previous, best = math.inf, math.inf
     for _ in range(PROJECTION_STEPS):
         for r in range(m):
             gap[r] = alpha[r] * gap[r] + kkt[r]
-        _jac_t_times(ints, store, m, n, gap, move)
+        jac_t_times(ints, store, m, n, gap, move)
         for i in range(n):
             move[i] = mass[i] * (rates[i] - given[i]) + weight * move[i]
         solve(band, n, w, move)
         if slow:
-            _jac_times(ints, store, m, rates, gap)
+            jac_times(ints, store, m, rates, gap)
             for r in range(m):
                 gap[r] -= target[r]
             _kkt_correction(ints, store, vec, sizes, band, weight, schur, pivots, move, gap, kkt)
@@ -221,7 +147,7 @@ def _project(ints, store, vec, sizes, band, weight, schur, pivots, rates, target
             rates[i] -= move[i]
             size = max(size, abs(move[i]))
         size /= scale
-        _jac_times(ints, store, m, rates, gap)
+        jac_times(ints, store, m, rates, gap)
         for r in range(m):
             gap[r] -= target[r]
             if not slow:
@@ -283,14 +209,14 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
             if iteration == 1:
                 if alpha[0] == 0.0:
                     _penalties(ints, store, vec, sizes, params)
-                if not factor(ints, store, vec, sizes, band, weight):
+                if not factor(ints, store, vec[MASS], vec[ALPHA], n, m, w, band, weight):
                     return NOT_POSITIVE
             elif not slow:
                 for r in range(m):
                     lam[r] += alpha[r] * c[r]
             for r in range(m):
                 push[r] = alpha[r] * c[r] + lam[r]
-            _jac_t_times(ints, store, m, n, push, res)
+            jac_t_times(ints, store, m, n, push, res)
             for i in range(n):
                 res[i] = weight * (mass[i] * (4.0 / (h * h) * step[i] + hat_a[i]) + res[i] - qe[i])
             solve(band, n, w, res)
@@ -331,7 +257,7 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
         _project(ints, store, vec, sizes, band, weight, schur, pivots, qd, target, slow)
         evaluate(ints, reals, q, qd, t, c, target, store[:0], work, scratch, us)
         _project(ints, store, vec, sizes, band, weight, schur, pivots, qdd, target, slow)
-        _jac_times(ints, store, m, qd, push)  # the drivers' power, -lambda* . C_q q' over their rows
+        jac_times(ints, store, m, qd, push)  # the drivers' power, -lambda* . C_q q' over their rows
         power = 0.0
         for r in range(sizes[S_DRIVERS], m):
             power -= lam[r] * push[r]
