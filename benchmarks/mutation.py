@@ -101,7 +101,7 @@ MODULES: dict[str, tuple[str, ...]] = {
         "tests/reference_solver/test_failures.py",
         "tests/reference_solver/test_closed_forms.py",
     ),
-    "reference_solver/system.py": PLAIN_PATH_TESTS,
+    "reference_solver/system.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_system.py"),
     "reference_solver/mobility.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_mobility.py"),
     "reference_solver/layout.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_layout.py"),
     "reference_solver/factorization.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_factorization.py"),

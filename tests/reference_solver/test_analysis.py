@@ -19,11 +19,13 @@ import pytest
 
 import reference_solver.analysis as analysis
 import scenarios
-from reference_solver import ConvergenceError, SingularConfigurationError, analyse, solve
+from reference_solver import AssemblyError, ConvergenceError, SingularConfigurationError, analyse, solve
+from reference_solver.factorization import factorize
 from reference_solver.limits import JUMP_FLOOR, JUMP_FRACTION
 from reference_solver.newton import NewtonResult
 from reference_solver.system import ConstraintSystem
-from scenarios import GROUND, AbsoluteDriver, Body, Harmonic, Point, Revolute
+from scenarios import GROUND, AbsoluteDriver, Body, ConstantSpeed, Harmonic, Point, Revolute, RevoluteRevolute
+from scenarios.closed_form import exact
 from scenarios.scenario import Scenario
 
 A_HALF, MEAN, AMPLITUDE, OMEGA = 0.1, 0.4, 0.7, 3.0
@@ -63,6 +65,18 @@ def test_positions_rates_and_accelerations_are_the_hand_worked_ones() -> None:
     assert np.all(result.residual < 1e-12)
     assert result.iterations[0] == 0 and np.all(result.iterations[1:] >= 1)
     assert np.all(result.rcond > 0.01)
+
+
+def test_the_rates_solve_the_scaled_velocity_and_acceleration_equations() -> None:
+    """_rates on the crank at the hand-worked q of t = 0.3 (theta' and theta'' both nonzero): the
+    hand-worked q' and q''. The rows (pin, in L = 0.2; driver, an angle) and columns (x, y in L;
+    theta) are scaled differently, so each scale used the wrong way round shows."""
+    system = ConstraintSystem(_crank())
+    q, qd, qdd = (level[0] for level in _by_hand(np.array([0.3])))
+    factors = factorize(system.scaled_jacobian(system.jacobian(q, 0.3)))
+    rates = analysis._rates(system, factors, q, 0.3)
+    np.testing.assert_allclose(rates[0], qd, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(rates[1], qdd, rtol=0, atol=1e-12)
 
 
 def test_the_predictor_is_the_second_order_taylor_step() -> None:
@@ -269,3 +283,83 @@ def test_two_mechanisms_at_their_stroke_ends_lose_two_ranks() -> None:
         analyse(two, fast=False)
     assert caught.value.rank_deficiency == 2
     assert {"slider_drive.x", "slider_drive_2.x"} <= set(caught.value.dependent_rows)
+
+
+def _unassembled() -> tuple[ConstraintSystem, np.ndarray]:
+    """Bodies a and b, L = 0.5, guessed at (0, 0, 0) and (1, 0, 0). Joints: a's origin 0.3 from the
+    ground origin, b's 0.2 from the ground point (1, 0) (distance rows |d|^2 - l^2, whose gradient
+    2 d vanishes where the points coincide, as at the guess); drivers y_a = 0.1, theta_a = 1.08e-11,
+    y_b = 0, theta_b = 1.03e-11 at t = 0 (each moving at 1/s, so the time is read). At the guess
+    C_q has two zero rows: Newton stops before its first step."""
+    move = 1.0
+    scenario = Scenario(
+        family="unassembled",
+        variant="default",
+        bodies=(Body("a", (0.0, 0.0, 0.0)), Body("b", (1.0, 0.0, 0.0))),
+        joints=(
+            RevoluteRevolute("da", Point(GROUND, (0.0, 0.0)), Point("a"), 0.3),
+            RevoluteRevolute("db", Point(GROUND, (1.0, 0.0)), Point("b"), 0.2),
+        ),
+        drivers=(
+            AbsoluteDriver("ya", "a", "y", ConstantSpeed(0.1, move)),
+            AbsoluteDriver("ta", "a", "theta", ConstantSpeed(1.08e-11, move)),
+            AbsoluteDriver("yb", "b", "y", ConstantSpeed(0.0, move)),
+            AbsoluteDriver("tb", "b", "theta", ConstantSpeed(1.03e-11, move)),
+        ),
+        t_end=1.0,
+        steps=1,
+        characteristic_length=0.5,
+    )
+    return ConstraintSystem(scenario), np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0])
+
+
+def test_a_failed_assembly_names_the_four_worst_rows_beyond_ten_tolerances() -> None:
+    """The scaled misses at the guess: da -0.09 / L^2 = -0.36, ya -0.1 / L = -0.2, db -0.04 / L^2 =
+    -0.16, ta -1.08e-11, tb -1.03e-11, yb 0. The four worst are named, worst first, when they miss
+    by more than 10 tolerances (1e-11: ta is, by 8 %); tb, fifth, is not. The two zero rows make
+    C_q lose two ranks, and they are the dependent rows."""
+    system, guess = _unassembled()
+    with pytest.raises(AssemblyError) as caught:
+        analysis.assemble(system, guess, 0.0, 1e-12)
+    error = caught.value
+    assert str(error) == (
+        "unassembled: the mechanism cannot assemble at t=0: after 0 iterations the constraints "
+        "da.length, ya.y, db.length, ta.theta still miss by up to 0.36 (relative to the "
+        "characteristic length 0.5)"
+    )
+    assert error.time == 0.0
+    assert error.q is not None
+    np.testing.assert_array_equal(error.q, guess)
+    assert error.rank_deficiency == 2
+    assert error.dependent_rows == ("da.length", "db.length")
+
+
+def _four_bar_turned(coordinate: int) -> tuple[ConstraintSystem, np.ndarray, np.ndarray]:
+    """The four-bar, its closed-form configuration at t = 0 (bodies crank, coupler, rocker), and a
+    guess with one angle (q[coordinate]) turned 2 rad back from it."""
+    scenario = scenarios.build("four_bar")
+    position = exact(scenario, np.array([0.0])).position
+    assert position is not None
+    truth = position[0].ravel()
+    guess = truth.copy()
+    guess[coordinate] -= 2.0
+    return ConstraintSystem(scenario), truth, guess
+
+
+@pytest.mark.parametrize("coordinate", [5, 8], ids=["coupler", "rocker"])
+def test_assembly_from_a_rough_guess_is_damped_and_may_take_many_iterations(coordinate: int) -> None:
+    """From the coupler's angle turned 2 rad back, plain Newton does not converge in 100 iterations
+    (measured); from the rocker's, it lands 2 pi away; damped Newton reaches the closed form's
+    configuration from both, from the rocker's in 26 iterations (measured: more than the 25 of a
+    time step, fewer than the assembly's 100)."""
+    system, truth, guess = _four_bar_turned(coordinate)
+    np.testing.assert_allclose(analysis.assemble(system, guess, 0.0, 1e-12), truth, rtol=0, atol=1e-12)
+
+
+def test_assembly_stops_at_its_tolerance() -> None:
+    """With a tolerance of 0.1 (on both the step and the residual, scaled) the coupler-turned guess
+    assembles 4.5e-5 L (measured) from the closed form: Newton stopped once both were below it,
+    where a tolerance of 1e-12 on either goes on to round-off. Bounds: a third and three times."""
+    system, truth, guess = _four_bar_turned(5)
+    error = np.max(np.abs((analysis.assemble(system, guess, 0.0, 0.1) - truth) / system.column_scales))
+    assert 1.5e-5 < error < 1.35e-4
