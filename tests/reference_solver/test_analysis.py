@@ -103,6 +103,15 @@ def test_a_step_has_jumped_when_its_correction_exceeds_half_the_predictors_reach
             )
 
 
+def test_the_reach_of_a_length_coordinate_is_measured_in_units_of_l() -> None:
+    """x' = 1 m/s over h = 0.1 reaches 0.1 m, 0.5 in units of L = 0.2: half of it, 0.25, is the
+    largest correction on the branch. 0.2 rad in theta stays; 0.3 jumps."""
+    system = ConstraintSystem(_crank())
+    start, qd, still = np.array([0.1, 0.0, 0.0]), np.array([1.0, 0.0, 0.0]), np.zeros(3)
+    assert not analysis.jumped(system, qd, still, 0.1, start, start + np.array([0, 0, 0.2]))
+    assert analysis.jumped(system, qd, still, 0.1, start, start + np.array([0, 0, 0.3]))
+
+
 def test_a_step_that_reaches_nothing_has_jumped_beyond_the_floor() -> None:
     """With zero rates the reach is 0 and the floor JUMP_FLOOR = 1e-6 (scaled units) decides."""
     system = ConstraintSystem(_crank())
@@ -363,3 +372,62 @@ def test_assembly_stops_at_its_tolerance() -> None:
     system, truth, guess = _four_bar_turned(5)
     error = np.max(np.abs((analysis.assemble(system, guess, 0.0, 0.1) - truth) / system.column_scales))
     assert 1.5e-5 < error < 1.35e-4
+
+
+def test_every_step_of_a_smooth_motion_is_taken_at_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    """On the crank's own grid the predictor q + h q' + h^2/2 q'' lies within h^3 |q'''| / 6 (about
+    1e-4) of the answer: no step is retaken and each Newton ends in 3 iterations (measured), a
+    predictor that left out a term, or a step believed longer than it is, would be retaken."""
+    calls = _counting_approach(monkeypatch)
+    result = analyse(_crank(), fast=False)
+    assert calls == []
+    assert np.all(result.iterations[1:] <= 3)
+
+
+def test_a_grid_of_one_time_is_the_assembled_configuration_and_its_rates() -> None:
+    result = analyse(_crank(), [0.3], fast=False)
+    for level, expected in zip(("q", "qd", "qdd"), _by_hand(np.array([0.3])), strict=True):
+        np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-12, err_msg=level)
+
+
+def test_integer_times_give_a_float_grid_and_the_iterations_are_counts() -> None:
+    for fast in (True, False):
+        result = analyse(_crank(), [0, 1], fast=fast)
+        assert result.times.dtype == np.float64
+        assert result.iterations.dtype.kind == "i", fast
+
+
+def test_analyse_takes_the_fast_path_by_default(monkeypatch: pytest.MonkeyPatch) -> None:
+    calls: list[float] = []
+    real = analysis.fast_path.analyse
+
+    def counted(scenario, grid, tolerance, max_iterations):  # type: ignore[no-untyped-def]
+        calls.append(tolerance)
+        return real(scenario, grid, tolerance, max_iterations)
+
+    monkeypatch.setattr(analysis.fast_path, "analyse", counted)
+    analyse(_crank(), [0.0, 0.1])
+    assert calls == [1e-12]
+
+
+@pytest.mark.parametrize(("before", "after"), [(1e-3, 2e-4), (2e-4, 1e-3)], ids=["later", "earlier"])
+def test_a_sign_change_of_det_c_q_is_reported_at_the_nearer_grid_point(before: float, after: float) -> None:
+    """A slider-crank with rod = crank (0.2), driven from 0.5 rad at 50 rad/s, is singular at
+    theta = pi/2, t* = (pi/2 - 0.5) / 50; a grid that steps over t* (its last two times t* - before
+    and t* + after) sees det C_q change sign. The error names the time interpolated between them
+    (measured 6.7e-8 s from t*, bounded by 2e-7) and the configuration of the grid point nearer the
+    singularity, whose crank angle is the driven 0.5 + 50 t."""
+    scenario = scenarios.build("slider_crank", overrides={"rod_length": 0.2, "theta0": 0.5})
+    t_star = (math.pi / 2 - 0.5) / 50
+    t0, t1 = t_star - before, t_star + after
+    grid = np.concatenate([np.linspace(0.0, t0, 11), [t1]])
+    with pytest.raises(SingularConfigurationError) as caught:
+        analyse(scenario, grid, fast=False)
+    error = caught.value
+    assert error.time == pytest.approx(t_star, abs=2e-7)
+    assert error.q is not None
+    assert error.q[2] == pytest.approx(0.5 + 50 * min((t0, t1), key=lambda t: abs(t - t_star)), abs=1e-12)
+    assert (
+        f"det C_q changed sign between t={t0:.6g} and t={t1:.6g} (a singular configuration or a jump to "
+        "another assembly branch lies between)" in str(error)
+    )
