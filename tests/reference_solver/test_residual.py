@@ -8,6 +8,7 @@ import dataclasses
 import numpy as np
 import pytest
 
+import reference_solver.residual as residual_module
 import scenarios
 from reference_solver.residual import constraint_residual, plain_constraint_residual
 from scenarios.closed_form import exact
@@ -93,3 +94,16 @@ def test_the_bodies_may_come_in_any_order_and_with_others() -> None:
     other = scenarios.Trajectory(truth.times, bodies, position=shuffled)
     for measure in (constraint_residual, plain_constraint_residual):
         np.testing.assert_allclose(measure(scenario, other), 1e-6, rtol=1e-6)
+
+
+def test_a_scenario_without_cams_is_measured_on_its_compiled_rows(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The plain rows are for cams (and for checking the compiled ones): where the scenario
+    compiles, constraint_residual never evaluates them (about 50 times slower)."""
+
+    def refused(*args: object) -> None:
+        raise AssertionError("the plain rows were evaluated")
+
+    monkeypatch.setattr(residual_module, "_plain_residual", refused)
+    scenario = scenarios.load("slider_crank", {"steps": 24})
+    truth = exact(scenario, np.asarray(scenario.times()))
+    assert np.max(constraint_residual(scenario, truth)) < 1e-14
