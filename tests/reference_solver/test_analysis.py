@@ -24,7 +24,17 @@ from reference_solver.factorization import factorize
 from reference_solver.limits import JUMP_FLOOR, JUMP_FRACTION
 from reference_solver.newton import NewtonResult
 from reference_solver.system import ConstraintSystem
-from scenarios import GROUND, AbsoluteDriver, Body, ConstantSpeed, Harmonic, Point, Revolute, RevoluteRevolute
+from scenarios import (
+    GROUND,
+    AbsoluteDriver,
+    Body,
+    ConstantSpeed,
+    Harmonic,
+    Point,
+    Prismatic,
+    Revolute,
+    RevoluteRevolute,
+)
 from scenarios.closed_form import exact
 from scenarios.scenario import Scenario
 
@@ -77,6 +87,28 @@ def test_the_rates_solve_the_scaled_velocity_and_acceleration_equations() -> Non
     rates = analysis._rates(system, factors, q, 0.3)
     np.testing.assert_allclose(rates[0], qd, rtol=0, atol=1e-12)
     np.testing.assert_allclose(rates[1], qdd, rtol=0, atol=1e-12)
+
+
+def test_the_rates_of_a_driven_length() -> None:
+    """A block sliding along the ground's x axis, its x driven by f = 0.4 + 0.7 cos(3 t) (L = 0.2):
+    at t = 0.3, x' = f' = -2.1 sin(0.9) and x'' = f'' = -6.3 cos(0.9), y and theta still. Only a
+    driver's C_t is nonzero, and this one is a length row (in units of L), unlike the crank's angle."""
+    block = Scenario(
+        family="hand_block",
+        variant="default",
+        bodies=(Body("block", (0.0, 0.0, 0.0)),),
+        joints=(Prismatic("slide", Point("block"), Point(GROUND), axis=(1.0, 0.0)),),
+        drivers=(AbsoluteDriver("push", "block", "x", Harmonic(MEAN, AMPLITUDE, OMEGA)),),
+        t_end=1.0,
+        steps=1,
+        characteristic_length=2 * A_HALF,
+    )
+    system = ConstraintSystem(block)
+    q = np.array([MEAN + AMPLITUDE * math.cos(0.9), 0.0, 0.0])
+    factors = factorize(system.scaled_jacobian(system.jacobian(q, 0.3)))
+    qd, qdd = analysis._rates(system, factors, q, 0.3)
+    np.testing.assert_allclose(qd, [-2.1 * math.sin(0.9), 0, 0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(qdd, [-6.3 * math.cos(0.9), 0, 0], rtol=0, atol=1e-12)
 
 
 def test_the_predictor_is_the_second_order_taylor_step() -> None:
