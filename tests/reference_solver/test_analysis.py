@@ -463,3 +463,19 @@ def test_a_sign_change_of_det_c_q_is_reported_at_the_nearer_grid_point(before: f
         f"det C_q changed sign between t={t0:.6g} and t={t1:.6g} (a singular configuration or a jump to "
         "another assembly branch lies between)" in str(error)
     )
+
+
+def test_a_grid_point_on_a_singularity_is_refused_for_its_conditioning() -> None:
+    """The slider-crank with rod = crank from theta = 0 at 50 rad/s on 8 steps of pi/400 s: its grid
+    point t = pi/100 is theta = pi/2, where C_q is singular, so its conditioning (below 1e-9) is the
+    reason given, with its value."""
+    scenario = scenarios.build("slider_crank", overrides={"rod_length": 0.2, "theta0": 0.0, "steps": 8})
+    with pytest.raises(SingularConfigurationError) as caught:
+        analyse(scenario, fast=False)
+    message = re.fullmatch(
+        r"slider_crank: singular configuration at t=0\.0314159: "
+        r"C_q reciprocal condition number (\S+); C_q rank deficiency 1, dependent rows: .+",
+        str(caught.value),
+    )
+    assert message is not None, str(caught.value)
+    assert float(message[1]) < 1e-9
