@@ -274,6 +274,8 @@ EXPLAINED.update(
         "reference_solver.analysis.x_assemble__mutmut_34": "a row named when it misses by >= 10 "
         "tolerances for >: " + _TIE,
         "reference_solver.analysis.x_analyse__mutmut_134": "rcond <= SINGULAR_RCOND for <: " + _TIE,
+        "reference_solver.analysis.x_analyse__mutmut_161": "at a sign change of det C_q, the later point "
+        "reported when the two rconds are equal (<= for <): " + _TIE,
         "reference_solver.analysis.x_analyse__mutmut_61": "the rates' start qd = qdd = zeros -> None: the "
         "first pass of the loop (k = 0) sets both from _rates before any step reads them",
         **dict.fromkeys(
