@@ -19,11 +19,23 @@ import pytest
 
 import reference_solver.analysis as analysis
 import scenarios
-from reference_solver import ConvergenceError, SingularConfigurationError, analyse, solve
+from reference_solver import AssemblyError, ConvergenceError, SingularConfigurationError, analyse, solve
+from reference_solver.factorization import factorize
 from reference_solver.limits import JUMP_FLOOR, JUMP_FRACTION
 from reference_solver.newton import NewtonResult
 from reference_solver.system import ConstraintSystem
-from scenarios import GROUND, AbsoluteDriver, Body, Harmonic, Point, Revolute
+from scenarios import (
+    GROUND,
+    AbsoluteDriver,
+    Body,
+    ConstantSpeed,
+    Harmonic,
+    Point,
+    Prismatic,
+    Revolute,
+    RevoluteRevolute,
+)
+from scenarios.closed_form import exact
 from scenarios.scenario import Scenario
 
 A_HALF, MEAN, AMPLITUDE, OMEGA = 0.1, 0.4, 0.7, 3.0
@@ -65,6 +77,40 @@ def test_positions_rates_and_accelerations_are_the_hand_worked_ones() -> None:
     assert np.all(result.rcond > 0.01)
 
 
+def test_the_rates_solve_the_scaled_velocity_and_acceleration_equations() -> None:
+    """_rates on the crank at the hand-worked q of t = 0.3 (theta' and theta'' both nonzero): the
+    hand-worked q' and q''. The rows (pin, in L = 0.2; driver, an angle) and columns (x, y in L;
+    theta) are scaled differently, so each scale used the wrong way round shows."""
+    system = ConstraintSystem(_crank())
+    q, qd, qdd = (level[0] for level in _by_hand(np.array([0.3])))
+    factors = factorize(system.scaled_jacobian(system.jacobian(q, 0.3)))
+    rates = analysis._rates(system, factors, q, 0.3)
+    np.testing.assert_allclose(rates[0], qd, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(rates[1], qdd, rtol=0, atol=1e-12)
+
+
+def test_the_rates_of_a_driven_length() -> None:
+    """A block sliding along the ground's x axis, its x driven by f = 0.4 + 0.7 cos(3 t) (L = 0.2):
+    at t = 0.3, x' = f' = -2.1 sin(0.9) and x'' = f'' = -6.3 cos(0.9), y and theta still. Only a
+    driver's C_t is nonzero, and this one is a length row (in units of L), unlike the crank's angle."""
+    block = Scenario(
+        family="hand_block",
+        variant="default",
+        bodies=(Body("block", (0.0, 0.0, 0.0)),),
+        joints=(Prismatic("slide", Point("block"), Point(GROUND), axis=(1.0, 0.0)),),
+        drivers=(AbsoluteDriver("push", "block", "x", Harmonic(MEAN, AMPLITUDE, OMEGA)),),
+        t_end=1.0,
+        steps=1,
+        characteristic_length=2 * A_HALF,
+    )
+    system = ConstraintSystem(block)
+    q = np.array([MEAN + AMPLITUDE * math.cos(0.9), 0.0, 0.0])
+    factors = factorize(system.scaled_jacobian(system.jacobian(q, 0.3)))
+    qd, qdd = analysis._rates(system, factors, q, 0.3)
+    np.testing.assert_allclose(qd, [-2.1 * math.sin(0.9), 0, 0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(qdd, [-6.3 * math.cos(0.9), 0, 0], rtol=0, atol=1e-12)
+
+
 def test_the_predictor_is_the_second_order_taylor_step() -> None:
     """q + h q' + h^2/2 q'' with h = 0.5: 1 + 0.5 + 0.125 * 2, 2 + 0.5 + 0.125 * 4, 3 + 0.5 + 0.125 * 6."""
     predicted = analysis._predict(np.array([1.0, 2.0, 3.0]), np.ones(3), np.array([2.0, 4.0, 6.0]), 0.5)
@@ -87,6 +133,15 @@ def test_a_step_has_jumped_when_its_correction_exceeds_half_the_predictors_reach
                 qd,
                 offset,
             )
+
+
+def test_the_reach_of_a_length_coordinate_is_measured_in_units_of_l() -> None:
+    """x' = 1 m/s over h = 0.1 reaches 0.1 m, 0.5 in units of L = 0.2: half of it, 0.25, is the
+    largest correction on the branch. 0.2 rad in theta stays; 0.3 jumps."""
+    system = ConstraintSystem(_crank())
+    start, qd, still = np.array([0.1, 0.0, 0.0]), np.array([1.0, 0.0, 0.0]), np.zeros(3)
+    assert not analysis.jumped(system, qd, still, 0.1, start, start + np.array([0, 0, 0.2]))
+    assert analysis.jumped(system, qd, still, 0.1, start, start + np.array([0, 0, 0.3]))
 
 
 def test_a_step_that_reaches_nothing_has_jumped_beyond_the_floor() -> None:
@@ -269,3 +324,158 @@ def test_two_mechanisms_at_their_stroke_ends_lose_two_ranks() -> None:
         analyse(two, fast=False)
     assert caught.value.rank_deficiency == 2
     assert {"slider_drive.x", "slider_drive_2.x"} <= set(caught.value.dependent_rows)
+
+
+def _unassembled() -> tuple[ConstraintSystem, np.ndarray]:
+    """Bodies a and b, L = 0.5, guessed at (0, 0, 0) and (1, 0, 0). Joints: a's origin 0.3 from the
+    ground origin, b's 0.2 from the ground point (1, 0) (distance rows |d|^2 - l^2, whose gradient
+    2 d vanishes where the points coincide, as at the guess); drivers y_a = 0.1, theta_a = 1.08e-11,
+    y_b = 0, theta_b = 1.03e-11 at t = 0 (each moving at 1/s, so the time is read). At the guess
+    C_q has two zero rows: Newton stops before its first step."""
+    move = 1.0
+    scenario = Scenario(
+        family="unassembled",
+        variant="default",
+        bodies=(Body("a", (0.0, 0.0, 0.0)), Body("b", (1.0, 0.0, 0.0))),
+        joints=(
+            RevoluteRevolute("da", Point(GROUND, (0.0, 0.0)), Point("a"), 0.3),
+            RevoluteRevolute("db", Point(GROUND, (1.0, 0.0)), Point("b"), 0.2),
+        ),
+        drivers=(
+            AbsoluteDriver("ya", "a", "y", ConstantSpeed(0.1, move)),
+            AbsoluteDriver("ta", "a", "theta", ConstantSpeed(1.08e-11, move)),
+            AbsoluteDriver("yb", "b", "y", ConstantSpeed(0.0, move)),
+            AbsoluteDriver("tb", "b", "theta", ConstantSpeed(1.03e-11, move)),
+        ),
+        t_end=1.0,
+        steps=1,
+        characteristic_length=0.5,
+    )
+    return ConstraintSystem(scenario), np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0])
+
+
+def test_a_failed_assembly_names_the_four_worst_rows_beyond_ten_tolerances() -> None:
+    """The scaled misses at the guess: da -0.09 / L^2 = -0.36, ya -0.1 / L = -0.2, db -0.04 / L^2 =
+    -0.16, ta -1.08e-11, tb -1.03e-11, yb 0. The four worst are named, worst first, when they miss
+    by more than 10 tolerances (1e-11: ta is, by 8 %); tb, fifth, is not. The two zero rows make
+    C_q lose two ranks, and they are the dependent rows."""
+    system, guess = _unassembled()
+    with pytest.raises(AssemblyError) as caught:
+        analysis.assemble(system, guess, 0.0, 1e-12)
+    error = caught.value
+    assert str(error) == (
+        "unassembled: the mechanism cannot assemble at t=0: after 0 iterations the constraints "
+        "da.length, ya.y, db.length, ta.theta still miss by up to 0.36 (relative to the "
+        "characteristic length 0.5)"
+    )
+    assert error.time == 0.0
+    assert error.q is not None
+    np.testing.assert_array_equal(error.q, guess)
+    assert error.rank_deficiency == 2
+    assert error.dependent_rows == ("da.length", "db.length")
+
+
+def _four_bar_turned(coordinate: int) -> tuple[ConstraintSystem, np.ndarray, np.ndarray]:
+    """The four-bar, its closed-form configuration at t = 0 (bodies crank, coupler, rocker), and a
+    guess with one angle (q[coordinate]) turned 2 rad back from it."""
+    scenario = scenarios.build("four_bar")
+    position = exact(scenario, np.array([0.0])).position
+    assert position is not None
+    truth = position[0].ravel()
+    guess = truth.copy()
+    guess[coordinate] -= 2.0
+    return ConstraintSystem(scenario), truth, guess
+
+
+@pytest.mark.parametrize("coordinate", [5, 8], ids=["coupler", "rocker"])
+def test_assembly_from_a_rough_guess_is_damped_and_may_take_many_iterations(coordinate: int) -> None:
+    """From the coupler's angle turned 2 rad back, plain Newton does not converge in 100 iterations
+    (measured); from the rocker's, it lands 2 pi away; damped Newton reaches the closed form's
+    configuration from both, from the rocker's in 26 iterations (measured: more than the 25 of a
+    time step, fewer than the assembly's 100)."""
+    system, truth, guess = _four_bar_turned(coordinate)
+    np.testing.assert_allclose(analysis.assemble(system, guess, 0.0, 1e-12), truth, rtol=0, atol=1e-12)
+
+
+def test_assembly_stops_at_its_tolerance() -> None:
+    """With a tolerance of 0.1 (on both the step and the residual, scaled) the coupler-turned guess
+    assembles 4.5e-5 L (measured) from the closed form: Newton stopped once both were below it,
+    where a tolerance of 1e-12 on either goes on to round-off. Bounds: a third and three times."""
+    system, truth, guess = _four_bar_turned(5)
+    error = np.max(np.abs((analysis.assemble(system, guess, 0.0, 0.1) - truth) / system.column_scales))
+    assert 1.5e-5 < error < 1.35e-4
+
+
+def test_every_step_of_a_smooth_motion_is_taken_at_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    """On the crank's own grid the predictor q + h q' + h^2/2 q'' lies within h^3 |q'''| / 6 (about
+    1e-4) of the answer: no step is retaken and each Newton ends in 3 iterations (measured), a
+    predictor that left out a term, or a step believed longer than it is, would be retaken."""
+    calls = _counting_approach(monkeypatch)
+    result = analyse(_crank(), fast=False)
+    assert calls == []
+    assert np.all(result.iterations[1:] <= 3)
+
+
+def test_a_grid_of_one_time_is_the_assembled_configuration_and_its_rates() -> None:
+    result = analyse(_crank(), [0.3], fast=False)
+    for level, expected in zip(("q", "qd", "qdd"), _by_hand(np.array([0.3])), strict=True):
+        np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-12, err_msg=level)
+
+
+def test_integer_times_give_a_float_grid_and_the_iterations_are_counts() -> None:
+    for fast in (True, False):
+        result = analyse(_crank(), [0, 1], fast=fast)
+        assert result.times.dtype == np.float64
+        assert result.iterations.dtype.kind == "i", fast
+
+
+def test_analyse_takes_the_fast_path_by_default(monkeypatch: pytest.MonkeyPatch) -> None:
+    calls: list[float] = []
+    real = analysis.fast_path.analyse
+
+    def counted(scenario, grid, tolerance, max_iterations):  # type: ignore[no-untyped-def]
+        calls.append(tolerance)
+        return real(scenario, grid, tolerance, max_iterations)
+
+    monkeypatch.setattr(analysis.fast_path, "analyse", counted)
+    analyse(_crank(), [0.0, 0.1])
+    assert calls == [1e-12]
+
+
+@pytest.mark.parametrize(("before", "after"), [(1e-3, 2e-4), (2e-4, 1e-3)], ids=["later", "earlier"])
+def test_a_sign_change_of_det_c_q_is_reported_at_the_nearer_grid_point(before: float, after: float) -> None:
+    """A slider-crank with rod = crank (0.2), driven from 0.5 rad at 50 rad/s, is singular at
+    theta = pi/2, t* = (pi/2 - 0.5) / 50; a grid that steps over t* (its last two times t* - before
+    and t* + after) sees det C_q change sign. The error names the time interpolated between them
+    (measured 6.7e-8 s from t*, bounded by 2e-7) and the configuration of the grid point nearer the
+    singularity, whose crank angle is the driven 0.5 + 50 t."""
+    scenario = scenarios.build("slider_crank", overrides={"rod_length": 0.2, "theta0": 0.5})
+    t_star = (math.pi / 2 - 0.5) / 50
+    t0, t1 = t_star - before, t_star + after
+    grid = np.concatenate([np.linspace(0.0, t0, 11), [t1]])
+    with pytest.raises(SingularConfigurationError) as caught:
+        analyse(scenario, grid, fast=False)
+    error = caught.value
+    assert error.time == pytest.approx(t_star, abs=2e-7)
+    assert error.q is not None
+    assert error.q[2] == pytest.approx(0.5 + 50 * min((t0, t1), key=lambda t: abs(t - t_star)), abs=1e-12)
+    assert (
+        f"det C_q changed sign between t={t0:.6g} and t={t1:.6g} (a singular configuration or a jump to "
+        "another assembly branch lies between)" in str(error)
+    )
+
+
+def test_a_grid_point_on_a_singularity_is_refused_for_its_conditioning() -> None:
+    """The slider-crank with rod = crank from theta = 0 at 50 rad/s on 8 steps of pi/400 s: its grid
+    point t = pi/100 is theta = pi/2, where C_q is singular, so its conditioning (below 1e-9) is the
+    reason given, with its value."""
+    scenario = scenarios.build("slider_crank", overrides={"rod_length": 0.2, "theta0": 0.0, "steps": 8})
+    with pytest.raises(SingularConfigurationError) as caught:
+        analyse(scenario, fast=False)
+    message = re.fullmatch(
+        r"slider_crank: singular configuration at t=0\.0314159: "
+        r"C_q reciprocal condition number (\S+); C_q rank deficiency 1, dependent rows: .+",
+        str(caught.value),
+    )
+    assert message is not None, str(caught.value)
+    assert float(message[1]) < 1e-9
