@@ -42,10 +42,22 @@ def assemble(system: ConstraintSystem, q_guess: np.ndarray, t: float, tolerance:
     worst = np.argsort(-np.abs(c))[:4]
     rows = tuple(system.labels[k] for k in worst if abs(c[k]) > 10 * tolerance)
     report = rank_report(system.scaled_jacobian(system.jacobian(result.q, t)), system.labels)
+    if rows:
+        why = (
+            f"after {result.iterations} iterations the constraints {', '.join(rows)} still miss by up to "
+            f"{np.max(np.abs(c)):.3g} (relative to the characteristic length "
+            f"{system.layout.length_scale:.6g})"
+        )
+    else:
+        why = (
+            f"the constraints hold (to {np.max(np.abs(c), initial=0.0):.3g}) but C_q is singular there, "
+            f"rank deficiency {report.deficiency}, dependent rows: "
+            f"{', '.join(report.dependent_rows) or 'unknown'}: "
+            "a constraint the others already hold at this configuration (independent elsewhere, so the "
+            "mobility check passed it)"
+        )
     raise AssemblyError(
-        f"{system.scenario.name}: the mechanism cannot assemble at t={t:.6g}: after {result.iterations} "
-        f"iterations the constraints {', '.join(rows)} still miss by up to {np.max(np.abs(c)):.3g} "
-        f"(relative to the characteristic length {system.layout.length_scale:.6g})",
+        f"{system.scenario.name}: the mechanism cannot assemble at t={t:.6g}: {why}",
         time=t,
         q=result.q,
         rank_deficiency=report.deficiency,

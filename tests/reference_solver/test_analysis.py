@@ -28,6 +28,7 @@ from scenarios import (
     GROUND,
     AbsoluteDriver,
     Body,
+    Constant,
     ConstantSpeed,
     Harmonic,
     Point,
@@ -373,6 +374,25 @@ def test_a_failed_assembly_names_the_four_worst_rows_beyond_ten_tolerances() -> 
     np.testing.assert_array_equal(error.q, guess)
     assert error.rank_deficiency == 2
     assert error.dependent_rows == ("da.length", "db.length")
+
+
+def test_a_driver_held_by_the_joints_only_at_the_configuration_is_named_with_the_dependent_rows() -> None:
+    """The slider-crank driven at its slider's y instead of its crank: the slide's normal row holds y
+    only while its angle row holds the slider level, so the three rows are independent at the
+    generic points the mobility check draws and dependent at every assembled configuration. Newton
+    meets the constraints there, C_q is singular, and the refusal says so rather than "miss by 1e-16"."""
+    base = scenarios.build("slider_crank")
+    held = AbsoluteDriver("slider_y", "slider", "y", Constant(0.0))
+    with pytest.raises(AssemblyError) as caught:
+        analyse(dataclasses.replace(base, drivers=(held,)))
+    message = str(caught.value)
+    assert message.startswith("slider_crank: the mechanism cannot assemble at t=0: the constraints hold (to ")
+    assert (
+        "but C_q is singular there, rank deficiency 1, dependent rows: slide.angle, slide.normal, " in message
+    )
+    assert "miss by" not in message
+    assert caught.value.rank_deficiency == 1
+    assert set(caught.value.dependent_rows) == {"slide.angle", "slide.normal", "slider_y.y"}
 
 
 def _four_bar_turned(coordinate: int) -> tuple[ConstraintSystem, np.ndarray, np.ndarray]:
