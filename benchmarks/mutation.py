@@ -8,6 +8,13 @@ worker, under `nice -n 19`. The table gives mutants total / killed / survived / 
 every survivor, marked "explained" when EXPLAINED gives the reason it cannot or need not be killed
 (docs/mutation.md keeps the counts and the reasons). Mutant names are mutmut's (function and
 ordinal), stable for a given source and mutmut version, which pyproject pins.
+
+The numba kernels (KERNEL_MODULES) are mutated as Python: mutmut skips decorated functions, and a
+trampoline could not be compiled anyway. In the scratch copy their `@njit(...)` lines are removed and
+the whole run has NUMBA_DISABLE_JIT=1, under which numba's njit returns the function itself: the
+kernels run the very source numba compiles, as Python, with the same tests (those chosen to stay fast
+uncompiled). Other modules run with the kernels compiled, their numba cache in the scratch copy
+(NUMBA_CACHE_DIR), so no run reuses machine code compiled from other sources.
 """
 
 from __future__ import annotations
@@ -15,6 +22,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -56,6 +64,15 @@ PLAIN_PATH_TESTS = (
 )
 """The tests of the plain path's building blocks (system, layout, mobility, factorization): each
 imports or runs them without the compiled kernel (not yet run under mutation)."""
+
+FAST_PATH_TESTS = (
+    "tests/reference_solver/test_fast_path_kernels.py",
+    "tests/reference_solver/test_fast_path.py",
+    "tests/reference_solver/test_compiled_system.py",
+)
+"""The fast path's tests: its kernels against dense algebra and closed forms, the whole path against
+the plain path to 1e-12 on every scenario, the compiled rows against the plain rows on random states
+(each stays within about 15 s of CPU with the kernels uncompiled)."""
 
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
@@ -106,7 +123,28 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/layout.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_layout.py"),
     "reference_solver/factorization.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_factorization.py"),
     "reference_solver/residual.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_residual.py"),
+    # ---- the compiled kinematic fast path (session 8, mut3) ----
+    **dict.fromkeys(
+        (
+            "reference_solver/fast/rows.py",
+            "reference_solver/fast/program.py",
+            "reference_solver/fast/structure.py",
+            "reference_solver/fast/evaluate.py",
+        ),
+        FAST_PATH_TESTS,
+    ),
+    "reference_solver/fast/band.py": FAST_PATH_TESTS[:2],
+    "reference_solver/fast/dense_lu.py": FAST_PATH_TESTS[:1],
+    "reference_solver/fast/loop.py": FAST_PATH_TESTS[:2],
+    "reference_solver/fast/path.py": FAST_PATH_TESTS[:2],
+    "reference_solver/fast/dense.py": FAST_PATH_TESTS[2:],
 }
+
+KERNEL_MODULES = frozenset(
+    f"reference_solver/fast/{name}.py" for name in ("evaluate", "band", "dense_lu", "loop", "dense")
+)
+"""Modules of numba kernels, mutated as Python (NUMBA_DISABLE_JIT=1, their `@njit` lines removed)."""
+NJIT_LINE = re.compile(r"^@njit\(.*\)\n", re.MULTILINE)
 
 _STRICT_ZIP = "zip of two 2-tuples: strict or not, the pairs are the same"
 _DTYPE = "the values are floats already: asarray(..., dtype=float) and asarray(...) are the same array"
@@ -301,6 +339,18 @@ def _scratch_copy(module: str, where: Path) -> None:
         'pytest_add_cli_args = ["-p", "no:cacheprovider", "-x", "-q", "-m", "not slow"]\n'
     )
     (where / "pyproject.toml").write_text(config)
+    if module in KERNEL_MODULES:
+        source = where / module
+        source.write_text(NJIT_LINE.sub("", source.read_text()))
+
+
+def _environment(module: str, where: Path) -> dict[str, str]:
+    """No bytecode; numba's cache in the scratch copy, or numba off for a kernel module."""
+    env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1", "NUMBA_CACHE_DIR": str(where / "numba-cache")}
+    env.pop("NUMBA_DISABLE_JIT", None)
+    if module in KERNEL_MODULES:
+        env["NUMBA_DISABLE_JIT"] = "1"
+    return env
 
 
 def _outcome(module: str, where: Path) -> Outcome:
@@ -322,7 +372,7 @@ def run(module: str, keep: Path | None = None) -> Outcome:
         where = keep if keep is not None else Path(scratch)
         where.mkdir(parents=True, exist_ok=True)
         _scratch_copy(module, where)
-        env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
+        env = _environment(module, where)
         subprocess.run(
             ["nice", "-n", "19", str(mutmut), "run", "--max-children", "1"],
             cwd=where,

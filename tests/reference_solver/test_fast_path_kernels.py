@@ -1,6 +1,6 @@
 """The fast path's pieces on their own: band LU against dense algebra, the condition estimate against
-the exact condition number and LAPACK's, the spline kernel against the profile, the band layout of
-a chain, and the guard of numba's cache."""
+the exact condition number and LAPACK's, the dense LU against LAPACK's, the spline kernel against the
+profile, the band layout of a chain, and the guard of numba's cache."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from scipy.linalg import lu_factor
 from scipy.linalg.lapack import dgecon
 
 import scenarios
-from reference_solver.fast import band, path
+from reference_solver.fast import band, dense_lu, path
 from reference_solver.fast.cache_guard import refresh
 from reference_solver.fast.evaluate import profile_points
 from reference_solver.fast.program import profile_tables
@@ -70,6 +70,47 @@ def test_band_lu_solves_like_dense_algebra(n: int, kl: int, ku: int) -> None:
 def test_a_zero_pivot_reports_a_singular_matrix() -> None:
     a = np.array([[1.0, 2.0], [2.0, 4.0]])
     assert band.factor(_store(a, 1, 1), np.zeros(2, np.int64), 2, 1, 1, 4) == 0.0
+
+
+DENSE = {
+    "random 5 x 5": np.random.default_rng(5).standard_normal((5, 5)),
+    "multipliers of exactly 1 and -1/2": np.array([[2.0, 1.0, 1.0], [4.0, -6.0, 0.0], [-2.0, 7.0, 2.0]]),
+    "a tie of magnitudes keeps the first row": np.array([[1.0, 2.0], [-1.0, 3.0]]),
+    "a 1 x 1": np.array([[-4.0]]),
+}
+
+
+@pytest.mark.parametrize("name", DENSE)
+def test_dense_lu_is_lapacks_and_solves(name: str) -> None:
+    """The factors and pivots of LAPACK's getrf (scipy.linalg.lu_factor), solves to round-off."""
+    a = DENSE[name]
+    n = a.shape[0]
+    store, piv = np.zeros((n + 1, n + 2)), np.zeros(n + 1, np.int64)  # larger than n: only [:n, :n] used
+    store[:n, :n] = a
+    assert not dense_lu.lu_factor(store, n, piv)
+    lu, lapack_piv = lu_factor(a)
+    np.testing.assert_allclose(store[:n, :n], lu, rtol=1e-14, atol=1e-15)
+    np.testing.assert_array_equal(piv[:n], lapack_piv)
+    assert np.all(store[n:] == 0.0) and np.all(store[:, n:] == 0.0)
+    b = np.arange(1.0, n + 1.0) * (-1.0) ** np.arange(n)
+    x, y = np.append(b, 7.0), np.append(b, 7.0)
+    dense_lu.lu_solve(store, n, piv, x)
+    dense_lu.lu_solve_transposed(store, n, piv, y)
+    np.testing.assert_allclose(a @ x[:n], b, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(a.T @ y[:n], b, rtol=0, atol=1e-13)
+    assert x[n] == 7.0 and y[n] == 7.0
+
+
+def test_dense_lu_of_a_singular_matrix_flags_it_and_leaves_the_column_unscaled() -> None:
+    """A zero first column: no pivot, the column left as it is and the rest still factored (as LAPACK)."""
+    a = np.array([[0.0, 2.0, 1.0], [0.0, 4.0, 1.0], [0.0, 1.0, 3.0]])
+    store, piv = a.copy(), np.zeros(3, np.int64)
+    assert dense_lu.lu_factor(store, 3, piv)
+    np.testing.assert_array_equal(piv, [0, 1, 2])
+    # column 1 pivots on row 1 (4 > 1, row 0 done): multiplier 1/4, then 3 - 1/4; row 0 as it was
+    np.testing.assert_allclose(
+        store, [[0.0, 2.0, 1.0], [0.0, 4.0, 1.0], [0.0, 0.25, 2.75]], rtol=0, atol=1e-15
+    )
 
 
 def test_the_chain_keeps_a_constant_bandwidth() -> None:
