@@ -138,6 +138,17 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/fast/loop.py": FAST_PATH_TESTS[:2],
     "reference_solver/fast/path.py": FAST_PATH_TESTS[:2],
     "reference_solver/fast/dense.py": FAST_PATH_TESTS[2:],
+    "reference_solver/compiled_system.py": FAST_PATH_TESTS[2:],
+    "reference_solver/equation.py": PLAIN_PATH_TESTS,
+    "reference_solver/solution.py": (
+        "tests/reference_solver/test_solution.py",
+        "tests/reference_solver/test_analysis.py",
+    ),
+    "reference_solver/diagnostics.py": (
+        "tests/reference_solver/test_diagnostics.py",
+        "tests/reference_solver/test_mobility.py",
+        "tests/reference_solver/test_failures.py",
+    ),
 }
 
 KERNEL_MODULES = frozenset(
