@@ -313,6 +313,11 @@ EXPLAINED: dict[str, str] = {
     ),
     "reference_solver.analysis.x__approach__mutmut_99": "smallest <= NEAR_SINGULAR for <: differs only "
     "on an exact tie of the singular value ratio with 1e-4",
+    # ---- the compiled fast path (session 8, mut3) ----
+    "reference_solver.fast.dense_lu.x_lu_solve_transposed__mutmut_16": "the L^T back substitution from "
+    "row n - 2: row n - 1 has nothing right of its unit diagonal (j from n to n), so it is left as it is",
+    "reference_solver.fast.dense_lu.x_lu_solve_transposed__mutmut_39": "the pivots undone from k = n - 2: "
+    "piv[n - 1] is always n - 1 (the last column has one candidate row), so its swap does nothing",
 }
 
 KILLED, SURVIVED = 1, 0

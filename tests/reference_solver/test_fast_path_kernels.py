@@ -85,13 +85,13 @@ def test_dense_lu_is_lapacks_and_solves(name: str) -> None:
     """The factors and pivots of LAPACK's getrf (scipy.linalg.lu_factor), solves to round-off."""
     a = DENSE[name]
     n = a.shape[0]
-    store, piv = np.zeros((n + 1, n + 2)), np.zeros(n + 1, np.int64)  # larger than n: only [:n, :n] used
+    store, piv = np.full((n + 1, n + 2), 3.0), np.zeros(n + 1, np.int64)  # only [:n, :n] is the matrix
     store[:n, :n] = a
-    assert not dense_lu.lu_factor(store, n, piv)
+    assert dense_lu.lu_factor(store, n, piv) is False
     lu, lapack_piv = lu_factor(a)
     np.testing.assert_allclose(store[:n, :n], lu, rtol=1e-14, atol=1e-15)
     np.testing.assert_array_equal(piv[:n], lapack_piv)
-    assert np.all(store[n:] == 0.0) and np.all(store[:, n:] == 0.0)
+    assert np.all(store[n:] == 3.0) and np.all(store[:, n:] == 3.0)
     b = np.arange(1.0, n + 1.0) * (-1.0) ** np.arange(n)
     x, y = np.append(b, 7.0), np.append(b, 7.0)
     dense_lu.lu_solve(store, n, piv, x)
