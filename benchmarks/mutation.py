@@ -15,6 +15,11 @@ the whole run has NUMBA_DISABLE_JIT=1, under which numba's njit returns the func
 kernels run the very source numba compiles, as Python, with the same tests (those chosen to stay fast
 uncompiled). Other modules run with the kernels compiled, their numba cache in the scratch copy
 (NUMBA_CACHE_DIR), so no run reuses machine code compiled from other sources.
+
+Each mutant's tests run in a process forked from mutmut's fork server, which has only collected the
+tests (`process_isolation = "forkserver"`): mutmut's default forks from the process that ran the whole
+selection for its statistics, whose caches (the fast path's compiled programs, lru_cache) then hand
+every mutant the unmutated result, so a mutant of a function behind a cache never ran and "survived".
 """
 
 from __future__ import annotations
@@ -65,14 +70,16 @@ PLAIN_PATH_TESTS = (
 """The tests of the plain path's building blocks (system, layout, mobility, factorization): each
 imports or runs them without the compiled kernel (not yet run under mutation)."""
 
-FAST_PATH_TESTS = (
-    "tests/reference_solver/test_fast_path_kernels.py",
-    "tests/reference_solver/test_fast_path.py",
-    "tests/reference_solver/test_compiled_system.py",
-)
-"""The fast path's tests: its kernels against dense algebra and closed forms, the whole path against
-the plain path to 1e-12 on every scenario, the compiled rows against the plain rows on random states
-(each stays within about 15 s of CPU with the kernels uncompiled)."""
+KERNEL_TESTS = "tests/reference_solver/test_fast_path_kernels.py"
+WHOLE_PATH_TESTS = "tests/reference_solver/test_fast_path.py"
+COMPILED_SYSTEM_TESTS = "tests/reference_solver/test_compiled_system.py"
+ROWS_TESTS = "tests/reference_solver/test_fast_rows.py"
+STRUCTURE_TESTS = "tests/reference_solver/test_fast_structure.py"
+FAST_PATH_TESTS = (KERNEL_TESTS, WHOLE_PATH_TESTS, COMPILED_SYSTEM_TESTS, ROWS_TESTS)
+"""The fast path's tests: its kernels against dense algebra and LAPACK, the whole path against the
+plain path to 1e-12 on every scenario, the compiled rows against the plain rows on random states.
+Uncompiled, the whole-path tests take minutes per surviving mutant on the shared machine: the kernel
+modules other than the loop are mutated against the others only, which check the same values."""
 
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
@@ -124,21 +131,16 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/factorization.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_factorization.py"),
     "reference_solver/residual.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_residual.py"),
     # ---- the compiled kinematic fast path (session 8, mut3) ----
-    **dict.fromkeys(
-        (
-            "reference_solver/fast/rows.py",
-            "reference_solver/fast/program.py",
-            "reference_solver/fast/structure.py",
-            "reference_solver/fast/evaluate.py",
-        ),
-        FAST_PATH_TESTS,
-    ),
-    "reference_solver/fast/band.py": FAST_PATH_TESTS[:2],
-    "reference_solver/fast/dense_lu.py": FAST_PATH_TESTS[:1],
-    "reference_solver/fast/loop.py": FAST_PATH_TESTS[:2],
-    "reference_solver/fast/path.py": FAST_PATH_TESTS[:2],
-    "reference_solver/fast/dense.py": FAST_PATH_TESTS[2:],
-    "reference_solver/compiled_system.py": FAST_PATH_TESTS[2:],
+    "reference_solver/fast/rows.py": FAST_PATH_TESTS,
+    "reference_solver/fast/program.py": FAST_PATH_TESTS,
+    "reference_solver/fast/structure.py": (*FAST_PATH_TESTS, STRUCTURE_TESTS),
+    "reference_solver/fast/evaluate.py": (KERNEL_TESTS, COMPILED_SYSTEM_TESTS, ROWS_TESTS),
+    "reference_solver/fast/band.py": (KERNEL_TESTS, STRUCTURE_TESTS),
+    "reference_solver/fast/dense_lu.py": (KERNEL_TESTS,),
+    "reference_solver/fast/loop.py": (KERNEL_TESTS, WHOLE_PATH_TESTS),
+    "reference_solver/fast/path.py": (KERNEL_TESTS, WHOLE_PATH_TESTS),
+    "reference_solver/fast/dense.py": (COMPILED_SYSTEM_TESTS,),
+    "reference_solver/compiled_system.py": (COMPILED_SYSTEM_TESTS,),
     "reference_solver/equation.py": PLAIN_PATH_TESTS,
     "reference_solver/solution.py": (
         "tests/reference_solver/test_solution.py",
@@ -353,6 +355,7 @@ def _scratch_copy(module: str, where: Path) -> None:
         f'\n[tool.mutmut]\nsource_paths = ["{module}"]\npytest_add_cli_args_test_selection = [{tests}]\n'
         f"also_copy = [{also}]\n"
         'pytest_add_cli_args = ["-p", "no:cacheprovider", "-x", "-q", "-m", "not slow"]\n'
+        'process_isolation = "forkserver"\n'
     )
     (where / "pyproject.toml").write_text(config)
     if module in KERNEL_MODULES:
