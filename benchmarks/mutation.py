@@ -330,6 +330,23 @@ EXPLAINED: dict[str, str] = {
     "flipped instead of none: the iteration then ends early with the current estimate; on the tests' "
     "matrices (random, scaled by 1e-3 to 1e3) no iterate flips every sign, and a matrix made to do so "
     "was not built",
+    "reference_solver.fast.band.x_solve_transposed__mutmut_35": "the L^T solve from j = n - 2: row n - 1 "
+    "has no multipliers below it (i from n on) and piv[n - 1] = n - 1, so that step changes nothing",
+    **dict.fromkeys(
+        (
+            "reference_solver.fast.band.x__argmax_abs__mutmut_3",
+            "reference_solver.fast.band.x__argmax_abs__mutmut_4",
+        ),
+        "the argmax's start (best -2 for -1, k 1 for 0): any |x_i| >= 0 beats -1 and -2 alike, so the "
+        "first entry always replaces the start (a NaN iterate aside, which makes the estimate 0 anyway)",
+    ),
+    "reference_solver.fast.band.x__argmax_abs__mutmut_7": "the argmax takes the last of equal |x_i| (>=) "
+    "instead of the first: differs only on an exact tie of two floating iterates",
+    "reference_solver.fast.evaluate.x_radii__mutmut_50": "the bisection's middle (low + high + 2) // 2 for "
+    "+ 1: still strictly above low and at most high while low < high, so it finds the same interval",
+    "reference_solver.fast.evaluate.x_evaluate__mutmut_21": "the Jacobian written when the store has more "
+    "than 1 entry instead of more than 0: a store is empty (no Jacobian asked) or holds at least 3 entries "
+    "(every scenario has a body, 3 columns)",
 }
 
 KILLED, SURVIVED = 1, 0
