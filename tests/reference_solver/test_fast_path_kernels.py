@@ -71,6 +71,18 @@ def test_band_lu_solves_like_dense_algebra(n: int, kl: int, ku: int) -> None:
         assert transposed == pytest.approx(dgecon(lu_factor(a)[0], anorm_inf, norm="I")[0], rel=1e-13)
 
 
+def test_condition_estimate_of_the_identity_and_of_no_norm() -> None:
+    """The identity's rcond is exactly 1 (its 1-norm 1 too); as dgecon, 0 for a zero norm or no rows."""
+    n, kl, ku = 4, 1, 1
+    store, piv, w = _store(np.eye(n), kl, ku), np.zeros(n, np.int64), 2 * kl + ku + 1
+    assert band.factor(store, piv, n, kl, ku, w) == 1.0
+    x, signs = np.zeros(n), np.zeros(n)
+    for transposed in (False, True):
+        assert band.rcond(store, piv, n, kl, ku, w, 1.0, x, signs, transposed) == 1.0
+        assert band.rcond(store, piv, n, kl, ku, w, 0.0, x, signs, transposed) == 0.0
+        assert band.rcond(store, piv, 0, kl, ku, w, 1.0, x, signs, transposed) == 0.0
+
+
 def test_a_zero_pivot_reports_a_singular_matrix() -> None:
     a = np.array([[1.0, 2.0], [2.0, 4.0]])
     assert band.factor(_store(a, 1, 1), np.zeros(2, np.int64), 2, 1, 1, 4) == 0.0
