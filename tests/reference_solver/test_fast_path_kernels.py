@@ -39,7 +39,8 @@ def _store(a: np.ndarray, kl: int, ku: int) -> np.ndarray:
 
 
 @pytest.mark.parametrize(
-    ("n", "kl", "ku"), [(1, 0, 0), (9, 3, 4), (30, 4, 2), (40, 1, 7), (12, 11, 11), (8, 0, 2), (7, 2, 0)]
+    ("n", "kl", "ku"),
+    [(1, 0, 0), (2, 1, 1), (3, 1, 0), (9, 3, 4), (30, 4, 2), (40, 1, 7), (12, 11, 11), (8, 0, 2), (7, 2, 0)],
 )
 def test_band_lu_solves_like_dense_algebra(n: int, kl: int, ku: int) -> None:
     rng = np.random.default_rng(n + kl + ku)
