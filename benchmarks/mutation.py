@@ -364,6 +364,18 @@ EXPLAINED: dict[str, str] = {
     "`estimate <= previous` stops one step later with the same value (a tie of two columns aside)",
     "reference_solver.fast.band.x_rcond__mutmut_91": "estimate < previous for <=: differs only on an "
     "exact tie of two floating estimates",
+    "reference_solver.diagnostics.x_rank_report__mutmut_25": "the zero matrix's top singular value 2 for "
+    "1: any positive top gives it rank 0 and the ratio 0 / top = 0",
+    **dict.fromkeys(
+        (
+            "reference_solver.diagnostics.x_rank_report__mutmut_45",
+            "reference_solver.diagnostics.x_rank_report__mutmut_52",
+        ),
+        "the weights' branch for an empty `lost`: unreachable, `lost` holds at least the last column of U "
+        "(rows > 0 there, the empty matrix returns first)",
+    ),
+    "reference_solver.diagnostics.x_rank_report__mutmut_56": "a row named for a weight >= 0.1 instead of > "
+    "0.1: differs only on an exact tie of a singular vector's entry with 0.1",
 }
 
 KILLED, SURVIVED = 1, 0

@@ -53,3 +53,20 @@ def test_more_rows_than_columns_and_the_empty_and_zero_matrices() -> None:
     assert (empty.rank, empty.deficiency, empty.dependent_rows, empty.smallest) == (0, 0, (), 1.0)
     zero = rank_report(np.zeros((2, 2)), LABELS[:2])
     assert (zero.rank, zero.deficiency, zero.smallest) == (0, 2, 0.0)
+
+
+def test_one_row_a_tiny_matrix_and_no_columns() -> None:
+    """One row (3, 4): rank 1, itself the weakest direction, ratio 1. A matrix of norm 1e-9 has rank 1
+    relative to itself. No columns: every row lost, ratio 1 by convention."""
+    assert rank_report(np.array([[3.0, 4.0]]), ["a"]) == rank_report(np.array([[4.0, 3.0]]), ["a"])
+    one = rank_report(np.array([[3.0, 4.0]]), ["a"])
+    assert (one.rank, one.deficiency, one.dependent_rows, one.smallest) == (1, 0, ("a",), 1.0)
+    tiny = rank_report(np.diag([1e-9, 0.0]), LABELS[:2])
+    assert (tiny.rank, tiny.deficiency, tiny.dependent_rows, tiny.smallest) == (1, 1, ("b",), 0.0)
+    none = rank_report(np.zeros((2, 0)), LABELS[:2])
+    assert (none.rank, none.deficiency, none.smallest) == (0, 2, 1.0)
+
+
+def test_a_singular_value_exactly_at_the_tolerance_counts_as_lost() -> None:
+    """diag(2, 1, 2e-8): the SVD of a diagonal matrix is exact, and 2e-8 is 1e-8 times 2 exactly."""
+    assert rank_report(np.diag([2.0, 1.0, 2e-8]), LABELS).rank == 2

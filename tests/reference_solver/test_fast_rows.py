@@ -9,8 +9,9 @@ import math
 import numpy as np
 import pytest
 
+import scenarios
 from reference_solver.fast.evaluate import c_t, evaluate, profile_points
-from reference_solver.fast.program import WIDTH, compile_dense
+from reference_solver.fast.program import S_BODIES, S_KL, S_WIDTH, WIDTH, compile_dense, compile_program
 from reference_solver.fast.rows import NotCompiled, rows_of
 from reference_solver.system import ConstraintSystem
 from scenarios import GROUND, Point
@@ -114,3 +115,27 @@ def _with_driver(driver: AbsoluteDriver) -> Scenario:
     from dataclasses import replace
 
     return replace(VOCABULARY, drivers=(driver,))
+
+
+def test_the_band_store_holds_the_scaled_jacobian() -> None:
+    """On a square scenario the kernel writes D_r^-1 C_q D_c (rows over L^power, lengths over L) into
+    the band store at the program's permuted positions: read back, it is the plain scaled Jacobian."""
+    scenario = scenarios.build("cam_roller/spline")
+    system = ConstraintSystem(scenario)
+    p = compile_program(system)
+    n, kl, w = p.n, int(p.sizes[S_KL]), int(p.sizes[S_WIDTH])
+    rng = np.random.default_rng(5)
+    q = system.layout.initial_guess(scenario) + 0.1 * rng.normal(size=n)
+    store, us = np.full(n * w, np.nan), np.empty((p.profiles.shape[0], 4, 2))
+    profile_points(p.profiles, p.splines, q, int(p.sizes[S_BODIES]), us)
+    work, jac = np.empty((5, max(int(p.sizes[S_BODIES]), WIDTH))), np.empty((2, 2, WIDTH))
+    evaluate(p.ints, p.reals, q, np.zeros(n), 0.3, np.empty(n), np.empty(n), store, work, jac, us)
+    read = np.zeros((n, n))
+    for i in range(n):
+        for slot in range(w):
+            j = i - kl + slot
+            if 0 <= j < n:
+                read[p.perm[0, i], p.perm[1, j]] = store[i * w + slot]
+    expected = system.scaled_jacobian(system.jacobian(q, 0.3))
+    assert np.max(np.abs(expected)) > 2.0  # the scales matter: L = 0.05 m here
+    np.testing.assert_allclose(read, expected, rtol=0, atol=1e-12 * np.max(np.abs(expected)))
