@@ -175,7 +175,7 @@ def test_an_empty_grid_and_an_unhashable_scenario() -> None:
     compiled all the same and gives the same motion."""
     scenario = scenarios.build("four_bar", overrides={"steps": 10})
     assert path.run(scenario, np.zeros(0)) == path.FastRun("empty grid", 0, None)
-    unhashable = dataclasses.replace(scenario, parameters=[("note", 1.0)])
+    unhashable = dataclasses.replace(scenario, parameters=[("note", 1.0)])  # type: ignore[arg-type]
     grid = np.asarray(scenario.times())
     kept, fresh = path.run(scenario, grid).analysis, path.run(unhashable, grid).analysis
     assert kept is not None and fresh is not None

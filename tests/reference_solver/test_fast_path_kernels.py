@@ -65,7 +65,7 @@ def test_band_lu_solves_like_dense_algebra(n: int, kl: int, ku: int) -> None:
         assert exact * (1 - 1e-9) <= estimate <= 10 * exact  # an estimate never undercuts the truth
         # the same estimator as LAPACK's dgecon on the same pivots: measured equal to 2.2e-15
         assert estimate == pytest.approx(lapack, rel=1e-13)
-        anorm_inf = np.linalg.norm(a, np.inf)
+        anorm_inf = float(np.linalg.norm(a, np.inf))
         transposed = band.rcond(store, piv, n, kl, ku, w, anorm_inf, np.zeros(n), np.zeros(n), True)
         exact_inf = 1.0 / (anorm_inf * np.linalg.norm(np.linalg.inv(a), np.inf))
         assert exact_inf * (1 - 1e-9) <= transposed <= 10 * exact_inf

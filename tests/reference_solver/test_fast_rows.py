@@ -29,8 +29,21 @@ from scenarios.joints import Ground, Prismatic, Revolute, RevoluteRevolute
 from scenarios.motions import Constant, ConstantSpeed, Harmonic
 from scenarios.scenario import Scenario
 
-NAMES = ("link", "slider", "gear1", "gear2", "carrier", "pinion", "rack", "cam1", "cam2", "cam3")
-NAMES += ("knife", "roller", "face")
+NAMES = (
+    "link",
+    "slider",
+    "gear1",
+    "gear2",
+    "carrier",
+    "pinion",
+    "rack",
+    "cam1",
+    "cam2",
+    "cam3",
+    "knife",
+    "roller",
+    "face",
+)
 DISC = EccentricDisc(0.05, 0.01)
 VOCABULARY = Scenario(
     family="vocabulary",

@@ -35,8 +35,8 @@ def test_band_store_holds_the_matrix_permuted_with_its_parity(seed: int) -> None
     np.testing.assert_array_equal(layout.col_perm[layout.col_of], np.arange(n))
     permuted = a[np.ix_(layout.row_perm, layout.col_perm)]
     assert np.all(np.diag(permuted) != 0.0)  # the matching gives a zero-free diagonal
-    i, j = np.nonzero(permuted)
-    assert np.all(j - i <= layout.ku) and np.all(i - j <= layout.kl)
+    at_row, at_col = np.nonzero(permuted)
+    assert np.all(at_col - at_row <= layout.ku) and np.all(at_row - at_col <= layout.kl)
     store = np.zeros(n * layout.width)
     for r, c in entries:
         store[layout.position(r, c)] = a[r, c]
