@@ -364,6 +364,11 @@ EXPLAINED: dict[str, str] = {
     "`estimate <= previous` stops one step later with the same value (a tie of two columns aside)",
     "reference_solver.fast.band.x_rcond__mutmut_91": "estimate < previous for <=: differs only on an "
     "exact tie of two floating estimates",
+    "reference_solver.fast.band.x_factor__mutmut_65": "the determinant's sign flipped for a pivot <= 0 "
+    "instead of < 0: a zero pivot has returned 0 before, so the two agree on every pivot that gets there",
+    "reference_solver.fast.band.x_rcond__mutmut_164": "the guard for a zero or non-finite estimate with "
+    "`and`: an infinite estimate gives (1 / inf) / anorm = 0 all the same, and a zero or NaN one needs "
+    "zero or NaN factors, which factor refuses (its caller then skips the estimate)",
     "reference_solver.diagnostics.x_rank_report__mutmut_25": "the zero matrix's top singular value 2 for "
     "1: any positive top gives it rank 0 and the ratio 0 / top = 0",
     **dict.fromkeys(

@@ -53,6 +53,7 @@ def test_band_lu_solves_like_dense_algebra(n: int, kl: int, ku: int) -> None:
         ) == pytest.approx(np.linalg.norm(a, np.inf))
         sign = band.factor(store, piv, n, kl, ku, w)
         assert sign == np.sign(np.linalg.det(a))
+        np.testing.assert_array_equal(piv, lu_factor(a)[1])  # LAPACK's partial pivoting: the same rows
         b = rng.standard_normal(n)
         x, y = b.copy(), b.copy()
         band.solve(store, piv, n, kl, ku, w, x)
@@ -82,6 +83,18 @@ def test_condition_estimate_of_the_identity_and_of_no_norm() -> None:
         assert band.rcond(store, piv, n, kl, ku, w, 1.0, x, signs, transposed) == 1.0
         assert band.rcond(store, piv, n, kl, ku, w, 0.0, x, signs, transposed) == 0.0
         assert band.rcond(store, piv, 0, kl, ku, w, 1.0, x, signs, transposed) == 0.0
+
+
+def test_band_pivoting_keeps_the_first_of_equal_magnitudes_and_overflow_is_singular() -> None:
+    """[[1, 2], [-1, 3]]: |1| = |-1|, row 0 stays (as LAPACK), det 5 > 0. A regular matrix whose inverse
+    overflows (entry -1e320 of [[1e-160, 1], [0, 1e-160]]^-1): its condition estimate is 0."""
+    store, piv = _store(np.array([[1.0, 2.0], [-1.0, 3.0]]), 1, 1), np.zeros(2, np.int64)
+    assert band.factor(store, piv, 2, 1, 1, 4) == 1.0
+    np.testing.assert_array_equal(piv, [0, 1])
+    store = _store(np.array([[1e-160, 1.0], [0.0, 1e-160]]), 1, 1)
+    assert band.factor(store, piv, 2, 1, 1, 4) == 1.0
+    with np.errstate(over="ignore", invalid="ignore"):
+        assert band.rcond(store, piv, 2, 1, 1, 4, 1.0, np.zeros(2), np.zeros(2), False) == 0.0
 
 
 def test_a_zero_pivot_reports_a_singular_matrix() -> None:
