@@ -86,11 +86,15 @@ def test_condition_estimate_of_the_identity_and_of_no_norm() -> None:
 
 
 def test_band_pivoting_keeps_the_first_of_equal_magnitudes_and_overflow_is_singular() -> None:
-    """[[1, 2], [-1, 3]]: |1| = |-1|, row 0 stays (as LAPACK), det 5 > 0. A regular matrix whose inverse
-    overflows (entry -1e320 of [[1e-160, 1], [0, 1e-160]]^-1): its condition estimate is 0."""
-    store, piv = _store(np.array([[1.0, 2.0], [-1.0, 3.0]]), 1, 1), np.zeros(2, np.int64)
+    """[[2, 1], [2, 3]]: |2| = |2|, row 0 stays (as LAPACK), the multiplier is exactly 1, det 4 > 0, and
+    x = (1, 1) solves it for b = (3, 5). A regular matrix whose inverse overflows (entry -1e320 of
+    [[1e-160, 1], [0, 1e-160]]^-1): its condition estimate is 0."""
+    store, piv = _store(np.array([[2.0, 1.0], [2.0, 3.0]]), 1, 1), np.zeros(2, np.int64)
     assert band.factor(store, piv, 2, 1, 1, 4) == 1.0
     np.testing.assert_array_equal(piv, [0, 1])
+    b = np.array([3.0, 5.0])
+    band.solve(store, piv, 2, 1, 1, 4, b)
+    np.testing.assert_allclose(b, [1.0, 1.0], rtol=0, atol=1e-15)
     store = _store(np.array([[1e-160, 1.0], [0.0, 1e-160]]), 1, 1)
     assert band.factor(store, piv, 2, 1, 1, 4) == 1.0
     with np.errstate(over="ignore", invalid="ignore"):
