@@ -347,6 +347,8 @@ EXPLAINED: dict[str, str] = {
     "reference_solver.fast.evaluate.x_evaluate__mutmut_21": "the Jacobian written when the store has more "
     "than 1 entry instead of more than 0: a store is empty (no Jacobian asked) or holds at least 3 entries "
     "(every scenario has a body, 3 columns)",
+    "reference_solver.fast.evaluate.x__vectors__mutmut_4": "vectors A and B cleared over 7 entries for 6: "
+    "the scratch rows are at least WIDTH = 10 long and entry 6 of a vector row is never read",
     "reference_solver.fast.band.x_rcond__mutmut_11": "the signs start at 1 instead of 0: the first call of "
     "_signs overwrites every one before any is read, and its answer (signs unchanged) is not used",
     **dict.fromkeys(
