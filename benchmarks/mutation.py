@@ -347,6 +347,11 @@ EXPLAINED: dict[str, str] = {
     "reference_solver.fast.evaluate.x_evaluate__mutmut_21": "the Jacobian written when the store has more "
     "than 1 entry instead of more than 0: a store is empty (no Jacobian asked) or holds at least 3 entries "
     "(every scenario has a body, 3 columns)",
+    **dict.fromkeys(
+        tuple(f"reference_solver.fast.path.x__compile__mutmut_{k}" for k in (7, 8, 18, 23)),
+        "a Compiled's layout or guess when it has no program, or its reason when it has one, set to None or "
+        "'XXXX': run reads the layout and guess only with a program and the reason only without one",
+    ),
     "reference_solver.fast.evaluate.x__vectors__mutmut_4": "vectors A and B cleared over 7 entries for 6: "
     "the scratch rows are at least WIDTH = 10 long and entry 6 of a vector row is never read",
     "reference_solver.fast.band.x_rcond__mutmut_11": "the signs start at 1 instead of 0: the first call of "

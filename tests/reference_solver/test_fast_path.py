@@ -37,6 +37,7 @@ def test_fast_path_gives_the_plain_answer(name: str) -> None:
             getattr(result, level), expected, rtol=0, atol=1e-12 * scale, err_msg=level
         )
     np.testing.assert_array_equal(result.iterations, plain.iterations)
+    assert result.layout == plain.layout  # what trajectory() reads the columns with
     np.testing.assert_allclose(result.residual, plain.residual, rtol=0, atol=1e-14)
     # Both estimate the 1-norm reciprocal condition number (LAPACK's estimator, on differently
     # pivoted factors): measured within a factor 2.1 of each other on the catalogue.
@@ -192,3 +193,6 @@ def test_the_iteration_limit_reaches_the_kernel() -> None:
     one = path.run(scenario, grid, 1e-12, 1).analysis
     assert one is not None
     np.testing.assert_array_equal(one.iterations, [0] + [1] * 10)
+    again = path.analyse(scenario, grid, 1e-12, 1)
+    assert again is not None
+    np.testing.assert_array_equal(again.iterations, one.iterations)
