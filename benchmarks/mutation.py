@@ -352,6 +352,18 @@ EXPLAINED: dict[str, str] = {
         "a Compiled's layout or guess when it has no program, or its reason when it has one, set to None or "
         "'XXXX': run reads the layout and guess only with a program and the reason only without one",
     ),
+    **dict.fromkeys(
+        tuple(f"reference_solver.fast.evaluate.x__vectors__mutmut_{k}" for k in (133, 137, 143, 147)),
+        "a profile term's second derivative read at us[contact, d - 2] for d + 2: d is 0 or 1 and the axis "
+        "has 4 entries, so index -2 is 2 and -1 is 3 (Python and numba wrap negative indices alike)",
+    ),
+    **dict.fromkeys(
+        ("reference_solver.fast.path.x_run__mutmut_14", "reference_solver.fast.path.x_run__mutmut_16"),
+        "the grid made contiguous without dtype=float: differs only for an integer grid, and every caller "
+        "passes Scenario.times() or an analysis' float grid",
+    ),
+    "reference_solver.fast.path.x_run__mutmut_2": "run's default max_iterations 26 for 25: every caller "
+    "(analysis.solve through fast.analyse) passes its own",
     "reference_solver.fast.evaluate.x__vectors__mutmut_4": "vectors A and B cleared over 7 entries for 6: "
     "the scratch rows are at least WIDTH = 10 long and entry 6 of a vector row is never read",
     "reference_solver.fast.band.x_rcond__mutmut_11": "the signs start at 1 instead of 0: the first call of "

@@ -37,6 +37,7 @@ def test_fast_path_gives_the_plain_answer(name: str) -> None:
             getattr(result, level), expected, rtol=0, atol=1e-12 * scale, err_msg=level
         )
     np.testing.assert_array_equal(result.iterations, plain.iterations)
+    assert result.iterations.dtype == plain.iterations.dtype == np.int64
     assert result.layout == plain.layout  # what trajectory() reads the columns with
     np.testing.assert_allclose(result.residual, plain.residual, rtol=0, atol=1e-14)
     # Both estimate the 1-norm reciprocal condition number (LAPACK's estimator, on differently
@@ -156,7 +157,8 @@ MOBILITY = {
 @pytest.mark.parametrize("case", MOBILITY)
 def test_mobility_errors_are_the_plain_ones(case: str) -> None:
     scenario = MOBILITY[case]
-    assert "not a square system" in path.run(scenario, np.asarray(scenario.times())).event
+    run = path.run(scenario, np.asarray(scenario.times()))
+    assert "not a square system" in run.event and run.index == 0 and run.analysis is None
     failure = _failure(scenario)
     assert failure[0] is MobilityError and failure == _plain_failure(scenario)
 
