@@ -364,6 +364,13 @@ EXPLAINED: dict[str, str] = {
     ),
     "reference_solver.fast.path.x_run__mutmut_2": "run's default max_iterations 26 for 25: every caller "
     "(analysis.solve through fast.analyse) passes its own",
+    **dict.fromkeys(
+        tuple(
+            f"reference_solver.compiled_system.xǁCompiledSystemǁevaluate__mutmut_{k}" for k in (3, 5, 12, 14)
+        ),
+        "q or qd made contiguous without dtype=float: differs only for integer coordinates, and the "
+        "integrator and Newton pass float arrays",
+    ),
     "reference_solver.fast.evaluate.x__vectors__mutmut_4": "vectors A and B cleared over 7 entries for 6: "
     "the scratch rows are at least WIDTH = 10 long and entry 6 of a vector row is never read",
     "reference_solver.fast.band.x_rcond__mutmut_11": "the signs start at 1 instead of 0: the first call of "
