@@ -8,6 +8,18 @@ worker, under `nice -n 19`. The table gives mutants total / killed / survived / 
 every survivor, marked "explained" when EXPLAINED gives the reason it cannot or need not be killed
 (docs/mutation.md keeps the counts and the reasons). Mutant names are mutmut's (function and
 ordinal), stable for a given source and mutmut version, which pyproject pins.
+
+The numba kernels (KERNEL_MODULES) are mutated as Python: mutmut skips decorated functions, and a
+trampoline could not be compiled anyway. In the scratch copy their `@njit(...)` lines are removed and
+the whole run has NUMBA_DISABLE_JIT=1, under which numba's njit returns the function itself: the
+kernels run the very source numba compiles, as Python, with the same tests (those chosen to stay fast
+uncompiled). Other modules run with the kernels compiled, their numba cache in the scratch copy
+(NUMBA_CACHE_DIR), so no run reuses machine code compiled from other sources.
+
+Each mutant's tests run in a process forked from mutmut's fork server, which has only collected the
+tests (`process_isolation = "forkserver"`): mutmut's default forks from the process that ran the whole
+selection for its statistics, whose caches (the fast path's compiled programs, lru_cache) then hand
+every mutant the unmutated result, so a mutant of a function behind a cache never ran and "survived".
 """
 
 from __future__ import annotations
@@ -15,6 +27,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -76,6 +89,16 @@ ALI3P_FAST_TESTS = (
 )
 """ALI3-P's cheaper tests (a few seconds each): two without force elements (P = M), one with a
 spring and damper (P dense, with K and D)."""
+KERNEL_TESTS = "tests/reference_solver/test_fast_path_kernels.py"
+WHOLE_PATH_TESTS = "tests/reference_solver/test_fast_path.py"
+COMPILED_SYSTEM_TESTS = "tests/reference_solver/test_compiled_system.py"
+ROWS_TESTS = "tests/reference_solver/test_fast_constraint_rows.py"
+STRUCTURE_TESTS = "tests/reference_solver/test_fast_structure.py"
+FAST_PATH_TESTS = (KERNEL_TESTS, WHOLE_PATH_TESTS, COMPILED_SYSTEM_TESTS, ROWS_TESTS)
+"""The fast path's tests: its kernels against dense algebra and LAPACK, the whole path against the
+plain path to 1e-12 on every scenario, the compiled rows against the plain rows on random states.
+Uncompiled, the whole-path tests take minutes per surviving mutant on the shared machine: the kernel
+modules other than the loop are mutated against the others only, which check the same values."""
 
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
@@ -138,7 +161,34 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/dynamics/projection.py": (f"{DYNAMICS}test_projection.py", *ALI3P_FAST_TESTS),
     "reference_solver/dynamics/tangent.py": (f"{DYNAMICS}test_tangent.py", *ALI3P_FAST_TESTS),
     # --- end of native dynamics ---
+    # ---- the compiled kinematic fast path (session 8, mut3) ----
+    "reference_solver/fast/constraint_rows.py": FAST_PATH_TESTS,
+    "reference_solver/fast/program.py": FAST_PATH_TESTS,
+    "reference_solver/fast/structure.py": (*FAST_PATH_TESTS, STRUCTURE_TESTS),
+    "reference_solver/fast/evaluate.py": (KERNEL_TESTS, COMPILED_SYSTEM_TESTS, ROWS_TESTS),
+    "reference_solver/fast/band.py": (KERNEL_TESTS, STRUCTURE_TESTS),
+    "reference_solver/fast/dense_lu.py": (KERNEL_TESTS,),
+    "reference_solver/fast/loop.py": (KERNEL_TESTS, WHOLE_PATH_TESTS),
+    "reference_solver/fast/path.py": (KERNEL_TESTS, WHOLE_PATH_TESTS),
+    "reference_solver/fast/dense.py": (COMPILED_SYSTEM_TESTS,),
+    "reference_solver/compiled_system.py": (COMPILED_SYSTEM_TESTS,),
+    "reference_solver/equation.py": PLAIN_PATH_TESTS,
+    "reference_solver/solution.py": (
+        "tests/reference_solver/test_solution.py",
+        "tests/reference_solver/test_analysis.py",
+    ),
+    "reference_solver/diagnostics.py": (
+        "tests/reference_solver/test_diagnostics.py",
+        "tests/reference_solver/test_mobility.py",
+        "tests/reference_solver/test_failures.py",
+    ),
 }
+
+KERNEL_MODULES = frozenset(
+    f"reference_solver/fast/{name}.py" for name in ("evaluate", "band", "dense_lu", "loop", "dense")
+)
+"""Modules of numba kernels, mutated as Python (NUMBA_DISABLE_JIT=1, their `@njit` lines removed)."""
+NJIT_LINE = re.compile(r"^@njit\(.*\)\n", re.MULTILINE)
 
 _STRICT_ZIP = "zip of two 2-tuples: strict or not, the pairs are the same"
 _DTYPE = "the values are floats already: asarray(..., dtype=float) and asarray(...) are the same array"
@@ -388,6 +438,98 @@ EXPLAINED: dict[str, str] = {
         "finite at any finite state; differs only on non-finite input, which no scenario gives",
     ),
     # --- end of native dynamics ---
+    # ---- the compiled fast path (session 8, mut3) ----
+    "reference_solver.fast.dense_lu.x_lu_solve_transposed__mutmut_16": "the L^T back substitution from "
+    "row n - 2: row n - 1 has nothing right of its unit diagonal (j from n to n), so it is left as it is",
+    "reference_solver.fast.dense_lu.x_lu_solve_transposed__mutmut_39": "the pivots undone from k = n - 2: "
+    "piv[n - 1] is always n - 1 (the last column has one candidate row), so its swap does nothing",
+    **dict.fromkeys(
+        tuple(f"reference_solver.fast.band.x__signs__mutmut_{k}" for k in (1, 2, 13)),
+        "the estimator's stop on a repeated sign vector (dlacn2's shortcut) never or always falsy: with "
+        "the same signs the next iterate repeats the last one, so its estimate does not grow and the "
+        "`estimate <= previous` stop ends the loop one step later with the same value",
+    ),
+    "reference_solver.fast.band.x__signs__mutmut_12": "the sign-vector stop taken when every sign "
+    "flipped instead of none: the iteration then ends early with the current estimate; on the tests' "
+    "matrices (random, scaled by 1e-3 to 1e3) no iterate flips every sign, and a matrix made to do so "
+    "was not built",
+    "reference_solver.fast.band.x_solve_transposed__mutmut_35": "the L^T solve from j = n - 2: row n - 1 "
+    "has no multipliers below it (i from n on) and piv[n - 1] = n - 1, so that step changes nothing",
+    **dict.fromkeys(
+        (
+            "reference_solver.fast.band.x__argmax_abs__mutmut_3",
+            "reference_solver.fast.band.x__argmax_abs__mutmut_4",
+        ),
+        "the argmax's start (best -2 for -1, k 1 for 0): any |x_i| >= 0 beats -1 and -2 alike, so the "
+        "first entry always replaces the start (a NaN iterate aside, which makes the estimate 0 anyway)",
+    ),
+    "reference_solver.fast.band.x__argmax_abs__mutmut_7": "the argmax takes the last of equal |x_i| (>=) "
+    "instead of the first: differs only on an exact tie of two floating iterates",
+    "reference_solver.fast.evaluate.x_radii__mutmut_50": "the bisection's middle (low + high + 2) // 2 for "
+    "+ 1: still strictly above low and at most high while low < high, so it finds the same interval",
+    "reference_solver.fast.evaluate.x_evaluate__mutmut_21": "the Jacobian written when the store has more "
+    "than 1 entry instead of more than 0: a store is empty (no Jacobian asked) or holds at least 3 entries "
+    "(every scenario has a body, 3 columns)",
+    **dict.fromkeys(
+        tuple(f"reference_solver.fast.path.x__compile__mutmut_{k}" for k in (7, 8, 18, 23)),
+        "a Compiled's layout or guess when it has no program, or its reason when it has one, set to None or "
+        "'XXXX': run reads the layout and guess only with a program and the reason only without one",
+    ),
+    **dict.fromkeys(
+        tuple(f"reference_solver.fast.evaluate.x__vectors__mutmut_{k}" for k in (133, 137, 143, 147)),
+        "a profile term's second derivative read at us[contact, d - 2] for d + 2: d is 0 or 1 and the axis "
+        "has 4 entries, so index -2 is 2 and -1 is 3 (Python and numba wrap negative indices alike)",
+    ),
+    **dict.fromkeys(
+        ("reference_solver.fast.path.x_run__mutmut_14", "reference_solver.fast.path.x_run__mutmut_16"),
+        "the grid made contiguous without dtype=float: differs only for an integer grid, and every caller "
+        "passes Scenario.times() or an analysis' float grid",
+    ),
+    "reference_solver.fast.path.x_run__mutmut_2": "run's default max_iterations 26 for 25: every caller "
+    "(analysis.solve through fast.analyse) passes its own",
+    **dict.fromkeys(
+        tuple(
+            f"reference_solver.compiled_system.xǁCompiledSystemǁevaluate__mutmut_{k}" for k in (3, 5, 12, 14)
+        ),
+        "q or qd made contiguous without dtype=float: differs only for integer coordinates, and the "
+        "integrator and Newton pass float arrays",
+    ),
+    "reference_solver.fast.evaluate.x__vectors__mutmut_4": "vectors A and B cleared over 7 entries for 6: "
+    "the scratch rows are at least WIDTH = 10 long and entry 6 of a vector row is never read",
+    "reference_solver.fast.band.x_rcond__mutmut_11": "the signs start at 1 instead of 0: the first call of "
+    "_signs overwrites every one before any is read, and its answer (signs unchanged) is not used",
+    **dict.fromkeys(
+        ("reference_solver.fast.band.x_rcond__mutmut_59", "reference_solver.fast.band.x_rcond__mutmut_61"),
+        "the estimator's iterations from 0 or 3 instead of 2 (up to 6 or 3 steps for dlacn2's 4): differs "
+        "only on a matrix whose estimate still grows after 3 steps; every test matrix (random, scaled, "
+        "identity) stops by itself within them, and one made to go on was not built",
+    ),
+    "reference_solver.fast.band.x_rcond__mutmut_62": "range(2, 7) for range(2, 6): the loop breaks at "
+    "iteration 5 whatever happened (`or iteration == 5`), so 6 is never reached",
+    "reference_solver.fast.band.x_rcond__mutmut_118": "`iteration == 6` for 5: the range ends after "
+    "iteration 5 anyway, so the loop stops at the same point",
+    "reference_solver.fast.band.x_rcond__mutmut_114": "the stop on a repeated column (x[last] == |x[j]|) "
+    "dropped: the next step then solves for the same column, its estimate does not grow and "
+    "`estimate <= previous` stops one step later with the same value (a tie of two columns aside)",
+    "reference_solver.fast.band.x_rcond__mutmut_91": "estimate < previous for <=: differs only on an "
+    "exact tie of two floating estimates",
+    "reference_solver.fast.band.x_factor__mutmut_65": "the determinant's sign flipped for a pivot <= 0 "
+    "instead of < 0: a zero pivot has returned 0 before, so the two agree on every pivot that gets there",
+    "reference_solver.fast.band.x_rcond__mutmut_164": "the guard for a zero or non-finite estimate with "
+    "`and`: an infinite estimate gives (1 / inf) / anorm = 0 all the same, and a zero or NaN one needs "
+    "zero or NaN factors, which factor refuses (its caller then skips the estimate)",
+    "reference_solver.diagnostics.x_rank_report__mutmut_25": "the zero matrix's top singular value 2 for "
+    "1: any positive top gives it rank 0 and the ratio 0 / top = 0",
+    **dict.fromkeys(
+        (
+            "reference_solver.diagnostics.x_rank_report__mutmut_45",
+            "reference_solver.diagnostics.x_rank_report__mutmut_52",
+        ),
+        "the weights' branch for an empty `lost`: unreachable, `lost` holds at least the last column of U "
+        "(rows > 0 there, the empty matrix returns first)",
+    ),
+    "reference_solver.diagnostics.x_rank_report__mutmut_56": "a row named for a weight >= 0.1 instead of > "
+    "0.1: differs only on an exact tie of a singular vector's entry with 0.1",
 }
 
 # Session 8: the rest of analysis.py, system.py and residual.py.
@@ -472,8 +614,21 @@ def _scratch_copy(module: str, where: Path) -> None:
         f'\n[tool.mutmut]\nsource_paths = ["{module}"]\npytest_add_cli_args_test_selection = [{tests}]\n'
         f"also_copy = [{also}]\n"
         'pytest_add_cli_args = ["-p", "no:cacheprovider", "-x", "-q", "-m", "not slow"]\n'
+        'process_isolation = "forkserver"\n'
     )
     (where / "pyproject.toml").write_text(config)
+    if module in KERNEL_MODULES:
+        source = where / module
+        source.write_text(NJIT_LINE.sub("", source.read_text()))
+
+
+def _environment(module: str, where: Path) -> dict[str, str]:
+    """No bytecode; numba's cache in the scratch copy, or numba off for a kernel module."""
+    env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1", "NUMBA_CACHE_DIR": str(where / "numba-cache")}
+    env.pop("NUMBA_DISABLE_JIT", None)
+    if module in KERNEL_MODULES:
+        env["NUMBA_DISABLE_JIT"] = "1"
+    return env
 
 
 def _outcome(module: str, where: Path) -> Outcome:
@@ -495,7 +650,7 @@ def run(module: str, keep: Path | None = None) -> Outcome:
         where = keep if keep is not None else Path(scratch)
         where.mkdir(parents=True, exist_ok=True)
         _scratch_copy(module, where)
-        env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
+        env = _environment(module, where)
         subprocess.run(
             ["nice", "-n", "19", str(mutmut), "run", "--max-children", "1"],
             cwd=where,

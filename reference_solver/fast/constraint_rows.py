@@ -15,7 +15,6 @@ from dataclasses import dataclass
 
 from scenarios import cams, drivers, gears, joints
 from scenarios.bodies import Point, Vec2
-from scenarios.cam_profiles import Profile
 from scenarios.motions import Motion
 from scenarios.scenario import Constraint
 
@@ -35,8 +34,8 @@ class Term:
     body: str
     local: Vec2 = (0.0, 0.0)
     sign: float = 1.0
-    profile: Profile | None = None
     contact: str | None = None
+    """The cam contact of a profile term (whose profile the program takes from the scenario's cams)."""
 
 
 @dataclass(frozen=True)
@@ -107,7 +106,7 @@ def _rack_pinion(g: gears.RackPinion) -> tuple[ConstraintRowSpec, ...]:
 
 
 def _profile(contact: cams.CamContact, kind: int, sign: float = 1.0) -> Term:
-    return Term(kind, contact.cam, sign=sign, profile=contact.profile, contact=contact.name)
+    return Term(kind, contact.cam, sign=sign, contact=contact.name)
 
 
 def _knife_edge(c: cams.KnifeEdgeCam) -> tuple[ConstraintRowSpec, ...]:

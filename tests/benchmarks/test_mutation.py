@@ -3,9 +3,11 @@ tests or explained as equivalent (the habit kept cheap: about 20 s on one worker
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
-from benchmarks.mutation import EXPLAINED, MODULES, run
+from benchmarks.mutation import EXPLAINED, KERNEL_MODULES, MODULES, ROOT, _environment, _scratch_copy, run
 
 
 @pytest.mark.slow
@@ -20,3 +22,22 @@ def test_an_unknown_module_is_refused_by_name() -> None:
     with pytest.raises(ValueError, match=r"no mutation setup for reports/nowhere\.py"):
         run("reports/nowhere.py")
     assert all(tests for tests in MODULES.values()) and all(EXPLAINED.values())
+
+
+def test_a_kernel_module_is_mutated_as_the_python_numba_compiles(tmp_path: Path) -> None:
+    """Its copy loses only the `@njit(...)` lines, one per kernel, and the run has numba off (under
+    which njit returns the function itself); any other module keeps numba on, its cache in the copy."""
+    module = "reference_solver/fast/band.py"
+    _scratch_copy(module, tmp_path)
+    original = (ROOT / module).read_text().splitlines(keepends=True)
+    stripped = (tmp_path / module).read_text().splitlines(keepends=True)
+    kernels = [line for line in original if line.startswith("@njit(")]
+    assert len(kernels) == 10 and [line for line in original if line not in kernels] == stripped
+    assert (tmp_path / "reference_solver/fast/loop.py").read_text() == (
+        ROOT / "reference_solver/fast/loop.py"
+    ).read_text()
+    assert _environment(module, tmp_path)["NUMBA_DISABLE_JIT"] == "1"
+    other = _environment("reference_solver/fast/rows.py", tmp_path)
+    assert "NUMBA_DISABLE_JIT" not in other
+    assert Path(other["NUMBA_CACHE_DIR"]).parent == tmp_path
+    assert set(MODULES) >= KERNEL_MODULES

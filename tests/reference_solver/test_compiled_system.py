@@ -54,3 +54,33 @@ def test_both_paths_simulate_the_same_motion() -> None:
 def test_a_cam_or_the_plain_request_gives_the_plain_system() -> None:
     assert type(constraint_system(load("four_bar_gravity"), fast=False)) is ConstraintSystem
     assert type(constraint_system(load("cam_roller"))) is ConstraintSystem
+
+
+def test_without_qd_the_rates_are_zero_as_on_the_plain_path() -> None:
+    scenario = load("four_bar_gravity")
+    fast, plain = constraint_system(scenario), ConstraintSystem(scenario)
+    q = np.random.default_rng(2).normal(size=plain.unknowns)
+    for mine, theirs in zip(fast.evaluate(q, 0.4), plain.evaluate(q, 0.4), strict=True):
+        np.testing.assert_allclose(mine, theirs, rtol=0, atol=1e-12 * max(1.0, np.max(np.abs(theirs))))
+
+
+def test_without_usable_kernels_the_plain_system_runs_and_says_why(monkeypatch: pytest.MonkeyPatch) -> None:
+    import reference_solver.compiled_system as module
+
+    monkeypatch.setattr(module, "dense_kernels", lambda: (None, "no cache here"))
+    with pytest.warns(
+        RuntimeWarning, match=r"^native dynamics: the plain path runs, no cache here$"
+    ) as caught:
+        system = constraint_system(load("four_bar_gravity"))
+    assert type(system) is ConstraintSystem and system.size > 0
+    assert caught[0].filename == __file__  # stacklevel 2: the caller's line
+
+
+def test_a_scenario_with_no_constraint_gets_the_plain_system() -> None:
+    """A free body: no rows, nothing to compile (NotCompiled), the plain system of size 0."""
+    from scenarios.bodies import Body
+    from scenarios.scenario import Scenario
+
+    free = Scenario("free", "default", (Body("puck", (0.0, 0.0, 0.0)),), (), (), 1.0, 10, 0.1)
+    system = constraint_system(free)
+    assert type(system) is ConstraintSystem and system.size == 0 and system.scenario is free

@@ -37,6 +37,8 @@ def test_fast_path_gives_the_plain_answer(name: str) -> None:
             getattr(result, level), expected, rtol=0, atol=1e-12 * scale, err_msg=level
         )
     np.testing.assert_array_equal(result.iterations, plain.iterations)
+    assert result.iterations.dtype == plain.iterations.dtype == np.int64
+    assert result.layout == plain.layout  # what trajectory() reads the columns with
     np.testing.assert_allclose(result.residual, plain.residual, rtol=0, atol=1e-14)
     # Both estimate the 1-norm reciprocal condition number (LAPACK's estimator, on differently
     # pivoted factors): measured within a factor 2.1 of each other on the catalogue.
@@ -155,7 +157,8 @@ MOBILITY = {
 @pytest.mark.parametrize("case", MOBILITY)
 def test_mobility_errors_are_the_plain_ones(case: str) -> None:
     scenario = MOBILITY[case]
-    assert "not a square system" in path.run(scenario, np.asarray(scenario.times())).event
+    run = path.run(scenario, np.asarray(scenario.times()))
+    assert "not a square system" in run.event and run.index == 0 and run.analysis is None
     failure = _failure(scenario)
     assert failure[0] is MobilityError and failure == _plain_failure(scenario)
 
@@ -168,3 +171,30 @@ def test_lobed_profile_kernel_gives_the_plain_answer() -> None:
         expected = getattr(plain, level)
         atol = 1e-12 * max(1.0, float(np.max(np.abs(expected))))
         np.testing.assert_allclose(getattr(fast.analysis, level), expected, rtol=0, atol=atol)
+
+
+def test_an_empty_grid_and_an_unhashable_scenario() -> None:
+    """No time point: no kernel run; a scenario that cannot be a cache key (a list for a tuple) is
+    compiled all the same and gives the same motion."""
+    scenario = scenarios.build("four_bar", overrides={"steps": 10})
+    assert path.run(scenario, np.zeros(0)) == path.FastRun("empty grid", 0, None)
+    unhashable = dataclasses.replace(scenario, parameters=[("note", 1.0)])  # type: ignore[arg-type]
+    grid = np.asarray(scenario.times())
+    kept, fresh = path.run(scenario, grid).analysis, path.run(unhashable, grid).analysis
+    assert kept is not None and fresh is not None
+    np.testing.assert_array_equal(fresh.qdd, kept.qdd)
+    np.testing.assert_array_equal(fresh.times, grid)
+
+
+def test_the_iteration_limit_reaches_the_kernel() -> None:
+    """Newton allowed no iteration never converges, even at the first grid point (converged needs a
+    step below the tolerance, and none was taken); allowed one, it converges in one at every point."""
+    scenario = scenarios.build("four_bar", overrides={"steps": 10})
+    grid = np.asarray(scenario.times())
+    assert path.run(scenario, grid, 1e-12, 0) == path.FastRun("Newton-Raphson failed", 0, None)
+    one = path.run(scenario, grid, 1e-12, 1).analysis
+    assert one is not None
+    np.testing.assert_array_equal(one.iterations, [0] + [1] * 10)
+    again = path.analyse(scenario, grid, 1e-12, 1)
+    assert again is not None
+    np.testing.assert_array_equal(again.iterations, one.iterations)

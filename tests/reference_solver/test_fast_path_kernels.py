@@ -1,6 +1,6 @@
 """The fast path's pieces on their own: band LU against dense algebra, the condition estimate against
-the exact condition number and LAPACK's, the spline kernel against the profile, the band layout of
-a chain, and the guard of numba's cache."""
+the exact condition number and LAPACK's, the dense LU against LAPACK's, the spline kernel against the
+profile, the band layout of a chain, and the guard of numba's cache."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from scipy.linalg import lu_factor
 from scipy.linalg.lapack import dgecon
 
 import scenarios
-from reference_solver.fast import band, path
+from reference_solver.fast import band, dense_lu, path
 from reference_solver.fast.cache_guard import refresh
 from reference_solver.fast.evaluate import profile_points
 from reference_solver.fast.program import profile_tables
@@ -29,19 +29,23 @@ def _banded(rng: np.random.Generator, n: int, kl: int, ku: int) -> np.ndarray:
 
 
 def _store(a: np.ndarray, kl: int, ku: int) -> np.ndarray:
+    """The band store of `a`; NaN in the slots of columns outside the matrix, which nothing may read."""
     n, w = a.shape[0], 2 * kl + ku + 1
-    store = np.zeros(n * w)
+    store = np.full(n * w, np.nan)
     for i in range(n):
-        for j in range(max(0, i - kl), min(n, i + ku + 1)):
+        for j in range(max(0, i - kl), min(n, i + kl + ku + 1)):
             store[i * w + j - i + kl] = a[i, j]
     return store
 
 
-@pytest.mark.parametrize(("n", "kl", "ku"), [(1, 0, 0), (9, 3, 4), (30, 4, 2), (40, 1, 7), (12, 11, 11)])
+@pytest.mark.parametrize(
+    ("n", "kl", "ku"),
+    [(1, 0, 0), (2, 1, 1), (3, 1, 0), (9, 3, 4), (30, 4, 2), (40, 1, 7), (12, 11, 11), (8, 0, 2), (7, 2, 0)],
+)
 def test_band_lu_solves_like_dense_algebra(n: int, kl: int, ku: int) -> None:
     rng = np.random.default_rng(n + kl + ku)
-    for _ in range(5):
-        a = _banded(rng, n, kl, ku)
+    for scale in (1.0, 1e3, 1e-3, 10.0, 1.0):  # rcond does not depend on the scale; its iterates do
+        a = scale * _banded(rng, n, kl, ku)
         store, piv, w = _store(a, kl, ku), np.zeros(n, np.int64), 2 * kl + ku + 1
         anorm = band.norm1(store, n, kl, ku, w, np.zeros(n))
         assert anorm == pytest.approx(np.linalg.norm(a, 1)) and band.norm_inf(
@@ -49,6 +53,7 @@ def test_band_lu_solves_like_dense_algebra(n: int, kl: int, ku: int) -> None:
         ) == pytest.approx(np.linalg.norm(a, np.inf))
         sign = band.factor(store, piv, n, kl, ku, w)
         assert sign == np.sign(np.linalg.det(a))
+        np.testing.assert_array_equal(piv, lu_factor(a)[1])  # LAPACK's partial pivoting: the same rows
         b = rng.standard_normal(n)
         x, y = b.copy(), b.copy()
         band.solve(store, piv, n, kl, ku, w, x)
@@ -59,17 +64,87 @@ def test_band_lu_solves_like_dense_algebra(n: int, kl: int, ku: int) -> None:
         estimate = band.rcond(store, piv, n, kl, ku, w, anorm, np.zeros(n), np.zeros(n), False)
         lapack = dgecon(lu_factor(a)[0], anorm, norm="1")[0]
         assert exact * (1 - 1e-9) <= estimate <= 10 * exact  # an estimate never undercuts the truth
-        assert estimate == pytest.approx(lapack, rel=2.0)
-        transposed = band.rcond(
-            store, piv, n, kl, ku, w, np.linalg.norm(a, np.inf), np.zeros(n), np.zeros(n), True
-        )
-        exact_inf = 1.0 / (np.linalg.norm(a, np.inf) * np.linalg.norm(np.linalg.inv(a), np.inf))
+        # the same estimator as LAPACK's dgecon on the same pivots: measured equal to 2.2e-15
+        assert estimate == pytest.approx(lapack, rel=1e-13)
+        anorm_inf = float(np.linalg.norm(a, np.inf))
+        transposed = band.rcond(store, piv, n, kl, ku, w, anorm_inf, np.zeros(n), np.zeros(n), True)
+        exact_inf = 1.0 / (anorm_inf * np.linalg.norm(np.linalg.inv(a), np.inf))
         assert exact_inf * (1 - 1e-9) <= transposed <= 10 * exact_inf
+        assert transposed == pytest.approx(dgecon(lu_factor(a)[0], anorm_inf, norm="I")[0], rel=1e-13)
+
+
+def test_condition_estimate_of_the_identity_and_of_no_norm() -> None:
+    """The identity's rcond is exactly 1 (its 1-norm 1 too); as dgecon, 0 for a zero norm or no rows."""
+    n, kl, ku = 4, 1, 1
+    store, piv, w = _store(np.eye(n), kl, ku), np.zeros(n, np.int64), 2 * kl + ku + 1
+    assert band.factor(store, piv, n, kl, ku, w) == 1.0
+    x, signs = np.zeros(n), np.zeros(n)
+    for transposed in (False, True):
+        assert band.rcond(store, piv, n, kl, ku, w, 1.0, x, signs, transposed) == 1.0
+        assert band.rcond(store, piv, n, kl, ku, w, 0.0, x, signs, transposed) == 0.0
+        assert band.rcond(store, piv, 0, kl, ku, w, 1.0, x, signs, transposed) == 0.0
+
+
+def test_band_pivoting_keeps_the_first_of_equal_magnitudes_and_overflow_is_singular() -> None:
+    """[[2, 1], [2, 3]]: |2| = |2|, row 0 stays (as LAPACK), the multiplier is exactly 1, det 4 > 0, and
+    x = (1, 1) solves it for b = (3, 5). A regular matrix whose inverse overflows (entry -1e320 of
+    [[1e-160, 1], [0, 1e-160]]^-1): its condition estimate is 0."""
+    store, piv = _store(np.array([[2.0, 1.0], [2.0, 3.0]]), 1, 1), np.zeros(2, np.int64)
+    assert band.factor(store, piv, 2, 1, 1, 4) == 1.0
+    np.testing.assert_array_equal(piv, [0, 1])
+    b = np.array([3.0, 5.0])
+    band.solve(store, piv, 2, 1, 1, 4, b)
+    np.testing.assert_allclose(b, [1.0, 1.0], rtol=0, atol=1e-15)
+    store = _store(np.array([[1e-160, 1.0], [0.0, 1e-160]]), 1, 1)
+    assert band.factor(store, piv, 2, 1, 1, 4) == 1.0
+    with np.errstate(over="ignore", invalid="ignore"):
+        assert band.rcond(store, piv, 2, 1, 1, 4, 1.0, np.zeros(2), np.zeros(2), False) == 0.0
 
 
 def test_a_zero_pivot_reports_a_singular_matrix() -> None:
     a = np.array([[1.0, 2.0], [2.0, 4.0]])
     assert band.factor(_store(a, 1, 1), np.zeros(2, np.int64), 2, 1, 1, 4) == 0.0
+
+
+DENSE = {
+    "random 5 x 5": np.random.default_rng(5).standard_normal((5, 5)),
+    "multipliers of exactly 1 and -1/2": np.array([[2.0, 1.0, 1.0], [4.0, -6.0, 0.0], [-2.0, 7.0, 2.0]]),
+    "a tie of magnitudes keeps the first row": np.array([[1.0, 2.0], [-1.0, 3.0]]),
+    "a 1 x 1": np.array([[-4.0]]),
+}
+
+
+@pytest.mark.parametrize("name", DENSE)
+def test_dense_lu_is_lapacks_and_solves(name: str) -> None:
+    """The factors and pivots of LAPACK's getrf (scipy.linalg.lu_factor), solves to round-off."""
+    a = DENSE[name]
+    n = a.shape[0]
+    store, piv = np.full((n + 1, n + 2), 3.0), np.zeros(n + 1, np.int64)  # only [:n, :n] is the matrix
+    store[:n, :n] = a
+    assert dense_lu.lu_factor(store, n, piv) is False
+    lu, lapack_piv = lu_factor(a)
+    np.testing.assert_allclose(store[:n, :n], lu, rtol=1e-14, atol=1e-15)
+    np.testing.assert_array_equal(piv[:n], lapack_piv)
+    assert np.all(store[n:] == 3.0) and np.all(store[:, n:] == 3.0)
+    b = np.arange(1.0, n + 1.0) * (-1.0) ** np.arange(n)
+    x, y = np.append(b, 7.0), np.append(b, 7.0)
+    dense_lu.lu_solve(store, n, piv, x)
+    dense_lu.lu_solve_transposed(store, n, piv, y)
+    np.testing.assert_allclose(a @ x[:n], b, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(a.T @ y[:n], b, rtol=0, atol=1e-13)
+    assert x[n] == 7.0 and y[n] == 7.0
+
+
+def test_dense_lu_of_a_singular_matrix_flags_it_and_leaves_the_column_unscaled() -> None:
+    """A zero first column: no pivot, the column left as it is and the rest still factored (as LAPACK)."""
+    a = np.array([[0.0, 2.0, 1.0], [0.0, 4.0, 1.0], [0.0, 1.0, 3.0]])
+    store, piv = a.copy(), np.zeros(3, np.int64)
+    assert dense_lu.lu_factor(store, 3, piv)
+    np.testing.assert_array_equal(piv, [0, 1, 2])
+    # column 1 pivots on row 1 (4 > 1, row 0 done): multiplier 1/4, then 3 - 1/4; row 0 as it was
+    np.testing.assert_allclose(
+        store, [[0.0, 2.0, 1.0], [0.0, 4.0, 1.0], [0.0, 0.25, 2.75]], rtol=0, atol=1e-15
+    )
 
 
 def test_the_chain_keeps_a_constant_bandwidth() -> None:
