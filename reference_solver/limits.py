@@ -16,3 +16,6 @@ ASSEMBLY_ITERATIONS = 100
 """Damped Newton iterations allowed for the assembly from the scenario's rough guess."""
 BACKTRACK_HALVINGS = 30
 """Halvings of a Newton step allowed before the damped step gives up decreasing the residual."""
+ROUND_OFF_ULPS = 4
+"""Newton's step tolerance never goes below this many units in the last place of the largest scaled
+coordinate (newton._round_off): a smaller step is not resolvable."""

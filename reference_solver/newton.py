@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from reference_solver.factorization import Factorization, factorize
-from reference_solver.limits import BACKTRACK_HALVINGS
+from reference_solver.limits import BACKTRACK_HALVINGS, ROUND_OFF_ULPS
 from reference_solver.system import ConstraintSystem
 
 
@@ -45,7 +45,7 @@ def newton(system: ConstraintSystem, q: np.ndarray, t: float, settings: NewtonSe
         if not np.isfinite(residual):
             return NewtonResult(q, False, iteration, residual, None)
         factors = factorize(system.scaled_jacobian(jac))
-        if residual < settings.residual_tolerance and step < settings.step_tolerance:
+        if residual < settings.residual_tolerance and step < _step_tolerance(settings, q / cols):
             return NewtonResult(q, True, iteration, residual, factors)
         if iteration == settings.max_iterations or factors.rcond == 0.0:
             break
@@ -55,6 +55,21 @@ def newton(system: ConstraintSystem, q: np.ndarray, t: float, settings: NewtonSe
         q += dx * cols
         step = float(np.max(np.abs(dx))) if dx.size else 0.0
     return NewtonResult(q, False, iteration, residual, None)
+
+
+def _step_tolerance(settings: NewtonSettings, scaled_q: np.ndarray) -> float:
+    """The settings' step tolerance, raised to q's round-off where that is larger (0 stays 0)."""
+    tolerance = settings.step_tolerance
+    return max(tolerance, _round_off(scaled_q)) if tolerance > 0.0 else tolerance
+
+
+def _round_off(scaled_q: np.ndarray) -> float:
+    """The smallest step Newton can resolve on q (scaled units): ROUND_OFF_ULPS units in the last
+    place of its largest coordinate. A step tolerance below it is met only by a step of exactly 0,
+    so on large coordinates (a gear after thousands of turns: 1.6e4 rad) every Newton call would
+    fail and the time loop crawl in halved steps; below 1e3 scaled it is under 1e-12 and changes
+    nothing."""
+    return ROUND_OFF_ULPS * float(np.finfo(float).eps) * float(np.max(np.abs(scaled_q), initial=0.0))
 
 
 def _backtrack(

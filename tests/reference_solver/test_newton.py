@@ -14,6 +14,8 @@ import pytest
 import scenarios
 from reference_solver import ConstraintSystem
 from reference_solver.newton import NewtonSettings, newton
+from reference_solver.newton import _round_off as newton_round_off
+from scenarios.closed_form import exact
 
 
 def test_a_non_finite_start_is_returned_unconverged_at_once() -> None:
@@ -90,3 +92,26 @@ def test_backtracking_takes_the_first_halving_that_lowers_the_scaled_residual() 
     steep = OneUnknown(lambda q: math.exp(q) - 1.0, math.exp)
     full = math.exp(3.0) - 1.0
     assert newton(steep, np.array([-3.0]), 0.0, damped).q[0] == pytest.approx(-3.0 + full / 8, rel=1e-14)  # type: ignore[arg-type]
+
+
+def test_the_step_tolerance_stops_at_the_round_off_of_large_coordinates() -> None:
+    """A gear after thousands of turns (planetary_gears, 9067 turns: angles of 6e4 rad): a step of
+    1e-12 is below 4 ulps of such a coordinate (5.8e-11), so only an exact 0 met it and every Newton
+    call failed; the time loop then crawled in halved steps for hours. Newton now stops at the
+    coordinate's round-off, and at the default's scale (below 1e3) the tolerance is unchanged."""
+    scenario = scenarios.build("planetary_gears", overrides={"revolutions": 9067.0, "steps": 12})
+    system = ConstraintSystem(scenario)
+    t = 0.5 * scenario.t_end
+    truth = exact(scenario, np.array([t]))
+    assert truth.position is not None
+    q = np.zeros(system.layout.size)
+    for k, body in enumerate(truth.bodies):
+        column = system.layout.body_column(body)
+        assert column is not None
+        q[column : column + 3] = truth.position[0, k]
+    assert np.max(np.abs(q / system.column_scales)) > 1e4
+    perturbed = q + 1e-9 * system.column_scales
+    result = newton(system, perturbed, t, NewtonSettings())
+    assert result.converged and result.iterations <= 3
+    np.testing.assert_allclose(result.q, q, rtol=1e-14, atol=1e-9)
+    assert newton_round_off(np.array([1e3])) < 1e-12 < newton_round_off(np.array([1.2e3]))
