@@ -77,6 +77,19 @@ ALI3P_FAST_TESTS = (
 """ALI3-P's cheaper tests (a few seconds each): two without force elements (P = M), one with a
 spring and damper (P dense, with K and D)."""
 
+ALI3P_STEP_TESTS = (
+    *ALI3P_FAST_TESTS,
+    f"{DYNAMICS}test_ali3p.py::test_the_same_motion_as_the_partitioned_method_to_second_order[slider_crank_spring]",
+    f"{DYNAMICS}test_ali3p.py::test_a_reduced_a02_passes_its_singular_position_at_second_order",
+    f"{DYNAMICS}test_ali3p.py::test_unknown_method_and_bad_step_are_refused",
+    f"{DYNAMICS}test_compiled_ali3p.py",
+    f"{DYNAMICS}test_forward.py",
+)
+"""ALI3-P's plain step (ali3p.py) and its grid (ali3p_grid.py): the cheaper tests above, the slider-crank
+with a spring (the plain step: force elements do not compile), a reduced A02 through its singular
+position, the refusals, the compiled step against the plain one, and a free body falling. The
+Andrews squeezer (20 s) and the rockers' phase test (plain and compiled over 8000 steps) are left out."""
+
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
         (
@@ -138,6 +151,10 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/dynamics/projection.py": (f"{DYNAMICS}test_projection.py", *ALI3P_FAST_TESTS),
     "reference_solver/dynamics/tangent.py": (f"{DYNAMICS}test_tangent.py", *ALI3P_FAST_TESTS),
     # --- end of native dynamics ---
+    # --- ALI3-P's plain step and its grid (session 8, s8-mut5) ---
+    "reference_solver/dynamics/ali3p_grid.py": ALI3P_STEP_TESTS,
+    "reference_solver/dynamics/ali3p.py": ALI3P_STEP_TESTS,
+    # --- end of ALI3-P ---
 }
 
 _STRICT_ZIP = "zip of two 2-tuples: strict or not, the pairs are the same"

@@ -7,14 +7,23 @@ of 1 m and 1 kg), which also gives the passage times (theta a multiple of pi).""
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
 import scenarios
-from reference_solver.dynamics import DynamicAnalysis, ali3p_grid, simulate
-from reference_solver.dynamics.ali3p import Ali3p
-from reference_solver.errors import SolverError
+from reference_solver.compiled_system import constraint_system
+from reference_solver.dynamics import DynamicAnalysis, ali3p, ali3p_grid, simulate
+from reference_solver.dynamics.ali3p import PENALTY, Ali3p, StepState
+from reference_solver.dynamics.forward import initial_state
+from reference_solver.dynamics.loads import Loads
+from reference_solver.dynamics.mass import mass_diagonal
+from reference_solver.errors import ConvergenceError, SolverError
+from scenarios import Point
+from scenarios.forces import RotationalSpringDamper, SpringDamper
+from scenarios.joints import Revolute
 
 SHORT = {
     # scenario: (t_end, steps, step h), and the measured distance to the partitioned method at h/2
@@ -149,6 +158,156 @@ def test_unknown_method_and_bad_step_are_refused() -> None:
         simulate(scenario, method="ali3")
     with pytest.raises(SolverError, match="positive"):
         simulate(scenario, method="ali3p", step=0.0)
+
+
+def _stepper(scenario: scenarios.Scenario, h: float) -> tuple[Ali3p, StepState]:
+    """The plain step of `scenario` at h and its initial state."""
+    system = constraint_system(scenario, fast=False)
+    mass = mass_diagonal(scenario, system.layout)
+    loads = Loads(scenario, system.layout, mass)
+    start = initial_state(system, mass, loads, 0.0)
+    stepper = Ali3p(system, mass, loads, h)
+    return stepper, StepState(start.t, start.q, start.qd, start.qdd, start.lam.copy(), start.jac)
+
+
+SPRING, TORSION, TORSION_DAMPING, DAMPING = 50.0, 7.0, 0.5, 3.0
+BODY_MASS, BODY_INERTIA = 2.0, 0.1
+
+
+def _sprung_body(damping: float) -> scenarios.Scenario:
+    """A free body at (0.3, 0.4, 0.2), turning at 0.5 rad/s, held by a spring of free length 0 from
+    the ground's origin to its centre (force -k r: linear; a damper c along the line) and a torsion
+    spring-damper to the ground (T = -k_t theta - c_t omega); no gravity."""
+    body = scenarios.Body("b", (0.3, 0.4, 0.2), mass=BODY_MASS, inertia=BODY_INERTIA, rate=(0.0, 0.0, 0.5))
+    forces = (
+        SpringDamper("s", Point("ground"), Point("b"), SPRING, damping),
+        RotationalSpringDamper("t", "ground", "b", TORSION, TORSION_DAMPING),
+    )
+    return scenarios.Scenario(
+        "sprung", "default", (body,), (), (), 1.0, 10, 1.0, forces=forces, analysis="dynamic"
+    )
+
+
+def test_the_tangent_s_stiffness_and_damping_are_the_force_elements_derivatives() -> None:
+    """K = -dQ_e/dq = diag(k, k, k_t) (the damper's direction moves with r, but the body's centre is
+    at rest, so its force does not change); D = -dQ_e/dq' = c e e^T with e = (0.6, 0.8), and c_t;
+    and P = M + h/2 D + h^2/4 K, the weight of the projections, at the predictor: r (1 - h^2 k / 2m)
+    moving at v = -h k r / m, both along e, where the damper's force -c (e . v) e turns with e and
+    adds c (e . v) (I - e e^T) / l to K."""
+    h = 0.01
+    stepper, start = _stepper(_sprung_body(DAMPING), h)
+    stiffness, damping = stepper._load_derivatives(start.q, start.qd, 0.0)
+    e = np.array([0.6, 0.8])
+    k_expected = np.diag([SPRING, SPRING, TORSION])
+    d_expected = np.zeros((3, 3))
+    d_expected[:2, :2], d_expected[2, 2] = DAMPING * np.outer(e, e), TORSION_DAMPING
+    np.testing.assert_allclose(stiffness, k_expected, rtol=0, atol=1e-6)
+    np.testing.assert_allclose(damping, d_expected, rtol=0, atol=1e-7)
+    stepper.step(start)
+    r = np.array([0.3, 0.4])
+    length = float(np.hypot(*r)) * (1 - h * h * SPRING / (2 * BODY_MASS))
+    rate = float(e @ (-h * SPRING * r / BODY_MASS))
+    k_expected[:2, :2] += DAMPING * rate * (np.eye(2) - np.outer(e, e)) / length
+    weight = np.diag([BODY_MASS, BODY_MASS, BODY_INERTIA]) + h / 2 * d_expected + h * h / 4 * k_expected
+    np.testing.assert_allclose(stepper.weight, weight, rtol=0, atol=1e-9)
+    x = np.array([1.0, -2.0, 3.0])
+    np.testing.assert_allclose(stepper.weigh(x), weight @ x, rtol=0, atol=1e-8)
+
+
+def test_a_step_of_a_linear_oscillator_is_the_trapezoidal_rule_s() -> None:
+    """Without the translational damper every coordinate is a linear oscillator m x'' = -k x - c x',
+    and the trapezoidal rule's step y1 = (I - h/2 A)^-1 (I + h/2 A) y0, y = (x, x'), A = [[0, 1],
+    [-k/m, -c/m]], is what ALI3-P's Newton must reach (no constraints, nothing to project); x'' is
+    the equation's at the new state."""
+    h = 0.01
+    stepper, s = _stepper(_sprung_body(0.0), h)
+    assert stepper.stiff
+    for k, m, c, column in (
+        (SPRING, BODY_MASS, 0.0, 0),
+        (SPRING, BODY_MASS, 0.0, 1),
+        (TORSION, BODY_INERTIA, TORSION_DAMPING, 2),
+    ):
+        a = np.array([[0.0, 1.0], [-k / m, -c / m]])
+        y = np.array([s.q[column], s.qd[column]])
+        for _ in range(3):
+            y = np.linalg.solve(np.eye(2) - h / 2 * a, (np.eye(2) + h / 2 * a) @ y)
+        column_expected = (y[0], y[1], (-k * y[0] - c * y[1]) / m)
+        steps = s
+        for _ in range(3):
+            steps = stepper.step(steps)
+        assert steps.t == pytest.approx(3 * h, abs=1e-15)
+        got = (steps.q[column], steps.qd[column], steps.qdd[column])
+        np.testing.assert_allclose(got, column_expected, rtol=0, atol=1e-10)
+
+
+def test_the_penalties_give_each_row_a_unit_penalty_diagonal() -> None:
+    """alpha_i = PENALTY 4/h^2 / (C_q M^-1 C_q^T)_ii at the first step's predictor, fixed after."""
+    h = 1e-3
+    scenario = scenarios.build("compound_pendulum", overrides={"t_end": 0.01, "steps": 2})
+    stepper, s = _stepper(scenario, h)
+    predictor = s.q + h * s.qd + h * h / 2 * s.qdd
+    jac = stepper.system.jacobian(predictor, h)
+    inertia = np.einsum("ij,j,ij->i", jac, 1 / stepper.mass, jac)
+    s = stepper.step(s)
+    np.testing.assert_allclose(h * h / 4 * stepper.alpha * inertia, PENALTY, rtol=1e-12)
+    first = stepper.alpha.copy()
+    stepper.step(s)
+    np.testing.assert_array_equal(stepper.alpha, first)
+
+
+def test_a_step_newton_cannot_finish_is_refused_with_where_and_how_far(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """One Newton iteration allowed: the residual is measured before the update, at the predictor,
+    which misses the pendulum's pin by O(h^3), so the step cannot be accepted."""
+    scenario = scenarios.build("compound_pendulum", overrides={"t_end": 0.01, "steps": 2})
+    stepper, s = _stepper(scenario, 1e-3)
+    monkeypatch.setattr(ali3p, "NEWTON_STEPS", 1)
+    with pytest.raises(ConvergenceError) as caught:
+        stepper.step(s)
+    message = str(caught.value)
+    assert re.fullmatch(
+        r"compound_pendulum: ALI3-P's Newton iteration did not converge at t=0\.001 "
+        r"\(update \S+, constraint residual \S+\)",
+        message,
+    ), message
+    violation = float(re.search(r"constraint residual (\S+)\)", message).group(1))  # type: ignore[union-attr]
+    assert 0 < violation < 1e-6
+    assert caught.value.time == pytest.approx(1e-3, abs=1e-18)
+    assert caught.value.q is not None and caught.value.q.shape == s.q.shape
+
+
+@pytest.mark.parametrize("spring", [False, True])
+def test_a_rod_hanging_at_rest_carries_its_weight_at_the_pin(spring: bool) -> None:
+    """A rod of mass 2 pinned at its top end, hanging straight down at rest under g = 9.81: the pin's
+    multipliers are its weight: C_q^T lambda = Q_e with C = p - (r + A s) (the ground's point first),
+    so lambda = (0, m g). With a
+    torsion spring-damper at its free angle (no torque at rest) the stiff branch (least squares)
+    gives the same."""
+    m, g = 2.0, 9.81
+    rod = scenarios.Body("rod", (0.0, -0.5, -np.pi / 2), mass=m, inertia=0.2, length=1.0)
+    pin = Revolute("pin", Point("ground", (0.0, 0.0)), Point("rod", (-0.5, 0.0)))
+    forces = (RotationalSpringDamper("t", "ground", "rod", 5.0, 1.0, -np.pi / 2),) if spring else ()
+    scenario = scenarios.Scenario(
+        "rod",
+        "default",
+        (rod,),
+        (pin,),
+        (),
+        1.0,
+        10,
+        1.0,
+        gravity=(0.0, -g),
+        forces=forces,
+        analysis="dynamic",
+    )
+    stepper, s = _stepper(scenario, 1e-3)
+    assert stepper.stiff is spring
+    np.testing.assert_allclose(s.qd, 0.0, atol=1e-15)
+    stepper.step(s)  # the penalties and W, which the projection of M^-1 Q_e uses, are set by a step
+    rest = StepState(0.0, s.q, s.qd, np.zeros(3), s.multipliers, s.jac)
+    lam = stepper.multipliers(rest, stepper.loads(s.q, s.qd, 0.0).generalized)
+    np.testing.assert_allclose(lam, [0.0, m * g], rtol=0, atol=1e-12)
 
 
 A02_SPEC = (6.03e-09, 6.72e-10, 2.07e-07)
