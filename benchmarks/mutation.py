@@ -84,11 +84,24 @@ ALI3P_STEP_TESTS = (
     f"{DYNAMICS}test_ali3p.py::test_unknown_method_and_bad_step_are_refused",
     f"{DYNAMICS}test_compiled_ali3p.py",
     f"{DYNAMICS}test_forward.py",
+    *(
+        f"{DYNAMICS}test_ali3p.py::test_{name}"
+        for name in (
+            "the_tangent_s_stiffness_and_damping_are_the_force_elements_derivatives",
+            "a_step_of_a_linear_oscillator_is_the_trapezoidal_rule_s",
+            "the_penalties_give_each_row_a_unit_penalty_diagonal",
+            "a_step_newton_cannot_finish_is_refused_with_where_and_how_far",
+            "a_rod_hanging_at_rest_carries_its_weight_at_the_pin",
+        )
+    ),
+    f"{DYNAMICS}test_ali3p_grid.py",
 )
 """ALI3-P's plain step (ali3p.py) and its grid (ali3p_grid.py): the cheaper tests above, the slider-crank
 with a spring (the plain step: force elements do not compile), a reduced A02 through its singular
-position, the refusals, the compiled step against the plain one, and a free body falling. The
-Andrews squeezer (20 s) and the rockers' phase test (plain and compiled over 8000 steps) are left out."""
+position, the refusals, the compiled step against the plain one, a free body falling, and the
+plain step's and the grid's value tests (test_ali3p_grid.py, the hand-built cases of test_ali3p.py).
+The Andrews squeezer (20 s) and the rockers' phase test (plain and compiled over 8000 steps) are
+left out."""
 
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(

@@ -22,8 +22,9 @@ from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.errors import ConvergenceError, SolverError
 from scenarios import Point
-from scenarios.forces import RotationalSpringDamper, SpringDamper
+from scenarios.forces import AppliedTorque, RotationalSpringDamper, SpringDamper
 from scenarios.joints import Revolute
+from scenarios.motions import ConstantSpeed
 
 SHORT = {
     # scenario: (t_end, steps, step h), and the measured distance to the partitioned method at h/2
@@ -174,14 +175,16 @@ SPRING, TORSION, TORSION_DAMPING, DAMPING = 50.0, 7.0, 0.5, 3.0
 BODY_MASS, BODY_INERTIA = 2.0, 0.1
 
 
-def _sprung_body(damping: float) -> scenarios.Scenario:
+def _sprung_body(damping: float, torque: bool = False) -> scenarios.Scenario:
     """A free body at (0.3, 0.4, 0.2), turning at 0.5 rad/s, held by a spring of free length 0 from
     the ground's origin to its centre (force -k r: linear; a damper c along the line) and a torsion
-    spring-damper to the ground (T = -k_t theta - c_t omega); no gravity."""
+    spring-damper to the ground (T = -k_t theta - c_t omega); no gravity. `torque` adds a torque
+    0.2 + t (time-dependent, the same at every q and q')."""
     body = scenarios.Body("b", (0.3, 0.4, 0.2), mass=BODY_MASS, inertia=BODY_INERTIA, rate=(0.0, 0.0, 0.5))
     forces = (
         SpringDamper("s", Point("ground"), Point("b"), SPRING, damping),
         RotationalSpringDamper("t", "ground", "b", TORSION, TORSION_DAMPING),
+        *((AppliedTorque("motor", "b", ConstantSpeed(0.2, 1.0)),) if torque else ()),
     )
     return scenarios.Scenario(
         "sprung", "default", (body,), (), (), 1.0, 10, 1.0, forces=forces, analysis="dynamic"
@@ -195,8 +198,8 @@ def test_the_tangent_s_stiffness_and_damping_are_the_force_elements_derivatives(
     moving at v = -h k r / m, both along e, where the damper's force -c (e . v) e turns with e and
     adds c (e . v) (I - e e^T) / l to K."""
     h = 0.01
-    stepper, start = _stepper(_sprung_body(DAMPING), h)
-    stiffness, damping = stepper._load_derivatives(start.q, start.qd, 0.0)
+    stepper, start = _stepper(_sprung_body(DAMPING, torque=True), h)
+    stiffness, damping = stepper._load_derivatives(start.q, start.qd, 0.3)
     e = np.array([0.6, 0.8])
     k_expected = np.diag([SPRING, SPRING, TORSION])
     d_expected = np.zeros((3, 3))
