@@ -38,38 +38,41 @@ def _free_body() -> Scenario:
     )
 
 
-def _setup(scenario: Scenario) -> tuple:
+def _setup(scenario: Scenario, t0: float = 0.0) -> tuple:
     system = constraint_system(scenario, fast=False)
     mass = mass_diagonal(scenario, system.layout)
     loads = Loads(scenario, system.layout, mass)
-    return system, mass, loads, initial_state(system, mass, loads, 0.0)
+    return system, mass, loads, initial_state(system, mass, loads, t0)
 
 
-def test_a_free_body_under_a_constant_force_on_a_grid_off_the_steps() -> None:
-    """Step 0.1 over 1 s: 10 steps of one Newton iteration each (the predictor is exact); outputs
-    inside steps (0.013, 0.25, 0.77), on a step's end (0.3, 1.0)."""
-    system, mass, loads, start = _setup(_free_body())
-    grid = np.array([0.0, 0.013, 0.25, 0.3, 0.77, 1.0])
+@pytest.mark.parametrize("t0", [0.0, 0.5])
+def test_a_free_body_under_a_constant_force_on_a_grid_off_the_steps(t0: float) -> None:
+    """Step 0.1 over 1 s from t0: 10 steps of one Newton iteration each (the predictor is exact);
+    outputs inside steps (t0 + 0.013, 0.25, 0.77), on a step's end (t0 + 0.3, 1.0), two in one step
+    (0.25 and 0.3)."""
+    system, mass, loads, start = _setup(_free_body(), t0)
+    grid = t0 + np.array([0.0, 0.013, 0.25, 0.3, 0.77, 1.0])
     states, works, evaluations = integrate(system, mass, loads, start, grid, 0.1)
     acceleration = np.array([FORCE[0] / MASS + G[0], FORCE[1] / MASS + G[1], 0.0])
     assert len(states) == grid.size and works.shape == (grid.size, 3)
     assert evaluations == 10
     for t, s in zip(grid, states, strict=True):
         assert s.t == pytest.approx(t, abs=1e-15)  # a step's end is its own time, sums of h
-        np.testing.assert_allclose(s.q, START + RATE * t + acceleration * t * t / 2, rtol=0, atol=1e-13)
-        np.testing.assert_allclose(s.qd, RATE + acceleration * t, rtol=0, atol=1e-11)
+        dt = t - t0
+        np.testing.assert_allclose(s.q, START + RATE * dt + acceleration * dt * dt / 2, rtol=0, atol=1e-13)
+        np.testing.assert_allclose(s.qd, RATE + acceleration * dt, rtol=0, atol=1e-11)
         np.testing.assert_allclose(s.qdd, acceleration, rtol=0, atol=1e-9)
         assert s.lam.shape == (0,)
-        assert s.loads.applied_power == pytest.approx(np.dot(FORCE, (RATE + acceleration * t)[:2]))
+        assert s.loads.applied_power == pytest.approx(np.dot(FORCE, (RATE + acceleration * dt)[:2]))
 
-    def work(t: float) -> float:
-        return float(np.dot(FORCE, (RATE * t + acceleration * t * t / 2)[:2]))
+    def work(dt: float) -> float:
+        return float(np.dot(FORCE, (RATE * dt + acceleration * dt * dt / 2)[:2]))
 
     # linear between the step ends around each output time
     expected = [0.0]
-    for t in grid[1:]:
-        a = np.floor(t / 0.1 - 1e-9) * 0.1
-        expected.append(work(a) + (t - a) / 0.1 * (work(a + 0.1) - work(a)))
+    for dt in grid[1:] - t0:
+        a = np.floor(dt / 0.1 - 1e-9) * 0.1
+        expected.append(work(a) + (dt - a) / 0.1 * (work(a + 0.1) - work(a)))
     np.testing.assert_allclose(works[:, 0], expected, rtol=1e-12, atol=1e-14)
     assert work(0.3) == pytest.approx(expected[3], rel=1e-12)  # on a step's end, the exact work
     np.testing.assert_array_equal(works[:, 1:], 0.0)
