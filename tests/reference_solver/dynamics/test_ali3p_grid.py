@@ -20,21 +20,25 @@ from reference_solver.dynamics.forward import initial_state
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from scenarios import Body, Point, Scenario
-from scenarios.forces import AppliedForce
-from scenarios.motions import Constant
+from scenarios.forces import AppliedForce, AppliedTorque
+from scenarios.motions import Constant, ConstantSpeed
 
 G = (0.0, -9.81)
 FORCE = (3.0, 1.5)
-MASS = 2.0
+TORQUE = 0.2
+MASS, INERTIA = 2.0, 0.1
 START = np.array([0.3, -0.1, 0.2])
 RATE = np.array([0.5, 2.0, 0.7])
 
 
 def _free_body() -> Scenario:
-    body = Body("b", tuple(START), mass=MASS, inertia=0.1, rate=tuple(RATE))
+    """A free body pushed by a constant force at its centre and a constant torque, the torque given
+    as a law of time (ConstantSpeed with rate 0), which the loads read at each state's time."""
+    body = Body("b", tuple(START), mass=MASS, inertia=INERTIA, rate=tuple(RATE))
     push = AppliedForce("push", Point("b"), Constant(FORCE[0]), Constant(FORCE[1]))
+    turn = AppliedTorque("turn", "b", ConstantSpeed(TORQUE, 0.0))
     return Scenario(
-        "free", "default", (body,), (), (), 1.0, 10, 1.0, gravity=G, forces=(push,), analysis="dynamic"
+        "free", "default", (body,), (), (), 1.0, 10, 1.0, gravity=G, forces=(push, turn), analysis="dynamic"
     )
 
 
@@ -53,7 +57,8 @@ def test_a_free_body_under_a_constant_force_on_a_grid_off_the_steps(t0: float) -
     system, mass, loads, start = _setup(_free_body(), t0)
     grid = t0 + np.array([0.0, 0.013, 0.25, 0.3, 0.77, 1.0])
     states, works, evaluations = integrate(system, mass, loads, start, grid, 0.1)
-    acceleration = np.array([FORCE[0] / MASS + G[0], FORCE[1] / MASS + G[1], 0.0])
+    acceleration = np.array([FORCE[0] / MASS + G[0], FORCE[1] / MASS + G[1], TORQUE / INERTIA])
+    applied = np.array([*FORCE, TORQUE])
     assert len(states) == grid.size and works.shape == (grid.size, 3)
     assert evaluations == 10
     for t, s in zip(grid, states, strict=True):
@@ -63,10 +68,11 @@ def test_a_free_body_under_a_constant_force_on_a_grid_off_the_steps(t0: float) -
         np.testing.assert_allclose(s.qd, RATE + acceleration * dt, rtol=0, atol=1e-11)
         np.testing.assert_allclose(s.qdd, acceleration, rtol=0, atol=1e-9)
         assert s.lam.shape == (0,)
-        assert s.loads.applied_power == pytest.approx(np.dot(FORCE, (RATE + acceleration * dt)[:2]))
+        assert s.loads.applied_power == pytest.approx(applied @ (RATE + acceleration * dt))
+        np.testing.assert_allclose(s.loads.generalized, applied + MASS * np.array([*G, 0.0]), atol=1e-15)
 
     def work(dt: float) -> float:
-        return float(np.dot(FORCE, (RATE * dt + acceleration * dt * dt / 2)[:2]))
+        return float(applied @ (RATE * dt + acceleration * dt * dt / 2))
 
     # linear between the step ends around each output time
     expected = [0.0]
@@ -76,6 +82,7 @@ def test_a_free_body_under_a_constant_force_on_a_grid_off_the_steps(t0: float) -
     np.testing.assert_allclose(works[:, 0], expected, rtol=1e-12, atol=1e-14)
     assert work(0.3) == pytest.approx(expected[3], rel=1e-12)  # on a step's end, the exact work
     np.testing.assert_array_equal(works[:, 1:], 0.0)
+    assert states[-1].t == grid[-1]  # the last step ends on the grid's last time exactly
 
 
 @pytest.mark.parametrize(("step", "count"), [(0.3, 4), (0.25, 4), (0.26, 4), (2.0, 1)])
@@ -111,10 +118,12 @@ def test_outputs_on_step_ends_are_the_plain_steps_states() -> None:
 
 def test_the_interpolant_reproduces_a_quintic() -> None:
     """q(t) = sum c_j (t - 0.2)^j, a quintic per coordinate, from q, q', q'' at t = 0.2 and 0.7:
-    the state at 0.3 of the step is the quintic's, whatever the step."""
-    system, *_ = _setup(_free_body())
+    the state at 0.3 of the step is the quintic's, whatever the step, with C_q there (a compound
+    pendulum's constraints, which the interpolant does not have to meet)."""
+    system, *_ = _setup(scenarios.build("compound_pendulum"))
+    n = system.layout.size
     rng = np.random.default_rng(11)
-    c = rng.normal(size=(6, 3))
+    c = rng.normal(size=(6, n))
     j = np.arange(6)[:, None]
 
     def at(t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -125,11 +134,11 @@ def test_the_interpolant_reproduces_a_quintic() -> None:
         return q, qd, qdd
 
     lam = np.array([1.0, 2.0])
-    a = StepState(0.2, *at(0.2), np.zeros(2), np.zeros((0, 3)))
-    b = StepState(0.7, *at(0.7), lam, np.zeros((0, 3)))
+    a = StepState(0.2, *at(0.2), np.zeros(2), np.zeros((0, n)))
+    b = StepState(0.7, *at(0.7), lam, np.zeros((0, n)))
     s = _interpolate(system, a, b, 0.3, 0.35)
     assert s.t == 0.35
     for x, y in zip((s.q, s.qd, s.qdd), at(0.35), strict=True):
         np.testing.assert_allclose(x, y, rtol=0, atol=1e-12)
     np.testing.assert_array_equal(s.multipliers, lam)
-    assert s.jac.shape == (0, 3)
+    np.testing.assert_allclose(s.jac, system.jacobian(at(0.35)[0], 0.35), rtol=0, atol=1e-12)
