@@ -15,7 +15,7 @@ from scipy.integrate import solve_ivp
 
 import scenarios
 from reference_solver.compiled_system import constraint_system
-from reference_solver.dynamics import DynamicAnalysis, ali3p, ali3p_grid, simulate
+from reference_solver.dynamics import DynamicAnalysis, ali3p, ali3p_grid, simulate, tangent
 from reference_solver.dynamics.ali3p import PENALTY, Ali3p, StepState
 from reference_solver.dynamics.forward import initial_state
 from reference_solver.dynamics.loads import Loads
@@ -311,6 +311,44 @@ def test_a_rod_hanging_at_rest_carries_its_weight_at_the_pin(spring: bool) -> No
     rest = StepState(0.0, s.q, s.qd, np.zeros(3), s.multipliers, s.jac)
     lam = stepper.multipliers(rest, stepper.loads(s.q, s.qd, 0.0).generalized)
     np.testing.assert_allclose(lam, [0.0, m * g], rtol=0, atol=1e-12)
+
+
+def test_the_step_is_the_same_in_any_unit_of_length() -> None:
+    """The compound double pendulum with links of 1 m under g = 9.81 and of 1 km under g = 9.81e3
+    (lengths and g scaled alike, so the angles move the same in time): every step takes as many
+    Newton iterations and gives the same angles, and lengths a thousand times (the stopping rule
+    measures updates over the column scales and residuals over the row scales)."""
+    runs = []
+    for length in (1.0, 1e3):
+        overrides = {"link_length": length, "gravity": 9.81 * length, "t_end": 0.01, "steps": 2}
+        stepper, s = _stepper(scenarios.build("compound_pendulum", overrides=overrides), 1e-3)
+        states = []
+        for _ in range(5):
+            s = stepper.step(s)
+            states.append(s)
+        runs.append(states)
+    for metre, kilometre in zip(*runs, strict=True):
+        assert metre.iterations == kilometre.iterations
+        np.testing.assert_allclose(kilometre.q[2::3], metre.q[2::3], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(kilometre.q[0::3] / 1e3, metre.q[0::3], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(kilometre.q[1::3] / 1e3, metre.q[1::3], rtol=0, atol=1e-12)
+
+
+def test_a_chain_long_enough_for_the_banded_tangent_steps_as_with_the_dense_one(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A02 with 7 loops (45 coordinates, W banded) from its start: one step with W banded and with W
+    dense (tangent.BANDED_FROM raised) are the same to round-off."""
+    scenario = scenarios.build("n_four_bar", overrides={"loops": 7, "t_end": 0.01, "steps": 2})
+    banded, s = _stepper(scenario, 1e-3)
+    assert banded.tangent.banded
+    a = banded.step(s)
+    monkeypatch.setattr(tangent, "BANDED_FROM", 1000)
+    dense, _ = _stepper(scenario, 1e-3)
+    assert not dense.tangent.banded
+    b = dense.step(s)
+    np.testing.assert_allclose(a.q, b.q, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(a.qd, b.qd, rtol=0, atol=1e-9)
 
 
 A02_SPEC = (6.03e-09, 6.72e-10, 2.07e-07)
