@@ -85,13 +85,15 @@ def test_a_free_body_under_a_constant_force_on_a_grid_off_the_steps(t0: float) -
     assert states[-1].t == grid[-1]  # the last step ends on the grid's last time exactly
 
 
+@pytest.mark.parametrize("t0", [0.0, 0.5])
 @pytest.mark.parametrize(("step", "count"), [(0.3, 4), (0.25, 4), (0.26, 4), (2.0, 1)])
 def test_the_step_is_the_span_over_the_fewest_steps_of_at_most_the_given_size(
-    step: float, count: int
+    step: float, count: int, t0: float
 ) -> None:
-    """One Newton iteration per step on the free body, so the evaluations count the steps."""
-    system, mass, loads, start = _setup(_free_body())
-    _, _, evaluations = integrate(system, mass, loads, start, np.array([0.0, 0.4, 1.0]), step)
+    """One Newton iteration per step on the free body, so the evaluations count the steps over the
+    span of 1 s from t0."""
+    system, mass, loads, start = _setup(_free_body(), t0)
+    _, _, evaluations = integrate(system, mass, loads, start, t0 + np.array([0.0, 0.4, 1.0]), step)
     assert evaluations == count
 
 
