@@ -95,6 +95,8 @@ ALI3P_STEP_TESTS = (
             "the_step_is_the_same_in_any_unit_of_length",
             "a_chain_long_enough_for_the_banded_tangent_steps_as_with_the_dense_one",
             "the_rockers_leave_the_crank_by_what_the_step_s_phase_at_the_passage_allows",
+            "a_driven_rod_s_rates_are_the_driver_s_after_the_projection",
+            "a_chain_with_force_elements_keeps_its_tangent_dense",
         )
     ),
     f"{DYNAMICS}test_ali3p_grid.py",

@@ -8,6 +8,7 @@ of 1 m and 1 kg), which also gives the passage times (theta a multiple of pi).""
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -22,6 +23,7 @@ from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.errors import ConvergenceError, SolverError
 from scenarios import Point
+from scenarios.drivers import AbsoluteDriver
 from scenarios.forces import AppliedTorque, RotationalSpringDamper, SpringDamper
 from scenarios.joints import Revolute
 from scenarios.motions import ConstantSpeed
@@ -240,6 +242,8 @@ def test_a_step_of_a_linear_oscillator_is_the_trapezoidal_rule_s() -> None:
             steps = stepper.step(steps)
         assert steps.t == pytest.approx(3 * h, abs=1e-15)
         got = (steps.q[column], steps.qd[column], steps.qdd[column])
+        # the tangent is exact (K and D of linear elements): the first update lands, the second confirms
+        assert steps.iterations == 2
         np.testing.assert_allclose(got, column_expected, rtol=0, atol=1e-10)
 
 
@@ -349,6 +353,37 @@ def test_a_chain_long_enough_for_the_banded_tangent_steps_as_with_the_dense_one(
     b = dense.step(s)
     np.testing.assert_allclose(a.q, b.q, rtol=0, atol=1e-13)
     np.testing.assert_allclose(a.qd, b.qd, rtol=0, atol=1e-9)
+
+
+def test_a_driven_rod_s_rates_are_the_driver_s_after_the_projection() -> None:
+    """A rod of 1 m pinned at its end and turned by a driver at theta = -pi/2 + 2 t: after a step,
+    theta = -pi/2 + 2 h and theta' = 2 exactly (C_q q' = -C_t), and its centre, 0.5 (cos, sin)(theta)
+    from the pin, moves at 0.5 theta' (-sin, cos)(theta)."""
+    rod = scenarios.Body("rod", (0.0, -0.5, -np.pi / 2), mass=2.0, inertia=0.2, length=1.0)
+    pin = Revolute("pin", Point("ground", (0.0, 0.0)), Point("rod", (-0.5, 0.0)))
+    turn = AbsoluteDriver("turn", "rod", "theta", ConstantSpeed(-np.pi / 2, 2.0))
+    scenario = scenarios.Scenario(
+        "rod", "default", (rod,), (pin,), (turn,), 1.0, 10, 1.0, gravity=(0.0, -9.81), analysis="dynamic"
+    )
+    h = 1e-3
+    stepper, s = _stepper(scenario, h)
+    s = stepper.step(s)
+    theta = -np.pi / 2 + 2 * h
+    assert s.q[2] == pytest.approx(theta, abs=1e-14)
+    np.testing.assert_allclose(s.q[:2], 0.5 * np.array([np.cos(theta), np.sin(theta)]), rtol=0, atol=1e-14)
+    assert s.qd[2] == pytest.approx(2.0, abs=1e-9)
+    np.testing.assert_allclose(s.qd[:2], np.array([-np.sin(theta), np.cos(theta)]), rtol=0, atol=1e-9)
+
+
+def test_a_chain_with_force_elements_keeps_its_tangent_dense() -> None:
+    """With force elements P is dense (K and D couple every coordinate): W is not banded even on
+    45 coordinates, and the step runs."""
+    scenario = scenarios.build("n_four_bar", overrides={"loops": 7, "t_end": 0.01, "steps": 2})
+    body = scenario.bodies[0].name
+    scenario = replace(scenario, forces=(RotationalSpringDamper("t", "ground", body, 1.0, 0.1),))
+    stepper, s = _stepper(scenario, 1e-3)
+    assert stepper.stiff and not stepper.tangent.banded
+    assert stepper.step(s).t == pytest.approx(1e-3, abs=1e-18)
 
 
 A02_SPEC = (6.03e-09, 6.72e-10, 2.07e-07)
