@@ -177,30 +177,35 @@ SPRING, TORSION, TORSION_DAMPING, DAMPING = 50.0, 7.0, 0.5, 3.0
 BODY_MASS, BODY_INERTIA = 2.0, 0.1
 
 
-def _sprung_body(damping: float, torque: bool = False) -> scenarios.Scenario:
+def _sprung_body(damping: float, torque: bool = False, scale: float = 1.0) -> scenarios.Scenario:
     """A free body at (0.3, 0.4, 0.2), turning at 0.5 rad/s, held by a spring of free length 0 from
     the ground's origin to its centre (force -k r: linear; a damper c along the line) and a torsion
     spring-damper to the ground (T = -k_t theta - c_t omega); no gravity. `torque` adds a torque
-    0.2 + t (time-dependent, the same at every q and q')."""
-    body = scenarios.Body("b", (0.3, 0.4, 0.2), mass=BODY_MASS, inertia=BODY_INERTIA, rate=(0.0, 0.0, 0.5))
+    0.2 + t (time-dependent, the same at every q and q'). `scale` is the unit of length: the centre at
+    (0.3, 0.4) scale, the characteristic length scale."""
+    body = scenarios.Body(
+        "b", (0.3 * scale, 0.4 * scale, 0.2), mass=BODY_MASS, inertia=BODY_INERTIA, rate=(0.0, 0.0, 0.5)
+    )
     forces = (
         SpringDamper("s", Point("ground"), Point("b"), SPRING, damping),
         RotationalSpringDamper("t", "ground", "b", TORSION, TORSION_DAMPING),
         *((AppliedTorque("motor", "b", ConstantSpeed(0.2, 1.0)),) if torque else ()),
     )
     return scenarios.Scenario(
-        "sprung", "default", (body,), (), (), 1.0, 10, 1.0, forces=forces, analysis="dynamic"
+        "sprung", "default", (body,), (), (), 1.0, 10, scale, forces=forces, analysis="dynamic"
     )
 
 
-def test_the_tangent_s_stiffness_and_damping_are_the_force_elements_derivatives() -> None:
+@pytest.mark.parametrize("scale", [1.0, 1e3])
+def test_the_tangent_s_stiffness_and_damping_are_the_force_elements_derivatives(scale: float) -> None:
     """K = -dQ_e/dq = diag(k, k, k_t) (the damper's direction moves with r, but the body's centre is
     at rest, so its force does not change); D = -dQ_e/dq' = c e e^T with e = (0.6, 0.8), and c_t;
     and P = M + h/2 D + h^2/4 K, the weight of the projections, at the predictor: r (1 - h^2 k / 2m)
     moving at v = -h k r / m, both along e, where the damper's force -c (e . v) e turns with e and
-    adds c (e . v) (I - e e^T) / l to K."""
+    adds c (e . v) (I - e e^T) / l to K. In metres and in a unit of 1 km: the differences' steps are
+    relative to the column scales (absolute steps of 1e-10 would lose a km-sized Q_e's digits)."""
     h = 0.01
-    stepper, start = _stepper(_sprung_body(DAMPING, torque=True), h)
+    stepper, start = _stepper(_sprung_body(DAMPING, torque=True, scale=scale), h)
     stiffness, damping = stepper._load_derivatives(start.q, start.qd, 0.3)
     e = np.array([0.6, 0.8])
     k_expected = np.diag([SPRING, SPRING, TORSION])
@@ -209,7 +214,7 @@ def test_the_tangent_s_stiffness_and_damping_are_the_force_elements_derivatives(
     np.testing.assert_allclose(stiffness, k_expected, rtol=0, atol=1e-6)
     np.testing.assert_allclose(damping, d_expected, rtol=0, atol=1e-7)
     stepper.step(start)
-    r = np.array([0.3, 0.4])
+    r = np.array([0.3, 0.4]) * scale
     length = float(np.hypot(*r)) * (1 - h * h * SPRING / (2 * BODY_MASS))
     rate = float(e @ (-h * SPRING * r / BODY_MASS))
     k_expected[:2, :2] += DAMPING * rate * (np.eye(2) - np.outer(e, e)) / length
