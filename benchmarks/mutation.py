@@ -474,6 +474,39 @@ EXPLAINED.update(
     }
 )
 
+# Session 8 (s8-mut5): ALI3-P's plain step (ali3p.py) and its time grid (ali3p_grid.py).
+_ALI3P = "reference_solver.dynamics.ali3p.xǁAli3pǁ"
+_GRID = "reference_solver.dynamics.ali3p_grid.x_"
+_FLOOR = (
+    "the penalties' floor 1e-12 x the largest row inertia made an absolute 1e-12 (typical 1.0 for "
+    "inertias below 1): it acts only on a row whose inertia (C_q M^-1 C_q^T)_ii is below 1e-12, a row of "
+    "C_q that vanishes at the first predictor or masses above 1e12 kg (the families stop at 1e9)"
+)
+EXPLAINED.update(
+    {
+        f"{_GRID}integrate__mutmut_39": "the start's C_q set to None: never read (each step evaluates its "
+        "own C_q, the interpolant takes q, q' and q'' only, and a step end's output is the stepped state)",
+        f"{_GRID}integrate__mutmut_119": "fraction clipped at 2 instead of 1: it exceeds 1 only for an "
+        "output time within SAME_TIME (1e-9 of a step) past a step's end, where the state is the step's "
+        "either way and the work moves by that fraction of one step's work",
+        f"{_GRID}integrate__mutmut_126": "fraction > 1 - SAME_TIME for >=: " + _TIE,
+        f"{_ALI3P}_factor__mutmut_14": "einsum's subscripts 'ij,j,ij->i' in capitals: the same contraction",
+        **dict.fromkeys(
+            (f"{_ALI3P}_factor__mutmut_{k}" for k in (18, 24)),
+            _FLOOR,
+        ),
+        f"{_ALI3P}_factor__mutmut_25": "typical = 2.0 for 1.0 when every row inertia is 0: only a system "
+        "without rows (alpha empty either way) or with every row of C_q vanishing",
+        f"{_ALI3P}multipliers__mutmut_23": "lstsq's rcond=None dropped: None is numpy 2's default",
+        f"{_ALI3P}weigh__mutmut_2": "P x as weight @ x also without force elements: the weight is then "
+        "diag(M), set in __init__ and changed only by _factor's stiff branch, so M x either way",
+        **dict.fromkeys(
+            (f"{_ALI3P}step__mutmut_{k}" for k in (107, 109, 110, 111)),
+            "Newton's stopping rule's <=, <=, >, > turned to <, <, >=, >=: " + _TIE,
+        ),
+    }
+)
+
 KILLED, SURVIVED = 1, 0
 TIMEOUTS = {-24, 24, 152}  # SIGXCPU, as mutmut reports a mutant that outran its time limit
 

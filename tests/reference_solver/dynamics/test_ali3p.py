@@ -252,10 +252,14 @@ def test_a_step_of_a_linear_oscillator_is_the_trapezoidal_rule_s() -> None:
         np.testing.assert_allclose(got, column_expected, rtol=0, atol=1e-10)
 
 
-def test_the_penalties_give_each_row_a_unit_penalty_diagonal() -> None:
-    """alpha_i = PENALTY 4/h^2 / (C_q M^-1 C_q^T)_ii at the first step's predictor, fixed after."""
+@pytest.mark.parametrize("mass", [1.0, 1e9])
+def test_the_penalties_give_each_row_a_unit_penalty_diagonal(mass: float) -> None:
+    """alpha_i = PENALTY 4/h^2 / (C_q M^-1 C_q^T)_ii at the first step's predictor, fixed after;
+    for links of 1 kg and of 1e9 kg (row inertias about 1e-9: the floor for vanishing rows, 1e-12
+    of the largest, stays below them)."""
     h = 1e-3
-    scenario = scenarios.build("compound_pendulum", overrides={"t_end": 0.01, "steps": 2})
+    overrides = {"t_end": 0.01, "steps": 2, "link_mass": mass}
+    scenario = scenarios.build("compound_pendulum", overrides=overrides)
     stepper, s = _stepper(scenario, h)
     predictor = s.q + h * s.qd + h * h / 2 * s.qdd
     jac = stepper.system.jacobian(predictor, h)
