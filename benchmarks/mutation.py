@@ -100,6 +100,37 @@ plain path to 1e-12 on every scenario, the compiled rows against the plain rows 
 Uncompiled, the whole-path tests take minutes per surviving mutant on the shared machine: the kernel
 modules other than the loop are mutated against the others only, which check the same values."""
 
+ALI3P_STEP_TESTS = (
+    *ALI3P_FAST_TESTS,
+    f"{DYNAMICS}test_ali3p.py::test_the_same_motion_as_the_partitioned_method_to_second_order[slider_crank_spring]",
+    f"{DYNAMICS}test_ali3p.py::test_a_reduced_a02_passes_its_singular_position_at_second_order",
+    f"{DYNAMICS}test_ali3p.py::test_unknown_method_and_bad_step_are_refused",
+    f"{DYNAMICS}test_compiled_ali3p.py",
+    f"{DYNAMICS}test_forward.py",
+    *(
+        f"{DYNAMICS}test_ali3p.py::test_{name}"
+        for name in (
+            "the_tangent_s_stiffness_and_damping_are_the_force_elements_derivatives",
+            "a_step_of_a_linear_oscillator_is_the_trapezoidal_rule_s",
+            "the_penalties_give_each_row_a_unit_penalty_diagonal",
+            "a_step_newton_cannot_finish_is_refused_with_where_and_how_far",
+            "a_rod_hanging_at_rest_carries_its_weight_at_the_pin",
+            "the_step_is_the_same_in_any_unit_of_length",
+            "a_chain_long_enough_for_the_banded_tangent_steps_as_with_the_dense_one",
+            "the_rockers_leave_the_crank_by_what_the_step_s_phase_at_the_passage_allows",
+            "a_driven_rod_s_rates_are_the_driver_s_after_the_projection",
+            "a_chain_with_force_elements_keeps_its_tangent_dense",
+        )
+    ),
+    f"{DYNAMICS}test_ali3p_grid.py",
+)
+"""ALI3-P's plain step (ali3p.py) and its grid (ali3p_grid.py): the cheaper tests above, the slider-crank
+with a spring (the plain step: force elements do not compile), a reduced A02 through its singular
+position, the refusals, the compiled step against the plain one, a free body falling, and the
+plain step's and the grid's value tests (test_ali3p_grid.py, the hand-built cases of test_ali3p.py).
+The rockers' phase test (plain and compiled over 8000 steps, 3 s each) is the one that reaches the
+stalled Newton's stopping rule; the Andrews squeezer (20 s) is left out."""
+
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
         (
@@ -182,6 +213,10 @@ MODULES: dict[str, tuple[str, ...]] = {
         "tests/reference_solver/test_mobility.py",
         "tests/reference_solver/test_failures.py",
     ),
+    # --- ALI3-P's plain step and its grid (session 8, s8-mut5) ---
+    "reference_solver/dynamics/ali3p_grid.py": ALI3P_STEP_TESTS,
+    "reference_solver/dynamics/ali3p.py": ALI3P_STEP_TESTS,
+    # --- end of ALI3-P ---
 }
 
 KERNEL_MODULES = frozenset(
@@ -577,6 +612,39 @@ EXPLAINED.update(
             tuple(f"reference_solver.residual.x__plain_residual__mutmut_{k}" for k in (38, 41, 42)),
             "zip(equations, scales, strict=True) -> None, dropped or False: one scale array is built per "
             "equation, so the lists are as long",
+        ),
+    }
+)
+
+# Session 8 (s8-mut5): ALI3-P's plain step (ali3p.py) and its time grid (ali3p_grid.py).
+_ALI3P = "reference_solver.dynamics.ali3p.xǁAli3pǁ"
+_GRID = "reference_solver.dynamics.ali3p_grid.x_"
+_FLOOR = (
+    "the penalties' floor 1e-12 x the largest row inertia made an absolute 1e-12 (typical 1.0 for "
+    "inertias below 1): it acts only on a row whose inertia (C_q M^-1 C_q^T)_ii is below 1e-12, a row of "
+    "C_q that vanishes at the first predictor or masses above 1e12 kg (the families stop at 1e9)"
+)
+EXPLAINED.update(
+    {
+        f"{_GRID}integrate__mutmut_39": "the start's C_q set to None: never read (each step evaluates its "
+        "own C_q, the interpolant takes q, q' and q'' only, and a step end's output is the stepped state)",
+        f"{_GRID}integrate__mutmut_119": "fraction clipped at 2 instead of 1: it exceeds 1 only for an "
+        "output time within SAME_TIME (1e-9 of a step) past a step's end, where the state is the step's "
+        "either way and the work moves by that fraction of one step's work",
+        f"{_GRID}integrate__mutmut_126": "fraction > 1 - SAME_TIME for >=: " + _TIE,
+        f"{_ALI3P}_factor__mutmut_14": "einsum's subscripts 'ij,j,ij->i' in capitals: the same contraction",
+        **dict.fromkeys(
+            (f"{_ALI3P}_factor__mutmut_{k}" for k in (18, 24)),
+            _FLOOR,
+        ),
+        f"{_ALI3P}_factor__mutmut_25": "typical = 2.0 for 1.0 when every row inertia is 0: only a system "
+        "without rows (alpha empty either way) or with every row of C_q vanishing",
+        f"{_ALI3P}multipliers__mutmut_23": "lstsq's rcond=None dropped: None is numpy 2's default",
+        f"{_ALI3P}weigh__mutmut_2": "P x as weight @ x also without force elements: the weight is then "
+        "diag(M), set in __init__ and changed only by _factor's stiff branch, so M x either way",
+        **dict.fromkeys(
+            (f"{_ALI3P}step__mutmut_{k}" for k in (107, 109, 110, 111)),
+            "Newton's stopping rule's <=, <=, >, > turned to <, <, >=, >=: " + _TIE,
         ),
     }
 )
