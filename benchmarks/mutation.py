@@ -77,6 +77,18 @@ ALI3P_FAST_TESTS = (
 """ALI3-P's cheaper tests (a few seconds each): two without force elements (P = M), one with a
 spring and damper (P dense, with K and D)."""
 
+PARTITIONED_TESTS = (
+    f"{DYNAMICS}test_partition.py",
+    f"{DYNAMICS}test_forward.py",
+    f"{DYNAMICS}test_compiled_rates.py",
+    f"{DYNAMICS}test_anchor.py",
+    f"{DYNAMICS}test_pendulum.py",
+    f"{DYNAMICS}test_energy.py",
+)
+"""The partitioned method's fast tests: its right-hand side against the compiled one and finite
+differences, the anchor, a free fall, the pendulum's closed forms and the energy balance (short
+integrations, seconds each), and the value tests of partition.py and forward.py."""
+
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
         (
@@ -138,6 +150,10 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/dynamics/projection.py": (f"{DYNAMICS}test_projection.py", *ALI3P_FAST_TESTS),
     "reference_solver/dynamics/tangent.py": (f"{DYNAMICS}test_tangent.py", *ALI3P_FAST_TESTS),
     # --- end of native dynamics ---
+    # --- the partitioned method (session 8, s8-mut4) ---
+    "reference_solver/dynamics/partition.py": PARTITIONED_TESTS,
+    "reference_solver/dynamics/forward.py": PARTITIONED_TESTS,
+    # --- end of the partitioned method ---
 }
 
 _STRICT_ZIP = "zip of two 2-tuples: strict or not, the pairs are the same"
