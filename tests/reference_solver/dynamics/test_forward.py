@@ -17,6 +17,7 @@ from reference_solver.dynamics.partition import Partitioned
 from reference_solver.errors import AssemblyError, SolverError
 from reference_solver.system import ConstraintSystem
 from scenarios import GROUND, AbsoluteDriver, Body, Constant, ConstantSpeed, Point, Revolute, Scenario
+from scenarios.forces import AppliedTorque
 from scenarios.outputs import AngleOutput
 
 G = 9.81
@@ -159,3 +160,28 @@ def test_a_driven_chain_s_energy_is_what_its_driver_puts_in(fast: bool) -> None:
     np.testing.assert_array_equal(trajectory.position[:, 0], result.q[:, 3:6])  # type: ignore[index]
     np.testing.assert_array_equal(trajectory.extras["energy.driver_work"], work)
     assert result.layout is result.motion.layout
+
+
+@dataclasses.dataclass(frozen=True)
+class UndefinedAfter:
+    """A torque law of 1 N m that is undefined (NaN) after `end`, as a table read past its end."""
+
+    end: float
+
+    def f(self, t: float) -> float:
+        return math.nan if t > self.end else 1.0
+
+    def df(self, t: float) -> float:
+        return math.nan if t > self.end else 0.0
+
+
+def test_an_integrator_failure_names_the_scenario_and_where_it_started() -> None:
+    """NaN rates after 0.02 s: DOP853 shrinks its step below the spacing of floats and gives up."""
+    body = Body("b", (0.0, 0.0, 0.0), mass=1.0, inertia=0.1)
+    motor = AppliedTorque("motor", "b", UndefinedAfter(0.02))  # type: ignore[arg-type]
+    scenario = Scenario("free", "default", (body,), (), (), 0.1, 2, 1.0, forces=(motor,), analysis="dynamic")
+    with pytest.raises(SolverError) as caught:
+        simulate(scenario)
+    assert str(caught.value) == (
+        "free: the integrator failed after t=0: Required step size is less than spacing between numbers."
+    )
