@@ -455,6 +455,22 @@ EXPLAINED.update(
     }
 )
 
+# Session 8 (s8-mut4): the partitioned method, partition.py and forward.py.
+_PARTITION = "reference_solver.dynamics.partition."
+EXPLAINED.update(
+    {
+        f"{_PARTITION}xǁPartitionedǁconditioning__mutmut_5": "svd's compute_uv=False -> None: only "
+        "tested for truth, and None is false too",
+        **dict.fromkeys(
+            (f"{_PARTITION}x_driver_power__mutmut_2", f"{_PARTITION}x_driver_power__mutmut_4"),
+            "the drivers' power summed over every row, not the driver rows alone: the joints' rows add "
+            "lambda_j C_q,j q', which is 0 to round-off (q' solves C_q q' = -C_t, and a joint's C_t is 0)",
+        ),
+        f"{_PARTITION}x_driver_power__mutmut_3": "slice(first driver row, None) for (first driver row, "
+        "system.size): lambda and C_q have system.size rows, so both slices end at the last",
+    }
+)
+
 KILLED, SURVIVED = 1, 0
 TIMEOUTS = {-24, 24, 152}  # SIGXCPU, as mutmut reports a mutant that outran its time limit
 
