@@ -22,7 +22,8 @@ from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.partition import Partitioned, choose_independent, driver_power
 from reference_solver.errors import ConvergenceError
 from reference_solver.system import ConstraintSystem
-from scenarios import AbsoluteDriver, ConstantSpeed, Scenario
+from scenarios import AbsoluteDriver, ConstantSpeed, Harmonic, Scenario
+from scenarios.forces import AppliedTorque
 
 G, L = 9.81, 0.5
 THETA = 2
@@ -38,6 +39,15 @@ def driven_chain() -> Scenario:
     chain = scenarios.build("compound_pendulum", overrides={"links": 2, "theta0": 0.3})
     spin = AbsoluteDriver("spin", "link_1", "theta", ConstantSpeed(0.3 - math.pi / 2, 2.0))
     return dataclasses.replace(chain, drivers=(spin,))
+
+
+def rocked_chain() -> Scenario:
+    """Two links, the first rocked harmonically by a driver, the second under a harmonic torque
+    (so that C_t and Q_e change with time)."""
+    chain = scenarios.build("compound_pendulum", overrides={"links": 2, "theta0": 0.3})
+    rock = AbsoluteDriver("rock", "link_1", "theta", Harmonic(0.3 - math.pi / 2, 0.2, 5.0, 0.4))
+    motor = AppliedTorque("motor", "link_2", Harmonic(0.0, 1.5, 7.0, 0.1), reaction="link_1")
+    return dataclasses.replace(chain, drivers=(rock,), forces=(motor,))
 
 
 def ode_of(scenario: Scenario, independent: list[int] | None = None) -> tuple[Partitioned, ConstraintSystem]:
@@ -153,8 +163,11 @@ def test_the_anchor_becomes_newton_s_start() -> None:
     np.testing.assert_array_equal(ode.start[0], rod_centre(0.2))
 
 
-def test_the_driver_s_power_is_the_rate_of_the_mechanical_energy() -> None:
-    ode, system = ode_of(driven_chain())
+@pytest.mark.parametrize("scenario", [driven_chain, rocked_chain])
+def test_the_driver_s_power_is_the_rate_of_the_mechanical_energy(scenario: Callable[[], Scenario]) -> None:
+    """q'^T (M q'' - Q_e) = -lambda^T C_q q' (the equations of motion), and the joints' rows give
+    C_q q' = 0: what is left is the driver's row."""
+    ode, system = ode_of(scenario())
     rng = np.random.default_rng(3)
     for _ in range(3):
         y = np.concatenate(
