@@ -468,6 +468,11 @@ EXPLAINED.update(
         ),
         f"{_PARTITION}x_driver_power__mutmut_3": "slice(first driver row, None) for (first driver row, "
         "system.size): lambda and C_q have system.size rows, so both slices end at the last",
+        **dict.fromkeys(
+            tuple(f"{_PARTITION}xǁPartitionedǁpositions__mutmut_{k}" for k in (14, 17, 18)),
+            "the predictor's lu_solve check_finite False -> None, default or True: differs only on "
+            "non-finite factors or move, and the anchor's factors and C_q are finite at any finite state",
+        ),
     }
 )
 

@@ -130,11 +130,11 @@ def test_an_unreachable_independent_coordinate_is_a_convergence_error_naming_tim
     assert caught.value.time == 0.125 and len(calls) == 12
 
 
-@pytest.mark.parametrize(("scenario", "independent"), [(rod, 0), (driven_chain, 3)])
+@pytest.mark.parametrize(("scenario", "independent"), [(rod, 0), (driven_chain, 3), (rocked_chain, 3)])
 def test_the_tangent_predictor_from_the_anchor_saves_one_newton_iteration(
     scenario: Callable[[], Scenario], independent: int
 ) -> None:
-    """From the anchor, a move of 1e-4 in an x (the rod's, or the driven chain's second link's, whose
+    """From the anchor, a move of 1e-4 in an x (the rod's, or a driven chain's second link's, whose
     angle then follows nonlinearly) starts Newton within O(1e-8) of the solution: two evaluations,
     the second at round-off (measured 4e-8, then 2e-16). Without the predictor, or with it the
     wrong way, the start misses by O(1e-4): three (measured 2e-4, 4e-8, 2e-16)."""
