@@ -469,10 +469,16 @@ EXPLAINED.update(
         f"{_PARTITION}x_driver_power__mutmut_3": "slice(first driver row, None) for (first driver row, "
         "system.size): lambda and C_q have system.size rows, so both slices end at the last",
         **dict.fromkeys(
-            tuple(f"{_PARTITION}xǁPartitionedǁpositions__mutmut_{k}" for k in (14, 17, 18)),
-            "the predictor's lu_solve check_finite False -> None, default or True: differs only on "
-            "non-finite factors or move, and the anchor's factors and C_q are finite at any finite state",
+            tuple(
+                f"{_PARTITION}xǁPartitionedǁpositions__mutmut_{k}"
+                for k in (14, 17, 18, 37, 39, 40, 56, 59, 60)
+            ),
+            "check_finite False -> None, default or True (the predictor's lu_solve, Newton's lu_factor "
+            "and lu_solve): differs only on a non-finite C_q, move or residual, which no finite state gives",
         ),
+        f"{_PARTITION}xǁPartitionedǁpositions__mutmut_43": "residual <= STALLED for <: " + _TIE,
+        f"{_PARTITION}xǁPartitionedǁpositions__mutmut_44": "residual >= 0.5 previous for >: " + _TIE,
+        f"{_PARTITION}xǁPartitionedǁpositions__mutmut_49": "residual < RESIDUAL for <=: " + _TIE,
     }
 )
 

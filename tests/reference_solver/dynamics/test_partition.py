@@ -128,6 +128,7 @@ def test_an_unreachable_independent_coordinate_is_a_convergence_error_naming_tim
     assert message.startswith("compound_pendulum: the dependent coordinates did not converge at t=0.125 ")
     assert message.endswith(")") and "(constraint residual " in message
     assert caught.value.time == 0.125 and len(calls) == 12
+    assert caught.value.q is not None and caught.value.q[0] == 0.3  # the last iterate, x as asked
 
 
 @pytest.mark.parametrize(("scenario", "independent"), [(rod, 0), (driven_chain, 3), (rocked_chain, 3)])
