@@ -476,6 +476,8 @@ EXPLAINED.update(
             "check_finite False -> None, default or True (the predictor's lu_solve, Newton's lu_factor "
             "and lu_solve): differs only on a non-finite C_q, move or residual, which no finite state gives",
         ),
+        f"{_PARTITION}x_choose_independent__mutmut_9": "qr's mode 'economic' dropped (mode 'full'): "
+        "only R's and Q's shapes change; the column pivots are the same",
         f"{_PARTITION}xǁPartitionedǁpositions__mutmut_43": "residual <= STALLED for <: " + _TIE,
         f"{_PARTITION}xǁPartitionedǁpositions__mutmut_44": "residual >= 0.5 previous for >: " + _TIE,
         f"{_PARTITION}xǁPartitionedǁpositions__mutmut_49": "residual < RESIDUAL for <=: " + _TIE,
