@@ -476,6 +476,14 @@ EXPLAINED.update(
             "check_finite False -> None, default or True (the predictor's lu_solve, Newton's lu_factor "
             "and lu_solve): differs only on a non-finite C_q, move or residual, which no finite state gives",
         ),
+        **dict.fromkeys(
+            (
+                f"{_PARTITION}xǁPartitionedǁ__init____mutmut_9",
+                f"{_PARTITION}xǁPartitionedǁ__init____mutmut_11",
+            ),
+            "the first C_q and C_t (zeros) -> None: they sit in Newton's start beside factors None, and "
+            "positions reads them only with factors, which the first solve replaces them with",
+        ),
         f"{_PARTITION}x_choose_independent__mutmut_9": "qr's mode 'economic' dropped (mode 'full'): "
         "only R's and Q's shapes change; the column pivots are the same",
         f"{_PARTITION}xǁPartitionedǁpositions__mutmut_43": "residual <= STALLED for <: " + _TIE,

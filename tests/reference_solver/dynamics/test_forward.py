@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -39,7 +40,7 @@ def test_a_free_body_falls_as_the_closed_form(method: str, fast: bool) -> None:
     assert np.all(result.motion.residual == 0.0) and result.lam.shape == (11, 0)
 
 
-def rod(**changes: object) -> Scenario:
+def rod(**changes: Any) -> Scenario:
     """compound_pendulum's one link (l = 0.5, m = 1, J = m l^2 / 12) pinned at its end, from 0.3 rad."""
     return dataclasses.replace(
         scenarios.build("compound_pendulum", overrides={"links": 1, "theta0": 0.3}), **changes

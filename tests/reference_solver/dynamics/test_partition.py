@@ -68,7 +68,7 @@ def counted(system: ConstraintSystem) -> list[float]:
         calls.append(t)
         return evaluate(q, t)
 
-    system.evaluate = counting  # type: ignore[method-assign]
+    system.evaluate = counting  # type: ignore[method-assign, assignment]
     return calls
 
 
