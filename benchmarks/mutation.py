@@ -484,6 +484,17 @@ EXPLAINED.update(
             "the first C_q and C_t (zeros) -> None: they sit in Newton's start beside factors None, and "
             "positions reads them only with factors, which the first solve replaces them with",
         ),
+        "reference_solver.dynamics.forward.x__walk__mutmut_5": "k <= len(step_times) for <: the last "
+        "step is the integration's end, at or after every output, so the loop stops on the time test first",
+        **dict.fromkeys(
+            (
+                "reference_solver.dynamics.forward.x__walk__mutmut_3",
+                "reference_solver.dynamics.forward.x__walk__mutmut_6",
+            ),
+            "the walk from the first step (k = 1 skips the start, which is the anchor already) or through a "
+            "step at an output time (<= for <, the same point anchored twice): only Newton's start moves, "
+            "the states are Newton's solutions to its tolerance either way",
+        ),
         f"{_PARTITION}x_choose_independent__mutmut_9": "qr's mode 'economic' dropped (mode 'full'): "
         "only R's and Q's shapes change; the column pivots are the same",
         f"{_PARTITION}xǁPartitionedǁpositions__mutmut_43": "residual <= STALLED for <: " + _TIE,

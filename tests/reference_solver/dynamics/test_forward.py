@@ -139,7 +139,8 @@ def driven_chain(t_end: float) -> Scenario:
     )
     spin = AbsoluteDriver("spin", "link_1", "theta", ConstantSpeed(0.3 - math.pi / 2, 2.0))
     elbow = AngleOutput("elbow", "link_2", "link_1")
-    return dataclasses.replace(chain, drivers=(spin,), angle_outputs=(elbow,))
+    swing = AngleOutput("swing", "link_2")
+    return dataclasses.replace(chain, drivers=(spin,), angle_outputs=(elbow, swing))
 
 
 @pytest.mark.parametrize("fast", [False, True])
@@ -156,6 +157,9 @@ def test_a_driven_chain_s_energy_is_what_its_driver_puts_in(fast: bool) -> None:
     t = np.linspace(0.0, 0.4, 5)
     np.testing.assert_allclose(result.q[:, 2], 0.3 - math.pi / 2 + 2.0 * t, rtol=0, atol=1e-13)
     np.testing.assert_allclose(extras["elbow"], result.q[:, 5] - result.q[:, 2], rtol=0, atol=0)
+    np.testing.assert_array_equal(extras["swing"], result.q[:, 5])  # from the ground's angle, 0
+    assert extras["pin_1.fx"].shape == extras["pin_2.fy"].shape == (5,)
+    assert np.all(np.isfinite(extras["pin_1.fx"])) and np.max(np.abs(extras["pin_2.fy"])) > 0
     trajectory = result.trajectory(["link_2"])
     assert trajectory.bodies == ("link_2",)
     np.testing.assert_array_equal(trajectory.position[:, 0], result.q[:, 3:6])  # type: ignore[index]
