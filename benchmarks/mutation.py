@@ -487,14 +487,13 @@ EXPLAINED.update(
         "reference_solver.dynamics.forward.x__walk__mutmut_5": "k <= len(step_times) for <: the last "
         "step is the integration's end, at or after every output, so the loop stops on the time test first",
         **dict.fromkeys(
-            (
-                "reference_solver.dynamics.forward.x__walk__mutmut_3",
-                "reference_solver.dynamics.forward.x__walk__mutmut_6",
-            ),
-            "the walk from the first step (k = 1 skips the start, which is the anchor already) or through a "
-            "step at an output time (<= for <, the same point anchored twice): only Newton's start moves, "
-            "the states are Newton's solutions to its tolerance either way",
+            tuple(f"reference_solver.dynamics.forward.x__walk__mutmut_{k}" for k in (3, 6, 10, 11)),
+            "the walk from the second step (k = 1), through a step at an output time (<=, the same point "
+            "anchored twice), or skipping steps (k -= 1 stops at once, the last step time being the end; "
+            "k += 2): only Newton's start moves, the states are Newton's solutions either way",
         ),
+        "reference_solver.dynamics.forward.x__result__mutmut_17": "einsum's subscripts 'IJ,J,IJ->I' "
+        "for 'ij,j,ij->i': the same contraction under other letters",
         f"{_PARTITION}x_choose_independent__mutmut_9": "qr's mode 'economic' dropped (mode 'full'): "
         "only R's and Q's shapes change; the column pivots are the same",
         f"{_PARTITION}xǁPartitionedǁpositions__mutmut_43": "residual <= STALLED for <: " + _TIE,
