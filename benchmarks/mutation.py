@@ -131,6 +131,18 @@ plain step's and the grid's value tests (test_ali3p_grid.py, the hand-built case
 The rockers' phase test (plain and compiled over 8000 steps, 3 s each) is the one that reaches the
 stalled Newton's stopping rule; the Andrews squeezer (20 s) is left out."""
 
+PARTITIONED_TESTS = (
+    f"{DYNAMICS}test_partition.py",
+    f"{DYNAMICS}test_forward.py",
+    f"{DYNAMICS}test_compiled_rates.py",
+    f"{DYNAMICS}test_anchor.py",
+    f"{DYNAMICS}test_pendulum.py",
+    f"{DYNAMICS}test_energy.py",
+)
+"""The partitioned method's fast tests: its right-hand side against the compiled one and finite
+differences, the anchor, a free fall, the pendulum's closed forms and the energy balance (short
+integrations, seconds each), and the value tests of partition.py and forward.py."""
+
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
         (
@@ -217,6 +229,10 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/dynamics/ali3p_grid.py": ALI3P_STEP_TESTS,
     "reference_solver/dynamics/ali3p.py": ALI3P_STEP_TESTS,
     # --- end of ALI3-P ---
+    # --- the partitioned method (session 8, s8-mut4) ---
+    "reference_solver/dynamics/partition.py": PARTITIONED_TESTS,
+    "reference_solver/dynamics/forward.py": PARTITIONED_TESTS,
+    # --- end of the partitioned method ---
 }
 
 KERNEL_MODULES = frozenset(
@@ -646,6 +662,53 @@ EXPLAINED.update(
             (f"{_ALI3P}step__mutmut_{k}" for k in (107, 109, 110, 111)),
             "Newton's stopping rule's <=, <=, >, > turned to <, <, >=, >=: " + _TIE,
         ),
+    }
+)
+
+# Session 8 (s8-mut4): the partitioned method, partition.py and forward.py.
+_PARTITION = "reference_solver.dynamics.partition."
+EXPLAINED.update(
+    {
+        f"{_PARTITION}xǁPartitionedǁconditioning__mutmut_5": "svd's compute_uv=False -> None: only "
+        "tested for truth, and None is false too",
+        **dict.fromkeys(
+            (f"{_PARTITION}x_driver_power__mutmut_2", f"{_PARTITION}x_driver_power__mutmut_4"),
+            "the drivers' power summed over every row, not the driver rows alone: the joints' rows add "
+            "lambda_j C_q,j q', which is 0 to round-off (q' solves C_q q' = -C_t, and a joint's C_t is 0)",
+        ),
+        f"{_PARTITION}x_driver_power__mutmut_3": "slice(first driver row, None) for (first driver row, "
+        "system.size): lambda and C_q have system.size rows, so both slices end at the last",
+        **dict.fromkeys(
+            tuple(
+                f"{_PARTITION}xǁPartitionedǁpositions__mutmut_{k}"
+                for k in (14, 17, 18, 37, 39, 40, 56, 59, 60)
+            ),
+            "check_finite False -> None, default or True (the predictor's lu_solve, Newton's lu_factor "
+            "and lu_solve): differs only on a non-finite C_q, move or residual, which no finite state gives",
+        ),
+        **dict.fromkeys(
+            (
+                f"{_PARTITION}xǁPartitionedǁ__init____mutmut_9",
+                f"{_PARTITION}xǁPartitionedǁ__init____mutmut_11",
+            ),
+            "the first C_q and C_t (zeros) -> None: they sit in Newton's start beside factors None, and "
+            "positions reads them only with factors, which the first solve replaces them with",
+        ),
+        "reference_solver.dynamics.forward.x__walk__mutmut_5": "k <= len(step_times) for <: the last "
+        "step is the integration's end, at or after every output, so the loop stops on the time test first",
+        **dict.fromkeys(
+            tuple(f"reference_solver.dynamics.forward.x__walk__mutmut_{k}" for k in (3, 6, 10, 11)),
+            "the walk from the second step (k = 1), through a step at an output time (<=, the same point "
+            "anchored twice), or skipping steps (k -= 1 stops at once, the last step time being the end; "
+            "k += 2): only Newton's start moves, the states are Newton's solutions either way",
+        ),
+        "reference_solver.dynamics.forward.x__result__mutmut_17": "einsum's subscripts 'IJ,J,IJ->I' "
+        "for 'ij,j,ij->i': the same contraction under other letters",
+        f"{_PARTITION}x_choose_independent__mutmut_9": "qr's mode 'economic' dropped (mode 'full'): "
+        "only R's and Q's shapes change; the column pivots are the same",
+        f"{_PARTITION}xǁPartitionedǁpositions__mutmut_43": "residual <= STALLED for <: " + _TIE,
+        f"{_PARTITION}xǁPartitionedǁpositions__mutmut_44": "residual >= 0.5 previous for >: " + _TIE,
+        f"{_PARTITION}xǁPartitionedǁpositions__mutmut_49": "residual < RESIDUAL for <=: " + _TIE,
     }
 )
 
