@@ -522,7 +522,7 @@ EXPLAINED: dict[str, str] = {
     "than 1 entry instead of more than 0: a store is empty (no Jacobian asked) or holds at least 3 entries "
     "(every scenario has a body, 3 columns)",
     **dict.fromkeys(
-        tuple(f"reference_solver.fast.path.x__compile__mutmut_{k}" for k in (7, 8, 18, 23)),
+        tuple(f"reference_solver.fast.path.x_compiled__mutmut_{k}" for k in (7, 8, 18, 23)),
         "a Compiled's layout or guess when it has no program, or its reason when it has one, set to None or "
         "'XXXX': run reads the layout and guess only with a program and the reason only without one",
     ),

@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-from functools import lru_cache
-
 import numpy as np
 
 from reference_solver.compiled_system import CompiledSystem, constraint_system
+from reference_solver.kept import kept
 from reference_solver.layout import Layout
 from reference_solver.system import ConstraintSystem, equation_for
 from scenarios.scenario import Scenario
@@ -36,17 +35,11 @@ def constraint_residual(scenario: Scenario, trajectory: Trajectory) -> np.ndarra
     return system.kernels.residuals(qs, np.asarray(trajectory.times, dtype=float), rows)  # type: ignore[no-any-return]
 
 
+@kept(maxsize=8)
 def _system(scenario: Scenario) -> ConstraintSystem:
     """The scenario's constraint system, kept for the last few scenarios (a harness measures every
     run of a scenario's group against it: built once, not once a run)."""
-    try:
-        hash(scenario)
-    except TypeError:  # say, a list where the vocabulary has a tuple: built, not kept
-        return constraint_system(scenario)
-    return _kept(scenario)
-
-
-_kept = lru_cache(maxsize=8)(constraint_system)
+    return constraint_system(scenario)
 
 
 def _check(scenario: Scenario, trajectory: Trajectory) -> None:

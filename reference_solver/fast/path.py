@@ -21,6 +21,7 @@ from reference_solver.fast.constraint_rows import NotCompiled
 from reference_solver.fast.loop import EVENTS, OK
 from reference_solver.fast.loop import run as run_kernel
 from reference_solver.fast.program import Program, compile_program
+from reference_solver.kept import kept
 from reference_solver.layout import Layout
 from reference_solver.limits import ASSEMBLY_ITERATIONS, BACKTRACK_HALVINGS, SINGULAR_RCOND
 from reference_solver.solution import Analysis
@@ -53,16 +54,9 @@ class FastRun:
     analysis: Analysis | None
 
 
+@kept(maxsize=32)
 def compiled(scenario: Scenario) -> Compiled:
     """The scenario's program, or the reason it has none (kept for the last few scenarios)."""
-    try:
-        hash(scenario)
-    except TypeError:  # say, a list where the vocabulary has a tuple: compiled, not kept
-        return _compile(scenario)
-    return _kept(scenario)
-
-
-def _compile(scenario: Scenario) -> Compiled:
     system = ConstraintSystem(scenario)
     guess = system.layout.initial_guess(scenario)
     try:
@@ -70,9 +64,6 @@ def _compile(scenario: Scenario) -> Compiled:
     except NotCompiled as error:
         return Compiled(system.layout, guess, None, str(error))
     return Compiled(system.layout, guess, program, "")
-
-
-_kept = lru_cache(maxsize=32)(_compile)
 
 
 def run(scenario: Scenario, grid: np.ndarray, tolerance: float = 1e-12, max_iterations: int = 25) -> FastRun:
