@@ -3,11 +3,25 @@ tests or explained as equivalent (the habit kept cheap: about 20 s on one worker
 
 from __future__ import annotations
 
+import importlib
+import json
+import re
 from pathlib import Path
 
 import pytest
 
-from benchmarks.mutation import EXPLAINED, KERNEL_MODULES, MODULES, ROOT, _environment, _scratch_copy, run
+from benchmarks.mutation import (
+    EXPLAINED,
+    EXPLAINED_DIR,
+    KERNEL_MODULES,
+    MODULES,
+    ROOT,
+    _environment,
+    _scratch_copy,
+    run,
+)
+
+MUTANT = re.compile(r"(?P<module>.*?)\.x(?:_(?P<function>.*)|ǁ(?P<cls>.*)ǁ(?P<method>.*))__mutmut_\d+$")
 
 
 @pytest.mark.slow
@@ -41,3 +55,23 @@ def test_a_kernel_module_is_mutated_as_the_python_numba_compiles(tmp_path: Path)
     assert "NUMBA_DISABLE_JIT" not in other
     assert Path(other["NUMBA_CACHE_DIR"]).parent == tmp_path
     assert set(MODULES) >= KERNEL_MODULES
+
+
+def test_every_explained_survivor_names_a_function_its_module_still_has() -> None:
+    """Each file holds its own module's survivors, each with a reason, and each mutant's function
+    (or class and method) still exists: a rename leaves no explanation behind for code that is gone."""
+    files = sorted(EXPLAINED_DIR.glob("*.json"))
+    assert len(files) >= 29
+    for path in files:
+        module = path.stem
+        assert f"{module.replace('.', '/')}.py" in MODULES, path.name
+        source = importlib.import_module(module)
+        for name, reason in json.loads(path.read_text()).items():
+            match = MUTANT.match(name)
+            assert match is not None and match["module"] == module, name
+            assert reason.strip(), name
+            if match["function"] is not None:
+                assert hasattr(source, match["function"]), name
+            else:
+                assert hasattr(getattr(source, match["cls"], None), match["method"]), name
+    assert sum(len(json.loads(path.read_text())) for path in files) == len(EXPLAINED)
