@@ -317,8 +317,11 @@ def _outcome(module: str, where: Path) -> Outcome:
     return Outcome(module, len(codes), killed, timeout, survivors, other)
 
 
-def run(module: str, keep: Path | None = None) -> Outcome:
-    """Mutate `module` (a key of MODULES) in a scratch copy, one worker at the lowest priority."""
+def run(module: str, keep: Path | None = None, niceness: int = 19) -> Outcome:
+    """Mutate `module` (a key of MODULES) in a scratch copy, one worker, at the lowest priority by
+    default (the bench shares the machine). mutmut stops a mutant's tests after a wall time that
+    is a multiple of their unmutated time, so a test that runs a pass beside other work of its own
+    priority (a CI job) passes `niceness=0`: at 19 it would starve and count every mutant a timeout."""
     if module not in MODULES:
         raise ValueError(f"no mutation setup for {module}: one of {', '.join(MODULES)}")
     mutmut = Path(sys.executable).with_name("mutmut")
@@ -328,7 +331,7 @@ def run(module: str, keep: Path | None = None) -> Outcome:
         _scratch_copy(module, where)
         env = _environment(module, where)
         subprocess.run(
-            ["nice", "-n", "19", str(mutmut), "run", "--max-children", "1"],
+            ["nice", "-n", str(niceness), str(mutmut), "run", "--max-children", "1"],
             cwd=where,
             env=env,
             check=True,
