@@ -160,19 +160,21 @@ def same(a: Trajectory, b: Trajectory) -> bool:
 
 
 @pytest.mark.parametrize(
-    ("engine", "name"),
+    ("engine", "name", "mode"),
     [
-        ("reference", "slider_crank"),
-        ("reference", "compound_pendulum"),
-        ("mujoco", "slider_crank"),
-        ("exudyn", "slider_crank"),
-        ("pinocchio", "four_bar"),
+        ("reference", "slider_crank", None),
+        ("reference", "compound_pendulum", None),
+        ("reference", "compound_pendulum", "ali3p"),
+        ("mujoco", "slider_crank", None),
+        ("exudyn", "slider_crank", None),
+        ("pinocchio", "four_bar", None),
+        ("pinocchio", "compound_pendulum", None),
     ],
 )
-def test_a_real_engines_result_is_the_same_after_the_prefix_warm_up_as_after_none(engine, name) -> None:
+def test_a_real_engines_result_is_the_same_after_the_prefix_warm_up_as_after_none(engine, name, mode) -> None:
     adapter = adapters.load(engine)
     scenario = load_scenario(name)
-    setting = adapter.default_setting(scenario)
+    setting = adapter.default_setting(scenario) if mode is None else Setting.of(mode)
     cold = adapter.run(scenario, setting, repeats=1, warmup=0)
     warmed = adapters.load(engine).run(scenario, setting, repeats=1, warmup=1)
     assert cold.status == warmed.status == "ok", (cold.message, warmed.message)
