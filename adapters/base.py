@@ -28,7 +28,8 @@ over the grid is refused too (a failed run saying so).
 simulate raises an EngineFailure subclass (Diverged, Singular, Unsupported) or lets any other
 exception escape: the base's `run` turns every outcome into a RunResult with a status and a message,
 times the parts, records Python warnings, and rejects non-finite trajectories. A failing engine never
-raises out of `run`.
+raises out of `run`. Its untimed warm-up runs simulate the grid's first interval only (WARMUP_POINTS),
+which pays every first call's cost without paying the whole horizon again.
 """
 
 from __future__ import annotations
@@ -36,7 +37,7 @@ from __future__ import annotations
 import math
 import traceback
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -190,8 +191,9 @@ class Adapter:
         once_above: float = math.inf,
     ) -> RunResult:
         """Build once and simulate, timing the build apart and the simulation as the minimum over
-        `repeats` after `warmup` untimed runs, or once where the first timed run takes longer than
-        `once_above` seconds. Never raises for an engine's failure."""
+        `repeats` after `warmup` untimed runs over the grid's first interval (_warm_up), or once
+        where the first timed run takes longer than `once_above` seconds. Never raises for an
+        engine's failure."""
         setting = setting or self.default_setting(scenario)
         base: Mapping[str, Any] = {
             "engine": self.name,
@@ -217,7 +219,8 @@ class Adapter:
                     self._steps = 0
                     return self.simulate(model, grid)
 
-                best, trajectory = fastest(simulate, repeats, warmup, once_above=once_above)
+                warm = self._warm_up(model, grid)
+                best, trajectory = fastest(simulate, repeats, warmup, once_above=once_above, warm=warm)
         except Exception as error:  # an engine's failure, or its own exception: recorded, never raised
             return RunResult(**base, **_failure(error), warnings=_texts(caught))
         if not trajectory.is_finite():
@@ -237,6 +240,22 @@ class Adapter:
             steps=self._steps,
             warnings=_texts(caught),
         )
+
+    def _warm_up(self, model: Any, grid: np.ndarray) -> Callable[[], object]:
+        """One untimed warm-up run: the simulation over the grid's first WARMUP_POINTS times, which
+        makes every first call a timed run would (imports, compiled kernels, the engine's programs
+        and allocations for this model). Where that short run raises, the warm-up is the whole grid
+        instead: a run that fails then fails as it did, with the whole run's message and time, and
+        an engine that cannot take a short grid is warmed as before."""
+        prefix = grid[:WARMUP_POINTS]
+
+        def warm() -> Trajectory:
+            try:
+                return self.simulate(model, prefix)
+            except Exception:
+                return self.simulate(model, grid)
+
+        return warm
 
     def _refusal(self, scenario: Scenario, setting: Setting, grid: np.ndarray) -> tuple[Status, str] | None:
         """Why a checked setting is not run on `scenario` (status and message), or None: more steps
@@ -272,6 +291,11 @@ def _failure(error: Exception) -> dict[str, Any]:
 
 
 LADDER_RENAMED = "Adapter.sweep is deprecated: the settings ladder is now `ladder(scenario)`"
+
+WARMUP_POINTS = 2
+"""A warm-up run simulates the grid's first this many times: its first interval, the shortest grid
+on which every engine takes a step (and records a point on each side of it), so that it pays each
+first call (kernels, programs, the step, the output) and not the horizon."""
 
 MAX_STEPS = 1e7
 """A setting whose step `dt` would take more engine steps than this over the grid is refused: such

@@ -183,7 +183,12 @@ DECLARED: tuple[Column, ...] = (
     Column("run_time", math.nan, "seconds to simulate, minimum of repeats after a warm-up"),
     Column("steps", 0, "engine steps taken"),
     Column("repeats", 0, "timed repeats"),
-    Column("warmup", 0, "untimed warm-up runs"),
+    Column(
+        "warmup",
+        0,
+        "untimed warm-up runs before the timed ones, each over the grid's first interval (its first two "
+        "times: every first call paid, not the horizon)",
+    ),
     Column("grid_points", 0, "time points compared"),
     Column("t_end", math.nan, "end of the time grid, s"),
     Column("characteristic_length", math.nan, "the scenario's length scale, m"),

@@ -26,7 +26,7 @@ from reports.harness.warm import warm
 from scenarios import Scenario
 from scenarios.trajectory import Trajectory
 
-LONG_RUN = 0.25  # seconds: a simulation this long is timed once after the warm-up
+LONG_RUN = 0.25  # seconds: a simulation this long is timed once after the warm-up (adapters.base)
 
 
 @dataclass(frozen=True)
@@ -184,9 +184,10 @@ def failure(group: Group, setting: Setting, is_default: bool, status: Any, messa
 def timed_run(
     adapter: Adapter, scenario: Scenario, setting: Setting, times: np.ndarray, config: RunConfig
 ) -> tuple[RunResult, int]:
-    """The adapter's run (one build), timed as the minimum of `config.repeats` after the warm-up,
-    except that a run longer than LONG_RUN is timed once (its timing noise is small against its
-    length). Returns the result and the number of timed repeats."""
+    """The adapter's run (one build), timed as the minimum of `config.repeats` after
+    `config.warmup` untimed warm-up runs over the grid's first interval (Adapter.run), except that a
+    run longer than LONG_RUN is timed once (its timing noise is small against its length). Returns
+    the result and the number of timed repeats."""
     result = adapter.run(
         scenario, setting, times, repeats=config.repeats, warmup=config.warmup, once_above=LONG_RUN
     )
