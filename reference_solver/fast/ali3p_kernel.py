@@ -54,10 +54,16 @@ EPSILON = 2.220446049250313e-16
 """A Newton update that shrinks by less than SLOW has stalled. Above the round-off floor, the
 augmented Lagrangian is slow: Newton continues through the Schur complement. Below it, or once
 through it, the stall is round-off, and Newton stops there if the update is below STALLED and C
-holds, as dynamics.ali3p does. The floor: the penalty times C's round-off (EPSILON |q|), pushed
-along a direction of small s, moves q by up to PENALTY^(1/2) EPSILON |q| / 2 (scaled), measured
-1e-13 to 3e-11 next to A02's passages; without it, the Schur complement ran at 7000 of the 50000
-steps of A02's first 1.5 s at h = 3e-5, with it at 6, the rockers held as well."""
+holds, as dynamics.ali3p does. The floor: the penalty times C's round-off, pushed along a direction
+of small s, moves q by up to PENALTY^(1/2) times that round-off / 2 (scaled). fast.evaluate sums
+positions apart from rotated vectors, so C's round-off is that of link-sized quantities, EPSILON
+in scaled units, whatever the coordinates' size. The floor was EPSILON max|q| (scaled) while C lost
+the coordinates' round-off to cancellation: 9e-11 on A02's 40 m chain, above which a slow augmented
+Lagrangian was taken for round-off and its iterate kept, the rockers off the crank by up to 3e-9
+where a step ends next to a passage (measured: 2 loops moved 1 to 40 m along x, 3.4e-9 against
+6e-12 now). Measured on A02's first 1.5 s at h = 3e-5 (40 loops, 50000 steps): the Schur
+complement at 15 steps (198 with no floor, 5 with the old one), rockers within 1.5e-11 of the crank
+(8e-10 before)."""
 SLOW_START = 0.01
 """A projection is slow where no move before its stall shrank by this factor (1 + PENALTY s^2 <
 1 / SLOW_START)."""
@@ -199,10 +205,7 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
             hat_a[i] = -(4.0 / h * qd[i] + qdd[i])
             q[i] += step[i]
         slow, converged, previous = False, False, math.inf
-        floor = 0.0
-        for i in range(n):
-            floor = max(floor, abs(q[i] / cols[i]))
-        floor *= math.sqrt(params[P_PENALTY]) * EPSILON
+        floor = math.sqrt(params[P_PENALTY]) * EPSILON
         for iteration in range(1, NEWTON_STEPS + 1):  # Newton, then Newton through S where slow
             evaluate(ints, reals, q, zero, t, c, q_d, store, work, scratch, us)
             sizes[S_EVALUATIONS] += 1
