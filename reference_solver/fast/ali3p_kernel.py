@@ -9,9 +9,10 @@ plain path stops at a stalled update, leaving the rockers of A02 off the crank b
 Here Newton then continues on positions and multipliers together, through the Schur complement
 S = h^2/4 C_q W^-1 C_q^T (dense, factored by fast.dense_lu), to the round-off of C divided by s,
 and the projections finish the same way. What is left: a step ending next to a singular instant
-(measured: within a tenth of a step on A02) leaves the rockers off the crank by 1e-10 to 6e-10
-rad, the round-off of C over s, and its rates with it, tilted by the crossing branches; the output
-at that instant, interpolated from them, with them.
+(within a fraction of a step) leaves the rockers off the crank by up to 1e-11 on two loops, the
+round-off of C over s, and its rates with them, tilted by the crossing branches (3.8e-6 rad/s on
+two loops); the output at that instant, interpolated from them, is off by up to 2e-10 on A02's 40
+loops (1.5e-11 to 2.7e-10 on 40 loops over 1.5 s by the instant's phase in its step).
 
 The trapezoidal rates are formed from the step's increment, q' = 2/h (q - q_n) - q'_n and
 q'' = 4/h^2 (q - q_n) - 4/h q'_n - q''_n, not from q itself as dynamics.ali3p writes them
@@ -54,10 +55,16 @@ EPSILON = 2.220446049250313e-16
 """A Newton update that shrinks by less than SLOW has stalled. Above the round-off floor, the
 augmented Lagrangian is slow: Newton continues through the Schur complement. Below it, or once
 through it, the stall is round-off, and Newton stops there if the update is below STALLED and C
-holds, as dynamics.ali3p does. The floor: the penalty times C's round-off (EPSILON |q|), pushed
-along a direction of small s, moves q by up to PENALTY^(1/2) EPSILON |q| / 2 (scaled), measured
-1e-13 to 3e-11 next to A02's passages; without it, the Schur complement ran at 7000 of the 50000
-steps of A02's first 1.5 s at h = 3e-5, with it at 6, the rockers held as well."""
+holds, as dynamics.ali3p does. The floor: the penalty times C's round-off, pushed along a direction
+of small s, moves q by up to PENALTY^(1/2) times that round-off / 2 (scaled). fast.evaluate sums
+positions apart from rotated vectors, so C's round-off is that of link-sized quantities, EPSILON
+in scaled units, whatever the coordinates' size. The floor was EPSILON max|q| (scaled) while C lost
+the coordinates' round-off to cancellation: 9e-11 on A02's 40 m chain, above which a slow augmented
+Lagrangian was taken for round-off and its iterate kept, the rockers off the crank by up to 3e-9
+where a step ends next to a passage (measured: 2 loops moved 1 to 40 m along x, 3.4e-9 against
+6e-12 now). Measured on A02's first 1.5 s at h = 3e-5 (40 loops, 50000 steps): the Schur
+complement at 15 steps (198 with no floor, 5 with the old one), rockers within 1.5e-11 of the crank
+(8e-10 before)."""
 SLOW_START = 0.01
 """A projection is slow where no move before its stall shrank by this factor (1 + PENALTY s^2 <
 1 / SLOW_START)."""
@@ -199,10 +206,7 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
             hat_a[i] = -(4.0 / h * qd[i] + qdd[i])
             q[i] += step[i]
         slow, converged, previous = False, False, math.inf
-        floor = 0.0
-        for i in range(n):
-            floor = max(floor, abs(q[i] / cols[i]))
-        floor *= math.sqrt(params[P_PENALTY]) * EPSILON
+        floor = math.sqrt(params[P_PENALTY]) * EPSILON
         for iteration in range(1, NEWTON_STEPS + 1):  # Newton, then Newton through S where slow
             evaluate(ints, reals, q, zero, t, c, q_d, store, work, scratch, us)
             sizes[S_EVALUATIONS] += 1
