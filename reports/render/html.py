@@ -10,10 +10,12 @@ at the three levels side by side, and the table of runs.
 from __future__ import annotations
 
 import base64
+import contextlib
 import html as html_module
 import multiprocessing
 import os
 import re
+from collections.abc import Callable, Iterator
 from typing import Any
 
 from reports.harness.columns import ERROR_SERIES, FORCE_DEFINITION, NOT_RECORDED, SCALE_DEFINITION
@@ -72,6 +74,12 @@ def render(data: ReportData) -> str:
     screen of their own) and left out of the per-scenario matrix and sections."""
     meta, whole, data = data.meta, data, data.unswept()
     listed = data.without(map_cell_rows(data.frame)["scenario"])  # drawn as the dynamics map
+    with _sections_drawn(listed) as sections:  # drawn by forked workers while this process draws the rest
+        return "\n".join([*_page(meta, whole, data, listed), *sections(), "</body></html>"])
+
+
+def _page(meta: dict[str, Any], whole: ReportData, data: ReportData, listed: ReportData) -> list[str]:
+    """The page up to the scenarios' sections: what `render` draws in this process."""
     dynamics = dynamics_render.html_fragment(data, _image)  # "" without dynamic scenarios
     parts = [
         "<!DOCTYPE html>",
@@ -110,9 +118,7 @@ def render(data: ReportData) -> str:
             stability_render.html_fragment(data),  # "" unless these are the stress suite's results
         ]
     parts += ["<h2>Engines and machine</h2>", _key_values(_versions(meta)), _modes(whole)]
-    parts += _sections(listed)
-    parts.append("</body></html>")
-    return "\n".join(parts)
+    return parts
 
 
 REACH_NOTE = (
@@ -227,17 +233,22 @@ def _image(figure: Any, alt: str, why: str = "no successful run to draw") -> str
     return svg_figure.svg(figure, alt)
 
 
-def _sections(data: ReportData) -> list[str]:
+@contextlib.contextmanager
+def _sections_drawn(data: ReportData) -> Iterator[Callable[[], list[str]]]:
     """Every scenario's section, drawn by up to WORKERS forked processes (the figures are most of a
-    report's render time, and each scenario's are independent of the others')."""
+    report's render time, and each scenario's are independent of the others'), started on entry so
+    that this process draws the rest of the page meanwhile (the dynamics figures among it, a third
+    of a dynamics report's render); yields the function that waits for the sections, in order."""
     names = data.scenarios()
     workers = min(WORKERS, os.cpu_count() or 1, len(names))
     if workers <= 1 or "fork" not in multiprocessing.get_all_start_methods():
-        return [_scenario_section(data, name) for name in names]
+        yield lambda: [_scenario_section(data, name) for name in names]
+        return
     _FORKED["data"] = data  # inherited by the forked workers, never pickled
     try:
         with multiprocessing.get_context("fork").Pool(workers) as pool:
-            return pool.map(_forked_section, names, chunksize=1)
+            pending = pool.map_async(_forked_section, names, chunksize=1)
+            yield pending.get
     finally:
         _FORKED.clear()
 

@@ -22,6 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 from matplotlib.artist import Artist
 from matplotlib.figure import Figure
+from matplotlib.layout_engine import PlaceHolderLayoutEngine
 
 SVG = "http://www.w3.org/2000/svg"
 XLINK = "http://www.w3.org/1999/xlink"
@@ -52,6 +53,7 @@ def hover(artist: Artist, titles: Sequence[str]) -> None:
 
 def svg(figure: Figure, alt: str) -> str:
     """The figure as an inline <svg class="plot"> element (and the figure closed)."""
+    laid_out(figure)
     buffer = io.StringIO()
     with plt.rc_context({"svg.fonttype": "none", "svg.hashsalt": "mbxval", "path.simplify_threshold": 0.5}):
         figure.savefig(buffer, format="svg", metadata={"Date": None, "Creator": None})
@@ -73,6 +75,16 @@ def svg(figure: Figure, alt: str) -> str:
     prefix = "f" + hashlib.sha1(text.encode()).hexdigest()[:6] + "-"
     text = _IDS.sub(lambda m: m.group(1) + prefix + m.group(2), text)
     return text.replace("<svg ", '<svg class="plot" ', 1)  # first, where the page and its tests look
+
+
+def laid_out(figure: Figure) -> None:
+    """Drop the placeholder layout engine an explicit `tight_layout()` leaves behind: savefig draws
+    a figure that has any layout engine once without output before drawing it for the file, and a
+    placeholder lays out nothing, so that first draw (a fifth of a tight-laid-out figure's render
+    time) changes no byte of the file (tests/reports/render/test_svg_draws.py)."""
+    if type(figure.get_layout_engine()) is PlaceHolderLayoutEngine:
+        with plt.rc_context({"figure.autolayout": False, "figure.constrained_layout.use": False}):
+            figure.set_layout_engine(None)  # None, not a new engine, whatever a matplotlibrc says
 
 
 def _titled_points(group: ElementTree.Element, titles: list[str]) -> None:
