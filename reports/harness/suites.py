@@ -125,7 +125,6 @@ register(
         "forward dynamics against the native truth: every dynamic scenario over each engine's ladder, "
         "and the stiffness-step stability map",
         dynamics_cases.scenario_names,
-        warmup=0,  # the minimum of the repeats drops a first call's cost; a long run is run once
         timeout=300.0,
         truth=dynamics_cases.truth,
         settings=dynamics_cases.settings,
