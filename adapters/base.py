@@ -47,7 +47,7 @@ from adapters.failures import STATUSES, Diverged, EngineFailure, SettingError, S
 from adapters.modes import Mode, measures_of
 from adapters.probes import Probe
 from adapters.setting import Option, OptionValue, Setting
-from adapters.timing import fastest
+from adapters.timing import fastest, timed
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -80,6 +80,11 @@ class RunResult:
     trajectory: Trajectory | None = None
     build_time: float = math.nan
     run_time: float = math.nan
+    """Seconds to simulate: the minimum of the timed repeats."""
+    warmup_time: float = math.nan
+    """Seconds spent in the untimed warm-up runs, summed (0 without a warm-up)."""
+    repeats_time: float = math.nan
+    """Seconds spent in the timed repeats, summed (`run_time` is their minimum)."""
     steps: int = 0
     failure_time: float | None = None
     warnings: tuple[str, ...] = field(default=())
@@ -192,7 +197,8 @@ class Adapter:
     ) -> RunResult:
         """Build once and simulate, timing the build apart and the simulation as the minimum over
         `repeats` after `warmup` untimed runs over the grid's first interval (_warm_up), or once
-        where the first timed run takes longer than `once_above` seconds. Never raises for an
+        where the first timed run takes longer than `once_above` seconds; the warm-up's and the
+        repeats' seconds are measured too (what the run's timing cost). Never raises for an
         engine's failure."""
         setting = setting or self.default_setting(scenario)
         base: Mapping[str, Any] = {
@@ -220,9 +226,10 @@ class Adapter:
                     return self.simulate(model, grid)
 
                 warm = self._warm_up(model, grid)
-                best, trajectory = fastest(simulate, repeats, warmup, once_above=once_above, warm=warm)
+                timing = timed(simulate, repeats, warmup, once_above=once_above, warm=warm)
         except Exception as error:  # an engine's failure, or its own exception: recorded, never raised
             return RunResult(**base, **_failure(error), warnings=_texts(caught))
+        trajectory = timing.result
         if not trajectory.is_finite():
             return RunResult(
                 **base,
@@ -236,7 +243,9 @@ class Adapter:
             status="ok",
             trajectory=trajectory,
             build_time=build_time,
-            run_time=best,
+            run_time=timing.best,
+            warmup_time=timing.warmup_time,
+            repeats_time=timing.repeats_time,
             steps=self._steps,
             warnings=_texts(caught),
         )

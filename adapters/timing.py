@@ -1,16 +1,65 @@
 """Run time as the minimum over repeats after untimed warm-ups: the one way mbxval times anything
 (engine runs, benchmarks), because the minimum is the least disturbed by a shared, noisy machine.
 A warm-up is the action itself unless a cheaper call that pays the same first-call costs is given
-(an engine run's warm-up simulates the grid's first interval only, adapters.base)."""
+(an engine run's warm-up simulates the grid's first interval only, adapters.base). What the
+timing itself cost is measured too (`timed`): the warm-up's seconds and the timed calls' summed,
+so that the work a run does is a measured figure, not the minimum times the number of calls."""
 
 from __future__ import annotations
 
 import math
 import time
 from collections.abc import Callable
-from typing import TypeVar
+from dataclasses import dataclass
+from typing import Generic, TypeVar
 
 T = TypeVar("T")
+
+
+@dataclass(frozen=True)
+class Timing(Generic[T]):
+    """What timing an action measured: its time per call and its last call's result, and what
+    the timing spent (every call measured, none estimated)."""
+
+    best: float
+    """Seconds per call: the minimum over the timed repeats."""
+    result: T
+    """The last call's result."""
+    repeats: int
+    """Timed repeats made (fewer than asked where the first took longer than `once_above`)."""
+    repeats_time: float
+    """Seconds of all timed repeats, summed (`best` is their minimum, per call)."""
+    warmup_time: float
+    """Seconds of the untimed warm-up calls, summed (0 without a warm-up)."""
+
+
+def timed(
+    action: Callable[[], T],
+    repeats: int = 1,
+    warmup: int = 0,
+    number: int = 1,
+    once_above: float = math.inf,
+    warm: Callable[[], object] | None = None,
+) -> Timing[T]:
+    """`warmup` untimed calls of `warm` (by default the action itself), then the minimum over
+    `repeats` (at least one) of the time of `number` calls, divided by `number`; a first timed call
+    longer than `once_above` seconds is the only one (its noise is small against its length). The
+    warm-up's and the repeats' seconds are summed as they run."""
+    start = time.perf_counter()
+    for _ in range(warmup):
+        (action if warm is None else warm)()
+    warmup_time = time.perf_counter() - start
+    best, total, made = math.inf, 0.0, 0
+    result: T
+    for _ in range(max(1, repeats)):
+        start = time.perf_counter()
+        for _ in range(max(1, number)):
+            result = action()
+        spent = time.perf_counter() - start
+        best, total, made = min(best, spent / max(1, number)), total + spent, made + 1
+        if best > once_above:
+            break
+    return Timing(best, result, made, total, warmup_time)
 
 
 def fastest(
@@ -21,19 +70,6 @@ def fastest(
     once_above: float = math.inf,
     warm: Callable[[], object] | None = None,
 ) -> tuple[float, T]:
-    """(seconds per call, the last call's result): `warmup` untimed calls of `warm` (by default the
-    action itself), then the minimum over `repeats` (at least one) of the time of `number` calls,
-    divided by `number`; a first timed call longer than `once_above` seconds is the only one (its
-    noise is small against its length)."""
-    for _ in range(warmup):
-        (action if warm is None else warm)()
-    best = math.inf
-    result: T
-    for _ in range(max(1, repeats)):
-        start = time.perf_counter()
-        for _ in range(max(1, number)):
-            result = action()
-        best = min(best, (time.perf_counter() - start) / max(1, number))
-        if best > once_above:
-            break
-    return best, result
+    """(seconds per call, the last call's result) of `timed` with the same arguments."""
+    timing = timed(action, repeats, warmup, number, once_above, warm)
+    return timing.best, timing.result

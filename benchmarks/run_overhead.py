@@ -7,7 +7,8 @@ work its own rows time, for a native sweep and for a subset of the default suite
 Each case runs the command line in a fresh interpreter into an empty directory, as a user does
 (start-up, truths, forked runs, saving, the report page), and reads the rows it stored:
 - compute: the sum of the rows' build and run times (run time being the minimum of the repeats);
-- work: what the rows say was done, build + (warm-up + repeats) x run time per row;
+- work: what the rows measured their timing spent, build + warm-up + timed repeats per row (the
+  `build_time`, `warmup_time` and `repeats_time` columns, each measured where it ran);
 - overhead per run: (wall - work) / rows.
 A run that fails (a singular position, a timeout) stores no times: its work counts as overhead.
 Beside them, the wall time of a one-point `mbxval solve` of the same scenario, for the ratio the
@@ -38,6 +39,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
 from reports.harness import group_runs
 from reports.harness.results_store import ResultsStore, read_results
@@ -56,13 +58,21 @@ def wall(arguments: list[str]) -> float:
     return time.perf_counter() - start
 
 
+WORK = ("build_time", "warmup_time", "repeats_time")
+"""The measured parts of a row's work: its build, its untimed warm-up and its timed repeats."""
+
+
+def work(rows: pd.DataFrame) -> float:
+    """Seconds of work the rows measured: the sum of their WORK columns (a failed run times
+    nothing: its parts are NaN, counted as 0)."""
+    return float(sum(rows[column].fillna(0).sum() for column in WORK))
+
+
 def work_of(out: Path) -> tuple[int, float, float]:
     """Rows, compute and work of a results store (see the module's docstring)."""
     rows, _ = read_results(out)
-    build, run = rows["build_time"].fillna(0), rows["run_time"].fillna(0)  # a failed run times nothing
-    compute = float((build + run).sum())
-    work = float((build + run * (rows["warmup"].fillna(0) + rows["repeats"].fillna(1))).sum())
-    return len(rows), compute, work
+    compute = float((rows["build_time"].fillna(0) + rows["run_time"].fillna(0)).sum())
+    return len(rows), compute, work(rows)
 
 
 def run_phase(label: str, names: list[str], engines: list[str], suite: Suite, out: Path) -> None:
@@ -104,15 +114,15 @@ def run_phase(label: str, names: list[str], engines: list[str], suite: Suite, ou
     for child in multiprocessing.active_children():  # the released workers: reaped, their CPU counted
         child.join(10.0)
     children_cpu = _children_cpu() - children_before
-    count, _, work = work_of(out)
+    count, _, done = work_of(out)
     rows = max(count, 1)
-    per_run = (seconds - spent[0] - work) / rows
+    per_run = (seconds - spent[0] - done) / rows
     parent_part = (parent_cpu - spent_cpu[0]) / rows
     child_part = (children_cpu - timed_cpu.value) / rows
     print(
         f"{label}, run phase in-process: {count} rows in {seconds:.2f} s, of which truths "
         f"{spent[0]:.2f} s ({1000 * spent[0] / max(len(names), 1):.0f} ms per scenario) "
-        f"and work {work:.3f} s; "
+        f"and work {done:.3f} s; "
         f"overhead {1000 * per_run:.1f} ms per run (target: at most 10); in CPU time "
         f"{1000 * (parent_part + child_part):.1f} ms per run (this process {1000 * parent_part:.1f}, "
         f"workers {1000 * child_part:.1f}); load {_load()}"
@@ -133,13 +143,13 @@ def _load() -> str:
 
 def measure(label: str, arguments: list[str], out: Path) -> dict[str, float]:
     seconds = wall(["run", *arguments, "--out", str(out), "--quiet"])
-    count, compute, work = work_of(out)
-    per_run = (seconds - work) / max(count, 1)
+    count, compute, done = work_of(out)
+    per_run = (seconds - done) / max(count, 1)
     print(
-        f"{label:<28} {count:5d} {seconds:8.2f} {compute:9.3f} {work:8.3f} "
-        f"{seconds / compute:9.1f} {seconds / work:8.1f} {1000 * per_run:10.1f}"
+        f"{label:<28} {count:5d} {seconds:8.2f} {compute:9.3f} {done:8.3f} "
+        f"{seconds / compute:9.1f} {seconds / done:8.1f} {1000 * per_run:10.1f}"
     )
-    return {"wall": seconds, "work": work}
+    return {"wall": seconds, "work": done}
 
 
 def main(argv: list[str] | None = None) -> None:

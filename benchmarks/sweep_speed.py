@@ -6,7 +6,9 @@ The sweep: the four-bar over 50 crank speeds (log-spaced, 10 to 1e4 rad/s) and 4
 (0.05 to 0.2 m: from 0.08 m on the linkage meets a dead point, where the native solver stops), 200
 points, each engine at its default setting timed once without warm-up (the quick suite's configuration).
 Both runs start from an empty store and include everything the runner does (truths, forked runs,
-saving the store after each group); the Dask run includes starting the cluster. With --out, the Dask
+saving the store after each group); the Dask run includes starting the cluster. Beside each wall
+time, the work its rows measured (build, warm-up and timed repeats, benchmarks.run_overhead.work)
+and the ratio the issue bounds (serial wall at most 1.5 times the work). With --out, the Dask
 run's results and report (with the swept stability map) are kept there.
 """
 
@@ -17,8 +19,9 @@ import tempfile
 import time
 from pathlib import Path
 
+from benchmarks.run_overhead import work
 from reports.harness.dask_backend import DaskRunner
-from reports.harness.results_store import ResultsStore
+from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import RunConfig, Runner
 from reports.harness.sweep import points
 
@@ -41,18 +44,26 @@ def main(argv: list[str] | None = None) -> None:
         start = time.perf_counter()
         Runner(ResultsStore(Path(temporary) / "serial"), engines, CONFIG, progress=False).run(names)
         serial = time.perf_counter() - start
-        print(f"serial:           {serial:8.1f} s")
+        print(timing_line("serial:", serial, Path(temporary) / "serial"))
         out = Path(args.out) if args.out else Path(temporary) / "dask"
         start = time.perf_counter()
         runner = DaskRunner(ResultsStore(out), engines, CONFIG, progress=False, workers=args.workers)
         runner.run(names)
         parallel = time.perf_counter() - start
-    print(f"--workers {args.workers}:     {parallel:8.1f} s")
+        print(timing_line(f"--workers {args.workers}:", parallel, out))
     print(f"speed-up:         {serial / parallel:8.2f}x")
     if args.out:
         from reports.render.report import render_reports
 
         print(f"report: {render_reports(out)}")
+
+
+def timing_line(label: str, wall: float, out: Path) -> str:
+    """A run's wall time beside the work its stored rows measured, and their ratio."""
+    rows, _ = read_results(out)
+    done = work(rows)
+    ratio = f"{wall / done:.2f}" if done > 0 else "-"
+    return f"{label:<17} {wall:8.1f} s wall, {done:8.2f} s work ({len(rows)} rows), wall/work {ratio}"
 
 
 if __name__ == "__main__":

@@ -189,6 +189,17 @@ DECLARED: tuple[Column, ...] = (
         "untimed warm-up runs before the timed ones, each over the grid's first interval (its first two "
         "times: every first call paid, not the horizon)",
     ),
+    Column(
+        "warmup_time",
+        math.nan,
+        "seconds spent in the untimed warm-up runs, summed (0 without one); NaN where not ok or not recorded",
+    ),
+    Column(
+        "repeats_time",
+        math.nan,
+        "seconds spent in the timed repeats, summed (run_time is their minimum): with build_time and "
+        "warmup_time, the work the run's timing did; NaN where not ok or not recorded",
+    ),
     Column("grid_points", 0, "time points compared"),
     Column("t_end", math.nan, "end of the time grid, s"),
     Column("characteristic_length", math.nan, "the scenario's length scale, m"),

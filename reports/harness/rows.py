@@ -101,6 +101,8 @@ def result_row(
         warnings=" | ".join(result.warnings),
         build_time=result.build_time,
         run_time=result.run_time,
+        warmup_time=result.warmup_time,
+        repeats_time=result.repeats_time,
         steps=result.steps,
         repeats=repeats if result.status == "ok" else 0,
         warmup=warmup if result.status == "ok" else 0,

@@ -19,7 +19,7 @@ from reports.harness.runner import RunConfig, Runner
 from tests.support.fake_engine import fake_loader, fake_truth
 
 QUICK = RunConfig(ladder=False, repeats=1, warmup=0, timeout=120.0)
-TIMING = ["build_time", "run_time", "recorded_at", "host", "workers"]
+TIMING = ["build_time", "run_time", "warmup_time", "repeats_time", "recorded_at", "host", "workers"]
 SCENARIOS = ["slider_crank", "four_bar[crank_length=0.08]"]  # the second meets a dead point
 ENGINES = ["reference", "mujoco"]
 

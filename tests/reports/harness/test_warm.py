@@ -22,7 +22,16 @@ from scenarios import load as build_scenario
 from tests.support.fake_engine import GOOD, fake_loader, fake_truth
 
 CONFIG = RunConfig(ladder=True, repeats=1, warmup=0, timeout=3.0)
-TIMING = ["build_time", "run_time", "recorded_at", "host", "workers", "revision"]
+TIMING = [
+    "build_time",
+    "run_time",
+    "warmup_time",
+    "repeats_time",
+    "recorded_at",
+    "host",
+    "workers",
+    "revision",
+]
 
 
 def test_a_forked_run_inherits_the_warmed_kernels_and_program() -> None:

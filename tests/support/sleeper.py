@@ -1,0 +1,55 @@
+"""A fake engine whose warm-up and timed runs sleep known times, and a run of the runner with it,
+for the tests of what a row says its timing spent (a fake is fine for testing the runner)."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import numpy as np
+
+from adapters.base import WARMUP_POINTS, Adapter, Setting
+from reports.harness.results_store import ResultsStore
+from reports.harness.runner import RunConfig, Runner
+from scenarios import Scenario, Trajectory
+from tests.support.fake_engine import GOOD, FakeAdapter, fake_loader, fake_truth
+
+SCENARIO = "slider_crank"
+WARM, RUN = 0.06, 0.01
+"""Seconds a Sleeper sleeps in a warm-up run (a grid of WARMUP_POINTS times) and in a timed run."""
+CONFIG = RunConfig(ladder=False, repeats=3, warmup=2, timeout=20.0)
+
+
+class Sleeper(FakeAdapter):
+    """The fake at its default setting, sleeping WARM in a warm-up run and RUN in a timed one."""
+
+    name = "sleeper"
+
+    def ladder(self, scenario: Scenario) -> list[Setting]:
+        return [GOOD[1]]
+
+    def simulate(self, model: tuple[Scenario, Setting], times: np.ndarray) -> Trajectory:
+        time.sleep(WARM if len(times) <= WARMUP_POINTS else RUN)
+        return super().simulate(model, times)
+
+
+def loader(log: Path):  # type: ignore[no-untyped-def]
+    """The fakes' loader (tests.support.fake_engine) that knows the sleeper too."""
+    known = fake_loader(log)
+
+    def load(name: str) -> Adapter:
+        return Sleeper(log) if name == "sleeper" else known(name)
+
+    return load
+
+
+def run_sleeper(
+    directory: Path, engines: tuple[str, ...] = ("sleeper", "fake"), config: RunConfig = CONFIG
+) -> None:
+    """The runner's run of SCENARIO with `engines` into the store in `directory`, against the fake truth."""
+    store = ResultsStore(directory)
+    log = directory.parent / f"{directory.name}.log"
+    runner = Runner(
+        store, engines, config, loader=loader(log), truth=fake_truth, progress=False, suite="test"
+    )
+    runner.run([SCENARIO])
