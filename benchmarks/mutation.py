@@ -209,7 +209,11 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/fast/program.py": FAST_PATH_TESTS,
     "reference_solver/fast/structure.py": (*FAST_PATH_TESTS, STRUCTURE_TESTS),
     "reference_solver/fast/evaluate.py": (KERNEL_TESTS, COMPILED_SYSTEM_TESTS, ROWS_TESTS),
-    "reference_solver/fast/band.py": (KERNEL_TESTS, STRUCTURE_TESTS),
+    "reference_solver/fast/band.py": (
+        KERNEL_TESTS,
+        STRUCTURE_TESTS,
+        "tests/reference_solver/test_fast_band_rcond.py",
+    ),
     "reference_solver/fast/dense_lu.py": (KERNEL_TESTS,),
     "reference_solver/fast/loop.py": (KERNEL_TESTS, WHOLE_PATH_TESTS),
     "reference_solver/fast/path.py": (KERNEL_TESTS, WHOLE_PATH_TESTS),
@@ -231,7 +235,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     # --- end of ALI3-P ---
     # --- the partitioned method (session 8, s8-mut4) ---
     "reference_solver/dynamics/partition.py": PARTITIONED_TESTS,
-    "reference_solver/dynamics/forward.py": PARTITIONED_TESTS,
+    "reference_solver/dynamics/forward.py": (*PARTITIONED_TESTS, f"{DYNAMICS}test_forward_mutants.py"),
     # --- end of the partitioned method ---
 }
 
