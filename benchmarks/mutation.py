@@ -133,6 +133,7 @@ stalled Newton's stopping rule; the Andrews squeezer (20 s) is left out."""
 
 PARTITIONED_TESTS = (
     f"{DYNAMICS}test_partition.py",
+    f"{DYNAMICS}test_partition_stall.py",
     f"{DYNAMICS}test_forward.py",
     f"{DYNAMICS}test_compiled_rates.py",
     f"{DYNAMICS}test_anchor.py",
@@ -141,7 +142,8 @@ PARTITIONED_TESTS = (
 )
 """The partitioned method's fast tests: its right-hand side against the compiled one and finite
 differences, the anchor, a free fall, the pendulum's closed forms and the energy balance (short
-integrations, seconds each), and the value tests of partition.py and forward.py."""
+integrations, seconds each), and the value tests of partition.py and forward.py (the stall rule on a four-bar
+moved 10 m off the origin)."""
 
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
