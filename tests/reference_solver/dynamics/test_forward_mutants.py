@@ -95,9 +95,11 @@ def test_a_repartition_happens_where_the_dependent_block_s_conditioning_fell_to_
 
 
 def test_a_grid_of_one_time_is_the_initial_state() -> None:
-    """The assembled state and its rates at t0, with every extra: nothing is integrated."""
+    """The assembled state and its rates at t0, with every extra: nothing is integrated. The time
+    given as an integer is a time in seconds all the same (a float grid)."""
     scenario = rod()
-    result = simulate(scenario, times=[0.0])
+    result = simulate(scenario, times=[0])
+    assert result.times.dtype == np.float64 and result.times.tolist() == [0.0]
     system = ConstraintSystem(scenario)
     mass = mass_diagonal(scenario, system.layout)
     start = initial_state(system, mass, Loads(scenario, system.layout, mass), 0.0)
