@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 import scenarios
+from reference_solver.compiled_system import CompiledSystem
 from reference_solver.dynamics import forward
 from reference_solver.dynamics.forward import DynamicAnalysis, initial_state, simulate
 from reference_solver.dynamics.loads import Loads
@@ -158,3 +159,19 @@ def test_newton_s_start_moves_with_the_integrator_s_accepted_steps(monkeypatch: 
         simulate(rod(), times=np.linspace(0.0, 0.2, 3), method=method)
         last = len(events) - 1 - events[::-1].index("rates")
         assert "anchor" in events[:last]
+
+
+@pytest.mark.parametrize("fast", [False, True])
+def test_fast_asks_for_the_compiled_constraints(monkeypatch: pytest.MonkeyPatch, fast: bool) -> None:
+    """`fast` evaluates the constraints on the compiled path (their values are the plain path's to
+    1e-12, so only the system's kind tells the two apart)."""
+    kinds: list[type] = []
+    make = forward.partitioned_ode
+
+    def recorded(system, mass, loads, q, independent):  # type: ignore[no-untyped-def]
+        kinds.append(type(system))
+        return make(system, mass, loads, q, independent)
+
+    monkeypatch.setattr(forward, "partitioned_ode", recorded)
+    simulate(rod(), times=np.linspace(0.0, 0.1, 2), fast=fast)
+    assert kinds == [CompiledSystem if fast else ConstraintSystem]
