@@ -133,6 +133,7 @@ stalled Newton's stopping rule; the Andrews squeezer (20 s) is left out."""
 
 PARTITIONED_TESTS = (
     f"{DYNAMICS}test_partition.py",
+    f"{DYNAMICS}test_partition_stall.py",
     f"{DYNAMICS}test_forward.py",
     f"{DYNAMICS}test_compiled_rates.py",
     f"{DYNAMICS}test_anchor.py",
@@ -141,7 +142,8 @@ PARTITIONED_TESTS = (
 )
 """The partitioned method's fast tests: its right-hand side against the compiled one and finite
 differences, the anchor, a free fall, the pendulum's closed forms and the energy balance (short
-integrations, seconds each), and the value tests of partition.py and forward.py."""
+integrations, seconds each), and the value tests of partition.py and forward.py (the stall rule on a four-bar
+moved 10 m off the origin)."""
 
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
@@ -209,7 +211,11 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/fast/program.py": FAST_PATH_TESTS,
     "reference_solver/fast/structure.py": (*FAST_PATH_TESTS, STRUCTURE_TESTS),
     "reference_solver/fast/evaluate.py": (KERNEL_TESTS, COMPILED_SYSTEM_TESTS, ROWS_TESTS),
-    "reference_solver/fast/band.py": (KERNEL_TESTS, STRUCTURE_TESTS),
+    "reference_solver/fast/band.py": (
+        KERNEL_TESTS,
+        STRUCTURE_TESTS,
+        "tests/reference_solver/test_fast_band_rcond.py",
+    ),
     "reference_solver/fast/dense_lu.py": (KERNEL_TESTS,),
     "reference_solver/fast/loop.py": (KERNEL_TESTS, WHOLE_PATH_TESTS),
     "reference_solver/fast/path.py": (KERNEL_TESTS, WHOLE_PATH_TESTS),
@@ -231,7 +237,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     # --- end of ALI3-P ---
     # --- the partitioned method (session 8, s8-mut4) ---
     "reference_solver/dynamics/partition.py": PARTITIONED_TESTS,
-    "reference_solver/dynamics/forward.py": PARTITIONED_TESTS,
+    "reference_solver/dynamics/forward.py": (*PARTITIONED_TESTS, f"{DYNAMICS}test_forward_mutants.py"),
     # --- end of the partitioned method ---
 }
 
