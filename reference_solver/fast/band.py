@@ -165,8 +165,10 @@ def rcond(
     signs: np.ndarray,
     transposed: bool,
 ) -> float:
-    """The reciprocal 1-norm condition number estimated as LAPACK's dgecon does (Higham's dlacn2);
-    `transposed`: that of A^T, the infinity-norm one (then `anorm` is the infinity norm)."""
+    """The reciprocal 1-norm condition number estimated as LAPACK's band routine dgbcon does
+    (Higham's dlacn2 over the band LU with its row interchanges; dgecon, which ignores them, agrees
+    except where the final alternating-sign vector decides); `transposed`: that of A^T, the
+    infinity-norm one (then `anorm` is the infinity norm)."""
     if n == 0 or anorm == 0.0:
         return 0.0
     for i in range(n):
