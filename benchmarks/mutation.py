@@ -207,13 +207,18 @@ MODULES: dict[str, tuple[str, ...]] = {
     # ---- the compiled kinematic fast path (session 8, mut3) ----
     "reference_solver/fast/constraint_rows.py": FAST_PATH_TESTS,
     "reference_solver/fast/program.py": FAST_PATH_TESTS,
-    "reference_solver/fast/structure.py": (*FAST_PATH_TESTS, STRUCTURE_TESTS),
+    "reference_solver/fast/structure.py": (
+        STRUCTURE_TESTS,
+        "tests/reference_solver/test_fast_structure_mutants.py",
+        KERNEL_TESTS,
+        ROWS_TESTS,
+    ),
     "reference_solver/fast/evaluate.py": (KERNEL_TESTS, COMPILED_SYSTEM_TESTS, ROWS_TESTS),
     "reference_solver/fast/band.py": (KERNEL_TESTS, STRUCTURE_TESTS),
     "reference_solver/fast/dense_lu.py": (KERNEL_TESTS,),
     "reference_solver/fast/loop.py": (KERNEL_TESTS, WHOLE_PATH_TESTS),
     "reference_solver/fast/path.py": (KERNEL_TESTS, WHOLE_PATH_TESTS),
-    "reference_solver/fast/dense.py": (COMPILED_SYSTEM_TESTS,),
+    "reference_solver/fast/dense.py": (COMPILED_SYSTEM_TESTS, "tests/reference_solver/test_residual.py"),
     "reference_solver/compiled_system.py": (COMPILED_SYSTEM_TESTS,),
     "reference_solver/equation.py": PLAIN_PATH_TESTS,
     "reference_solver/solution.py": (
