@@ -183,3 +183,18 @@ def test_a_mechanism_near_a_singularity_keeps_its_conditioning_above_the_handove
     for k, t in enumerate(grid):
         exact = _scaled_rcond_1(system, result.q[k], t)
         assert exact * (1 - 1e-12) <= result.rcond[k] <= 3 * exact and exact > path.HANDOVER
+
+
+def test_a_loose_tolerance_reports_the_residual_newton_stopped_at() -> None:
+    """The four-bar at tolerance 1e-3: Newton stops after 2 iterations with residuals of 1e-11 to 1e-8
+    (measured), each max |C| / L^power at the reported q (plain rows; rows in L = 0.05, the driver's
+    an angle), to round-off."""
+    scenario = scenarios.build("four_bar")
+    system = ConstraintSystem(scenario)
+    grid = np.asarray(scenario.times(steps=20))
+    result = _completed(scenario, grid, tolerance=1e-3)
+    expected = [
+        np.max(np.abs(system.residual(result.q[k], t) / system.row_scales)) for k, t in enumerate(grid)
+    ]
+    assert np.max(expected) > 1e-9
+    np.testing.assert_allclose(result.residual, expected, rtol=0, atol=1e-15)
