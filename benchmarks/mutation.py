@@ -100,6 +100,26 @@ plain path to 1e-12 on every scenario, the compiled rows against the plain rows 
 Uncompiled, the whole-path tests take minutes per surviving mutant on the shared machine: the kernel
 modules other than the loop are mutated against the others only, which check the same values."""
 
+LOOP_MUTANT_TESTS = "tests/reference_solver/test_fast_loop_mutants.py"
+LOOP_TESTS = (
+    LOOP_MUTANT_TESTS,
+    KERNEL_TESTS,
+    *(
+        f"{WHOLE_PATH_TESTS}::test_{name}"
+        for name in (
+            "fast_path_gives_the_plain_answer[cam_roller/spline]",
+            "fast_path_gives_the_plain_answer[planetary_gears]",
+            "looser_tolerance_gives_the_plain_answer_too",
+        )
+    ),
+    "tests/reference_solver/test_branch_guard.py::test_the_kernel_hands_a_jump_to_the_plain_path",
+)
+"""The kernel loop uncompiled (a kernel module): the hand-worked crank through the kernel and each of
+its events (test_fast_loop_mutants.py, 3 s of CPU uncompiled), two catalogue scenarios against the plain
+path (a spline cam's profile points, a planetary train), a looser tolerance, and a branch jump. Left
+out: the rest of the catalogue (12 s of CPU uncompiled), the singular cases of test_fast_path.py (they
+run the plain path's diagnosis, up to 16 s each) and its iteration-limit test (minutes uncompiled)."""
+
 ALI3P_STEP_TESTS = (
     *ALI3P_FAST_TESTS,
     f"{DYNAMICS}test_ali3p.py::test_the_same_motion_as_the_partitioned_method_to_second_order[slider_crank_spring]",
@@ -208,8 +228,16 @@ MODULES: dict[str, tuple[str, ...]] = {
     # --- end of native dynamics ---
     # ---- the compiled kinematic fast path (session 8, mut3) ----
     "reference_solver/fast/constraint_rows.py": FAST_PATH_TESTS,
-    "reference_solver/fast/program.py": FAST_PATH_TESTS,
-    "reference_solver/fast/structure.py": (*FAST_PATH_TESTS, STRUCTURE_TESTS),
+    "reference_solver/fast/program.py": (
+        "tests/reference_solver/test_fast_program_mutants.py",
+        *FAST_PATH_TESTS,
+    ),
+    "reference_solver/fast/structure.py": (
+        STRUCTURE_TESTS,
+        "tests/reference_solver/test_fast_structure_mutants.py",
+        KERNEL_TESTS,
+        ROWS_TESTS,
+    ),
     "reference_solver/fast/evaluate.py": (KERNEL_TESTS, COMPILED_SYSTEM_TESTS, ROWS_TESTS),
     "reference_solver/fast/band.py": (
         KERNEL_TESTS,
@@ -217,11 +245,15 @@ MODULES: dict[str, tuple[str, ...]] = {
         "tests/reference_solver/test_fast_band_rcond.py",
     ),
     "reference_solver/fast/dense_lu.py": (KERNEL_TESTS,),
-    "reference_solver/fast/loop.py": (KERNEL_TESTS, WHOLE_PATH_TESTS),
-    "reference_solver/fast/path.py": (KERNEL_TESTS, WHOLE_PATH_TESTS),
-    "reference_solver/fast/dense.py": (COMPILED_SYSTEM_TESTS,),
+    "reference_solver/fast/loop.py": LOOP_TESTS,
+    "reference_solver/fast/path.py": (LOOP_MUTANT_TESTS, KERNEL_TESTS, WHOLE_PATH_TESTS),
+    "reference_solver/fast/dense.py": (
+        "tests/reference_solver/test_fast_dense_mutants.py",
+        COMPILED_SYSTEM_TESTS,
+        "tests/reference_solver/test_residual.py",
+    ),
     "reference_solver/compiled_system.py": (COMPILED_SYSTEM_TESTS,),
-    "reference_solver/equation.py": PLAIN_PATH_TESTS,
+    "reference_solver/equation.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_equation_mutants.py"),
     "reference_solver/solution.py": (
         "tests/reference_solver/test_solution.py",
         "tests/reference_solver/test_analysis.py",

@@ -191,7 +191,7 @@ def run(  # type: ignore[no-untyped-def]
                 h /= 2
             else:
                 halving, h = True, (t1 - t0) / 2
-            if halving and not h > 1e-12 * max(abs(t1), abs(t1 - t0)):
+            if halving and not abs(h) > 1e-12 * max(abs(t1), abs(t1 - t0)):
                 return NOT_CONVERGED, k
         # ---- the checks and the rates at grid point k ----
         if k >= 0:

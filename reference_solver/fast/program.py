@@ -143,7 +143,8 @@ class _Rows:
 
     def __init__(self, m: int):
         self.ints = np.zeros((m, INT_COLUMNS), np.int64)
-        self.ints[:, K_SLOT_COL : K_SLOT_COL + WIDTH] = -1
+        # Slots unused (-1 column) and slots off the row's pattern (-1 position: written nowhere).
+        self.ints[:, K_SLOT_COL : K_SLOT_POS + WIDTH] = -1
         self.ints[:, K_TERM_COL : K_TERM_SLOT + TERMS] = -1
         self.reals = np.zeros((m, REAL_COLUMNS))
         self.patterns: list[set[int]] = []
@@ -242,7 +243,6 @@ def compile_dense(system: ConstraintSystem, by_rows: bool = False) -> Program:
     if m == 0 or n == 0:
         raise NotCompiled(f"{m} constraint rows for {n} unknowns: nothing to compile")
     rows = _instruction_rows(system)
-    rows.ints[:, K_SLOT_POS : K_SLOT_POS + WIDTH] = -1  # a slot off the pattern is written nowhere
     rows.place(RowStore(rows.ints) if by_rows else DenseStore(n), np.ones(m), np.ones(n))
     profiles, splines = profile_tables([cam.profile for cam in system.scenario.cams])
     return Program(
