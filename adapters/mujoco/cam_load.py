@@ -22,7 +22,14 @@ import mujoco
 import numpy as np
 
 from adapters.base import EngineFailure
-from adapters.mujoco.assembly import FOLLOWER, closest_contacts, follower_geom, pair_groups
+from adapters.mujoco.assembly import (
+    FOLLOWER,
+    closest_contacts,
+    contact_pairs,
+    follower_geom,
+    geom_keys,
+    group_of_pairs,
+)
 from adapters.mujoco.cam_tip import tip_radius
 from scenarios.cam_profiles import EccentricDisc
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam, follower_body
@@ -128,17 +135,16 @@ def check_contacts(
     group), the gap it may show instead (`hop_allowances`): a follower is thrown off each convex
     vertex, where its velocity turns and its contact's compression is released, and lands within a
     few steps."""
-    groups = pair_groups(m)
+    group_of = group_of_pairs(m)
+    groups = dict(enumerate(group_of.tolist()))
     count = max(groups.values(), default=-1) + 1
     forces = np.zeros(count)
     found = np.zeros(count, dtype=bool)
-    pairs = {frozenset((int(m.pair_geom1[k]), int(m.pair_geom2[k]))): k for k in range(m.npair)}
-    for i in range(d.ncon):
-        contact = d.contact[i]
-        k = pairs.get(frozenset((int(contact.geom1), int(contact.geom2))))
-        if k is not None and contact.efc_address >= 0:
-            found[groups[k]] = True
-            forces[groups[k]] += d.efc_force[contact.efc_address]
+    pairs = contact_pairs(m, d)
+    addresses = d.contact.efc_address[: d.ncon]
+    rows = (pairs >= 0) & (addresses >= 0)
+    found[group_of[pairs[rows]]] = True
+    np.add.at(forces, group_of[pairs[rows]], d.efc_force[addresses[rows]])  # in contact order
     for group in range(count):
         if found[group] and forces[group] > FORCE_FLOOR * load:
             continue
@@ -173,12 +179,10 @@ def _gap(m: mujoco.MjModel, d: mujoco.MjData, pairs: list[int], within: float) -
     m.pair_margin[pairs] = within
     try:
         mujoco.mj_collision(m, d)
-        geoms = {frozenset((int(m.pair_geom1[k]), int(m.pair_geom2[k]))) for k in pairs}
-        dists = [
-            float(d.contact[i].dist)
-            for i in range(d.ncon)
-            if frozenset((int(d.contact[i].geom1), int(d.contact[i].geom2))) in geoms
-        ]
+        count, contacts = m.ngeom, d.contact
+        geoms = geom_keys(m.pair_geom1[pairs], m.pair_geom2[pairs], count)
+        ours = np.isin(geom_keys(contacts.geom1[: d.ncon], contacts.geom2[: d.ncon], count), geoms)
+        dists = contacts.dist[: d.ncon][ours].tolist()
     finally:
         m.pair_margin[pairs] = margins
         mujoco.mj_forward(m, d)
