@@ -3,9 +3,11 @@
 build: the scenario becomes MJCF (adapters.mujoco.mjcf) through a planned tree, linear laws and cam
 pairs; MuJoCo's own constraint rows assemble the start (adapters.mujoco.assembly); the model is
 written a second time at the assembled poses, so qpos = 0 is the closed mechanism; the start state
-is then reached by a short run-in from t = -RUN_IN steps. simulate: steps MuJoCo on the output
-grid and reads poses from the body-frame sites, velocities and accelerations from MuJoCo's state
-(mj_objectVelocity, and mj_objectAcceleration on the qacc of a forward pass at the grid time).
+is then reached by a short run-in from t = -RUN_IN steps. The build's time covers all of this, per
+row; only the model's MJCF text with its start (Model.xml, what `export` writes) is left to its
+first reading. simulate: steps MuJoCo on the output grid and reads poses from the body-frame
+sites, velocities and accelerations from MuJoCo's state (mj_objectVelocity, and
+mj_objectAcceleration on the qacc of a forward pass at the grid time).
 Instability (a bad-acceleration warning, auto-reset disabled) is `diverged`.
 A dynamic scenario carries gravity and its loads (adapters.mujoco.loads), starts from the
 assembled poses and the bodies' rates without a run-in, and has its own settings

@@ -103,10 +103,10 @@ def old_closest(m: mujoco.MjModel, d: mujoco.MjData) -> dict[int, int]:
     best: dict[int, tuple[float, int]] = {}
     for i in range(d.ncon):
         contact = d.contact[i]
-        k = pairs.get(frozenset((int(contact.geom1), int(contact.geom2))))
-        if k is None or contact.efc_address < 0:
+        pair = pairs.get(frozenset((int(contact.geom1), int(contact.geom2))))
+        if pair is None or contact.efc_address < 0:
             continue
-        group, dist = groups[k], float(contact.dist)
+        group, dist = groups[pair], float(contact.dist)
         if group not in best or dist < best[group][0]:
             best[group] = (dist, i)
     return {group: i for group, (_, i) in best.items()}
