@@ -43,6 +43,7 @@ from adapters.mujoco.laws import laws
 from adapters.mujoco.loads import loads_of
 from adapters.mujoco.mjcf import Physics
 from adapters.mujoco.model import Model
+from adapters.mujoco.pairs import PairTable
 from adapters.mujoco.scale import dof_sizes, scale_of
 from adapters.mujoco.settings import (
     IMPEDANCE,
@@ -241,6 +242,7 @@ class MujocoAdapter(Adapter):
         built.preload = load
         built.forces = built.forces.only(own)
         built.hops = hop_allowances(built.model, built.qpos0, hops(scenario.cams, physics.cam_pieces))
+        built.pairs = PairTable.of(built.model)
         if dynamic:
             built.loads, built.angles = loads, scenario
         if kinematic:
@@ -275,7 +277,7 @@ class MujocoAdapter(Adapter):
                     record(m, d, model, pos[i], vel[i], acc[i])
                     forces[i] = model.forces.read(m, d)
                     if m.npair:
-                        check_contacts(m, d, model.preload, model.hops)
+                        check_contacts(m, d, model.preload, model.hops, model.pairs)
         extras = angle_columns(model.angles, model.bodies, pos[:, :, 2]) if model.angles else {}
         extras.update(zip(columns, forces.T, strict=True))
         return Trajectory(grid, model.bodies, pos, vel, acc, extras=extras)

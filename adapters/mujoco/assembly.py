@@ -19,10 +19,9 @@ import mujoco
 import numpy as np
 
 from adapters.base import Singular
+from adapters.mujoco.pairs import PairTable, closest_contacts
 from adapters.mujoco.scale import Scale, dof_sizes, row_tolerances
 
-FOLLOWER = "_follower"
-"""The suffix of a follower geom's name (adapters.mujoco.cams)."""
 CAM_MARGIN = 1.0
 """Contact detection distance while assembling, in characteristic lengths, so that a separated cam
 contact still has a row."""
@@ -39,81 +38,15 @@ def _margin(m: mujoco.MjModel, scale: Scale) -> Iterator[None]:
         m.pair_margin[:] = margin
 
 
-def follower_geom(m: mujoco.MjModel, pair: int) -> int:
-    """The pair's follower geom (named '<cam>_follower'; MuJoCo may store it as either geom)."""
-    first = int(m.pair_geom1[pair])
-    return first if m.geom(first).name.endswith(FOLLOWER) else int(m.pair_geom2[pair])
-
-
-def _followers(m: mujoco.MjModel) -> np.ndarray:
-    """Per pair, its follower geom (follower_geom of every pair, from MuJoCo's name table: each
-    geom's name runs from its address to the next NUL)."""
-    if not m.npair:
-        return np.zeros(0, dtype=np.int64)
-    table = np.frombuffer(m.names, dtype=np.uint8)
-    suffix = np.frombuffer(FOLLOWER.encode(), dtype=np.uint8)
-    starts = m.name_geomadr.astype(np.int64)
-    nuls = np.flatnonzero(table == 0)
-    ends = nuls[np.searchsorted(nuls, starts)]
-    tails = np.maximum(ends - len(suffix), 0)[:, None] + np.arange(len(suffix))
-    follower = (ends - starts >= len(suffix)) & (table[tails] == suffix).all(axis=1)
-    first, second = m.pair_geom1.astype(np.int64), m.pair_geom2.astype(np.int64)
-    return np.where(follower[first], first, second)
-
-
-def group_of_pairs(m: mujoco.MjModel) -> np.ndarray:
-    """Per pair, its cam contact: the index of its follower geom among the pairs' follower geoms, in
-    the order of the pairs (the order of the scenario's cams)."""
-    geoms = _followers(m)
-    _, first, inverse = np.unique(geoms, return_index=True, return_inverse=True)
-    rank = np.argsort(np.argsort(first))  # follower geoms in the order of their first pair
-    return rank[inverse.reshape(-1)].astype(np.int64)
-
-
-def geom_keys(first: np.ndarray, second: np.ndarray, count: int) -> np.ndarray:
-    """One integer per unordered geom pair (the pair's geoms as a set)."""
-    low, high = np.minimum(first, second).astype(np.int64), np.maximum(first, second).astype(np.int64)
-    return low * count + high
-
-
-def contact_pairs(m: mujoco.MjModel, d: mujoco.MjData) -> np.ndarray:
-    """Per contact in d.contact, the index of the pair over its two geoms (-1: none; of two pairs
-    over the same geoms, the later)."""
-    n = d.ncon
-    if n == 0 or m.npair == 0:
-        return np.full(n, -1, dtype=np.int64)
-    keys = geom_keys(m.pair_geom1, m.pair_geom2, m.ngeom)[::-1]
-    known, last = np.unique(keys, return_index=True)  # first in reverse: the later pair
-    wanted = geom_keys(d.contact.geom1[:n], d.contact.geom2[:n], m.ngeom)
-    at = np.minimum(np.searchsorted(known, wanted), len(known) - 1)
-    return np.where(known[at] == wanted, m.npair - 1 - last[at], -1)
-
-
-def closest_contacts(m: mujoco.MjModel, d: mujoco.MjData, groups: np.ndarray | None = None) -> dict[int, int]:
-    """Per cam contact (pair group), the index in d.contact of its closest contact with a row (of
-    equally close ones the first; groups in the order of their first contact with a row). `groups`:
-    group_of_pairs(m), where the caller has it already."""
-    pairs = contact_pairs(m, d)
-    rows = np.flatnonzero((pairs >= 0) & (d.contact.efc_address[: d.ncon] >= 0))
-    if rows.size == 0:
-        return {}
-    group = (group_of_pairs(m) if groups is None else groups)[pairs[rows]]
-    dist = d.contact.dist[: d.ncon][rows]
-    order = np.lexsort((rows, dist, group))  # by group, then distance (NaN last), then contact
-    heads = order[np.r_[True, group[order][1:] != group[order][:-1]]]
-    _, first = np.unique(group, return_index=True)  # each group's first contact, groups ascending
-    chosen = np.where(np.isnan(dist[first]), first, heads)  # nothing is closer than a NaN found first
-    return {int(group[first[j]]): int(rows[chosen[j]]) for j in np.argsort(first)}
-
-
 def _rows(
-    m: mujoco.MjModel, d: mujoco.MjData, groups: np.ndarray | None = None
+    m: mujoco.MjModel, d: mujoco.MjData, table: PairTable | None = None
 ) -> tuple[np.ndarray, np.ndarray]:
     """Residuals and their Jacobian (rows x dofs) of the equalities and of each cam's closest
-    contact (`groups`: as closest_contacts)."""
+    contact (`table`: as closest_contacts)."""
     mujoco.mj_forward(m, d)
     keep = d.efc_type == int(mujoco.mjtConstraint.mjCNSTR_EQUALITY)  # an int: numpy compares in C
-    keep[d.contact.efc_address[: d.ncon][list(closest_contacts(m, d, groups).values())]] = True
+    for i in closest_contacts(m, d, table).values():
+        keep[d.contact[i].efc_address] = True
     jac = d.efc_J.reshape(d.nefc, m.nv)
     return d.efc_pos[keep].copy(), jac[keep].copy()
 
@@ -128,14 +61,14 @@ def assemble(
     """Solve d.qpos and d.qvel in place. `clocks` maps a clock's dof to its (qpos, qvel); MuJoCo's
     dofs and qpos coincide here (hinges and slides only)."""
     sizes = dof_sizes(m, scale)
-    groups = group_of_pairs(m)
+    table = PairTable.of(m)
     with _margin(m, scale):
         free = np.array([k for k in range(m.nv) if k not in clocks], dtype=int)
         for dof, (q, v) in clocks.items():
             d.qpos[dof], d.qvel[dof] = q, v
         excess = np.inf
         for _ in range(iterations):
-            pos, jac = _rows(m, d, groups)
+            pos, jac = _rows(m, d, table)
             tolerance = row_tolerances(jac, sizes)
             excess = float(np.max(np.abs(pos) / tolerance, initial=0.0))
             if excess < 1.0:
@@ -146,7 +79,7 @@ def assemble(
             raise Singular(
                 f"the mechanism does not assemble in MuJoCo (residual {excess:.3g} times its tolerance)", 0.0
             )
-        _, jac = _rows(m, d, groups)
+        _, jac = _rows(m, d, table)
         velocities(m, d, jac, {dof: v for dof, (_, v) in clocks.items()})
         velocity_residual = np.abs(jac @ d.qvel).max(initial=0.0)
         size = max(1.0, float(np.abs(d.qvel).max()))

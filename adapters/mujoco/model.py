@@ -13,6 +13,7 @@ from adapters.mujoco.forces import ForceMap
 from adapters.mujoco.kinematics import KinematicSolver
 from adapters.mujoco.laws import Clock
 from adapters.mujoco.loads import Loads
+from adapters.mujoco.pairs import PairTable
 from adapters.mujoco.tree import Affine
 from scenarios.scenario import Scenario
 
@@ -36,6 +37,8 @@ class Model:
     clocks: dict[int, Clock]
     preload: float = 0.0
     """The cam followers' preload (N); 0 without cams."""
+    pairs: PairTable | None = None
+    """The contact pairs' groups and geoms (adapters.mujoco.pairs), read at every output time."""
     hops: dict[int, float] = field(default_factory=dict)
     """Per faceted cam (pair group): the gap its follower may show at a grid time (its sagitta)."""
     kinematic: KinematicSolver | None = None

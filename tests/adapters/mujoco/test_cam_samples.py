@@ -16,11 +16,11 @@ import pytest
 
 import scenarios
 from adapters.mujoco import MujocoAdapter
-from adapters.mujoco.assembly import FOLLOWER, closest_contacts, contact_pairs, group_of_pairs
 from adapters.mujoco.cam_facets import THICKNESS, extent, facets, hops, sagitta, vertices
 from adapters.mujoco.cam_samples import nearest_distance, points_at, radii_at, row_dots, row_norms
 from adapters.mujoco.cam_tip import CHECKS, SAMPLES, curvature_radii, offset_point, tip_radius, tip_reason
 from adapters.mujoco.equalities import num
+from adapters.mujoco.pairs import FOLLOWER, PairTable, closest_contacts
 from adapters.mujoco.scale import scale_of
 from scenarios.cam_profiles import EccentricDisc, Profile, SplineProfile
 from scenarios.cams import CamContact
@@ -91,14 +91,19 @@ def old_nearest(profile: Profile, r: float) -> float:
     return min(float(np.linalg.norm(offset - p, axis=1).min()) for p in points)
 
 
-def old_closest(m: mujoco.MjModel, d: mujoco.MjData) -> dict[int, int]:
-    """closest_contacts as a loop over d.contact, with the pair groups by geom names."""
+def old_groups(m: mujoco.MjModel) -> dict[int, int]:
+    """Each pair's group, by the geom names of MuJoCo's geom views."""
     geoms = []
     for k in range(m.npair):
         first = int(m.pair_geom1[k])
         geoms.append(first if m.geom(first).name.endswith(FOLLOWER) else int(m.pair_geom2[k]))
     followers = list(dict.fromkeys(geoms))
-    groups = {k: followers.index(g) for k, g in enumerate(geoms)}
+    return {k: followers.index(g) for k, g in enumerate(geoms)}
+
+
+def old_closest(m: mujoco.MjModel, d: mujoco.MjData) -> dict[int, int]:
+    """closest_contacts as a loop over d.contact's MjContact views, with frozensets of geoms."""
+    groups = old_groups(m)
     pairs = {frozenset((int(m.pair_geom1[k]), int(m.pair_geom2[k]))): k for k in range(m.npair)}
     best: dict[int, tuple[float, int]] = {}
     for i in range(d.ncon):
@@ -190,13 +195,16 @@ def test_closest_contacts_are_the_per_contact_loop(name: str) -> None:
     m.pair_margin[:] = scale_of(scenario).length
     mujoco.mj_forward(m, d)
     assert d.ncon >= 2
-    assert closest_contacts(m, d) == old_closest(m, d)
-    assert closest_contacts(m, d, group_of_pairs(m)) == old_closest(m, d)
+    table = PairTable.of(m)
+    assert dict(enumerate(table.groups)) == old_groups(m)
+    assert closest_contacts(m, d) == closest_contacts(m, d, table) == old_closest(m, d)
     pairs = {frozenset((int(m.pair_geom1[k]), int(m.pair_geom2[k]))): k for k in range(m.npair)}
+    views = [d.contact[i] for i in range(d.ncon)]
     expected = [
-        pairs.get(frozenset((int(c.geom1), int(c.geom2))), -1) for c in (d.contact[i] for i in range(d.ncon))
+        (i, pairs.get(frozenset((int(c.geom1), int(c.geom2)))), int(c.efc_address), float(c.dist))
+        for i, c in enumerate(views)
     ]
-    assert contact_pairs(m, d).tolist() == expected
+    assert list(table.contacts(d)) == [e for e in expected if e[1] is not None]
     rounded = np.round(d.contact.dist, 3)  # ties everywhere: of equally close contacts, the first
     d.contact.dist[:] = rounded
     assert closest_contacts(m, d) == old_closest(m, d)
