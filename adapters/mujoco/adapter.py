@@ -3,9 +3,11 @@
 build: the scenario becomes MJCF (adapters.mujoco.mjcf) through a planned tree, linear laws and cam
 pairs; MuJoCo's own constraint rows assemble the start (adapters.mujoco.assembly); the model is
 written a second time at the assembled poses, so qpos = 0 is the closed mechanism; the start state
-is then reached by a short run-in from t = -RUN_IN steps. simulate: steps MuJoCo on the output
-grid and reads poses from the body-frame sites, velocities and accelerations from MuJoCo's state
-(mj_objectVelocity, and mj_objectAcceleration on the qacc of a forward pass at the grid time).
+is then reached by a short run-in from t = -RUN_IN steps. The build's time covers all of this, per
+row; only the model's MJCF text with its start (Model.xml, what `export` writes) is left to its
+first reading. simulate: steps MuJoCo on the output grid and reads poses from the body-frame
+sites, velocities and accelerations from MuJoCo's state (mj_objectVelocity, and
+mj_objectAcceleration on the qacc of a forward pass at the grid time).
 Instability (a bad-acceleration warning, auto-reset disabled) is `diverged`.
 A dynamic scenario carries gravity and its loads (adapters.mujoco.loads), starts from the
 assembled poses and the bodies' rates without a run-in, and has its own settings
@@ -41,6 +43,7 @@ from adapters.mujoco.laws import laws
 from adapters.mujoco.loads import loads_of
 from adapters.mujoco.mjcf import Physics
 from adapters.mujoco.model import Model
+from adapters.mujoco.pairs import PairTable
 from adapters.mujoco.scale import dof_sizes, scale_of
 from adapters.mujoco.settings import (
     IMPEDANCE,
@@ -239,6 +242,7 @@ class MujocoAdapter(Adapter):
         built.preload = load
         built.forces = built.forces.only(own)
         built.hops = hop_allowances(built.model, built.qpos0, hops(scenario.cams, physics.cam_pieces))
+        built.pairs = PairTable.of(built.model)
         if dynamic:
             built.loads, built.angles = loads, scenario
         if kinematic:
@@ -273,7 +277,7 @@ class MujocoAdapter(Adapter):
                     record(m, d, model, pos[i], vel[i], acc[i])
                     forces[i] = model.forces.read(m, d)
                     if m.npair:
-                        check_contacts(m, d, model.preload, model.hops)
+                        check_contacts(m, d, model.preload, model.hops, model.pairs)
         extras = angle_columns(model.angles, model.bodies, pos[:, :, 2]) if model.angles else {}
         extras.update(zip(columns, forces.T, strict=True))
         return Trajectory(grid, model.bodies, pos, vel, acc, extras=extras)

@@ -19,10 +19,9 @@ import mujoco
 import numpy as np
 
 from adapters.base import Singular
+from adapters.mujoco.pairs import PairTable, closest_contacts
 from adapters.mujoco.scale import Scale, dof_sizes, row_tolerances
 
-FOLLOWER = "_follower"
-"""The suffix of a follower geom's name (adapters.mujoco.cams)."""
 CAM_MARGIN = 1.0
 """Contact detection distance while assembling, in characteristic lengths, so that a separated cam
 contact still has a row."""
@@ -39,42 +38,14 @@ def _margin(m: mujoco.MjModel, scale: Scale) -> Iterator[None]:
         m.pair_margin[:] = margin
 
 
-def follower_geom(m: mujoco.MjModel, pair: int) -> int:
-    """The pair's follower geom (named '<cam>_follower'; MuJoCo may store it as either geom)."""
-    first = int(m.pair_geom1[pair])
-    return first if m.geom(first).name.endswith(FOLLOWER) else int(m.pair_geom2[pair])
-
-
-def pair_groups(m: mujoco.MjModel) -> dict[int, int]:
-    """Each pair's cam contact: the index of its follower geom among the pairs' follower geoms, in
-    the order of the pairs (the order of the scenario's cams)."""
-    geoms = [follower_geom(m, k) for k in range(m.npair)]
-    followers = list(dict.fromkeys(geoms))
-    return {k: followers.index(g) for k, g in enumerate(geoms)}
-
-
-def closest_contacts(m: mujoco.MjModel, d: mujoco.MjData) -> dict[int, int]:
-    """Per cam contact (pair group), the index in d.contact of its closest contact with a row."""
-    groups = pair_groups(m)
-    pairs = {frozenset((int(m.pair_geom1[k]), int(m.pair_geom2[k]))): k for k in range(m.npair)}
-    best: dict[int, tuple[float, int]] = {}
-    for i in range(d.ncon):
-        contact = d.contact[i]
-        k = pairs.get(frozenset((int(contact.geom1), int(contact.geom2))))
-        if k is None or contact.efc_address < 0:
-            continue
-        group, dist = groups[k], float(contact.dist)
-        if group not in best or dist < best[group][0]:
-            best[group] = (dist, i)
-    return {group: i for group, (_, i) in best.items()}
-
-
-def _rows(m: mujoco.MjModel, d: mujoco.MjData) -> tuple[np.ndarray, np.ndarray]:
+def _rows(
+    m: mujoco.MjModel, d: mujoco.MjData, table: PairTable | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """Residuals and their Jacobian (rows x dofs) of the equalities and of each cam's closest
-    contact."""
+    contact (`table`: as closest_contacts)."""
     mujoco.mj_forward(m, d)
-    keep = d.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
-    for i in closest_contacts(m, d).values():
+    keep = d.efc_type == int(mujoco.mjtConstraint.mjCNSTR_EQUALITY)  # an int: numpy compares in C
+    for i in closest_contacts(m, d, table).values():
         keep[d.contact[i].efc_address] = True
     jac = d.efc_J.reshape(d.nefc, m.nv)
     return d.efc_pos[keep].copy(), jac[keep].copy()
@@ -90,13 +61,14 @@ def assemble(
     """Solve d.qpos and d.qvel in place. `clocks` maps a clock's dof to its (qpos, qvel); MuJoCo's
     dofs and qpos coincide here (hinges and slides only)."""
     sizes = dof_sizes(m, scale)
+    table = PairTable.of(m)
     with _margin(m, scale):
         free = np.array([k for k in range(m.nv) if k not in clocks], dtype=int)
         for dof, (q, v) in clocks.items():
             d.qpos[dof], d.qvel[dof] = q, v
         excess = np.inf
         for _ in range(iterations):
-            pos, jac = _rows(m, d)
+            pos, jac = _rows(m, d, table)
             tolerance = row_tolerances(jac, sizes)
             excess = float(np.max(np.abs(pos) / tolerance, initial=0.0))
             if excess < 1.0:
@@ -107,7 +79,7 @@ def assemble(
             raise Singular(
                 f"the mechanism does not assemble in MuJoCo (residual {excess:.3g} times its tolerance)", 0.0
             )
-        _, jac = _rows(m, d)
+        _, jac = _rows(m, d, table)
         velocities(m, d, jac, {dof: v for dof, (_, v) in clocks.items()})
         velocity_residual = np.abs(jac @ d.qvel).max(initial=0.0)
         size = max(1.0, float(np.abs(d.qvel).max()))

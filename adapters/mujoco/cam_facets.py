@@ -19,7 +19,8 @@ import math
 
 import numpy as np
 
-from adapters.mujoco.cam_tip import offset_point, tip_radius
+from adapters.mujoco.cam_samples import points_at, radii_at, row_dots, row_norms
+from adapters.mujoco.cam_tip import tip_radius
 from scenarios.cam_profiles import EccentricDisc, LobedProfile, Profile
 from scenarios.cams import CamContact, FlatFaceCam, RollerCam
 from scenarios.scenario import Scenario
@@ -48,7 +49,7 @@ SAMPLES = 4096
 def extent(profile: Profile) -> tuple[float, float]:
     """The profile's smallest and largest polar radius."""
     phis = np.linspace(0.0, 2.0 * math.pi, SAMPLES, endpoint=False)
-    radii = np.array([profile.radii(float(p))[0] for p in phis])
+    radii = radii_at(profile, phis)[:, 0]
     return float(radii.min()), float(radii.max())
 
 
@@ -56,7 +57,7 @@ def vertices(profile: Profile, pieces: int, inset: float = 0.0) -> np.ndarray:
     """The polygon's vertices (pieces, 2) in the cam's frame: the profile (or its inward offset by
     `inset`) at equal angles from 0."""
     phis = 2.0 * math.pi * np.arange(pieces) / pieces
-    return np.array([offset_point(profile, float(p), inset) for p in phis])
+    return points_at(profile, phis, inset)
 
 
 def facets(
@@ -80,13 +81,11 @@ def sagitta(profile: Profile, pieces: int, inset: float = 0.0) -> float:
     polygon, measured at each chord's middle angle (the faceting's geometric error)."""
     points = vertices(profile, pieces, inset)
     mids = 2.0 * math.pi * (np.arange(pieces) + 0.5) / pieces
-    worst = 0.0
-    for k, phi in enumerate(mids):
-        a, b = points[k], points[(k + 1) % pieces]
-        tangent = (b - a) / np.linalg.norm(b - a)
-        outward = np.array([tangent[1], -tangent[0]])
-        worst = max(worst, abs(float((offset_point(profile, float(phi), inset) - a) @ outward)))
-    return worst
+    chords = np.roll(points, -1, axis=0) - points
+    tangents = chords / row_norms(chords)[:, None]
+    outward = np.stack([tangents[:, 1], -tangents[:, 0]], axis=1)
+    gaps = np.abs(row_dots(points_at(profile, mids, inset) - points, outward))
+    return float(np.max(gaps, initial=0.0, where=~np.isnan(gaps)))  # NaN skipped, as max(0.0, nan)
 
 
 def lobed_reason(contact: CamContact) -> str | None:

@@ -22,8 +22,9 @@ import mujoco
 import numpy as np
 
 from adapters.base import EngineFailure
-from adapters.mujoco.assembly import FOLLOWER, closest_contacts, follower_geom, pair_groups
+from adapters.mujoco.assembly import closest_contacts
 from adapters.mujoco.cam_tip import tip_radius
+from adapters.mujoco.pairs import FOLLOWER, PairTable, follower_geom
 from scenarios.cam_profiles import EccentricDisc
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam, follower_body
 from scenarios.drivers import AbsoluteDriver
@@ -121,32 +122,34 @@ def preload(scenario: Scenario) -> float:
 
 
 def check_contacts(
-    m: mujoco.MjModel, d: mujoco.MjData, load: float, hops: dict[int, float] | None = None
+    m: mujoco.MjModel,
+    d: mujoco.MjData,
+    load: float,
+    hops: dict[int, float] | None = None,
+    table: PairTable | None = None,
 ) -> None:
     """Raise a `failed` EngineFailure if some cam (its pairs: one, or one per facet) has no contact
     row or no force now (after a forward pass at the current state). `hops`: per faceted cam (pair
     group), the gap it may show instead (`hop_allowances`): a follower is thrown off each convex
     vertex, where its velocity turns and its contact's compression is released, and lands within a
-    few steps."""
-    groups = pair_groups(m)
-    count = max(groups.values(), default=-1) + 1
+    few steps. `table`: PairTable.of(m), where the caller has it already."""
+    table = PairTable.of(m) if table is None else table
+    groups = table.groups  # by pair
+    count = max(groups, default=-1) + 1
     forces = np.zeros(count)
     found = np.zeros(count, dtype=bool)
-    pairs = {frozenset((int(m.pair_geom1[k]), int(m.pair_geom2[k]))): k for k in range(m.npair)}
-    for i in range(d.ncon):
-        contact = d.contact[i]
-        k = pairs.get(frozenset((int(contact.geom1), int(contact.geom2))))
-        if k is not None and contact.efc_address >= 0:
-            found[groups[k]] = True
-            forces[groups[k]] += d.efc_force[contact.efc_address]
+    for _, pair, address, _ in table.contacts(d):
+        if address >= 0:
+            found[groups[pair]] = True
+            forces[groups[pair]] += d.efc_force[address]
     for group in range(count):
         if found[group] and forces[group] > FORCE_FLOOR * load:
             continue
         allowed = (hops or {}).get(group)
-        gap = _gap(m, d, [k for k, g in groups.items() if g == group], allowed) if allowed else None
+        gap = _gap(m, d, [k for k, g in enumerate(groups) if g == group], allowed) if allowed else None
         if gap is not None:
             continue
-        k = next(k for k, g in groups.items() if g == group)
+        k = groups.index(group)
         follower = m.geom(follower_geom(m, k)).name
         what = "no contact row" if not found[group] else f"force {forces[group]:.3g} N"
         raise EngineFailure(
@@ -173,12 +176,13 @@ def _gap(m: mujoco.MjModel, d: mujoco.MjData, pairs: list[int], within: float) -
     m.pair_margin[pairs] = within
     try:
         mujoco.mj_collision(m, d)
-        geoms = {frozenset((int(m.pair_geom1[k]), int(m.pair_geom2[k]))) for k in pairs}
-        dists = [
-            float(d.contact[i].dist)
-            for i in range(d.ncon)
-            if frozenset((int(d.contact[i].geom1), int(d.contact[i].geom2))) in geoms
-        ]
+        ours = {
+            (min(a, b), max(a, b))
+            for a, b in zip(m.pair_geom1[pairs].tolist(), m.pair_geom2[pairs].tolist(), strict=True)
+        }
+        n, c = d.ncon, d.contact
+        columns = (c.geom1[:n].tolist(), c.geom2[:n].tolist(), c.dist[:n].tolist())
+        dists = [dist for a, b, dist in zip(*columns, strict=True) if (min(a, b), max(a, b)) in ours]
     finally:
         m.pair_margin[pairs] = margins
         mujoco.mj_forward(m, d)

@@ -23,6 +23,7 @@ import math
 
 import numpy as np
 
+from adapters.mujoco.cam_samples import nearest_distance, points_at, radii_at
 from scenarios.cam_profiles import EccentricDisc, Profile, profile_point
 from scenarios.cams import CamContact, KnifeEdgeCam
 
@@ -52,7 +53,7 @@ def curvature_radii(profile: Profile, samples: int = SAMPLES) -> np.ndarray:
     """The profile's signed radius of curvature at `samples` equal angles, positive where convex:
     (d^2 + d'^2)^(3/2) / (d^2 + 2 d'^2 - d d'') for the polar profile d(phi)."""
     phis = np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False)
-    d = np.array([profile.radii(float(p))[:3] for p in phis])
+    d = radii_at(profile, phis)[:, :3]
     speed = (d[:, 0] ** 2 + d[:, 1] ** 2) ** 1.5
     bend = d[:, 0] ** 2 + 2.0 * d[:, 1] ** 2 - d[:, 0] * d[:, 2]
     with np.errstate(divide="ignore"):
@@ -75,9 +76,7 @@ def tip_reason(contact: CamContact) -> str | None:
     if r == 0.0:
         return None
     phis = np.linspace(0.0, 2.0 * math.pi, CHECKS, endpoint=False)
-    profile = np.array([offset_point(contact.profile, float(p)) for p in phis])
-    offset = np.array([offset_point(contact.profile, float(p), r) for p in phis])
-    nearest = min(float(np.linalg.norm(offset - p, axis=1).min()) for p in profile)
+    nearest = nearest_distance(points_at(contact.profile, phis), points_at(contact.profile, phis, r))
     if nearest >= (1.0 - UNDERCUT) * r:
         return None
     return (

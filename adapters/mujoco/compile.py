@@ -58,10 +58,10 @@ def compile_model(
         with controls(m, d, physics.loads.motors, clock_dofs(m, found), before=0.0):
             advance(m, d, run_in)
         d.time = 0.0
-    xml = mjcf(scenario, tree, found, cams, physics, (d.qpos.copy(), d.qvel.copy()))
+    start = (d.qpos.copy(), d.qvel.copy())
     outputs = scenario.output_bodies
     return Model(
-        xml=xml,
+        write=lambda: mjcf(scenario, tree, found, cams, physics, start),
         model=m,
         qpos0=d.qpos.copy(),
         qvel0=d.qvel.copy(),

@@ -150,6 +150,7 @@ def _clock(world: ET.Element, law: Law, physics: Physics) -> None:
 def _contact_pairs(root: ET.Element, cams: list[CamPair], physics: Physics) -> None:
     """One contact pair per cam facet, all on the one follower geom."""
     contact = ET.SubElement(root, "contact")
+    solref, solimp = num(*physics.solref), num(*physics.contact_solimp)
     for pair in cams:
         for k, piece in enumerate(pair.cam):
             ET.SubElement(
@@ -159,8 +160,8 @@ def _contact_pairs(root: ET.Element, cams: list[CamPair], physics: Physics) -> N
                 geom1=piece.name,
                 geom2=pair.follower.name,
                 condim="1",
-                solref=num(*physics.solref),
-                solimp=num(*physics.contact_solimp),
+                solref=solref,
+                solimp=solimp,
             )
 
 
