@@ -156,6 +156,7 @@ RATES_KERNEL_TESTS = (
     f"{DYNAMICS}test_compiled_rates.py::test_compiled_conditioning_is_the_plain_one",
     f"{DYNAMICS}test_anchor.py::test_a_far_trial_stage_leaves_the_next_right_hand_side_unchanged",
     f"{DYNAMICS}test_compiled_rates_mutants.py",
+    "tests/reference_solver/test_fast_rates.py",
 )
 """fast.rates' kernels uncompiled: the compiled right-hand side, state and conditioning against the
 plain path's on random states, its rates against finite differences of its positions, the anchor,

@@ -162,3 +162,13 @@ def test_positions_and_states_are_the_caller_s_not_views_of_the_kernel_s_arrays(
     compiled.state(t1, y1)
     for before, now in zip(kept, (q, jac, s.q, s.qd, s.qdd, s.lam, s.jac, s.loads.generalized), strict=True):
         np.testing.assert_array_equal(now, before)
+
+
+def test_each_right_hand_side_is_counted_once() -> None:
+    compiled, plain, start = both("compound_pendulum")
+    assert compiled.evaluations == 0
+    for count, (t, y) in enumerate(random_states(plain, start, 3, seed=3), start=1):
+        compiled.rates(t, y)
+        assert compiled.evaluations == count
+    compiled.state(start.t, plain.pack(start, np.zeros(3)))
+    assert compiled.evaluations == 3  # a state is not a right-hand side
