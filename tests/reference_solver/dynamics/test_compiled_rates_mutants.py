@@ -24,10 +24,10 @@ from reference_solver.dynamics.partition import (
     choose_independent,
 )
 from reference_solver.errors import ConvergenceError
-from scenarios import load
+from scenarios import GROUND, Body, Point, Revolute, Scenario, load
 from scenarios.forces import AppliedTorque
 from scenarios.motion_laws import Polynomial
-from scenarios.motions import Harmonic
+from scenarios.motions import Harmonic, Motion
 from tests.reference_solver.dynamics.test_compiled_rates import both, random_states
 
 Call = tuple[int, int, float, int, int]
@@ -38,7 +38,8 @@ def spy(ode: CompiledPartitioned, fail_first: bool = False) -> list[Call]:
     """Record each call of the kernel with the Newton settings it ran under; with `fail_first`, the
     first call's status is reported as NOT_CONVERGED whatever the kernel returned (the retry is
     reached by no scene of the dynamics suite, so its protocol is tested by injecting the status)."""
-    k, calls, kernel = ode.kernels, [], ode.partitioned
+    k, kernel = ode.kernels, ode.partitioned
+    calls: list[Call] = []
 
     def recorded(level: int, t: float, y: np.ndarray, out: np.ndarray, *arguments: np.ndarray):  # type: ignore[no-untyped-def]
         sizes, tol = ode.index[k.SIZES], ode.vec[k.TOL]
@@ -58,13 +59,13 @@ def settled(ode: CompiledPartitioned) -> tuple[int, float]:
     return int(ode.index[k.SIZES, k.S_CHORD]), float(ode.vec[k.TOL, 1])
 
 
-def with_torque(name: str, law: object) -> tuple[type, type]:
+def with_torque(name: str, law: Motion) -> tuple[type, type]:
     """The ODE partitioned_ode gives for scenario `name` with a torque of `law` on its first body,
     over the compiled constraints, and the type it gives without the torque."""
     base = load(name)
     scenario = dataclasses.replace(
         base, forces=(*base.forces, AppliedTorque("drive", base.bodies[0].name, law))
-    )  # type: ignore[arg-type]
+    )
     kinds = []
     for s in (scenario, base):
         system = constraint_system(s)
@@ -172,3 +173,25 @@ def test_each_right_hand_side_is_counted_once() -> None:
         assert compiled.evaluations == count
     compiled.state(start.t, plain.pack(start, np.zeros(3)))
     assert compiled.evaluations == 3  # a state is not a right-hand side
+
+
+def test_more_independent_coordinates_than_rows_and_seven() -> None:
+    """A rod pinned at its end to the ground, level and at rest, beside three free bodies: 12
+    coordinates, 2 rows, 10 independent (more than the 7 entries of the kernel's size row). The free
+    bodies fall with g; the rod turns with theta'' = -m g a / (J + m a^2), a = 0.5 from its pin, its
+    centre with y'' = a theta'' and x'' = 0."""
+    g, mass, inertia, a = 9.81, 2.0, 0.3, 0.5
+    rod = Body("rod", (a, 0.0, 0.0), mass=mass, inertia=inertia)
+    free = tuple(Body(f"free{k}", (1.0 + k, 1.0, 0.2 * k), mass=1.0 + k, inertia=0.1) for k in range(3))
+    pin = Revolute("pin", Point(GROUND, (0.0, 0.0)), Point("rod", (-a, 0.0)))
+    scenario = Scenario("rod_and_free", "default", (rod, *free), (pin,), (), 1.0, 1, 1.0, gravity=(0.0, -g))
+    system = constraint_system(scenario)
+    masses = mass_diagonal(scenario, system.layout)
+    loads = Loads(scenario, system.layout, masses)
+    start = initial_state(system, masses, loads, 0.0)
+    ode = partitioned_ode(system, masses, loads, start.q, choose_independent(system, start.jac))
+    assert isinstance(ode, CompiledPartitioned) and ode.size == 10
+    turn = -mass * g * a / (inertia + mass * a * a)
+    expected = np.array([0.0, a * turn, turn, *(0.0, -g, 0.0) * 3])
+    state = ode.state(0.0, ode.pack(start, np.zeros(3)))
+    np.testing.assert_allclose(state.qdd, expected, rtol=0, atol=1e-12)
