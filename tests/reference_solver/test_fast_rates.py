@@ -6,14 +6,25 @@ slider-crank's independent coordinates: with the predictor and Newton, 1e-8 then
 the second evaluation converges; with the chord, 1e-8, 1e-12, round-off: the third; without the
 predictor, 1e-4, 1e-8, round-off: the third. Each count is required exactly (it converges within
 it and not within one fewer), so a predictor, chord or stopping rule that works less well is seen
-even where the answer, Newton's, is the same."""
+even where the answer, Newton's, is the same. And the kernel on driven chains (the catalogue's
+dynamic scenes have no driver): C_t, the predictor's time terms and the drivers' power."""
 
 from __future__ import annotations
+
+from collections.abc import Callable
 
 import numpy as np
 import pytest
 
+from reference_solver.compiled_system import constraint_system
+from reference_solver.dynamics.compiled_rates import CompiledPartitioned, partitioned_ode
+from reference_solver.dynamics.forward import initial_state
+from reference_solver.dynamics.loads import Loads
+from reference_solver.dynamics.mass import mass_diagonal
+from reference_solver.dynamics.partition import Partitioned, State, choose_independent
+from scenarios import Scenario
 from tests.reference_solver.dynamics.test_compiled_rates import both
+from tests.reference_solver.dynamics.test_partition import driven_chain, rocked_chain
 
 
 def fewest_iterations(name: str, move: float, chord: int, predictor: int) -> int:
@@ -42,3 +53,38 @@ def test_the_predictor_leaves_newton_one_step_and_the_chord_two(name: str) -> No
     assert fewest_iterations(name, 1e-4, chord=0, predictor=1) == 2
     assert fewest_iterations(name, 1e-4, chord=1, predictor=1) == 3
     assert fewest_iterations(name, 1e-4, chord=0, predictor=0) == 3
+
+
+def compiled_and_plain(scenario: Scenario) -> tuple[CompiledPartitioned, Partitioned, State]:
+    """As test_compiled_rates.both, for a scenario built here."""
+    fast, plain = constraint_system(scenario), constraint_system(scenario, fast=False)
+    mass = mass_diagonal(scenario, plain.layout)
+    start = initial_state(plain, mass, Loads(scenario, plain.layout, mass), 0.0)
+    independent = choose_independent(plain, start.jac)
+    compiled = partitioned_ode(fast, mass, Loads(scenario, fast.layout, mass), start.q, independent)
+    assert isinstance(compiled, CompiledPartitioned)
+    return (
+        compiled,
+        Partitioned(plain, mass, Loads(scenario, plain.layout, mass), start.q, independent),
+        start,
+    )
+
+
+@pytest.mark.parametrize("build", [driven_chain, rocked_chain])
+def test_a_driven_chain_s_rates_and_driver_power_are_the_plain_path_s(build: Callable[[], Scenario]) -> None:
+    """The catalogue's dynamic scenes have no driver, so neither C_t nor the drivers' power: a chain
+    whose first link is driven at constant speed, or rocked harmonically under a harmonic torque,
+    from the anchor at the start (the predictor on), at random states up to 0.05 s later."""
+    compiled, plain, start = compiled_and_plain(build())
+    y0 = plain.pack(start, np.zeros(3))
+    compiled.anchor(start.t, y0)
+    plain.anchor(start.t, y0)
+    rng = np.random.default_rng(12)
+    for _ in range(6):
+        t = float(rng.uniform(0.0, 0.05))
+        y = y0 + np.concatenate(
+            [1e-3 * rng.uniform(-1, 1, plain.size), rng.uniform(-1, 1, plain.size), [0, 0, 0]]
+        )
+        mine, theirs = compiled.rates(t, y), plain.rates(t, y)
+        assert abs(theirs[-1]) > 1e-3  # the drivers do work
+        np.testing.assert_allclose(mine, theirs, rtol=0, atol=1e-12 * max(1.0, float(np.max(np.abs(theirs)))))
