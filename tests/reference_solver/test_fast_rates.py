@@ -16,6 +16,7 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
+import scenarios
 from reference_solver.compiled_system import constraint_system
 from reference_solver.dynamics.compiled_rates import CompiledPartitioned, partitioned_ode
 from reference_solver.dynamics.forward import initial_state
@@ -88,3 +89,38 @@ def test_a_driven_chain_s_rates_and_driver_power_are_the_plain_path_s(build: Cal
         mine, theirs = compiled.rates(t, y), plain.rates(t, y)
         assert abs(theirs[-1]) > 1e-3  # the drivers do work
         np.testing.assert_allclose(mine, theirs, rtol=0, atol=1e-12 * max(1.0, float(np.max(np.abs(theirs)))))
+
+
+def fewest_from_anchor(
+    compiled: CompiledPartitioned, y0: np.ndarray, moved: np.ndarray, chord: int, predictor: int
+) -> int:
+    """fewest_iterations for an ODE built here: anchored at (0, y0), positions at `moved`."""
+    k = compiled.kernels
+    compiled.anchor(0.0, y0)
+    sizes = compiled.index[k.SIZES]
+    for limit in range(1, 13):
+        sizes[k.S_NEWTON], sizes[k.S_CHORD], sizes[k.S_HAS_FACTORS] = limit, chord, predictor
+        status, _ = k.partitioned(k.POSITIONS, 0.0, moved.copy(), compiled.nothing, *compiled.arguments)
+        if status == k.OK:
+            return limit
+    raise AssertionError("no convergence in 12 iterations")
+
+
+def test_the_predictor_moves_every_independent_coordinate_and_cancels_a_steady_c_t() -> None:
+    """Two independent coordinates (the first link's x and the second link's angle of a free
+    two-link chain), moved by (1e-4, -2e-4): the same counts as above. The chain driven at constant
+    speed, at the anchor's time: C_t(t) - C_t(anchor) = 0, so the predictor leaves Newton one step."""
+    chain = scenarios.build("compound_pendulum", overrides={"links": 2, "theta0": 0.3})
+    system = constraint_system(chain)
+    mass = mass_diagonal(chain, system.layout)
+    loads = Loads(chain, system.layout, mass)
+    start = initial_state(system, mass, loads, 0.0)
+    compiled = partitioned_ode(system, mass, loads, start.q, np.array([0, 5]))
+    assert isinstance(compiled, CompiledPartitioned)
+    y0 = compiled.pack(start, np.zeros(3))
+    moved = y0[:2] + np.array([1e-4, -2e-4])
+    counts = [fewest_from_anchor(compiled, y0, moved, c, p) for c, p in ((0, 1), (1, 1), (0, 0))]
+    assert counts == [2, 3, 3]
+    driven, plain, start = compiled_and_plain(driven_chain())
+    y0 = plain.pack(start, np.zeros(3))
+    assert fewest_from_anchor(driven, y0, y0[: plain.size] + 1e-4, chord=0, predictor=1) == 2
