@@ -63,12 +63,14 @@ GROUNDED: dict[str, tuple[Force, ...]] = {
         SpringDamper("s", Point("a", (0.1, 0.2)), Point(GROUND, (-0.5, 1.0)), 60.0, 1.5, 0.3),
     ),
     "torsion_to_the_ground": (RotationalSpringDamper("r", "b", GROUND, 7.0, 1.2, 0.3),),
+    "torsion_from_the_ground": (RotationalSpringDamper("r", GROUND, "b", 6.0, 0.7, -0.4),),
     "torsion_onto_the_first_column": (RotationalSpringDamper("r", "b", "a", 5.0, 0.8, -0.2),),
     "torque_reacted_by_the_ground": (AppliedTorque("t", "a", Harmonic(1.0, 0.5, 3.0)),),
     "torque_reacted_by_the_first_column": (AppliedTorque("t", "b", Harmonic(-0.5, 0.7, 2.0), reaction="a"),),
 }
 """Elements whose second body is the ground or sits in column 0 (the catalogue's cases have neither),
-the dampers with damping, so that a ground point's velocity counts."""
+a torsion spring from the ground with stiffness (the catalogue's has damping only, so the ground's
+angle went unread), the dampers with damping, so that a ground point's velocity counts."""
 
 
 def run_kernel(
