@@ -165,6 +165,28 @@ differences, the anchor, a free fall, the pendulum's closed forms and the energy
 integrations, seconds each), and the value tests of partition.py and forward.py (the stall rule on a four-bar
 moved 10 m off the origin)."""
 
+COMPILED_RATES_TESTS = (
+    f"{DYNAMICS}test_compiled_rates.py",
+    f"{DYNAMICS}test_anchor.py",
+    f"{DYNAMICS}test_compiled_rates_mutants.py",
+)
+"""The compiled partitioned right-hand side (dynamics.compiled_rates over fast.rates): against the
+plain one and finite differences on random states, the anchor, and its own value tests."""
+RATES_KERNEL_TESTS = (
+    f"{DYNAMICS}test_compiled_rates.py::test_compiled_right_hand_side_is_the_plain_one_on_random_states",
+    f"{DYNAMICS}test_compiled_rates.py::test_compiled_rates_are_the_derivatives_of_the_compiled_positions",
+    f"{DYNAMICS}test_compiled_rates.py::test_compiled_conditioning_is_the_plain_one",
+    f"{DYNAMICS}test_anchor.py::test_a_far_trial_stage_leaves_the_next_right_hand_side_unchanged",
+    f"{DYNAMICS}test_compiled_rates_mutants.py",
+    "tests/reference_solver/test_fast_rates.py",
+)
+"""fast.rates' kernels uncompiled: the compiled right-hand side, state and conditioning against the
+plain path's on random states, its rates against finite differences of its positions, the anchor,
+and the value tests; about 15 s as Python. No integration: Radau's comparison alone takes 21 s
+uncompiled, the energy balance at rtol 1e-6 longer."""
+LOAD_KERNEL_TESTS = (*FORCE_ELEMENT_TESTS, "tests/reference_solver/test_fast_load_kernel_mutants.py")
+"""The compiled force elements against the plain ones (themselves against finite differences)."""
+
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
         (
@@ -184,6 +206,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reports/harness/level_error.py": ("tests/reports/harness/test_level_error.py",),
     "reference_solver/newton.py": (
         "tests/reference_solver/test_newton.py",
+        "tests/reference_solver/test_newton_round_off.py",
         "tests/reference_solver/test_failures.py",
         "tests/reference_solver/test_closed_forms.py",
     ),
@@ -271,10 +294,29 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/dynamics/partition.py": PARTITIONED_TESTS,
     "reference_solver/dynamics/forward.py": (*PARTITIONED_TESTS, f"{DYNAMICS}test_forward_mutants.py"),
     # --- end of the partitioned method ---
+    # --- the compiled partitioned right-hand side and its support (session 9, s9-mutdyn) ---
+    "reference_solver/dynamics/compiled_rates.py": COMPILED_RATES_TESTS,
+    "reference_solver/fast/rates.py": RATES_KERNEL_TESTS,
+    "reference_solver/fast/load_kernel.py": LOAD_KERNEL_TESTS,
+    "reference_solver/fast/load_program.py": LOAD_KERNEL_TESTS,
+    "reference_solver/kept.py": (
+        f"{WHOLE_PATH_TESTS}::test_an_empty_grid_and_an_unhashable_scenario",
+        "tests/reference_solver/test_kept.py",
+    ),
+    "reference_solver/fast/cache_guard.py": (
+        f"{KERNEL_TESTS}::test_cache_guard_drops_machine_code_of_changed_sources",
+        "tests/reference_solver/test_cache_guard.py",
+    ),
+    "reference_solver/errors.py": (
+        "tests/reference_solver/test_failures.py",
+        "tests/reference_solver/test_errors.py",
+    ),
+    # --- end of the compiled partitioned right-hand side ---
 }
 
 KERNEL_MODULES = frozenset(
-    f"reference_solver/fast/{name}.py" for name in ("evaluate", "band", "dense_lu", "loop", "dense")
+    f"reference_solver/fast/{name}.py"
+    for name in ("evaluate", "band", "dense_lu", "loop", "dense", "rates", "load_kernel")
 )
 """Modules of numba kernels, mutated as Python (NUMBA_DISABLE_JIT=1, their `@njit` lines removed)."""
 NJIT_LINE = re.compile(r"^@njit\(.*\)\n", re.MULTILINE)

@@ -10,7 +10,7 @@ from pathlib import Path
 
 def refresh(package: Path) -> None:
     """Delete numba's cache files under package/__pycache__ unless they match the current sources."""
-    digest = hashlib.sha256(b"".join(p.read_bytes() for p in sorted(package.glob("*.py")))).hexdigest()
+    digest = _digest(package)
     cache = package / "__pycache__"
     stamp = cache / "numba-sources.sha256"
     try:
@@ -25,3 +25,12 @@ def refresh(package: Path) -> None:
         stamp.write_text(digest)
     except OSError:
         pass  # a read-only checkout: numba then caches elsewhere (NUMBA_CACHE_DIR) or not at all
+
+
+def _digest(package: Path) -> str:
+    """SHA-256 over each source's name and its own SHA-256, in name order: text moved across the
+    boundary of two files, or a file renamed, changes it (a digest of the joined sources did not)."""
+    whole = hashlib.sha256()
+    for source in sorted(package.glob("*.py")):
+        whole.update(source.name.encode() + b"\0" + hashlib.sha256(source.read_bytes()).digest())
+    return whole.hexdigest()
