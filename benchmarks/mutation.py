@@ -233,10 +233,15 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/dynamics/partition.py": PARTITIONED_TESTS,
     "reference_solver/dynamics/forward.py": PARTITIONED_TESTS,
     # --- end of the partitioned method ---
+    "reference_solver/fast/ali3p_matrix.py": (
+        "tests/reference_solver/test_fast_ali3p_matrix.py",
+        f"{DYNAMICS}test_compiled_ali3p.py",
+    ),
 }
 
 KERNEL_MODULES = frozenset(
-    f"reference_solver/fast/{name}.py" for name in ("evaluate", "band", "dense_lu", "loop", "dense")
+    f"reference_solver/fast/{name}.py"
+    for name in ("evaluate", "band", "dense_lu", "loop", "dense", "ali3p_matrix")
 )
 """Modules of numba kernels, mutated as Python (NUMBA_DISABLE_JIT=1, their `@njit` lines removed)."""
 NJIT_LINE = re.compile(r"^@njit\(.*\)\n", re.MULTILINE)
