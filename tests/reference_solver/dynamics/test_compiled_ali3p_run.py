@@ -129,7 +129,9 @@ def test_the_stepper_is_compiled_only_for_compiled_systems_without_force_element
     system = constraint_system(sprung)
     assert isinstance(system, CompiledSystem)
     mass = mass_diagonal(sprung, system.layout)
-    with pytest.raises(NotCompiled, match="no force elements"):
+    with pytest.raises(
+        NotCompiled, match=r"^ALI3-P's compiled step takes no force elements \(W would not be symmetric\)$"
+    ):
         CompiledAli3p(system, mass, Loads(sprung, system.layout, mass), h, object())  # type: ignore[arg-type]
 
 
@@ -140,5 +142,33 @@ def test_a_w_that_is_not_positive_definite_is_refused() -> None:
     assert isinstance(stepper, CompiledAli3p)
     s = stepper.step(s)
     stepper.vec[stepper.kernels.MASS, : stepper.n] = -1e9
-    with pytest.raises(np.linalg.LinAlgError, match="not positive definite"):
+    with pytest.raises(np.linalg.LinAlgError, match=r"^ALI3-P's iteration matrix is not positive definite$"):
         stepper.step(s)
+
+
+def test_the_evaluations_add_up_over_runs_and_solve_takes_integers() -> None:
+    """Two runs count every constraint evaluation of both (the kernel's own counter, which only
+    grows); solve reads an integer right-hand side as its values (W x = b to round-off)."""
+    stepper, _, s = _start(_rod(), True, 1e-3)
+    assert isinstance(stepper, CompiledAli3p)
+    s, _, _ = stepper.run(s, 3, np.zeros(3), np.zeros(3))
+    first = stepper.evaluations
+    stepper.run(s, 2, np.zeros(3), np.zeros(3))
+    assert first >= 3 and stepper.evaluations >= first + 2
+    assert stepper.evaluations == int(stepper.sizes[stepper.kernels.S_EVALUATIONS])
+    b = np.arange(1, stepper.n + 1)
+    np.testing.assert_allclose(stepper.solve(b), stepper.solve(b.astype(float)), rtol=1e-15)
+    assert np.abs(stepper.solve(b)).max() > 0
+
+
+def test_the_half_bandwidth_covers_every_row_of_the_jacobian() -> None:
+    """W's half-bandwidth is at least the widest row of C_q (columns of its nonzeros, from the plain
+    Jacobian at a state), so the banded factor holds every coupling."""
+    scenario = scenarios.build("n_four_bar", overrides={"loops": 3, "t_end": 0.1, "steps": 2})
+    stepper, _, s = _start(scenario, True, 1e-3)
+    assert isinstance(stepper, CompiledAli3p)
+    jac = constraint_system(scenario, fast=False).jacobian(s.q, s.t)
+    widest = max(int(np.ptp(np.flatnonzero(row))) for row in jac if np.any(row))
+    width = int(stepper.sizes[stepper.kernels.S_W])
+    assert widest <= width < stepper.n
+    assert stepper.band.shape == (stepper.n, width + 1)
