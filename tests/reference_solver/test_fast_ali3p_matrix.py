@@ -98,7 +98,7 @@ def test_factor_is_the_cholesky_factor_of_w_and_solve_inverts_it(
     b = rng.standard_normal(n)
     x = b.copy()
     solve(band, n, w, x)
-    np.testing.assert_allclose(w_dense @ x, b, rtol=1e-11, atol=1e-11 * np.linalg.norm(w_dense, 1))
+    np.testing.assert_allclose(w_dense @ x, b, rtol=1e-11, atol=1e-11 * float(np.linalg.norm(w_dense, 1)))
 
 
 @pytest.mark.parametrize(("n", "w", "seed"), [(1, 0, 0), (6, 1, 1), (10, 3, 2), (7, 6, 3)])
