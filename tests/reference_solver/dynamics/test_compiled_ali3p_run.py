@@ -16,6 +16,7 @@ from reference_solver.dynamics.forward import initial_state
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.partition import State, driver_power
+from reference_solver.errors import ConvergenceError
 from reference_solver.fast.constraint_rows import NotCompiled
 from scenarios import Point
 from scenarios.drivers import AbsoluteDriver
@@ -172,3 +173,37 @@ def test_the_half_bandwidth_covers_every_row_of_the_jacobian() -> None:
     width = int(stepper.sizes[stepper.kernels.S_W])
     assert widest <= width < stepper.n
     assert stepper.band.shape == (stepper.n, width + 1)
+
+
+def test_a_step_newton_cannot_finish_is_refused_with_where() -> None:
+    """The rod held at a fixed angle by one driver while another moves its centre along x at 5 m/s:
+    after t = 0 no position meets both (the centre stays 0.5 m from the pin), so Newton cannot
+    finish the first step; the refusal names the scenario, the step's end time, and gives it and
+    the last positions."""
+    h = 1e-3
+    rod = _rod()
+    slide = AbsoluteDriver("slide", "rod", "x", ConstantSpeed(0.5 * np.cos(THETA0), 5.0))
+    turn = AbsoluteDriver("turn", "rod", "theta", ConstantSpeed(THETA0, 0.0))
+    scenario = scenarios.Scenario(
+        "rod",
+        "default",
+        rod.bodies,
+        rod.joints,
+        (turn, slide),
+        1.0,
+        10,
+        1.0,
+        gravity=(0.0, -G),
+        analysis="dynamic",
+    )
+    system = constraint_system(scenario)
+    mass = mass_diagonal(scenario, system.layout)
+    stepper = ali3p_stepper(system, mass, Loads(scenario, system.layout, mass), h)
+    assert isinstance(stepper, CompiledAli3p)
+    q = np.array([0.5 * np.cos(THETA0), 0.5 * np.sin(THETA0), THETA0])
+    s = StepState(0.0, q, np.zeros(3), np.zeros(3), np.zeros(system.size), system.jacobian(q, 0.0))
+    with pytest.raises(ConvergenceError) as caught:
+        stepper.step(s)
+    assert str(caught.value) == "rod: ALI3-P's Newton iteration did not converge at t=0.001"
+    assert caught.value.time == pytest.approx(h, abs=1e-18)
+    assert caught.value.q is not None and caught.value.q.shape == (3,) and np.all(np.isfinite(caught.value.q))
