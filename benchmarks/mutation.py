@@ -312,11 +312,36 @@ MODULES: dict[str, tuple[str, ...]] = {
         "tests/reference_solver/test_errors.py",
     ),
     # --- end of the compiled partitioned right-hand side ---
+    # --- ALI3-P's compiled step (session 9, s9-mutali3p) ---
+    "reference_solver/fast/ali3p_matrix.py": (
+        "tests/reference_solver/test_fast_ali3p_matrix.py",
+        f"{DYNAMICS}test_compiled_ali3p.py",
+    ),
+    "reference_solver/dynamics/compiled_ali3p.py": (
+        f"{DYNAMICS}test_compiled_ali3p_run.py",
+        f"{DYNAMICS}test_compiled_ali3p.py",
+        f"{DYNAMICS}test_ali3p_offset.py",
+    ),
+    "reference_solver/fast/ali3p_kernel.py": (
+        f"{DYNAMICS}test_compiled_ali3p_run.py",
+        f"{DYNAMICS}test_compiled_ali3p.py",
+    ),
+    # --- end of ALI3-P's compiled step ---
 }
 
 KERNEL_MODULES = frozenset(
     f"reference_solver/fast/{name}.py"
-    for name in ("evaluate", "band", "dense_lu", "loop", "dense", "rates", "load_kernel")
+    for name in (
+        "evaluate",
+        "band",
+        "dense_lu",
+        "loop",
+        "dense",
+        "rates",
+        "load_kernel",
+        "ali3p_matrix",
+        "ali3p_kernel",
+    )
 )
 """Modules of numba kernels, mutated as Python (NUMBA_DISABLE_JIT=1, their `@njit` lines removed)."""
 NJIT_LINE = re.compile(r"^@njit\(.*\)\n", re.MULTILINE)
