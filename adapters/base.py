@@ -35,10 +35,8 @@ which pays every first call's cost without paying the whole horizon again.
 from __future__ import annotations
 
 import math
-import traceback
 import warnings
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
 import numpy as np
@@ -46,6 +44,7 @@ import numpy as np
 from adapters.failures import STATUSES, Diverged, EngineFailure, SettingError, Singular, Status, Unsupported
 from adapters.modes import Mode, measures_of
 from adapters.probes import Probe
+from adapters.run_result import RunResult, failure_fields, first_nonfinite_time, warning_texts
 from adapters.setting import Option, OptionValue, Setting
 from adapters.timing import fastest, timed
 from scenarios.scenario import Scenario
@@ -66,30 +65,6 @@ __all__ = [  # the contract a plug-in engine imports from here; failures and set
     "Status",
     "Unsupported",
 ]
-
-
-@dataclass(frozen=True)
-class RunResult:
-    """The outcome of one engine run: always a status; a trajectory only when the status is ok."""
-
-    engine: str
-    version: str
-    setting: Setting
-    status: Status
-    message: str = ""
-    trajectory: Trajectory | None = None
-    build_time: float = math.nan
-    run_time: float = math.nan
-    """Seconds to simulate: the minimum of the timed repeats."""
-    warmup_time: float = math.nan
-    """Seconds spent in the untimed warm-up runs, summed (0 without a warm-up)."""
-    repeats_time: float = math.nan
-    """Seconds spent in the timed repeats, summed (`run_time` is their minimum)."""
-    steps: int = 0
-    failure_time: float | None = None
-    warnings: tuple[str, ...] = field(default=())
-    measures: str = ""
-    """What the setting's mode measures (adapters.modes)."""
 
 
 class Adapter:
@@ -228,15 +203,15 @@ class Adapter:
                 warm = self._warm_up(model, grid)
                 timing = timed(simulate, repeats, warmup, once_above=once_above, warm=warm)
         except Exception as error:  # an engine's failure, or its own exception: recorded, never raised
-            return RunResult(**base, **_failure(error), warnings=_texts(caught))
+            return RunResult(**base, **failure_fields(error), warnings=warning_texts(caught))
         trajectory = timing.result
         if not trajectory.is_finite():
             return RunResult(
                 **base,
                 status="diverged",
                 message="the trajectory has non-finite values",
-                failure_time=_first_nonfinite_time(trajectory),
-                warnings=_texts(caught),
+                failure_time=first_nonfinite_time(trajectory),
+                warnings=warning_texts(caught),
             )
         return RunResult(
             **base,
@@ -247,7 +222,7 @@ class Adapter:
             warmup_time=timing.warmup_time,
             repeats_time=timing.repeats_time,
             steps=self._steps,
-            warnings=_texts(caught),
+            warnings=warning_texts(caught),
         )
 
     def _warm_up(self, model: Any, grid: np.ndarray) -> Callable[[], object]:
@@ -289,16 +264,6 @@ class Adapter:
         return known
 
 
-def _failure(error: Exception) -> dict[str, Any]:
-    """A run's status, message and failure time from what its engine raised: an EngineFailure says
-    them itself; any other exception is `failed`, named with where it was raised."""
-    if isinstance(error, EngineFailure):
-        return {"status": error.status, "message": _one_line(str(error)), "failure_time": error.time}
-    where = traceback.extract_tb(error.__traceback__)[-1]
-    message = f"{type(error).__name__}: {error} (at {where.name}:{where.lineno})"
-    return {"status": "failed", "message": _one_line(message)}
-
-
 LADDER_RENAMED = "Adapter.sweep is deprecated: the settings ladder is now `ladder(scenario)`"
 
 WARMUP_POINTS = 2
@@ -320,23 +285,3 @@ def _too_many_steps(setting: Setting, grid: np.ndarray) -> str:
     if planned <= MAX_STEPS:
         return ""
     return f"dt = {float(dt):.3g} s would take {planned:.3g} steps over the grid (at most {MAX_STEPS:.0e})"
-
-
-def _one_line(text: str) -> str:
-    return " ".join(text.split())[:500]
-
-
-def _texts(caught: list[warnings.WarningMessage]) -> tuple[str, ...]:
-    return tuple(dict.fromkeys(_one_line(f"{w.category.__name__}: {w.message}") for w in caught))
-
-
-def _first_nonfinite_time(trajectory: Trajectory) -> float | None:
-    bad = np.zeros(len(trajectory.times), dtype=bool)
-    for level in trajectory.levels:
-        values = trajectory.level(level)
-        assert values is not None
-        bad |= ~np.isfinite(values).all(axis=(1, 2))
-    for values in trajectory.extras.values():
-        bad |= ~np.isfinite(values)
-    hits = np.flatnonzero(bad)
-    return float(trajectory.times[hits[0]]) if hits.size else None
