@@ -221,6 +221,7 @@ class Adapter:
             run_time=timing.best,
             warmup_time=timing.warmup_time,
             repeats_time=timing.repeats_time,
+            repeats=timing.repeats,
             steps=self._steps,
             warnings=warning_texts(caught),
         )

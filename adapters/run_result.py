@@ -35,6 +35,8 @@ class RunResult:
     """Seconds spent in the untimed warm-up runs, summed (0 without a warm-up)."""
     repeats_time: float = math.nan
     """Seconds spent in the timed repeats, summed (`run_time` is their minimum)."""
+    repeats: int = 0
+    """Timed repeats made (one where the first took longer than the run's `once_above`)."""
     steps: int = 0
     failure_time: float | None = None
     warnings: tuple[str, ...] = field(default=())
