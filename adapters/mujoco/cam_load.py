@@ -146,7 +146,7 @@ def check_contacts(
         if found[group] and forces[group] > FORCE_FLOOR * load:
             continue
         allowed = (hops or {}).get(group)
-        gap = _gap(m, d, [k for k, g in enumerate(groups) if g == group], allowed) if allowed else None
+        gap = _gap(m, d, table, [k for k, g in enumerate(groups) if g == group], allowed) if allowed else None
         if gap is not None:
             continue
         k = groups.index(group)
@@ -170,19 +170,17 @@ def hop_allowances(m: mujoco.MjModel, qpos: np.ndarray, sagittas: dict[int, floa
     return {group: max(sag, depth.get(group, 0.0)) for group, sag in sagittas.items()}
 
 
-def _gap(m: mujoco.MjModel, d: mujoco.MjData, pairs: list[int], within: float) -> float | None:
-    """The least distance between the follower and these pairs' cam geoms if below `within`."""
+def _gap(
+    m: mujoco.MjModel, d: mujoco.MjData, table: PairTable, pairs: list[int], within: float
+) -> float | None:
+    """The least distance between the follower and these pairs' cam geoms (one cam's pairs, `table`
+    giving each contact's pair) if below `within`."""
     margins = m.pair_margin[pairs].copy()
     m.pair_margin[pairs] = within
     try:
         mujoco.mj_collision(m, d)
-        ours = {
-            (min(a, b), max(a, b))
-            for a, b in zip(m.pair_geom1[pairs].tolist(), m.pair_geom2[pairs].tolist(), strict=True)
-        }
-        n, c = d.ncon, d.contact
-        columns = (c.geom1[:n].tolist(), c.geom2[:n].tolist(), c.dist[:n].tolist())
-        dists = [dist for a, b, dist in zip(*columns, strict=True) if (min(a, b), max(a, b)) in ours]
+        ours = set(pairs)
+        dists = [dist for _, pair, _, dist in table.contacts(d) if pair in ours]
     finally:
         m.pair_margin[pairs] = margins
         mujoco.mj_forward(m, d)
