@@ -2,7 +2,8 @@
 
 The facets, the tip sphere's radius and checks, and the polygon's sagitta (adapters.mujoco.cam_facets,
 cam_tip) sample the profile at hundreds to thousands of angles for every build; one Python call per
-angle (SplineProfile.radii, profile_point, offset_point) cost about a second of a spline cam's build.
+angle (SplineProfile.radii, profile_point and the offset point built on it) cost about a second of
+a spline cam's build.
 Here each sample is the same floating-point operations in the same order, on arrays: a spline's
 cubic pieces are evaluated as SplineProfile.radii does (numpy evaluates each operation apart, with
 no fused multiply-add), the angles' cosines and sines come from math as in profile_point, and the
@@ -56,8 +57,8 @@ def row_norms(a: np.ndarray) -> np.ndarray:
 
 
 def points_at(profile: Profile, phis: np.ndarray, inset: float = 0.0) -> np.ndarray:
-    """(len(phis), 2): cam_tip.offset_point at each angle: the profile's point, moved inward along
-    its normal by `inset` (left of travel)."""
+    """(len(phis), 2): the profile's point at each angle, moved inward along its normal by `inset`
+    (left of travel): a point of its inward offset curve."""
     radii = radii_at(profile, phis)
     d0, d1 = radii[:, 0], radii[:, 1]
     cos = np.array([math.cos(float(p)) for p in phis])

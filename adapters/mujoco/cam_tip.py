@@ -4,17 +4,17 @@ A knife edge's tip is a point on the profile, and a polygon of facets turns its 
 vertex: the tip is thrown off each one and chatters (acceleration errors of 510 m/s^2 on
 cam_knife_edge/spline from 256 to 2048 facets, the preload over the mass). Instead the tip is a
 sphere of radius r centred on it, rolling on the facets of the profile's inward offset curve by r
-(points: `offset_point`; facets: adapters.mujoco.cam_facets with `inset`). The sphere's centre
-runs on the outward offset of that curve by r, which is the profile itself wherever a disc of
-radius r rolls inside the profile touching every point of it: r below the smallest convex radius
-of curvature (a concave part's offset only grows its radius, to |rho| + r) and no part of the cam
-thinner than 2r (checked: `tip_reason`). So the centre traces exactly the knife's path, and the
-contact normal through it is the profile's normal at the tip: the follower's lift and its contact
-force are the knife edge's, with nothing to take out. What is left is a roller's faceting error on
-the offset polygon, which falls as r nears the smallest radius of curvature rho (on a circle the
-offset shrinks to a point at r = rho, where the sphere is exact): measured on cam_knife_edge/spline
-at 512 facets, acceleration errors 510, 66, 16, 7.4, 2.8, 1.1 m/s^2 at r = 0.05, 0.1, 0.2, 0.4,
-0.6, 0.8 rho (tests/adapters/mujoco/test_cam_tip.py).
+(points: adapters.mujoco.cam_samples.points_at with `inset`; facets: adapters.mujoco.cam_facets with
+`inset`). The sphere's centre runs on the outward offset of that curve by r, which is the profile
+itself wherever a disc of radius r rolls inside the profile touching every point of it: r below the
+smallest convex radius of curvature (a concave part's offset only grows its radius, to |rho| + r)
+and no part of the cam thinner than 2r (checked: `tip_reason`). So the centre traces exactly the
+knife's path, and the contact normal through it is the profile's normal at the tip: the follower's
+lift and its contact force are the knife edge's, with nothing to take out. What is left is a
+roller's faceting error on the offset polygon, which falls as r nears the smallest radius of
+curvature rho (on a circle the offset shrinks to a point at r = rho, where the sphere is exact):
+measured on cam_knife_edge/spline at 512 facets, acceleration errors 510, 66, 16, 7.4, 2.8, 1.1
+m/s^2 at r = 0.05, 0.1, 0.2, 0.4, 0.6, 0.8 rho (tests/adapters/mujoco/test_cam_tip.py).
 """
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ import math
 import numpy as np
 
 from adapters.mujoco.cam_samples import nearest_distance, points_at, radii_at
-from scenarios.cam_profiles import EccentricDisc, Profile, profile_point
+from scenarios.cam_profiles import EccentricDisc, Profile
 from scenarios.cams import CamContact, KnifeEdgeCam
 
 TIP_FRACTION = 0.8
@@ -37,16 +37,6 @@ CHECKS = 1024
 """Profile and offset points compared for a part of the cam thinner than the sphere."""
 UNDERCUT = 1e-3
 """A profile point nearer the offset curve than (1 - UNDERCUT) r is undercut."""
-
-
-def offset_point(profile: Profile, phi: float, inset: float = 0.0) -> np.ndarray:
-    """The profile's point at polar angle phi moved inward along its normal by `inset`: a point of
-    its inward offset curve (0: of the profile itself)."""
-    u = profile_point(profile, phi)
-    if inset == 0.0:
-        return u[0]
-    tangent = u[1] / np.linalg.norm(u[1])
-    return u[0] + inset * np.array([-tangent[1], tangent[0]])  # left of travel: inward
 
 
 def curvature_radii(profile: Profile, samples: int = SAMPLES) -> np.ndarray:

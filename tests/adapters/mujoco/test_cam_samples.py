@@ -17,10 +17,11 @@ import scenarios
 from adapters.mujoco import MujocoAdapter
 from adapters.mujoco.cam_facets import THICKNESS, extent, facets, hops, sagitta, vertices
 from adapters.mujoco.cam_samples import nearest_distance, points_at, radii_at, row_dots, row_norms
-from adapters.mujoco.cam_tip import CHECKS, SAMPLES, curvature_radii, offset_point, tip_radius, tip_reason
+from adapters.mujoco.cam_tip import CHECKS, SAMPLES, curvature_radii, tip_radius, tip_reason
 from adapters.mujoco.equalities import num
 from scenarios.cam_profiles import EccentricDisc, Profile, SplineProfile
 from scenarios.cams import CamContact
+from tests.adapters.mujoco.offset_curve import offset_point
 
 SPLINE_SCENES = ("cam_roller/spline", "cam_flat_face/spline", "cam_knife_edge/spline")
 ADAPTER = MujocoAdapter()

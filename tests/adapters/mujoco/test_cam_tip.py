@@ -42,10 +42,11 @@ import pytest
 import scenarios
 from adapters.mujoco import MujocoAdapter, cam_tip
 from adapters.mujoco.cam_facets import DEFAULT_PIECES, sagitta, vertices
-from adapters.mujoco.cam_tip import curvature_radii, offset_point, tip_radius, tip_reason
+from adapters.mujoco.cam_tip import curvature_radii, tip_radius, tip_reason
 from scenarios.bodies import Point
 from scenarios.cam_profiles import EccentricDisc, SplineProfile
 from scenarios.cams import KnifeEdgeCam
+from tests.adapters.mujoco.offset_curve import offset_point
 from tests.adapters.mujoco.test_cam_facets import follower_errors
 from tests.support.bounds import held
 
