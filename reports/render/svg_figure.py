@@ -81,7 +81,7 @@ def laid_out(figure: Figure) -> None:
     """Drop the placeholder layout engine an explicit `tight_layout()` leaves behind: savefig draws
     a figure that has any layout engine once without output before drawing it for the file, and a
     placeholder lays out nothing, so that first draw (a fifth of a tight-laid-out figure's render
-    time) changes no byte of the file (tests/reports/render/test_svg_draws.py)."""
+    time) changes no byte of the file (tests/reports/render/test_render_once.py)."""
     if type(figure.get_layout_engine()) is PlaceHolderLayoutEngine:
         with plt.rc_context({"figure.autolayout": False, "figure.constrained_layout.use": False}):
             figure.set_layout_engine(None)  # None, not a new engine, whatever a matplotlibrc says
