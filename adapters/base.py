@@ -169,11 +169,13 @@ class Adapter:
         repeats: int = 1,
         warmup: int = 0,
         once_above: float = math.inf,
+        agree: float = 0.0,
     ) -> RunResult:
         """Build once and simulate, timing the build apart and the simulation as the minimum over
         `repeats` after `warmup` untimed runs over the grid's first interval (_warm_up), or once
-        where the first timed run takes longer than `once_above` seconds; the warm-up's and the
-        repeats' seconds are measured too (what the run's timing cost). Never raises for an
+        where the first timed run takes longer than `once_above` seconds, or fewer where a repeat
+        agrees with the best before it to a relative `agree` (adapters.timing.timed); the warm-up's
+        and the repeats' seconds are measured too (what the run's timing cost). Never raises for an
         engine's failure."""
         setting = setting or self.default_setting(scenario)
         base: Mapping[str, Any] = {
@@ -201,7 +203,7 @@ class Adapter:
                     return self.simulate(model, grid)
 
                 warm = self._warm_up(model, grid)
-                timing = timed(simulate, repeats, warmup, once_above=once_above, warm=warm)
+                timing = timed(simulate, repeats, warmup, once_above=once_above, warm=warm, agree=agree)
         except Exception as error:  # an engine's failure, or its own exception: recorded, never raised
             return RunResult(**base, **failure_fields(error), warnings=warning_texts(caught))
         trajectory = timing.result

@@ -26,7 +26,8 @@ class Timing(Generic[T]):
     result: T
     """The last call's result."""
     repeats: int
-    """Timed repeats made (fewer than asked where the first took longer than `once_above`)."""
+    """Timed repeats made (fewer than asked where the first took longer than `once_above`, or
+    where a repeat agreed with the best before it within `agree`)."""
     repeats_time: float
     """Seconds of all timed repeats, summed (`best` is their minimum, per call)."""
     warmup_time: float
@@ -40,11 +41,15 @@ def timed(
     number: int = 1,
     once_above: float = math.inf,
     warm: Callable[[], object] | None = None,
+    agree: float = 0.0,
 ) -> Timing[T]:
     """`warmup` untimed calls of `warm` (by default the action itself), then the minimum over
     `repeats` (at least one) of the time of `number` calls, divided by `number`; a first timed call
-    longer than `once_above` seconds is the only one (its noise is small against its length). The
-    warm-up's and the repeats' seconds are summed as they run."""
+    longer than `once_above` seconds is the only one (its noise is small against its length), and
+    the repeats stop early where one agrees with the best before it to a relative `agree` (two
+    undisturbed repeats: the minimum is known to that fraction, and more would only cost time; on
+    a busy machine they disagree and the repeats go on). The warm-up's and the repeats' seconds
+    are summed as they run."""
     start = time.perf_counter()
     for _ in range(warmup):
         (action if warm is None else warm)()
@@ -56,8 +61,10 @@ def timed(
         for _ in range(max(1, number)):
             result = action()
         spent = time.perf_counter() - start
-        best, total, made = min(best, spent / max(1, number)), total + spent, made + 1
-        if best > once_above:
+        per_call = spent / max(1, number)
+        agreed = agree > 0 and abs(per_call - best) <= agree * min(per_call, best)
+        best, total, made = min(best, per_call), total + spent, made + 1
+        if best > once_above or agreed:
             break
     return Timing(best, result, made, total, warmup_time)
 
@@ -69,7 +76,8 @@ def fastest(
     number: int = 1,
     once_above: float = math.inf,
     warm: Callable[[], object] | None = None,
+    agree: float = 0.0,
 ) -> tuple[float, T]:
     """(seconds per call, the last call's result) of `timed` with the same arguments."""
-    timing = timed(action, repeats, warmup, number, once_above, warm)
+    timing = timed(action, repeats, warmup, number, once_above, warm, agree)
     return timing.best, timing.result

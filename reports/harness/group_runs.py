@@ -27,6 +27,10 @@ from scenarios import Scenario
 from scenarios.trajectory import Trajectory
 
 LONG_RUN = 0.25  # seconds: a simulation this long is timed once after the warm-up (adapters.base)
+AGREE = 0.02
+"""Repeats stop once one agrees with the best before it to this fraction (adapters.timing.timed):
+on a quiet machine two repeats of the same run are a median 0.6 % apart (126 runs of the default
+suite at load below 1.5), so a third adds little; on a busy one they disagree and the third runs."""
 
 
 @dataclass(frozen=True)
@@ -186,9 +190,16 @@ def timed_run(
 ) -> tuple[RunResult, int]:
     """The adapter's run (one build), timed as the minimum of `config.repeats` after
     `config.warmup` untimed warm-up runs over the grid's first interval (Adapter.run), except that a
-    run longer than LONG_RUN is timed once (its timing noise is small against its length). Returns
+    run longer than LONG_RUN is timed once (its timing noise is small against its length) and the
+    repeats stop once two agree to AGREE. Returns
     the result and the number of timed repeats it made (1 for a run that failed)."""
     result = adapter.run(
-        scenario, setting, times, repeats=config.repeats, warmup=config.warmup, once_above=LONG_RUN
+        scenario,
+        setting,
+        times,
+        repeats=config.repeats,
+        warmup=config.warmup,
+        once_above=LONG_RUN,
+        agree=AGREE,
     )
     return result, max(1, result.repeats)

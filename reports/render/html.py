@@ -152,7 +152,8 @@ def _provenance(meta: dict[str, Any]) -> str:
     revision = revision_label(meta)
     return (
         f"suite {meta.get('suite', '?')}, {meta.get('date', '?')}, git {revision}, "
-        f"timing: minimum of {meta.get('repeats', '?')} repeats after {meta.get('warmup', '?')} warm-up, "
+        f"timing: minimum of up to {meta.get('repeats', '?')} repeats "
+        f"after {meta.get('warmup', '?')} warm-up, "
         f"time limit {meta.get('timeout', '?')} s per run"
     )
 

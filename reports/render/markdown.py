@@ -25,7 +25,8 @@ def render(data: ReportData) -> str:
         f"Suite `{meta.get('suite', '?')}`, {meta.get('date', '?')}, git `{revision}`.",
         f"Engines: {engines}. Python {meta.get('python', '?')}; "
         f"{machine.get('processor', '?')}, {machine.get('cpus', '?')} CPUs.",
-        f"Timing: minimum of {meta.get('repeats', '?')} repeats after {meta.get('warmup', '?')} warm-up.",
+        f"Timing: minimum of up to {meta.get('repeats', '?')} repeats "
+        f"after {meta.get('warmup', '?')} warm-up.",
         "",
         f"{meta.get('scales', SCALE_DEFINITION)} The truth: {meta.get('truth', '')}.",
         "",

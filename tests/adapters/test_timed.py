@@ -80,6 +80,27 @@ def test_a_long_first_repeat_is_the_only_one_and_the_whole_of_the_repeats_time(c
     assert (found.repeats, found.repeats_time, found.best) == (1, pytest.approx(0.5), pytest.approx(0.5))
 
 
+def test_repeats_stop_where_one_agrees_with_the_best_before_it(clock: Clock) -> None:
+    found = timed(spending(clock, [0.100, 0.1015, 0.5], [], "action"), repeats=3, agree=0.02)
+    assert (found.repeats, found.best) == (2, pytest.approx(0.100))  # 1.5 % apart: the third never ran
+    assert found.repeats_time == pytest.approx(0.2015)
+
+
+def test_repeats_that_disagree_go_on_to_the_count(clock: Clock) -> None:
+    found = timed(spending(clock, [0.100, 0.103, 0.0995, 0.5], [], "action"), repeats=3, agree=0.02)
+    assert (found.repeats, found.best) == (3, pytest.approx(0.0995))  # 3 % apart, then the count
+
+
+def test_agreement_is_relative_to_the_smaller_of_the_two(clock: Clock) -> None:
+    # 0.1019 against 0.100 is 1.9 % of the smaller and 1.86 % of the larger
+    assert timed(spending(clock, [0.1019, 0.100, 0.1], [], "a"), repeats=3, agree=0.0192).repeats == 2
+    assert timed(spending(clock, [0.1019, 0.100, 0.1], [], "a"), repeats=3, agree=0.0188).repeats == 3
+
+
+def test_without_agree_equal_repeats_all_run(clock: Clock) -> None:
+    assert timed(spending(clock, [0.1, 0.1, 0.1], [], "action"), repeats=3).repeats == 3
+
+
 def test_repeats_of_several_calls_sum_every_call(clock: Clock) -> None:
     found = timed(spending(clock, [0.1] * 4, [], "action"), repeats=2, number=2)
     assert found.repeats_time == pytest.approx(0.4, abs=1e-15)

@@ -4,6 +4,7 @@ a real engine's result is the same bit for bit with the prefix warm-up as with n
 
 from __future__ import annotations
 
+import itertools
 import time
 
 import numpy as np
@@ -21,15 +22,18 @@ class RecordingAdapter(Adapter):
     """Records the grid of every simulate call; `short` says how it treats a grid of fewer than
     three times ('ok', or 'raise' like an engine that cannot take one); `diverge_at` makes it
     raise Diverged at that grid index (as the runner's fake does: IndexError on a shorter grid);
-    `sleep` seconds per call on a grid longer than WARMUP_POINTS."""
+    `sleep` seconds per call on a grid longer than WARMUP_POINTS (a tuple: in turn, call by call)."""
 
     name = "recording"
     modes = ("good",)
 
-    def __init__(self, short: str = "ok", diverge_at: int | None = None, sleep: float = 0.0) -> None:
+    def __init__(
+        self, short: str = "ok", diverge_at: int | None = None, sleep: float | tuple[float, ...] = 0.0
+    ) -> None:
         super().__init__()
         self.grids: list[np.ndarray] = []
-        self.short, self.diverge_at, self.sleep = short, diverge_at, sleep
+        self.short, self.diverge_at = short, diverge_at
+        self.sleeps = itertools.cycle(sleep if isinstance(sleep, tuple) else (sleep,))
 
     def version(self) -> str:
         return "0"
@@ -47,7 +51,7 @@ class RecordingAdapter(Adapter):
         if self.diverge_at is not None:  # IndexError on a grid too short to reach it
             raise Diverged("state exploded", time=float(times[self.diverge_at]))
         if len(times) > WARMUP_POINTS:
-            time.sleep(self.sleep)
+            time.sleep(next(self.sleeps))
         self.count_steps(len(times) - 1)
         bodies = model.output_bodies
         levels = np.zeros((len(times), len(bodies), 3))
@@ -137,7 +141,7 @@ def test_fastest_times_the_action_not_the_warm_up() -> None:
 def test_the_harness_times_the_whole_grid_after_a_prefix_warm_up(scenario) -> None:
     config = RunConfig(repeats=3, warmup=1)
     grid = np.asarray(scenario.times())
-    short = RecordingAdapter()
+    short = RecordingAdapter(sleep=(0.001, 0.02))  # repeats 20 times apart: they never agree
     result, repeats = timed_run(short, scenario, short.default_setting(scenario), grid, config)
     assert (result.status, repeats) == ("ok", 3)
     assert lengths(short) == [2, len(grid), len(grid), len(grid)]

@@ -3,6 +3,7 @@ for the tests of what a row says its timing spent (a fake is fine for testing th
 
 from __future__ import annotations
 
+import itertools
 import time
 from pathlib import Path
 
@@ -16,20 +17,23 @@ from tests.support.fake_engine import GOOD, FakeAdapter, fake_loader, fake_truth
 
 SCENARIO = "slider_crank"
 WARM, RUN = 0.06, 0.01
-"""Seconds a Sleeper sleeps in a warm-up run (a grid of WARMUP_POINTS times) and in a timed run."""
+"""Seconds a Sleeper sleeps in a warm-up run (a grid of WARMUP_POINTS times) and in a timed run
+(RUN and 2 x RUN in turn, so that no two repeats agree and a row makes all its repeats)."""
 CONFIG = RunConfig(ladder=False, repeats=3, warmup=2, timeout=20.0)
 
 
 class Sleeper(FakeAdapter):
-    """The fake at its default setting, sleeping WARM in a warm-up run and RUN in a timed one."""
+    """The fake at its default setting, sleeping WARM in a warm-up run and RUN or 2 x RUN in a
+    timed one."""
 
     name = "sleeper"
+    timed_sleeps = itertools.cycle((RUN, 2 * RUN))
 
     def ladder(self, scenario: Scenario) -> list[Setting]:
         return [GOOD[1]]
 
     def simulate(self, model: tuple[Scenario, Setting], times: np.ndarray) -> Trajectory:
-        time.sleep(WARM if len(times) <= WARMUP_POINTS else RUN)
+        time.sleep(WARM if len(times) <= WARMUP_POINTS else next(self.timed_sleeps))
         return super().simulate(model, times)
 
 
