@@ -19,7 +19,7 @@ import mujoco
 import numpy as np
 
 from adapters.base import Singular
-from adapters.mujoco.pairs import PairTable, closest_contacts
+from adapters.mujoco.pairs import PairTable, closest_contacts, margins
 from adapters.mujoco.scale import Scale, dof_sizes, row_tolerances
 
 CAM_MARGIN = 1.0
@@ -28,14 +28,11 @@ contact still has a row."""
 
 
 @contextmanager
-def _margin(m: mujoco.MjModel, scale: Scale) -> Iterator[None]:
-    """The cam contacts detected within CAM_MARGIN characteristic lengths meanwhile."""
-    margin = m.pair_margin.copy()
-    m.pair_margin[:] = CAM_MARGIN * scale.length
-    try:
+def _margin(m: mujoco.MjModel, scale: Scale, table: PairTable | None = None) -> Iterator[None]:
+    """The cam contacts detected within CAM_MARGIN characteristic lengths meanwhile (`table`: as
+    closest_contacts)."""
+    with margins(m, PairTable.of(m) if table is None else table, CAM_MARGIN * scale.length):
         yield
-    finally:
-        m.pair_margin[:] = margin
 
 
 def _rows(
@@ -62,7 +59,7 @@ def assemble(
     dofs and qpos coincide here (hinges and slides only)."""
     sizes = dof_sizes(m, scale)
     table = PairTable.of(m)
-    with _margin(m, scale):
+    with _margin(m, scale, table):
         free = np.array([k for k in range(m.nv) if k not in clocks], dtype=int)
         for dof, (q, v) in clocks.items():
             d.qpos[dof], d.qvel[dof] = q, v

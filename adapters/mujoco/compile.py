@@ -48,7 +48,7 @@ def compile_model(
     for t in -physics.timestep * np.arange(1, run_in + 1):
         clocks = clocks_at(m, found, float(t))
         assemble(m, d, clocks, scale)
-    if m.npair:
+    if cams:
         settle(m, d, clocks)
     if scenario.analysis == "dynamic":
         sites = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE, b.name) for b in scenario.bodies]

@@ -3,7 +3,8 @@
 Bodies sit at the canonical body frames (a site named after each body marks it), hinges turn about
 z, slides move in the plane, loops close with site-based `connect`, laws become `joint` equalities
 (or a fixed tendon and a `tendon` equality when more than two joints take part), clocks are extra
-rotors (a steered clock with a motor), cams are contact pairs. Every number is written to full precision.
+rotors (a steered clock with a motor), cams are contact pairs (explicit ones, or a flat face on facets
+by contype/conaffinity bits: adapters.mujoco.cams). Every number is written to full precision.
 """
 
 from __future__ import annotations
@@ -66,7 +67,7 @@ def mjcf(
 ) -> str:
     """The model as MJCF text; `keyframe` (qpos, qvel) is stored as the key named 'start'."""
     root = ET.Element("mujoco", model=scenario.name.replace("/", "_"))
-    _options(root, scenario, physics, bool(cams))
+    _options(root, scenario, physics, cams)
     world = ET.SubElement(root, "worldbody")
     ET.SubElement(world, "light", pos="0 0 2", dir="0 0 -1", directional="true")
     elements = {GROUND: world}
@@ -78,8 +79,14 @@ def mjcf(
         if law.clock is not None:
             _clock(world, law, physics)
     for pair in cams:
-        for geom in (*pair.cam, pair.follower):
-            _geom(elements[geom.body], geom, contact=True)
+        for geom in pair.cam:
+            _geom(elements[geom.body], geom, contact=True, collision=_bits(pair, physics, cam=True))
+        _geom(
+            elements[pair.follower.body],
+            pair.follower,
+            contact=True,
+            collision=_bits(pair, physics, cam=False),
+        )
     equalities(root, elements, tree, laws)
     _loads(root, elements, physics.loads)
     steered = [law for law in laws if law.clock is not None and law.clock.law is not None]
@@ -92,7 +99,7 @@ def mjcf(
     return ET.tostring(root, encoding="unicode")
 
 
-def _options(root: ET.Element, scenario: Scenario, physics: Physics, cams: bool) -> None:
+def _options(root: ET.Element, scenario: Scenario, physics: Physics, cams: list[CamPair]) -> None:
     """The compiler, the options (step, integrator, gravity, solver) and the defaults."""
     ET.SubElement(root, "compiler", angle="radian", autolimits="true")
     option = ET.SubElement(
@@ -107,6 +114,8 @@ def _options(root: ET.Element, scenario: Scenario, physics: Physics, cams: bool)
     )
     # A scene carries only what it needs: without cams there is nothing to collide.
     flags = {"autoreset": "disable"} if cams else {"autoreset": "disable", "contact": "disable"}
+    if any(pair.mask for pair in cams):  # as an explicit pair does, whatever the bodies' relation
+        flags["filterparent"] = "disable"
     ET.SubElement(option, "flag", flags)
     default = ET.SubElement(root, "default")
     ET.SubElement(default, "geom", contype="0", conaffinity="0", rgba="0.6 0.7 0.8 1")
@@ -148,10 +157,13 @@ def _clock(world: ET.Element, law: Law, physics: Physics) -> None:
 
 
 def _contact_pairs(root: ET.Element, cams: list[CamPair], physics: Physics) -> None:
-    """One contact pair per cam facet, all on the one follower geom."""
+    """One contact pair per cam facet, all on the one follower geom (a cam colliding by bits has none)."""
+    paired = [pair for pair in cams if not pair.mask]
+    if not paired:
+        return
     contact = ET.SubElement(root, "contact")
     solref, solimp = num(*physics.solref), num(*physics.contact_solimp)
-    for pair in cams:
+    for pair in paired:
         for k, piece in enumerate(pair.cam):
             ET.SubElement(
                 contact,
@@ -250,7 +262,23 @@ def _pitch_radius(scenario: Scenario, name: str) -> float:
     return 0.0
 
 
-def _geom(body: ET.Element, geom: Geom, contact: bool) -> None:
+def _bits(pair: CamPair, physics: Physics, cam: bool) -> dict[str, str]:
+    """A cam geom's (`cam`) or its follower's collision attributes where they collide by bits: the
+    bit, and the explicit pair's condim, solref and solimp (MuJoCo mixes the two geoms' equal values
+    into the same numbers); none for explicit pairs (the default contype and conaffinity 0)."""
+    if not pair.mask:
+        return {}
+    bit = str(pair.mask)
+    return {
+        "contype": bit if cam else "0",
+        "conaffinity": "0" if cam else bit,
+        "condim": "1",
+        "solref": num(*physics.solref),
+        "solimp": num(*physics.contact_solimp),
+    }
+
+
+def _geom(body: ET.Element, geom: Geom, contact: bool, collision: dict[str, str] | None = None) -> None:
     half = geom.angle / 2.0
     place = {"pos": num(*geom.pos, 0.0), "quat": num(math.cos(half), 0.0, 0.0, math.sin(half))}
     if geom.fromto is not None:
@@ -258,6 +286,7 @@ def _geom(body: ET.Element, geom: Geom, contact: bool) -> None:
         place = {"fromto": num(x1, y1, 0.0, x2, y2, 0.0)}
     colour = "0.9 0.5 0.3 1" if contact else "0.6 0.7 0.8 1"
     attrs = {"name": geom.name, "type": geom.kind, "size": num(*geom.size), **place, "rgba": colour}
+    attrs.update(collision or {})
     ET.SubElement(body, "geom", attrs)
 
 
