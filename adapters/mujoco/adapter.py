@@ -43,7 +43,7 @@ from adapters.mujoco.laws import laws
 from adapters.mujoco.loads import loads_of
 from adapters.mujoco.mjcf import Physics
 from adapters.mujoco.model import Model
-from adapters.mujoco.pairs import PairTable, collides
+from adapters.mujoco.pairs import collides
 from adapters.mujoco.scale import dof_sizes, scale_of
 from adapters.mujoco.settings import (
     IMPEDANCE,
@@ -242,7 +242,6 @@ class MujocoAdapter(Adapter):
         built.preload = load
         built.forces = built.forces.only(own)
         built.hops = hop_allowances(built.model, built.qpos0, hops(scenario.cams, physics.cam_pieces))
-        built.pairs = PairTable.of(built.model)
         if dynamic:
             built.loads, built.angles = loads, scenario
         if kinematic:
