@@ -16,7 +16,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from adapters.mujoco.cam_facets import DEFAULT_PIECES
-from adapters.mujoco.cams import CamPair, Geom
+from adapters.mujoco.cam_mjcf import cam_flags, cam_geoms, contact_pairs
+from adapters.mujoco.cams import CamPair
 from adapters.mujoco.equalities import equalities, num
 from adapters.mujoco.laws import Law
 from adapters.mujoco.loads import WORLD_SITE, Loads, site_name
@@ -78,21 +79,13 @@ def mjcf(
     for law in laws:
         if law.clock is not None:
             _clock(world, law, physics)
-    for pair in cams:
-        for geom in pair.cam:
-            _geom(elements[geom.body], geom, contact=True, collision=_bits(pair, physics, cam=True))
-        _geom(
-            elements[pair.follower.body],
-            pair.follower,
-            contact=True,
-            collision=_bits(pair, physics, cam=False),
-        )
+    solref, solimp = num(*physics.solref), num(*physics.contact_solimp)
+    cam_geoms(elements, cams, solref, solimp)
     equalities(root, elements, tree, laws)
     _loads(root, elements, physics.loads)
     steered = [law for law in laws if law.clock is not None and law.clock.law is not None]
     _clock_motors(root, steered, physics)
-    if cams:
-        _contact_pairs(root, cams, physics)
+    contact_pairs(root, cams, solref, solimp)
     if keyframe is not None:
         _keyframe(root, keyframe, physics, steered)
     ET.indent(root)
@@ -114,9 +107,7 @@ def _options(root: ET.Element, scenario: Scenario, physics: Physics, cams: list[
     )
     # A scene carries only what it needs: without cams there is nothing to collide.
     flags = {"autoreset": "disable"} if cams else {"autoreset": "disable", "contact": "disable"}
-    if any(pair.mask for pair in cams):  # as an explicit pair does, whatever the bodies' relation
-        flags["filterparent"] = "disable"
-    ET.SubElement(option, "flag", flags)
+    ET.SubElement(option, "flag", {**flags, **cam_flags(cams)})
     default = ET.SubElement(root, "default")
     ET.SubElement(default, "geom", contype="0", conaffinity="0", rgba="0.6 0.7 0.8 1")
     ET.SubElement(default, "equality", solref=num(*physics.solref), solimp=num(*physics.solimp))
@@ -154,27 +145,6 @@ def _clock(world: ET.Element, law: Law, physics: Physics) -> None:
         armature=num(armature),
         stiffness=num(armature * law.clock.omega2),
     )
-
-
-def _contact_pairs(root: ET.Element, cams: list[CamPair], physics: Physics) -> None:
-    """One contact pair per cam facet, all on the one follower geom (a cam colliding by bits has none)."""
-    paired = [pair for pair in cams if not pair.mask]
-    if not paired:
-        return
-    contact = ET.SubElement(root, "contact")
-    solref, solimp = num(*physics.solref), num(*physics.contact_solimp)
-    for pair in paired:
-        for k, piece in enumerate(pair.cam):
-            ET.SubElement(
-                contact,
-                "pair",
-                name=pair.name if len(pair.cam) == 1 else f"{pair.name}_{k}",
-                geom1=piece.name,
-                geom2=pair.follower.name,
-                condim="1",
-                solref=solref,
-                solimp=solimp,
-            )
 
 
 def _keyframe(
@@ -260,34 +230,6 @@ def _pitch_radius(scenario: Scenario, name: str) -> float:
         if isinstance(joint, RackPinion) and joint.centre.body == name:
             return joint.radius
     return 0.0
-
-
-def _bits(pair: CamPair, physics: Physics, cam: bool) -> dict[str, str]:
-    """A cam geom's (`cam`) or its follower's collision attributes where they collide by bits: the
-    bit, and the explicit pair's condim, solref and solimp (MuJoCo mixes the two geoms' equal values
-    into the same numbers); none for explicit pairs (the default contype and conaffinity 0)."""
-    if not pair.mask:
-        return {}
-    bit = str(pair.mask)
-    return {
-        "contype": bit if cam else "0",
-        "conaffinity": "0" if cam else bit,
-        "condim": "1",
-        "solref": num(*physics.solref),
-        "solimp": num(*physics.contact_solimp),
-    }
-
-
-def _geom(body: ET.Element, geom: Geom, contact: bool, collision: dict[str, str] | None = None) -> None:
-    half = geom.angle / 2.0
-    place = {"pos": num(*geom.pos, 0.0), "quat": num(math.cos(half), 0.0, 0.0, math.sin(half))}
-    if geom.fromto is not None:
-        x1, y1, x2, y2 = geom.fromto
-        place = {"fromto": num(x1, y1, 0.0, x2, y2, 0.0)}
-    colour = "0.9 0.5 0.3 1" if contact else "0.6 0.7 0.8 1"
-    attrs = {"name": geom.name, "type": geom.kind, "size": num(*geom.size), **place, "rgba": colour}
-    attrs.update(collision or {})
-    ET.SubElement(body, "geom", attrs)
 
 
 def _loads(root: ET.Element, elements: dict[str, ET.Element], loads: Loads) -> None:
