@@ -6,20 +6,25 @@ contact pairs, or, for a flat face on facets, pairs MuJoCo finds itself by the c
 conaffinity bit. The assembly (adapters.mujoco.assembly) and the contact check at every output time
 (adapters.mujoco.cam_load) look these up at each call. They are read from MuJoCo's arrays as plain
 lists (pair_geom1/2, the name table, geom_contype/conaffinity, d.contact's columns) rather than
-through one MjContact or geom view per item, which cost about 2 ms per call on 512 facets.
+through one MjContact or geom view per item, which cost about 2 ms per call on 512 facets; the
+closest contacts of more than MANY contacts (the assembly's margin reaches hundreds of facets) on
+arrays, with the same answers.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import mujoco
 import numpy as np
 
 FOLLOWER = "_follower"
 """The suffix of a follower geom's name (adapters.mujoco.cams)."""
+MANY = 32
+"""Contacts from which closest_contacts works on arrays (below, numpy's per-call overhead costs more
+than the loop: 7 us against 0.1-0.2 ms on a disc cam's two contacts)."""
 
 
 @dataclass(frozen=True)
@@ -35,6 +40,11 @@ class PairTable:
     followers: tuple[int, ...]
     pairs: tuple[tuple[int, ...], ...]
     by_geoms: dict[tuple[int, int], int]
+    keys: np.ndarray = field(default_factory=lambda: np.empty(0, dtype=np.int64), compare=False)
+    """by_geoms' geom pairs as lower * ngeom + higher, sorted, for lookups on arrays."""
+    key_groups: np.ndarray = field(default_factory=lambda: np.empty(0, dtype=np.int64), compare=False)
+    """The group of each of `keys`."""
+    ngeom: int = 0
 
     @classmethod
     def of(cls, m: mujoco.MjModel) -> PairTable:
@@ -61,7 +71,13 @@ class PairTable:
             for k, follower in by_bits.items():
                 if mask & (1 << k):
                     by_geoms[(geom, follower) if geom <= follower else (follower, geom)] = k
-        return cls(tuple(followers[k] for k in range(count)), tuple(map(tuple, own)), by_geoms)
+        keys = np.array([a * m.ngeom + b for a, b in by_geoms], dtype=np.int64)
+        order = np.argsort(keys)
+        key_groups = np.array(list(by_geoms.values()), dtype=np.int64)[order]
+        own_pairs = tuple(map(tuple, own))
+        return cls(
+            tuple(followers[k] for k in range(count)), own_pairs, by_geoms, keys[order], key_groups, m.ngeom
+        )
 
     def contacts(self, d: mujoco.MjData) -> Iterator[tuple[int, int, int, float]]:
         """Each contact over a cam's geoms, in d.contact's order: its index, its group (cam), its
@@ -81,6 +97,16 @@ class PairTable:
             if group is not None:
                 yield i, group, address, dist
 
+    def groups_of(self, d: mujoco.MjData) -> np.ndarray:
+        """Each contact's group (cam), -1 where its geoms are no cam's or it has no row."""
+        n = d.ncon
+        c = d.contact
+        first, second = c.geom1[:n].astype(np.int64), c.geom2[:n].astype(np.int64)
+        keys = np.minimum(first, second) * self.ngeom + np.maximum(first, second)
+        at = np.minimum(np.searchsorted(self.keys, keys), len(self.keys) - 1)
+        found = (self.keys[at] == keys) & (c.efc_address[:n] >= 0)
+        return np.where(found, self.key_groups[at], -1)
+
 
 def collides(m: mujoco.MjModel) -> bool:
     """Whether the model has cam contacts: explicit pairs, or geoms colliding by bits."""
@@ -97,6 +123,8 @@ def closest_contacts(m: mujoco.MjModel, d: mujoco.MjData, table: PairTable | Non
     """Per cam contact (pair group), the index in d.contact of its closest contact with a row.
     `table`: PairTable.of(m), where the caller has it already."""
     table = PairTable.of(m) if table is None else table
+    if d.ncon > MANY and len(table.keys):
+        return _closest_on_arrays(d, table)
     best: dict[int, tuple[float, int]] = {}
     for i, group, address, dist in table.contacts(d):
         if address < 0:
@@ -104,6 +132,24 @@ def closest_contacts(m: mujoco.MjModel, d: mujoco.MjData, table: PairTable | Non
         if group not in best or dist < best[group][0]:
             best[group] = (dist, i)
     return {group: i for group, (_, i) in best.items()}
+
+
+def _closest_on_arrays(d: mujoco.MjData, table: PairTable) -> dict[int, int]:
+    """closest_contacts on arrays, the loop's answer: per group in the order its first contact with a
+    row comes, the first of its least distances, or its first contact where that one's distance is
+    NaN (no distance is below a NaN, and a later NaN is below none)."""
+    groups = table.groups_of(d)
+    dist = d.contact.dist[: d.ncon]
+    best = {}
+    for group in dict.fromkeys(groups[groups >= 0].tolist()):
+        ours = np.flatnonzero(groups == group)
+        values = dist[ours]
+        if np.isnan(values[0]):
+            best[group] = int(ours[0])
+            continue
+        numbers = ~np.isnan(values)
+        best[group] = int(ours[numbers][np.argmin(values[numbers])])
+    return best
 
 
 @contextmanager

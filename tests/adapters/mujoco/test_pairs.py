@@ -12,7 +12,7 @@ import pytest
 
 import scenarios
 from adapters.mujoco import MujocoAdapter
-from adapters.mujoco.pairs import PairTable, closest_contacts, margins
+from adapters.mujoco.pairs import MANY, PairTable, closest_contacts, margins
 from adapters.mujoco.scale import scale_of
 from scenarios.scenario import Scenario
 
@@ -82,3 +82,9 @@ def test_closest_contacts_are_the_per_contact_loop(name: str) -> None:
     assert closest_contacts(m, d) == old_closest(m, d, scenario)
     d.contact.efc_address[0] = -1  # a contact without a row is not the cam's
     assert closest_contacts(m, d) == old_closest(m, d, scenario)
+    d.contact.dist[d.ncon // 2] = np.nan  # a NaN met later is below none
+    assert closest_contacts(m, d) == old_closest(m, d, scenario)
+    d.contact.dist[:] = rounded  # the least distance on the last contact
+    d.contact.dist[d.ncon - 1] = -1.0
+    assert closest_contacts(m, d) == old_closest(m, d, scenario) == {0: d.ncon - 1}
+    assert (d.ncon > MANY) == (name.endswith("/spline"))  # both ways of finding it are compared
