@@ -45,6 +45,7 @@ class PairTable:
     key_groups: np.ndarray = field(default_factory=lambda: np.empty(0, dtype=np.int64), compare=False)
     """The group of each of `keys`."""
     ngeom: int = 0
+    """The model's geom count, the base of `keys`."""
 
     @classmethod
     def of(cls, m: mujoco.MjModel) -> PairTable:
