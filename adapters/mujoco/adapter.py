@@ -43,7 +43,7 @@ from adapters.mujoco.laws import laws
 from adapters.mujoco.loads import loads_of
 from adapters.mujoco.mjcf import Physics
 from adapters.mujoco.model import Model
-from adapters.mujoco.pairs import PairTable
+from adapters.mujoco.pairs import collides
 from adapters.mujoco.scale import dof_sizes, scale_of
 from adapters.mujoco.settings import (
     IMPEDANCE,
@@ -242,7 +242,6 @@ class MujocoAdapter(Adapter):
         built.preload = load
         built.forces = built.forces.only(own)
         built.hops = hop_allowances(built.model, built.qpos0, hops(scenario.cams, physics.cam_pieces))
-        built.pairs = PairTable.of(built.model)
         if dynamic:
             built.loads, built.angles = loads, scenario
         if kinematic:
@@ -264,6 +263,7 @@ class MujocoAdapter(Adapter):
         columns = model.forces.columns()
         forces = np.empty((n, len(columns)))
         done = 0  # whole steps from t = 0: the lattice every output time is read from
+        cams = collides(m)
         with controls(m, d, model.loads.motors, model.clocks):
             mujoco.mj_forward(m, d)
             for i, t in enumerate(grid):
@@ -276,7 +276,7 @@ class MujocoAdapter(Adapter):
                     self.count_steps(1 if rest > 0.0 else 0)
                     record(m, d, model, pos[i], vel[i], acc[i])
                     forces[i] = model.forces.read(m, d)
-                    if m.npair:
+                    if cams:
                         check_contacts(m, d, model.preload, model.hops, model.pairs)
         extras = angle_columns(model.angles, model.bodies, pos[:, :, 2]) if model.angles else {}
         extras.update(zip(columns, forces.T, strict=True))

@@ -19,7 +19,7 @@ import mujoco
 import numpy as np
 
 from adapters.base import Singular
-from adapters.mujoco.pairs import PairTable, closest_contacts
+from adapters.mujoco.pairs import PairTable, closest_contacts, margins
 from adapters.mujoco.scale import Scale, dof_sizes, row_tolerances
 
 CAM_MARGIN = 1.0
@@ -28,22 +28,22 @@ contact still has a row."""
 
 
 @contextmanager
-def _margin(m: mujoco.MjModel, scale: Scale) -> Iterator[None]:
-    """The cam contacts detected within CAM_MARGIN characteristic lengths meanwhile."""
-    margin = m.pair_margin.copy()
-    m.pair_margin[:] = CAM_MARGIN * scale.length
-    try:
+def _margin(m: mujoco.MjModel, scale: Scale, table: PairTable | None = None) -> Iterator[None]:
+    """The cam contacts detected within CAM_MARGIN characteristic lengths meanwhile (`table`: as
+    closest_contacts)."""
+    with margins(m, PairTable.of(m) if table is None else table, CAM_MARGIN * scale.length):
         yield
-    finally:
-        m.pair_margin[:] = margin
 
 
 def _rows(
     m: mujoco.MjModel, d: mujoco.MjData, table: PairTable | None = None
 ) -> tuple[np.ndarray, np.ndarray]:
     """Residuals and their Jacobian (rows x dofs) of the equalities and of each cam's closest
-    contact (`table`: as closest_contacts)."""
-    mujoco.mj_forward(m, d)
+    contact (`table`: as closest_contacts). The position stage makes the rows (efc_pos, efc_J); the
+    rest of a forward pass would solve them, hundreds of contact rows at the assembly's margin on a
+    faceted cam (half its time there), and sets nothing a later step starts from (the solver's warm
+    start is saved by a step only)."""
+    mujoco.mj_fwdPosition(m, d)
     keep = d.efc_type == int(mujoco.mjtConstraint.mjCNSTR_EQUALITY)  # an int: numpy compares in C
     for i in closest_contacts(m, d, table).values():
         keep[d.contact[i].efc_address] = True
@@ -57,12 +57,13 @@ def assemble(
     clocks: dict[int, tuple[float, float]],
     scale: Scale,
     iterations: int = 50,
+    table: PairTable | None = None,
 ) -> None:
     """Solve d.qpos and d.qvel in place. `clocks` maps a clock's dof to its (qpos, qvel); MuJoCo's
-    dofs and qpos coincide here (hinges and slides only)."""
+    dofs and qpos coincide here (hinges and slides only). `table`: as closest_contacts."""
     sizes = dof_sizes(m, scale)
-    table = PairTable.of(m)
-    with _margin(m, scale):
+    table = PairTable.of(m) if table is None else table
+    with _margin(m, scale, table):
         free = np.array([k for k in range(m.nv) if k not in clocks], dtype=int)
         for dof, (q, v) in clocks.items():
             d.qpos[dof], d.qvel[dof] = q, v
@@ -125,11 +126,16 @@ def contact_slopes(m: mujoco.MjModel, d: mujoco.MjData, scale: Scale) -> dict[in
 
 
 def settle(
-    m: mujoco.MjModel, d: mujoco.MjData, clocks: dict[int, tuple[float, float]], steps: int = 400
+    m: mujoco.MjModel,
+    d: mujoco.MjData,
+    clocks: dict[int, tuple[float, float]],
+    steps: int = 400,
+    table: PairTable | None = None,
 ) -> None:
     """Let preloaded contacts sink to their static penetration with the drives held still, then
     give the mechanism its start velocity again (MuJoCo's contact carries load only when it
-    penetrates, so an assembled contact at distance zero would start with a jolt)."""
+    penetrates, so an assembled contact at distance zero would start with a jolt). `table`: as
+    closest_contacts."""
     start = {dof: (q, 0.0) for dof, (q, _) in clocks.items()}
     for dof, (q, _) in start.items():
         d.qpos[dof], d.qvel[dof] = q, 0.0
@@ -141,6 +147,6 @@ def settle(
     d.qvel[:] = 0.0
     for dof, (q, _) in clocks.items():
         d.qpos[dof] = q
-    _, jac = _rows(m, d)
+    _, jac = _rows(m, d, table)
     velocities(m, d, jac, {dof: v for dof, (_, v) in clocks.items()})
     mujoco.mj_forward(m, d)

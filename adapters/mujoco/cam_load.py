@@ -24,7 +24,7 @@ import numpy as np
 from adapters.base import EngineFailure
 from adapters.mujoco.assembly import closest_contacts
 from adapters.mujoco.cam_tip import tip_radius
-from adapters.mujoco.pairs import FOLLOWER, PairTable, follower_geom
+from adapters.mujoco.pairs import FOLLOWER, PairTable, margins
 from scenarios.cam_profiles import EccentricDisc
 from scenarios.cams import CamContact, FlatFaceCam, KnifeEdgeCam, RollerCam, follower_body
 from scenarios.drivers import AbsoluteDriver
@@ -134,23 +134,21 @@ def check_contacts(
     vertex, where its velocity turns and its contact's compression is released, and lands within a
     few steps. `table`: PairTable.of(m), where the caller has it already."""
     table = PairTable.of(m) if table is None else table
-    groups = table.groups  # by pair
-    count = max(groups, default=-1) + 1
+    count = len(table.followers)
     forces = np.zeros(count)
     found = np.zeros(count, dtype=bool)
-    for _, pair, address, _ in table.contacts(d):
+    for _, group, address, _ in table.contacts(d):
         if address >= 0:
-            found[groups[pair]] = True
-            forces[groups[pair]] += d.efc_force[address]
+            found[group] = True
+            forces[group] += d.efc_force[address]
     for group in range(count):
         if found[group] and forces[group] > FORCE_FLOOR * load:
             continue
         allowed = (hops or {}).get(group)
-        gap = _gap(m, d, table, [k for k, g in enumerate(groups) if g == group], allowed) if allowed else None
+        gap = _gap(m, d, table, group, allowed) if allowed else None
         if gap is not None:
             continue
-        k = groups.index(group)
-        follower = m.geom(follower_geom(m, k)).name
+        follower = m.geom(table.followers[group]).name
         what = "no contact row" if not found[group] else f"force {forces[group]:.3g} N"
         raise EngineFailure(
             f"contact lost: cam '{follower.removesuffix(FOLLOWER)}' at t = {d.time:.6g} s "
@@ -170,18 +168,12 @@ def hop_allowances(m: mujoco.MjModel, qpos: np.ndarray, sagittas: dict[int, floa
     return {group: max(sag, depth.get(group, 0.0)) for group, sag in sagittas.items()}
 
 
-def _gap(
-    m: mujoco.MjModel, d: mujoco.MjData, table: PairTable, pairs: list[int], within: float
-) -> float | None:
-    """The least distance between the follower and these pairs' cam geoms (one cam's pairs, `table`
-    giving each contact's pair) if below `within`."""
-    margins = m.pair_margin[pairs].copy()
-    m.pair_margin[pairs] = within
+def _gap(m: mujoco.MjModel, d: mujoco.MjData, table: PairTable, group: int, within: float) -> float | None:
+    """The least distance between this cam's (`group`'s) follower and its cam geoms if below `within`."""
     try:
-        mujoco.mj_collision(m, d)
-        ours = set(pairs)
-        dists = [dist for _, pair, _, dist in table.contacts(d) if pair in ours]
+        with margins(m, table, within, [group]):
+            mujoco.mj_collision(m, d)
+            dists = [dist for _, k, _, dist in table.contacts(d) if k == group]
     finally:
-        m.pair_margin[pairs] = margins
         mujoco.mj_forward(m, d)
     return min(dists) if dists and min(dists) <= within else None

@@ -18,6 +18,7 @@ from adapters.mujoco.forces import force_map
 from adapters.mujoco.laws import Clock, Law, laws
 from adapters.mujoco.mjcf import Physics, mjcf
 from adapters.mujoco.model import Model, evaluate
+from adapters.mujoco.pairs import PairTable
 from adapters.mujoco.scale import Scale, clock_armature
 from adapters.mujoco.simulation import advance
 from adapters.mujoco.tree import Tree, angle
@@ -43,13 +44,14 @@ def compile_model(
     cams = cam_pairs(scenario.cams, tree, physics.cam_pieces)
     m = mujoco.MjModel.from_xml_string(mjcf(scenario, tree, found, cams, physics))
     d = mujoco.MjData(m)
+    table = PairTable.of(m)
     clocks = clocks_at(m, found, 0.0)
-    assemble(m, d, clocks, scale)
+    assemble(m, d, clocks, scale, table=table)
     for t in -physics.timestep * np.arange(1, run_in + 1):
         clocks = clocks_at(m, found, float(t))
-        assemble(m, d, clocks, scale)
-    if m.npair:
-        settle(m, d, clocks)
+        assemble(m, d, clocks, scale, table=table)
+    if cams:
+        settle(m, d, clocks, table=table)
     if scenario.analysis == "dynamic":
         sites = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE, b.name) for b in scenario.bodies]
         rate_velocities(m, d, sites, np.array([b.rate for b in scenario.bodies], dtype=float))
@@ -73,6 +75,7 @@ def compile_model(
         joint_ids={m.joint(j).name: m.jnt_dofadr[j] for j in range(m.njnt)},
         clocks=clock_dofs(m, found),
         forces=force_map(scenario, tree, found, m),
+        pairs=table,
     )
 
 

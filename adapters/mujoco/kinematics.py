@@ -17,6 +17,7 @@ import numpy as np
 
 from adapters.base import Singular, Unsupported
 from adapters.mujoco.laws import Clock
+from adapters.mujoco.pairs import collides
 
 NEWTON_STEP = 1e-14
 """Newton stops when its step is below this, per unit of each dof's size (1 rad, the extent)."""
@@ -29,7 +30,7 @@ CONNECT, JOINT, TENDON = (
 
 def check_rows(m: mujoco.MjModel) -> str | None:
     """Why the kinematic mode cannot solve this model's rows exactly, if it cannot."""
-    if m.npair:
+    if collides(m):
         return "MuJoCo's kinematic mode solves equality rows only; a cam is a contact (use RK4)"
     for k in range(m.neq):
         kind = int(m.eq_type[k])

@@ -3,7 +3,8 @@
 Bodies sit at the canonical body frames (a site named after each body marks it), hinges turn about
 z, slides move in the plane, loops close with site-based `connect`, laws become `joint` equalities
 (or a fixed tendon and a `tendon` equality when more than two joints take part), clocks are extra
-rotors (a steered clock with a motor), cams are contact pairs. Every number is written to full precision.
+rotors (a steered clock with a motor), cams are contact pairs (explicit ones, or a flat face on facets
+by contype/conaffinity bits: adapters.mujoco.cams). Every number is written to full precision.
 """
 
 from __future__ import annotations
@@ -15,7 +16,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from adapters.mujoco.cam_facets import DEFAULT_PIECES
-from adapters.mujoco.cams import CamPair, Geom
+from adapters.mujoco.cam_mjcf import cam_flags, cam_geoms, contact_pairs
+from adapters.mujoco.cams import CamPair
 from adapters.mujoco.equalities import equalities, num
 from adapters.mujoco.laws import Law
 from adapters.mujoco.loads import WORLD_SITE, Loads, site_name
@@ -66,7 +68,7 @@ def mjcf(
 ) -> str:
     """The model as MJCF text; `keyframe` (qpos, qvel) is stored as the key named 'start'."""
     root = ET.Element("mujoco", model=scenario.name.replace("/", "_"))
-    _options(root, scenario, physics, bool(cams))
+    _options(root, scenario, physics, cams)
     world = ET.SubElement(root, "worldbody")
     ET.SubElement(world, "light", pos="0 0 2", dir="0 0 -1", directional="true")
     elements = {GROUND: world}
@@ -77,22 +79,20 @@ def mjcf(
     for law in laws:
         if law.clock is not None:
             _clock(world, law, physics)
-    for pair in cams:
-        for geom in (*pair.cam, pair.follower):
-            _geom(elements[geom.body], geom, contact=True)
+    solref, solimp = num(*physics.solref), num(*physics.contact_solimp)
+    cam_geoms(elements, cams, solref, solimp)
     equalities(root, elements, tree, laws)
     _loads(root, elements, physics.loads)
     steered = [law for law in laws if law.clock is not None and law.clock.law is not None]
     _clock_motors(root, steered, physics)
-    if cams:
-        _contact_pairs(root, cams, physics)
+    contact_pairs(root, cams, solref, solimp)
     if keyframe is not None:
         _keyframe(root, keyframe, physics, steered)
     ET.indent(root)
     return ET.tostring(root, encoding="unicode")
 
 
-def _options(root: ET.Element, scenario: Scenario, physics: Physics, cams: bool) -> None:
+def _options(root: ET.Element, scenario: Scenario, physics: Physics, cams: list[CamPair]) -> None:
     """The compiler, the options (step, integrator, gravity, solver) and the defaults."""
     ET.SubElement(root, "compiler", angle="radian", autolimits="true")
     option = ET.SubElement(
@@ -107,7 +107,7 @@ def _options(root: ET.Element, scenario: Scenario, physics: Physics, cams: bool)
     )
     # A scene carries only what it needs: without cams there is nothing to collide.
     flags = {"autoreset": "disable"} if cams else {"autoreset": "disable", "contact": "disable"}
-    ET.SubElement(option, "flag", flags)
+    ET.SubElement(option, "flag", {**flags, **cam_flags(cams)})
     default = ET.SubElement(root, "default")
     ET.SubElement(default, "geom", contype="0", conaffinity="0", rgba="0.6 0.7 0.8 1")
     ET.SubElement(default, "equality", solref=num(*physics.solref), solimp=num(*physics.solimp))
@@ -145,24 +145,6 @@ def _clock(world: ET.Element, law: Law, physics: Physics) -> None:
         armature=num(armature),
         stiffness=num(armature * law.clock.omega2),
     )
-
-
-def _contact_pairs(root: ET.Element, cams: list[CamPair], physics: Physics) -> None:
-    """One contact pair per cam facet, all on the one follower geom."""
-    contact = ET.SubElement(root, "contact")
-    solref, solimp = num(*physics.solref), num(*physics.contact_solimp)
-    for pair in cams:
-        for k, piece in enumerate(pair.cam):
-            ET.SubElement(
-                contact,
-                "pair",
-                name=pair.name if len(pair.cam) == 1 else f"{pair.name}_{k}",
-                geom1=piece.name,
-                geom2=pair.follower.name,
-                condim="1",
-                solref=solref,
-                solimp=solimp,
-            )
 
 
 def _keyframe(
@@ -248,17 +230,6 @@ def _pitch_radius(scenario: Scenario, name: str) -> float:
         if isinstance(joint, RackPinion) and joint.centre.body == name:
             return joint.radius
     return 0.0
-
-
-def _geom(body: ET.Element, geom: Geom, contact: bool) -> None:
-    half = geom.angle / 2.0
-    place = {"pos": num(*geom.pos, 0.0), "quat": num(math.cos(half), 0.0, 0.0, math.sin(half))}
-    if geom.fromto is not None:
-        x1, y1, x2, y2 = geom.fromto
-        place = {"fromto": num(x1, y1, 0.0, x2, y2, 0.0)}
-    colour = "0.9 0.5 0.3 1" if contact else "0.6 0.7 0.8 1"
-    attrs = {"name": geom.name, "type": geom.kind, "size": num(*geom.size), **place, "rgba": colour}
-    ET.SubElement(body, "geom", attrs)
 
 
 def _loads(root: ET.Element, elements: dict[str, ET.Element], loads: Loads) -> None:

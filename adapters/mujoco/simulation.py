@@ -18,10 +18,12 @@ STATE = mujoco.mjtState.mjSTATE_INTEGRATION
 
 
 def soften(m: mujoco.MjModel, dt: float, tc: float) -> None:
-    """The step and the equalities' (and contacts') time constant `tc` in seconds."""
+    """The step and the equalities' (and contacts') time constant `tc` in seconds: a contact's in its
+    explicit pair, or in both its geoms where they collide by bits (adapters.mujoco.cams)."""
     m.opt.timestep = dt
     m.eq_solref[:, 0] = tc
     m.pair_solref[:, 0] = tc
+    m.geom_solref[(m.geom_contype | m.geom_conaffinity) != 0, 0] = tc
 
 
 @contextmanager
