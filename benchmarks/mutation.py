@@ -253,6 +253,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/fast/constraint_rows.py": FAST_PATH_TESTS,
     "reference_solver/fast/program.py": (
         "tests/reference_solver/test_fast_program_mutants.py",
+        "tests/reference_solver/test_fast_program_instructions.py",
         *FAST_PATH_TESTS,
     ),
     "reference_solver/fast/structure.py": (
