@@ -24,6 +24,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import json
+import math
 import os
 import tempfile
 import time
@@ -98,7 +99,7 @@ def timed_steps(clock: Clock, log: Path) -> Iterator[None]:
             "scenario": held["group"][0].name,
             "total": time.perf_counter() - start,
             "cpu": time.process_time() - cpu,
-            "work": sum(x or 0.0 for x in (result.build_time, result.warmup_time, result.repeats_time)),
+            "work": sum(_seconds(x) for x in (result.build_time, result.warmup_time, result.repeats_time)),
             "wall": dict(child.wall),
         }
         with open(log, "a") as out:
@@ -179,6 +180,11 @@ def table(found: dict[str, Any]) -> str:
     steps = ", ".join(f"{step} {seconds:.3f}" for step, seconds in found["cpu_steps"].items())
     tail = f"CPU s: this process {parent:.2f} ({steps}); children's calls {children:.2f}"
     return "\n".join([head, *body, tail])
+
+
+def _seconds(value: float | None) -> float:
+    """A measured time, 0 where none was measured (None or NaN: a failed run times nothing)."""
+    return 0.0 if value is None or math.isnan(value) else value
 
 
 def _load() -> str:
