@@ -314,6 +314,7 @@ BENCHMARKS = {
     "scaling": "benchmarks.chain_scaling",
     "sweep": "benchmarks.sweep_speed",
     "overhead": "benchmarks.run_overhead",
+    "breakdown": "benchmarks.run_breakdown",
     "dynamics": "benchmarks.dynamics_speed",
     "store": "benchmarks.store_append",
     "mutation": "benchmarks.mutation",
@@ -373,6 +374,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         default="speed",
         help="speed: cost per time point per family; scaling: cost against chain size; "
         "sweep: a 200-point sweep serial against --workers; overhead: wall time against the measured work; "
+        "breakdown: where a run phase's overhead goes, step by step (--scenario, --engine, --sweep); "
         "store: a save of 100 rows onto stores of 1k, 10k and 100k rows, whole rewrite against append; "
         "mutation: mutmut over a module with its own tests (--module PATH)",
     )

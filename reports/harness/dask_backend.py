@@ -10,8 +10,10 @@ its rows are stored `failed` with the reason, and the next run retries them. Tas
 (retries=0); the local cluster's scheduler gives up on a task at the first worker death it causes
 (allowed-failures 0) and hands each worker one task at a time (worker-saturation 1), so that a dying
 worker holds no other group. An external scheduler's own settings decide that for --cluster.
-Each worker warms once (WarmWorker: the native kernels loaded when it starts) and each task warms
-its scenario before forking its runs, so that a run's child starts ready, as in the serial runner.
+Each worker warms once (WarmWorker: the native kernels loaded when it starts); each task thread keeps
+its engines' warm workers and a truth worker from task to task (reports.harness.kept_workers: forked
+once, not once per group and truth), warming a scenario before a fork, so that a run's child starts
+ready, as in the serial runner.
 
 Dask is imported here only: the serial runner does not import it.
 """
@@ -24,10 +26,11 @@ from collections.abc import Iterator, Sequence
 from typing import Any
 
 from adapters.base import Setting
+from reports.harness import kept_workers
 from reports.harness.group_runs import RunConfig, Stored, failure, run_group
 from reports.harness.metrics import Residual
 from reports.harness.planning import Group
-from reports.harness.runner import Loader, Runner, Truth, progress_bar, solve_truth
+from reports.harness.runner import Loader, Runner, Truth, progress_bar, truth_named
 from reports.harness.truth import NamedTruth
 from scenarios import Scenario
 
@@ -85,12 +88,16 @@ def warm_plugin() -> Any:
 
             warm_kernels()
 
+        def teardown(self, worker: Any) -> None:
+            kept_workers.release_all()
+
     return WarmWorker()
 
 
 def truth_task(truth: Truth, scenario: Scenario, timeout: float) -> NamedTruth | str:
-    """The scenario's truth, solved on a worker (in a forked child with the time limit)."""
-    return solve_truth(truth, scenario, timeout)
+    """The scenario's truth, solved on a worker in the thread's kept truth worker (a forked child,
+    with the time limit; reports.harness.kept_workers)."""
+    return truth_named(kept_workers.truth_worker(truth).call(scenario, timeout))
 
 
 def group_task(
@@ -101,9 +108,10 @@ def group_task(
     config: RunConfig,
     residual: Residual | None,
 ) -> list[Stored]:
-    """One group's rows, made on a worker with the engine loaded there."""
-    group.adapter = loader(group.engine)
-    return run_group(group, jobs, truth, config, residual)
+    """One group's rows, made on a worker with the engine loaded there once, in the thread's kept
+    warm workers (reports.harness.kept_workers), as the serial runner makes them."""
+    group.adapter, workers = kept_workers.group_workers(loader, group.engine, config, residual)
+    return run_group(group, jobs, truth, config, residual, workers=workers)
 
 
 class DaskRunner(Runner):

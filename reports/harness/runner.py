@@ -34,7 +34,7 @@ from reports.harness.common_start import common_start
 from reports.harness.engine_facts import colours, engine_packages
 from reports.harness.forces import TRUTH_TOLERANCE
 from reports.harness.group_runs import RunConfig, Workers, run_group
-from reports.harness.isolation import run_here, run_isolated
+from reports.harness.isolation import Outcome, run_here, run_isolated
 from reports.harness.level_error import SCALE_DEFINITION
 from reports.harness.metrics import (
     HEADLINE_DEFINITION,
@@ -224,7 +224,12 @@ def solve_truth(truth: Truth, scenario: Scenario, timeout: float) -> NamedTruth 
     Dask worker's task thread, where no alarm can be set) in a forked child with the time limit."""
     times = np.asarray(scenario.times())
     here = threading.current_thread() is threading.main_thread()
-    outcome = (run_here if here else run_isolated)(lambda: truth(scenario, times), timeout)
+    return truth_named((run_here if here else run_isolated)(lambda: truth(scenario, times), timeout))
+
+
+def truth_named(outcome: Outcome[Trajectory | NamedTruth]) -> NamedTruth | str:
+    """What a truth hook's call came to: its truth named (a bare trajectory is HOOK_TRUTH), or why
+    there is none."""
     if outcome.kind != "ok" or outcome.value is None:
         return f"no reference truth ({outcome.kind}: {outcome.message})"
     return named(outcome.value, HOOK_TRUTH)
