@@ -62,11 +62,19 @@ def timed(
             result = action()
         spent = time.perf_counter() - start
         per_call = spent / max(1, number)
-        agreed = agree > 0 and abs(per_call - best) <= agree * min(per_call, best)
+        done = enough(per_call, best, once_above, agree)
         best, total, made = min(best, per_call), total + spent, made + 1
-        if best > once_above or agreed:
+        if done:
             break
     return Timing(best, result, made, total, warmup_time)
+
+
+def enough(latest: float, best_before: float, once_above: float, agree: float) -> bool:
+    """Whether `timed` stops after a repeat of `latest` seconds, the best before it `best_before`
+    (infinite before the first): where the best is over `once_above`, or where `latest` agrees
+    with the best before it to a relative `agree` (never where `agree` is 0)."""
+    agreed = agree > 0 and abs(latest - best_before) <= agree * min(latest, best_before)
+    return min(latest, best_before) > once_above or agreed
 
 
 def fastest(

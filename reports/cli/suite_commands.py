@@ -315,6 +315,7 @@ BENCHMARKS = {
     "sweep": "benchmarks.sweep_speed",
     "overhead": "benchmarks.run_overhead",
     "breakdown": "benchmarks.run_breakdown",
+    "repeats": "benchmarks.repeat_noise",
     "dynamics": "benchmarks.dynamics_speed",
     "store": "benchmarks.store_append",
     "mutation": "benchmarks.mutation",
@@ -375,6 +376,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         help="speed: cost per time point per family; scaling: cost against chain size; "
         "sweep: a 200-point sweep serial against --workers; overhead: wall time against the measured work; "
         "breakdown: where a run phase's overhead goes, step by step (--scenario, --engine, --sweep); "
+        "repeats: how far apart timed repeats are, and what stopping where two agree saves; "
         "store: a save of 100 rows onto stores of 1k, 10k and 100k rows, whole rewrite against append; "
         "mutation: mutmut over a module with its own tests (--module PATH)",
     )
