@@ -268,7 +268,7 @@ MODULES: dict[str, tuple[str, ...]] = {
         "tests/reference_solver/test_fast_band_rcond.py",
     ),
     "reference_solver/fast/dense_lu.py": (KERNEL_TESTS,),
-    "reference_solver/fast/loop.py": LOOP_TESTS,
+    "reference_solver/fast/loop.py": (*LOOP_TESTS, "tests/reference_solver/test_fast_loop_mutants_s10.py"),
     "reference_solver/fast/path.py": (LOOP_MUTANT_TESTS, KERNEL_TESTS, WHOLE_PATH_TESTS),
     "reference_solver/fast/dense.py": (
         "tests/reference_solver/test_fast_dense_mutants.py",
@@ -296,7 +296,10 @@ MODULES: dict[str, tuple[str, ...]] = {
     # --- end of the partitioned method ---
     # --- the compiled partitioned right-hand side and its support (session 9, s9-mutdyn) ---
     "reference_solver/dynamics/compiled_rates.py": COMPILED_RATES_TESTS,
-    "reference_solver/fast/rates.py": RATES_KERNEL_TESTS,
+    "reference_solver/fast/rates.py": (
+        *RATES_KERNEL_TESTS,
+        "tests/reference_solver/test_fast_rates_stall.py",
+    ),
     "reference_solver/fast/load_kernel.py": LOAD_KERNEL_TESTS,
     "reference_solver/fast/load_program.py": LOAD_KERNEL_TESTS,
     "reference_solver/kept.py": (
