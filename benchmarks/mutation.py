@@ -261,7 +261,12 @@ MODULES: dict[str, tuple[str, ...]] = {
         KERNEL_TESTS,
         ROWS_TESTS,
     ),
-    "reference_solver/fast/evaluate.py": (KERNEL_TESTS, COMPILED_SYSTEM_TESTS, ROWS_TESTS),
+    "reference_solver/fast/evaluate.py": (
+        KERNEL_TESTS,
+        COMPILED_SYSTEM_TESTS,
+        ROWS_TESTS,
+        f"{DYNAMICS}test_ali3p_offset.py::test_the_compiled_rows_lose_nothing_to_the_coordinates_size",
+    ),
     "reference_solver/fast/band.py": (
         KERNEL_TESTS,
         STRUCTURE_TESTS,
@@ -292,7 +297,11 @@ MODULES: dict[str, tuple[str, ...]] = {
     # --- end of ALI3-P ---
     # --- the partitioned method (session 8, s8-mut4) ---
     "reference_solver/dynamics/partition.py": PARTITIONED_TESTS,
-    "reference_solver/dynamics/forward.py": (*PARTITIONED_TESTS, f"{DYNAMICS}test_forward_mutants.py"),
+    "reference_solver/dynamics/forward.py": (
+        *PARTITIONED_TESTS,
+        f"{DYNAMICS}test_forward_mutants.py",
+        f"{DYNAMICS}test_forward_mutants_s10.py",
+    ),
     # --- end of the partitioned method ---
     # --- the compiled partitioned right-hand side and its support (session 9, s9-mutdyn) ---
     "reference_solver/dynamics/compiled_rates.py": COMPILED_RATES_TESTS,

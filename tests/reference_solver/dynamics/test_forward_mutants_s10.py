@@ -1,0 +1,84 @@
+"""Forward dynamics (dynamics.forward) where mutants of the partitioned loop never ended: a loop that
+re-integrates with no output left, or repartitions from the same state, or a walk that never
+advances. Each is held here by a count, not a clock: the partitions made are counted (a spy on
+partitioned_ode that refuses more than the scene needs), and the walk through the integrator's steps
+is read through a bound of its length, so such a mutant fails at once instead of running for ever."""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from reference_solver.dynamics import forward
+from reference_solver.dynamics.forward import simulate
+from tests.reference_solver.dynamics.test_forward_mutants import FRACTION, RTOL, rod, swinging_four_bar
+
+
+class TooManyPartitions(RuntimeError):
+    """More partitions than the scene makes: the partitioned loop does not end."""
+
+
+def _budgeted(monkeypatch: pytest.MonkeyPatch, budget: int) -> list[bytes]:
+    """partitioned_ode counted, refused beyond `budget` calls; the positions each partition starts
+    from (their bytes)."""
+    make = forward.partitioned_ode
+    starts: list[bytes] = []
+
+    def counted(system, mass, loads, q, independent):  # type: ignore[no-untyped-def]
+        if len(starts) == budget:
+            raise TooManyPartitions(f"partition {budget + 1} asked for")
+        starts.append(np.asarray(q, dtype=float).tobytes())
+        return make(system, mass, loads, q, independent)
+
+    monkeypatch.setattr(forward, "partitioned_ode", counted)
+    return starts
+
+
+def test_a_scene_that_keeps_its_partition_is_integrated_once_to_the_end(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The rod pinned at its end keeps its angle as the independent coordinate all the way (its
+    dependent block is regular everywhere): one partition, one integration, every grid time output."""
+    made = _budgeted(monkeypatch, 1)
+    scenario = rod(t_end=0.5, steps=5)
+    result = simulate(scenario, rtol=1e-9)
+    assert result.partitions == len(made) == 1
+    np.testing.assert_array_equal(result.times, scenario.times())
+    assert len(result.q) == 6
+
+
+def test_repartitions_end_at_the_end_of_the_grid(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The swinging four-bar at REPARTITION = 0.95 is partitioned anew 9 times (measured; see
+    test_forward_mutants.py): at most twice that many, each new one from a new state, and every grid
+    time output once."""
+    monkeypatch.setattr(forward, "REPARTITION", FRACTION)
+    made = _budgeted(monkeypatch, 20)
+    scenario = swinging_four_bar()
+    result = simulate(scenario, rtol=RTOL)
+    assert 5 <= result.partitions == len(made) <= 20
+    assert len(set(made)) == len(made)  # no partition made twice from the same state
+    np.testing.assert_array_equal(result.times, scenario.times())
+
+
+def test_the_walk_visits_each_integrator_step_before_each_output_once() -> None:
+    """forward._walk on a real dense solution (y' = -y on [0, 1]): the integrator's steps before each
+    output time, in order, each once (flagged False, its own state), then the output (flagged True,
+    the dense solution there); steps after the last output are not walked. Read through a bound one
+    longer than that sequence, so a walk that repeats a step cannot run for ever here."""
+    sol = solve_ivp(lambda t, y: -y, (0.0, 1.0), [1.0], rtol=1e-6, dense_output=True)
+    assert len(sol.t) >= 6  # steps between the outputs
+    outputs = np.array([0.05, 0.3, 0.31, 0.7])
+    expected: list[tuple[float, bool]] = []
+    step = 0
+    for time in outputs:
+        while sol.t[step] < time:
+            expected.append((float(sol.t[step]), False))
+            step += 1
+        expected.append((float(time), True))
+    walked = list(itertools.islice(forward._walk(sol, outputs), len(expected) + 1))
+    assert [(t, flag) for t, _, flag in walked] == expected
+    for t, y, flag in walked:
+        np.testing.assert_array_equal(y, sol.sol(t) if flag else sol.y[:, list(sol.t).index(t)])
