@@ -10,15 +10,17 @@ from dense algebra on the plain constraint system, and from the plain path."""
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 
 import numpy as np
 import pytest
 
 import scenarios
-from reference_solver.analysis import analyse
+from reference_solver.analysis import analyse, jumped
 from reference_solver.fast import path
-from reference_solver.fast.loop import EVENTS, NEAR_SINGULAR, NOT_CONVERGED, UNVERIFIED
+from reference_solver.fast.loop import BRANCH_JUMP, EVENTS, NEAR_SINGULAR, NOT_CONVERGED, UNVERIFIED
+from reference_solver.newton import NewtonSettings, newton
 from reference_solver.system import ConstraintSystem
 from scenarios import AbsoluteDriver, Constant, ConstantSpeed, Harmonic, Point, Prismatic, RollerCam, Scenario
 from tests.reference_solver.test_analysis import A_HALF, _by_hand, _crank
@@ -212,3 +214,80 @@ def test_time_steps_take_newton_s_full_step_even_where_it_raises_the_residual() 
     np.testing.assert_array_equal(result.iterations, plain.iterations)
     for level, expected in zip(("q", "qd", "qdd"), (q, qd, qdd), strict=True):
         np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-11, err_msg=level)
+
+
+def _x_crank_state(amplitude: float, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """q, q', q'' of the crank whose centre's x follows amplitude cos(3 t), worked by hand (as in
+    test_a_crank_driven_at_its_centre_s_x_runs_in_the_kernel_and_moves_as_worked_by_hand)."""
+    f, df, ddf = (
+        amplitude * math.cos(3 * t),
+        -3 * amplitude * math.sin(3 * t),
+        -9 * amplitude * math.cos(3 * t),
+    )
+    theta = math.acos(f / A_HALF)
+    c, s = math.cos(theta), math.sin(theta)
+    thd = -df / (A_HALF * s)
+    thdd = -(ddf + A_HALF * c * thd**2) / (A_HALF * s)
+    return (
+        np.array([f, A_HALF * s, theta]),
+        np.array([df, A_HALF * c * thd, thd]),
+        np.array([ddf, A_HALF * (c * thdd - s * thd**2), thdd]),
+    )
+
+
+def _first_step_leaves_its_branch(
+    scenario: Scenario, state: tuple[np.ndarray, np.ndarray, np.ndarray], t0: float, h: float
+) -> bool:
+    """Whether the plain path's rule (analysis.jumped: the correction to the predictor, in column
+    scales, above half the predictor's reach) says a step of h from the hand-worked `state` at t0
+    leaves its branch, after plain Newton from the predictor; asserts that the kernel, on the grid
+    (t0, t0 + h), hands over at index 1 exactly then."""
+    system = ConstraintSystem(scenario)
+    q, qd, qdd = state
+    predicted = q + h * qd + 0.5 * h * h * qdd
+    solved = newton(system, predicted, t0 + h, NewtonSettings(1e-12, 1e-12, 25))
+    assert solved.converged
+    left = jumped(system, qd, qdd, h, predicted, solved.q)
+    run = path.run(scenario, np.array([t0, t0 + h]))
+    assert (run.event == EVENTS[BRANCH_JUMP]) == left, (t0, h)
+    assert run.index == 1 or not left
+    return left
+
+
+@pytest.mark.parametrize("length", [0.2, 0.01, 3.0])
+def test_the_kernel_s_first_step_leaves_its_branch_where_the_plain_rule_says(length: float) -> None:
+    """The crank with x = A cos(3 t), A = 0.09 and 0.099 m (a = 0.1: near its fold theta = 0 at t = 0),
+    characteristic length L: one step of h from t0 (the grid's first step, k = 1). Measured: 3 to 6 of
+    the 32 steps per L leave the branch (corrections 10 to 850 against reaches 4.6 to 625), the
+    others converge near their predictor."""
+    jumps = 0
+    for amplitude, t0, h in itertools.product(
+        (0.09, 0.099), (0.0, 0.3), (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0)
+    ):
+        scenario = dataclasses.replace(
+            _crank(),
+            drivers=(AbsoluteDriver("drive", "crank", "x", Harmonic(0.0, amplitude, 3.0)),),
+            characteristic_length=length,
+        )
+        jumps += _first_step_leaves_its_branch(scenario, _x_crank_state(amplitude, t0), t0, h)
+    assert 3 <= jumps <= 10
+
+
+def test_a_coarse_step_of_a_small_swing_counts_as_leaving_its_branch_too() -> None:
+    """The rule on a smooth path: the crank swung by theta = 0.5 + 0.05 cos(3 t), from t0 = pi / 6
+    (theta'' = 0 there), in one step of h. The predictor misses by O(h^3) against a reach O(h): at
+    h = 0.7 and 0.9 the correction (0.06, 0.11, below 0.5 in any unit) exceeds half the reach
+    (0.105, 0.135; measured), and the kernel hands the step over; at 0.3 and 0.5 it does not."""
+    scenario = dataclasses.replace(
+        _crank(), drivers=(AbsoluteDriver("drive", "crank", "theta", Harmonic(0.5, 0.05, 3.0)),)
+    )
+    t0 = math.pi / 6
+    f, df, ddf = 0.5 + 0.05 * math.cos(3 * t0), -0.15 * math.sin(3 * t0), -0.45 * math.cos(3 * t0)
+    c, s = math.cos(f), math.sin(f)
+    state = (
+        np.array([A_HALF * c, A_HALF * s, f]),
+        np.array([-A_HALF * s * df, A_HALF * c * df, df]),
+        np.array([-A_HALF * (c * df**2 + s * ddf), A_HALF * (c * ddf - s * df**2), ddf]),
+    )
+    left = [_first_step_leaves_its_branch(scenario, state, t0, h) for h in (0.3, 0.5, 0.7, 0.9)]
+    assert left == [False, False, True, True]
