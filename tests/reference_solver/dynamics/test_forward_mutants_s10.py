@@ -14,6 +14,8 @@ from scipy.integrate import solve_ivp
 
 from reference_solver.dynamics import forward
 from reference_solver.dynamics.forward import simulate
+from reference_solver.errors import AssemblyError
+from scenarios import GROUND, Point, Revolute
 from tests.reference_solver.dynamics.test_forward_mutants import FRACTION, RTOL, rod, swinging_four_bar
 
 
@@ -82,3 +84,18 @@ def test_the_walk_visits_each_integrator_step_before_each_output_once() -> None:
     assert [(t, flag) for t, _, flag in walked] == expected
     for t, y, flag in walked:
         np.testing.assert_array_equal(y, sol.sol(t) if flag else sol.y[:, list(sol.t).index(t)])
+
+
+@pytest.mark.parametrize("apart", [0.1, 1e-10])
+def test_a_miss_below_one_length_is_still_refused(apart: float) -> None:
+    """The rod's end pinned at the origin and at (d, 0) at once (test_forward.py's case with d = 3):
+    least squares puts it half way, each x row missing by d / 2 over L = 0.5, so d = 0.1 and 1e-10
+    miss by 0.1 and 1e-10 of the length, above assemble_free's 1e-12 and below one length."""
+    second = Revolute("second", Point(GROUND, (apart, 0.0)), Point("link_1", (-0.25, 0.0)))
+    scenario = rod(joints=(*rod().joints, second))
+    with pytest.raises(AssemblyError) as caught:
+        simulate(scenario)
+    message = str(caught.value)
+    prefix = "compound_pendulum: the mechanism cannot assemble at t=0: the constraints miss by "
+    assert message.startswith(prefix) and message.endswith(" (relative to the characteristic length)")
+    assert float(message[len(prefix) :].split()[0]) == pytest.approx(apart, rel=1e-3)
