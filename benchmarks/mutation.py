@@ -227,6 +227,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     ),
     "reference_solver/analysis.py": (
         "tests/reference_solver/test_analysis.py",
+        "tests/reference_solver/test_analysis_assemble_s10.py",
         "tests/reference_solver/test_branch_guard.py",
         "tests/reference_solver/test_fast_path.py",
         "tests/reference_solver/test_failures.py",
