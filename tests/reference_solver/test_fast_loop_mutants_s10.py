@@ -291,3 +291,18 @@ def test_a_coarse_step_of_a_small_swing_counts_as_leaving_its_branch_too() -> No
     )
     left = [_first_step_leaves_its_branch(scenario, state, t0, h) for h in (0.3, 0.5, 0.7, 0.9)]
     assert left == [False, False, True, True]
+
+
+def test_halved_steps_of_a_spline_cam_give_the_plain_answer() -> None:
+    """The spline cam in two steps of half a revolution with two Newton iterations allowed: each step
+    is retaken in halves, whose intermediate rates read the spline's profile too; the kernel's motion
+    is the plain path's under the same settings."""
+    scenario = scenarios.build("cam_roller/spline")
+    grid = np.asarray(scenario.times(steps=2))
+    result = _completed(scenario, grid, max_iterations=2)
+    plain = analyse(scenario, grid, max_iterations=2, fast=False)
+    for level in ("q", "qd", "qdd"):
+        np.testing.assert_allclose(
+            getattr(result, level), getattr(plain, level), rtol=0, atol=1e-10, err_msg=level
+        )
+    assert np.all(result.iterations <= 2)
