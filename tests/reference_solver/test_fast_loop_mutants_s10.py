@@ -23,7 +23,7 @@ from reference_solver.fast.loop import BRANCH_JUMP, EVENTS, NEAR_SINGULAR, NOT_C
 from reference_solver.newton import NewtonSettings, newton
 from reference_solver.system import ConstraintSystem
 from scenarios import AbsoluteDriver, Constant, ConstantSpeed, Harmonic, Point, Prismatic, RollerCam, Scenario
-from tests.reference_solver.test_analysis import A_HALF, _by_hand, _crank
+from tests.reference_solver.test_analysis import A_HALF, AMPLITUDE, MEAN, OMEGA, _by_hand, _crank
 from tests.reference_solver.test_fast_loop_mutants import _completed, _scaled_rcond_1
 
 
@@ -306,3 +306,20 @@ def test_halved_steps_of_a_spline_cam_give_the_plain_answer() -> None:
             getattr(result, level), getattr(plain, level), rtol=0, atol=1e-10, err_msg=level
         )
     assert np.all(result.iterations <= 2)
+
+
+def test_halved_steps_on_a_microsecond_grid_follow_the_motion() -> None:
+    """The crank's motion a million times faster (omega = 3e6 rad/s) on the coarse grid of
+    test_steps_newton_cannot_take_at_once_are_retaken_in_halves scaled to microseconds: the same
+    halved steps, whose smallest allowed half is relative to the grid's times (1e-12 of them), so
+    they still reach every point; the positions are the hand-worked ones at t * 1e6, the rates those
+    times 1e6 and 1e12."""
+    scenario = dataclasses.replace(
+        _crank(), drivers=(AbsoluteDriver("drive", "crank", "theta", Harmonic(MEAN, AMPLITUDE, OMEGA * 1e6)),)
+    )
+    grid = np.linspace(0.0, 1.0, 6)
+    result = _completed(scenario, grid * 1e-6, max_iterations=2)
+    q, qd, qdd = _by_hand(grid)
+    np.testing.assert_allclose(result.q, q, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(result.qd, qd * 1e6, rtol=0, atol=1e-12 * 1e6)
+    np.testing.assert_allclose(result.qdd, qdd * 1e12, rtol=0, atol=1e-12 * 1e12)
