@@ -19,7 +19,14 @@ import pytest
 import scenarios
 from reference_solver.analysis import analyse, jumped
 from reference_solver.fast import path
-from reference_solver.fast.loop import BRANCH_JUMP, EVENTS, NEAR_SINGULAR, NOT_CONVERGED, UNVERIFIED
+from reference_solver.fast.loop import (
+    BRANCH_JUMP,
+    EVENTS,
+    NEAR_SINGULAR,
+    NOT_CONVERGED,
+    SIGN_CHANGE,
+    UNVERIFIED,
+)
 from reference_solver.newton import NewtonSettings, newton
 from reference_solver.system import ConstraintSystem
 from scenarios import AbsoluteDriver, Constant, ConstantSpeed, Harmonic, Point, Prismatic, RollerCam, Scenario
@@ -323,3 +330,22 @@ def test_halved_steps_on_a_microsecond_grid_follow_the_motion() -> None:
     np.testing.assert_allclose(result.q, q, rtol=0, atol=1e-12)
     np.testing.assert_allclose(result.qd, qd * 1e6, rtol=0, atol=1e-12 * 1e6)
     np.testing.assert_allclose(result.qdd, qdd * 1e12, rtol=0, atol=1e-12 * 1e12)
+
+
+def test_a_first_step_onto_the_other_branch_changes_the_sign_of_det_c_q() -> None:
+    """The crank with x = 0.09 cos(3 t) in one step of 0.6 s from t = 0: plain Newton from the
+    predictor converges at theta < 0, across the fold theta = 0 where det C_q = -a sin(theta) changes
+    sign, by less than the rule's half reach (measured 2.2 against 6.7), so the step does not count
+    as leaving its branch: the kernel reports the sign change at index 1."""
+    scenario = dataclasses.replace(
+        _crank(), drivers=(AbsoluteDriver("drive", "crank", "x", Harmonic(0.0, 0.09, 3.0)),)
+    )
+    system = ConstraintSystem(scenario)
+    q, qd, qdd = _x_crank_state(0.09, 0.0)
+    h = 0.6
+    predicted = q + h * qd + 0.5 * h * h * qdd
+    solved = newton(system, predicted, h, NewtonSettings(1e-12, 1e-12, 25))
+    assert solved.converged and math.sin(q[2]) > 0 > math.sin(solved.q[2])
+    assert not jumped(system, qd, qdd, h, predicted, solved.q)
+    run = path.run(scenario, np.array([0.0, h]))
+    assert (run.event, run.index, run.analysis) == (EVENTS[SIGN_CHANGE], 1, None)
