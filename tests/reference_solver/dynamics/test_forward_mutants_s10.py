@@ -6,15 +6,20 @@ is read through a bound of its length, so such a mutant fails at once instead of
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
+import math
 
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
 from reference_solver.dynamics import forward
-from reference_solver.dynamics.forward import simulate
+from reference_solver.dynamics.forward import initial_state, simulate
+from reference_solver.dynamics.loads import Loads
+from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.errors import AssemblyError
+from reference_solver.system import ConstraintSystem
 from scenarios import GROUND, Point, Revolute
 from tests.reference_solver.dynamics.test_forward_mutants import FRACTION, RTOL, rod, swinging_four_bar
 
@@ -99,3 +104,29 @@ def test_a_miss_below_one_length_is_still_refused(apart: float) -> None:
     prefix = "compound_pendulum: the mechanism cannot assemble at t=0: the constraints miss by "
     assert message.startswith(prefix) and message.endswith(" (relative to the characteristic length)")
     assert float(message[len(prefix) :].split()[0]) == pytest.approx(apart, rel=1e-3)
+    # the error carries the least-squares configuration it measured
+    system = ConstraintSystem(scenario)
+    assert caught.value.q is not None and caught.value.time == 0.0
+    miss = np.max(np.abs(system.residual(caught.value.q, 0.0) / system.row_scales))
+    assert miss == pytest.approx(apart, rel=1e-3)
+
+
+def test_a_thrown_rod_starts_with_the_centripetal_acceleration_of_its_rates() -> None:
+    """test_forward.py's rod given rates (0.7, -0.4, 3): its centre, at r = pin + (l / 2)(cos, sin)
+    of theta, turns at the omega test_forward.py derives, so its acceleration is theta'' a - omega^2
+    (l / 2)(cos, sin) with a = (l / 2)(-sin, cos): the velocity terms of C_q q'' = Q_d at the start
+    (theta'' about the pin does not see omega)."""
+    base = rod()
+    (body,) = base.bodies
+    given = (0.7, -0.4, 3.0)
+    scenario = dataclasses.replace(base, bodies=(dataclasses.replace(body, rate=given),))
+    system = ConstraintSystem(scenario)
+    mass = mass_diagonal(scenario, system.layout)
+    start = initial_state(system, mass, Loads(scenario, system.layout, mass), 0.0)
+    theta = 0.3 - math.pi / 2
+    radial = 0.25 * np.array([math.cos(theta), math.sin(theta)])
+    a = 0.25 * np.array([-math.sin(theta), math.cos(theta)])
+    omega = (body.mass * a @ given[:2] + body.inertia * given[2]) / (body.mass * a @ a + body.inertia)
+    assert abs(omega) > 1.0
+    expected = start.qdd[2] * a - omega**2 * radial
+    np.testing.assert_allclose(start.qdd[:2], expected, rtol=0, atol=1e-12 * np.max(np.abs(expected)))
