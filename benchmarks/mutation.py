@@ -227,6 +227,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     ),
     "reference_solver/analysis.py": (
         "tests/reference_solver/test_analysis.py",
+        "tests/reference_solver/test_analysis_assemble_s10.py",
         "tests/reference_solver/test_branch_guard.py",
         "tests/reference_solver/test_fast_path.py",
         "tests/reference_solver/test_failures.py",
@@ -262,14 +263,19 @@ MODULES: dict[str, tuple[str, ...]] = {
         KERNEL_TESTS,
         ROWS_TESTS,
     ),
-    "reference_solver/fast/evaluate.py": (KERNEL_TESTS, COMPILED_SYSTEM_TESTS, ROWS_TESTS),
+    "reference_solver/fast/evaluate.py": (
+        KERNEL_TESTS,
+        COMPILED_SYSTEM_TESTS,
+        ROWS_TESTS,
+        f"{DYNAMICS}test_ali3p_offset.py::test_the_compiled_rows_lose_nothing_to_the_coordinates_size",
+    ),
     "reference_solver/fast/band.py": (
         KERNEL_TESTS,
         STRUCTURE_TESTS,
         "tests/reference_solver/test_fast_band_rcond.py",
     ),
     "reference_solver/fast/dense_lu.py": (KERNEL_TESTS,),
-    "reference_solver/fast/loop.py": LOOP_TESTS,
+    "reference_solver/fast/loop.py": (*LOOP_TESTS, "tests/reference_solver/test_fast_loop_mutants_s10.py"),
     "reference_solver/fast/path.py": (LOOP_MUTANT_TESTS, KERNEL_TESTS, WHOLE_PATH_TESTS),
     "reference_solver/fast/dense.py": (
         "tests/reference_solver/test_fast_dense_mutants.py",
@@ -293,11 +299,18 @@ MODULES: dict[str, tuple[str, ...]] = {
     # --- end of ALI3-P ---
     # --- the partitioned method (session 8, s8-mut4) ---
     "reference_solver/dynamics/partition.py": PARTITIONED_TESTS,
-    "reference_solver/dynamics/forward.py": (*PARTITIONED_TESTS, f"{DYNAMICS}test_forward_mutants.py"),
+    "reference_solver/dynamics/forward.py": (
+        *PARTITIONED_TESTS,
+        f"{DYNAMICS}test_forward_mutants.py",
+        f"{DYNAMICS}test_forward_mutants_s10.py",
+    ),
     # --- end of the partitioned method ---
     # --- the compiled partitioned right-hand side and its support (session 9, s9-mutdyn) ---
     "reference_solver/dynamics/compiled_rates.py": COMPILED_RATES_TESTS,
-    "reference_solver/fast/rates.py": RATES_KERNEL_TESTS,
+    "reference_solver/fast/rates.py": (
+        *RATES_KERNEL_TESTS,
+        "tests/reference_solver/test_fast_rates_stall.py",
+    ),
     "reference_solver/fast/load_kernel.py": LOAD_KERNEL_TESTS,
     "reference_solver/fast/load_program.py": LOAD_KERNEL_TESTS,
     "reference_solver/kept.py": (

@@ -48,6 +48,15 @@ def assemble(system: ConstraintSystem, q_guess: np.ndarray, t: float, tolerance:
             f"{np.max(np.abs(c)):.3g} (relative to the characteristic length "
             f"{system.layout.length_scale:.6g})"
         )
+    elif report.deficiency == 0:  # C_q regular, every row within 10 tolerances: a floor of round-off
+        largest, length = float(np.max(np.abs(result.q), initial=0.0)), system.layout.length_scale
+        why = (
+            f"Newton-Raphson stopped with the constraints missing by up to "
+            f"{np.max(np.abs(c), initial=0.0):.3g}, above the tolerance {tolerance:.3g}, where C_q is "
+            f"regular: the round-off of coordinates as large as {largest:.3g} is about "
+            f"{np.finfo(float).eps * largest / length:.3g} (relative to the characteristic length "
+            f"{length:.6g})"
+        )
     else:
         why = (
             f"the constraints hold (to {np.max(np.abs(c), initial=0.0):.3g}) but C_q is singular there, "
