@@ -49,7 +49,7 @@ class CompiledAli3p(Ali3p):
         self.sizes = np.zeros(8, np.int64)
         self.sizes[[k.S_N, k.S_M, k.S_W]] = n, m, width
         self.sizes[k.S_DRIVERS] = int(system.offsets[len(system.scenario.joints)])
-        self.params = np.zeros(5)
+        self.params = np.zeros(6)
         self.params[k.P_H], self.params[k.P_PENALTY] = h, PENALTY
         self.band = np.zeros((n, width + 1))
         self.arguments = (
@@ -105,6 +105,27 @@ class CompiledAli3p(Ali3p):
 
     def step(self, s: StepState) -> StepState:
         return self.run(s, 1, np.zeros(3), np.zeros(3))[0]
+
+    @property
+    def careful(self) -> bool:
+        """Whether Newton and the projections go through the Schur complement from their first
+        iteration (next to a singular passage, dynamics.passage)."""
+        return bool(self.params[self.kernels.P_CAREFUL])
+
+    @careful.setter
+    def careful(self, value: bool) -> None:
+        self.params[self.kernels.P_CAREFUL] = float(value)
+
+    def run_length(
+        self, s: StepState, length: float, power: np.ndarray, work: np.ndarray
+    ) -> tuple[StepState, np.ndarray, np.ndarray]:
+        """One step of `length` instead of h (a step placed around a singular passage); the
+        penalties stay those of h."""
+        self.params[self.kernels.P_H] = length
+        try:
+            return self.run(s, 1, power, work)
+        finally:
+            self.params[self.kernels.P_H] = self.h
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         """W^-1 rhs with the last step's factors."""

@@ -42,9 +42,11 @@ the first factorization), then scratch."""
 S_N, S_M, S_W, S_DRIVERS, S_EVALUATIONS, S_SLOW, S_ITERATIONS = range(7)
 """Entries of `sizes`: coordinates, rows, W's half-bandwidth, first driver row; counters of
 constraint evaluations and slow (Schur) factorizations, and the last step's Newton iterations."""
-P_H, P_T, P_PENALTY, P_WORK, P_POWER = range(5)
-"""Entries of `params`: the step, the time, the penalty (dynamics.ali3p.PENALTY), the drivers' work
-and the last state's driver power."""
+P_H, P_T, P_PENALTY, P_WORK, P_POWER, P_CAREFUL = range(6)
+"""Entries of `params`: the step, the time, the penalty (dynamics.ali3p.PENALTY), the drivers' work,
+the last state's driver power, and whether the steps are careful (nonzero: Newton and the projections
+go through the Schur complement from their first iteration, as next to a singular passage, where the
+augmented Lagrangian barely moves the directions C_q is losing; dynamics.passage)."""
 OK, NOT_CONVERGED, NOT_POSITIVE = 0, 1, 2
 NEWTON_STEPS = 60
 TOLERANCE = 1e-13
@@ -215,6 +217,9 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
                     _penalties(ints, store, vec, sizes, params)
                 if not factor(ints, store, vec[MASS], vec[ALPHA], n, m, w, band, weight):
                     return NOT_POSITIVE
+                if params[P_CAREFUL] != 0.0:
+                    _schur(ints, store, vec, sizes, band, weight, schur, pivots)
+                    slow = True
             elif not slow:
                 for r in range(m):
                     lam[r] += alpha[r] * c[r]
