@@ -9,6 +9,7 @@ resumes at t_{j+3}. The plain step (dynamics.ali3p) keeps its equal steps.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -70,11 +71,7 @@ class Schedule:
             self._take(1, None)
             self.k = stop
             if self.k == self.count:  # end exactly on the span's last time
-                self.state = StepState(
-                    self.end,
-                    *(getattr(self.state, f) for f in ("q", "qd", "qdd", "multipliers", "jac")),
-                    self.state.iterations,
-                )
+                self.state = replace(self.state, t=self.end)
 
     def _take(self, count: int, length: float | None) -> None:
         """`count` steps of h, or one of `length`; a careful step that fails is taken again
