@@ -19,6 +19,7 @@ from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.partition import State, driver_power
 from reference_solver.dynamics.passage import END_VALUE, Watch
 from reference_solver.errors import ConvergenceError
+from reference_solver.system import ConstraintSystem
 
 SAME_TIME = 1e-9
 """An output time within this fraction of a step from a step's end is that step's state."""
@@ -45,7 +46,6 @@ class Schedule:
         self.zero = math.nan
         self.half = self.h / 2
         self.resume = 0
-        self.placements = 0
 
     def advance(self, until: float) -> None:
         """Steps until a step ends at or after `until` (within SAME_TIME of a step)."""
@@ -120,9 +120,9 @@ class Schedule:
     def _place(self) -> None:
         """Three steps from t_j around the predicted instant, back to the grid at t_{j+3}."""
         assert self.watch is not None
-        self.queue = [self.zero - self.half, self.zero + self.half, self.t0 + self.resume * self.h]
+        back = self.end if self.resume == self.count else self.t0 + self.resume * self.h
+        self.queue = [self.zero - self.half, self.zero + self.half, back]
         self.place_at = None
-        self.placements += 1
         self.watch.forget()
         self.check_at = self.resume
 
@@ -132,6 +132,6 @@ def state_of(loads: Loads, s: StepState, lam: np.ndarray) -> State:
     return State(s.t, s.q, s.qd, s.qdd, lam, s.jac, loads(s.q, s.qd, s.t))
 
 
-def powers(system: object, s: State) -> np.ndarray:
+def powers(system: ConstraintSystem, s: State) -> np.ndarray:
     """The applied, dissipated and driver powers at a state."""
-    return np.array([s.loads.applied_power, s.loads.dissipation, driver_power(system, s)])  # type: ignore[arg-type]
+    return np.array([s.loads.applied_power, s.loads.dissipation, driver_power(system, s)])
