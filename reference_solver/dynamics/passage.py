@@ -6,13 +6,17 @@ measured on A02, 1.28e-4 at 39.3 steps before the instant and 9.74e-7 at 0.3, on
 
 Why: along the direction s measures the augmented Lagrangian contracts by 1/(1 + PENALTY s^2) per
 iteration, so near a passage its small updates are taken for convergence while the rockers are
-still up to 1e-10 off the crank; the exact (Schur complement) solution holds them to C's round-off
-over s, which grows without bound as a step end nears the instant (1e-9 at 0.01 of a step after
-it). The grid (dynamics.ali3p_grid) therefore takes the steps where PENALTY s^2 < CAREFUL through
-the Schur complement from their first iteration, and places three steps so that the predicted
-instant falls in the middle of one, as an event is located by an ODE solver: no step ends within
-half a step of it. Measured on A02's first passage at h = 2e-5: rockers at the passage 1.1e-10 for
-most phases of the instant in its step before, 8.7e-12 to 1.6e-11 with it mid-step and careful.
+still up to 1e-10 off the crank (measured at step ends within 5 steps of A02's first passage, h =
+2e-5); the exact (Schur complement) solution holds them to C's round-off over s, which grows
+without bound as a step end nears the instant (1e-9 at 0.01 of a step after it; a minimum-norm
+SVD projection of the positions alone does the same, 2e-11 to 3e-11 at 0.01 and 0.3 of a step,
+and leaves the rates). The grid (dynamics.ali3p_schedule) therefore takes the steps where
+PENALTY s^2 < CAREFUL through the Schur complement from their first iteration, and places three
+steps so that the predicted instant falls in the middle of one, as an ODE solver locates an
+event: no step ends within END_VALUE / slope (at least half a step) of it. Measured on A02's first
+passage, the rockers at the instant for phases 0.01 to 0.99 of it in its step: 1.1e-10 to 1.3e-10
+before (1.5e-11 at 0.5 to 0.7) and 6.7e-12 to 1.8e-11 after at h = 2e-5; 1.2e-10 to 1.9e-10 before
+and 9e-12 to 1.6e-11 after at h = 1e-5.
 """
 
 from __future__ import annotations
