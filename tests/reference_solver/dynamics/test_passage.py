@@ -14,9 +14,13 @@ import pytest
 import scenarios
 from reference_solver.compiled_system import constraint_system
 from reference_solver.dynamics import ali3p_grid, ali3p_schedule, simulate
-from reference_solver.dynamics.ali3p import PENALTY
+from reference_solver.dynamics.ali3p import PENALTY, StepState
+from reference_solver.dynamics.compiled_ali3p import CompiledAli3p, ali3p_stepper
+from reference_solver.dynamics.forward import initial_state
+from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.passage import CAREFUL, FAR, FIRST, NEAR, Watch, smallest_singular_value
+from reference_solver.errors import ConvergenceError
 from tests.reference_solver.dynamics.test_ali3p import FACTOR, _a02_errors, _chain
 
 
@@ -91,11 +95,14 @@ def test_a_chain_s_rockers_stay_on_the_crank_through_a_placed_passage(
     scenario, grid, reduced = _chain(10, 0.77)
     h = 0.77 / count
     assert reduced.t_events[0][0] / h % 1 == pytest.approx(phase, abs=1e-3)  # type: ignore[attr-defined]
-    placed = []
+    placed: list[float] = []
     place = ali3p_schedule.Schedule._place
-    monkeypatch.setattr(
-        ali3p_schedule.Schedule, "_place", lambda self: (placed.append(self.zero), place(self))
-    )
+
+    def spied(self: ali3p_schedule.Schedule) -> None:
+        placed.append(self.zero)
+        place(self)
+
+    monkeypatch.setattr(ali3p_schedule.Schedule, "_place", spied)
     errors = _a02_errors(simulate(scenario, grid, method="ali3p", step=h * (1 + 1e-9), fast=True), reduced)
     assert placed == [pytest.approx(reduced.t_events[0][0], abs=0.01 * h)]  # type: ignore[attr-defined]
     assert watched / FACTOR < errors[1] < FACTOR * watched
@@ -104,3 +111,36 @@ def test_a_chain_s_rockers_stay_on_the_crank_through_a_placed_passage(
     plain = _a02_errors(simulate(scenario, grid, method="ali3p", step=h * (1 + 1e-9), fast=True), reduced)
     assert equal / FACTOR < plain[1] < FACTOR * equal
     assert plain[0] == pytest.approx(errors[0], rel=0.15) and plain[2] == pytest.approx(errors[2], rel=0.02)
+
+
+def test_a_careful_step_that_fails_is_taken_again_without_care(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The schedule's step: a careful step that raises (a Schur complement next to an instant the
+    watch did not predict) is taken again with the augmented Lagrangian alone, which gives the
+    state an uncareful step gives; a step that fails without care still raises."""
+    scenario = scenarios.build("n_four_bar", overrides={"loops": 2, "t_end": 0.01, "steps": 1})
+    system = constraint_system(scenario)
+    mass = mass_diagonal(scenario, system.layout)
+    loads = Loads(scenario, system.layout, mass)
+    start = initial_state(system, mass, loads, 0.0)
+    first = StepState(start.t, start.q, start.qd, start.qdd, start.lam.copy(), start.jac)
+    stepper = ali3p_stepper(system, mass, loads, 1e-3)
+    assert isinstance(stepper, CompiledAli3p)
+    expected = stepper.step(first)
+    schedule = ali3p_schedule.Schedule(stepper, loads, first, 10, 0.01, None)
+    run = stepper.run
+
+    def failing(*args: object) -> object:
+        if stepper.careful:
+            raise ConvergenceError("careful step failed", time=0.001)
+        return run(*args)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(stepper, "run", failing)
+    stepper.careful = True
+    schedule.advance(0.001)
+    assert not stepper.careful and schedule.before is first
+    np.testing.assert_array_equal(schedule.state.q, expected.q)
+    monkeypatch.setattr(
+        stepper, "run", lambda *args: (_ for _ in ()).throw(ConvergenceError("no", time=0.002))
+    )
+    with pytest.raises(ConvergenceError, match=r"^no$"):
+        schedule.advance(0.002)
