@@ -4,9 +4,10 @@ is symmetric positive definite and banded Cholesky factors it. `ali3p_stepper` g
 constraints compile, Ali3p otherwise; Ali3p stays the plain reference each is checked against.
 
 Measured on A02 as specified (243 coordinates, h = 2e-5), side by side in one process: 94 us a step
-against 470 us for Ali3p on the same compiled rows (5.0 times); the whole 20 s (1e6 steps) in 112 s
-CPU, its energy held to 5.5e-9 of the kinetic energy, the rockers to the crank to 2.1e-10 at a
-passage and 2.2e-13 elsewhere."""
+against 470 us for Ali3p on the same compiled rows (5.0 times). The whole 20 s (1e6 steps, with the
+grid's careful steps and placed step at each passage, dynamics.ali3p_schedule) in 124 s CPU, its
+energy held to 5.4e-9 of the kinetic energy, the rockers to the crank to 1.9e-11 at a passage and
+2.5e-13 elsewhere (112 s, 5.5e-9, 2.1e-10 and 2.2e-13 with equal steps)."""
 
 from __future__ import annotations
 
@@ -49,7 +50,7 @@ class CompiledAli3p(Ali3p):
         self.sizes = np.zeros(8, np.int64)
         self.sizes[[k.S_N, k.S_M, k.S_W]] = n, m, width
         self.sizes[k.S_DRIVERS] = int(system.offsets[len(system.scenario.joints)])
-        self.params = np.zeros(5)
+        self.params = np.zeros(6)
         self.params[k.P_H], self.params[k.P_PENALTY] = h, PENALTY
         self.band = np.zeros((n, width + 1))
         self.arguments = (
@@ -105,6 +106,27 @@ class CompiledAli3p(Ali3p):
 
     def step(self, s: StepState) -> StepState:
         return self.run(s, 1, np.zeros(3), np.zeros(3))[0]
+
+    @property
+    def careful(self) -> bool:
+        """Whether Newton and the projections go through the Schur complement from their first
+        iteration (next to a singular passage, dynamics.passage)."""
+        return bool(self.params[self.kernels.P_CAREFUL])
+
+    @careful.setter
+    def careful(self, value: bool) -> None:
+        self.params[self.kernels.P_CAREFUL] = float(value)
+
+    def run_length(
+        self, s: StepState, length: float, power: np.ndarray, work: np.ndarray
+    ) -> tuple[StepState, np.ndarray, np.ndarray]:
+        """One step of `length` instead of h (a step placed around a singular passage); the
+        penalties stay those of h."""
+        self.params[self.kernels.P_H] = length
+        try:
+            return self.run(s, 1, power, work)
+        finally:
+            self.params[self.kernels.P_H] = self.h
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         """W^-1 rhs with the last step's factors."""

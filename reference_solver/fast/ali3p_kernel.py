@@ -8,11 +8,12 @@ contracts by 1/(1 + PENALTY s^2) along a direction whose scaled singular value s
 plain path stops at a stalled update, leaving the rockers of A02 off the crank by up to 8e-9 rad.
 Here Newton then continues on positions and multipliers together, through the Schur complement
 S = h^2/4 C_q W^-1 C_q^T (dense, factored by fast.dense_lu), to the round-off of C divided by s,
-and the projections finish the same way. What is left: a step ending next to a singular instant
-(within a fraction of a step) leaves the rockers off the crank by up to 1e-11 on two loops, the
-round-off of C over s, and its rates with them, tilted by the crossing branches (3.8e-6 rad/s on
-two loops); the output at that instant, interpolated from them, is off by up to 2e-10 on A02's 40
-loops (1.5e-11 to 2.7e-10 on 40 loops over 1.5 s by the instant's phase in its step).
+and the projections finish the same way. Near an A02 passage that is not enough: the augmented
+Lagrangian's small updates there are taken for convergence with the rockers up to 1e-10 off the
+crank, and a step ending next to the instant leaves them C's round-off over s off. So the grid
+(dynamics.ali3p_schedule, dynamics.passage) sets P_CAREFUL there, which sends Newton and the
+projections through the Schur complement from their first iteration, and places its steps so that
+none ends within half a step of the instant.
 
 The trapezoidal rates are formed from the step's increment, q' = 2/h (q - q_n) - q'_n and
 q'' = 4/h^2 (q - q_n) - 4/h q'_n - q''_n, not from q itself as dynamics.ali3p writes them
@@ -42,9 +43,11 @@ the first factorization), then scratch."""
 S_N, S_M, S_W, S_DRIVERS, S_EVALUATIONS, S_SLOW, S_ITERATIONS = range(7)
 """Entries of `sizes`: coordinates, rows, W's half-bandwidth, first driver row; counters of
 constraint evaluations and slow (Schur) factorizations, and the last step's Newton iterations."""
-P_H, P_T, P_PENALTY, P_WORK, P_POWER = range(5)
-"""Entries of `params`: the step, the time, the penalty (dynamics.ali3p.PENALTY), the drivers' work
-and the last state's driver power."""
+P_H, P_T, P_PENALTY, P_WORK, P_POWER, P_CAREFUL = range(6)
+"""Entries of `params`: the step, the time, the penalty (dynamics.ali3p.PENALTY), the drivers' work,
+the last state's driver power, and whether the steps are careful (nonzero: Newton and the projections
+go through the Schur complement from their first iteration, as next to a singular passage, where the
+augmented Lagrangian barely moves the directions C_q is losing; dynamics.passage)."""
 OK, NOT_CONVERGED, NOT_POSITIVE = 0, 1, 2
 NEWTON_STEPS = 60
 TOLERANCE = 1e-13
@@ -215,6 +218,9 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
                     _penalties(ints, store, vec, sizes, params)
                 if not factor(ints, store, vec[MASS], vec[ALPHA], n, m, w, band, weight):
                     return NOT_POSITIVE
+                if params[P_CAREFUL] != 0.0:
+                    _schur(ints, store, vec, sizes, band, weight, schur, pivots)
+                    slow = True
             elif not slow:
                 for r in range(m):
                     lam[r] += alpha[r] * c[r]
