@@ -13,6 +13,7 @@ Lagrangian (it contracts by 1/(1 + PENALTY s^2) per iteration along the rocker's
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -24,7 +25,11 @@ from reference_solver.dynamics.ali3p import Ali3p, StepState
 from reference_solver.dynamics.compiled_ali3p import CompiledAli3p, ali3p_stepper
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
+from reference_solver.fast import ali3p_kernel as kernel
+from reference_solver.fast.ali3p_matrix import factor
+from reference_solver.fast.dense_lu import lu_solve
 from reference_solver.system import ConstraintSystem
+from tests.reference_solver.test_fast_ali3p_matrix import _bandwidth, _dense, _rows
 
 H = 1e-3
 G = 9.81
@@ -128,3 +133,191 @@ def test_a_step_ending_next_to_the_singular_position_goes_through_the_schur_comp
     c = plain.residual(end.q, end.t)
     balance = jac.T @ (compiled.alpha * c + end.multipliers) - (loads.gravity - mass * accel)
     assert np.max(np.abs(balance)) < 0.25
+
+
+def _kernel_problem(seed: int, n: int, m: int, gain: float) -> dict[str, Any]:
+    """A random row store of full row rank (m < n, from test_fast_ali3p_matrix), masses, penalties
+    alpha_r = gain / (C_q M^-1 C_q^T)_rr, W = M + weight C_q^T diag(alpha) C_q factored by
+    ali3p_matrix.factor, and the kernel's arrays around them (the slow count at 5)."""
+    rng = np.random.default_rng(seed)
+    ints, store = _rows(rng, m, n, 4)
+    jac = _dense(ints, store, m, n)
+    assert np.linalg.matrix_rank(jac) == m
+    w, weight = _bandwidth(ints, m), 0.25e-6
+    mass = rng.uniform(0.5, 2.0, n)
+    alpha = gain / weight / np.einsum("ij,j,ij->i", jac, 1 / mass, jac)
+    vec = np.full((kernel.VECTORS, n), np.nan)  # scratch rows start as garbage
+    vec[kernel.MASS], vec[kernel.ALPHA, :m] = mass, alpha
+    sizes = np.zeros(8, np.int64)
+    sizes[[kernel.S_N, kernel.S_M, kernel.S_W, kernel.S_SLOW]] = n, m, w, 5
+    band = np.zeros((n, w + 1))
+    assert factor(ints, store, mass, vec[kernel.ALPHA], n, m, w, band, weight)
+    big = np.diag(mass) + weight * jac.T @ (alpha[:, None] * jac)
+    schur, pivots = np.full((m, m), np.nan), np.zeros(m, np.int64)
+    return dict(
+        ints=ints,
+        store=store,
+        jac=jac,
+        vec=vec,
+        sizes=sizes,
+        band=band,
+        weight=weight,
+        mass=mass,
+        alpha=alpha,
+        w_dense=big,
+        schur=schur,
+        pivots=pivots,
+        rng=rng,
+        n=n,
+        m=m,
+    )
+
+
+def _schur_of(p: dict[str, Any]) -> None:
+    kernel._schur(
+        p["ints"], p["store"], p["vec"], p["sizes"], p["band"], p["weight"], p["schur"], p["pivots"]
+    )
+
+
+@pytest.mark.parametrize(("seed", "n", "m"), [(0, 12, 7), (1, 15, 12), (3, 9, 4)])
+def test_schur_factors_the_dense_schur_complement(seed: int, n: int, m: int) -> None:
+    """S = weight C_q W^-1 C_q^T (W and C_q dense), by its solves: S x = b for random b; the slow
+    count goes up by one."""
+    p = _kernel_problem(seed, n, m, 1.0)
+    _schur_of(p)
+    jac = p["jac"]
+    dense = p["weight"] * jac @ np.linalg.solve(p["w_dense"], jac.T)
+    assert p["sizes"][kernel.S_SLOW] == 6
+    for _ in range(3):
+        b = p["rng"].standard_normal(m)
+        x = b.copy()
+        lu_solve(p["schur"], m, p["pivots"], x)
+        np.testing.assert_allclose(dense @ x, b, rtol=0, atol=1e-11 * np.abs(b).max())
+
+
+@pytest.mark.parametrize(("seed", "n", "m"), [(0, 12, 7), (1, 15, 12), (3, 9, 4)])
+def test_the_kkt_correction_solves_the_dense_kkt_system(seed: int, n: int, m: int) -> None:
+    """With move = W^-1 f: [W, weight C_q^T; C_q, 0] [dx; dmu] = -[f; gap] solved densely; the kernel
+    leaves -dx in move and adds dmu to the multipliers."""
+    p = _kernel_problem(seed, n, m, 1.0)
+    _schur_of(p)
+    rng, jac, weight = p["rng"], p["jac"], p["weight"]
+    f, gap, start = rng.standard_normal(n), rng.standard_normal(m), rng.standard_normal(m)
+    kkt = np.block([[p["w_dense"], weight * jac.T], [jac, np.zeros((m, m))]])
+    exact = np.linalg.solve(kkt, -np.concatenate([f, gap]))
+    move, multiplier = np.linalg.solve(p["w_dense"], f), start.copy()
+    kernel._kkt_correction(
+        p["ints"],
+        p["store"],
+        p["vec"],
+        p["sizes"],
+        p["band"],
+        weight,
+        p["schur"],
+        p["pivots"],
+        move,
+        gap.copy(),
+        multiplier,
+    )
+    np.testing.assert_allclose(move, -exact[:n], rtol=0, atol=1e-10 * np.abs(exact[:n]).max())
+    np.testing.assert_allclose(multiplier, start + exact[n:], rtol=0, atol=1e-10 * np.abs(exact[n:]).max())
+
+
+def _projected(p: dict[str, Any], rates: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """The M-orthogonal projection onto C_q x = target, densely."""
+    jac, inverse = p["jac"], 1 / p["mass"]
+    gram = jac @ (inverse[:, None] * jac.T)
+    return rates - inverse * (jac.T @ np.linalg.solve(gram, jac @ rates - target))
+
+
+def _project_with_the_kernel(
+    p: dict[str, Any], rates: np.ndarray, target: np.ndarray, slow: bool
+) -> np.ndarray:
+    x = rates.copy()
+    kernel._project(
+        p["ints"],
+        p["store"],
+        p["vec"],
+        p["sizes"],
+        p["band"],
+        p["weight"],
+        p["schur"],
+        p["pivots"],
+        x,
+        target.copy(),
+        slow,
+    )
+    return x
+
+
+@pytest.mark.parametrize(("seed", "n", "m"), [(0, 12, 7), (1, 15, 12), (3, 9, 4)])
+@pytest.mark.parametrize("size", [1e3, 1e-3])
+def test_a_projection_through_the_schur_complement_is_exact(seed: int, n: int, m: int, size: float) -> None:
+    """With penalties that leave the augmented Lagrangian slow (alpha at 1 times the rows' inertia,
+    C_q M^-1 C_q^T conditioned up to 1e6), the projection through the Schur complement is the exact
+    M-orthogonal projection (measured to 4.6e-12 of the largest rate on the worst conditioned)."""
+    p = _kernel_problem(seed, n, m, 1.0)
+    _schur_of(p)
+    rng = p["rng"]
+    rates, target = size * rng.standard_normal(n), size * rng.standard_normal(m)
+    exact = _projected(p, rates, target)
+    got = _project_with_the_kernel(p, rates, target, True)
+    np.testing.assert_allclose(got, exact, rtol=0, atol=1.5e-11 * np.abs(exact).max())
+
+
+def _augmented_lagrangian(p: dict[str, Any], rates: np.ndarray, target: np.ndarray) -> list[np.ndarray]:
+    """The iterates of the projection's augmented Lagrangian (dynamics.projection), densely:
+    W x_k = M rates + weight C_q^T (alpha target - sigma_k), sigma_{k+1} = sigma_k + alpha (C_q x_k -
+    target), sigma_0 = 0; x_0 = rates."""
+    jac, alpha, weight = p["jac"], p["alpha"], p["weight"]
+    sigma, out = np.zeros(target.size), [rates]
+    for _ in range(kernel.PROJECTION_STEPS):
+        x = np.linalg.solve(p["w_dense"], p["mass"] * rates + weight * jac.T @ (alpha * target - sigma))
+        sigma = sigma + alpha * (jac @ x - target)
+        out.append(x)
+    return out
+
+
+def _stop(iterates: list[np.ndarray]) -> int:
+    """Where the kernel's rule stops (fast.ali3p_kernel, PROJECTION_STALLED's docstring and _project's):
+    at a move below SETTLED relative to the rates' largest, or at one that no longer halves when it
+    is below PROJECTION_STALLED or no move before it shrank by SLOW_START."""
+    scale = np.abs(iterates[0]).max()
+    previous, best = math.inf, math.inf
+    for k in range(1, len(iterates)):
+        size = np.abs(iterates[k] - iterates[k - 1]).max() / scale
+        if size <= kernel.SETTLED:
+            return k
+        if size > 0.5 * previous and (size < kernel.PROJECTION_STALLED or best >= kernel.SLOW_START):
+            return k
+        if previous < math.inf:
+            best = min(best, size / previous)
+        previous = size
+    return len(iterates) - 1
+
+
+@pytest.mark.parametrize(
+    ("seed", "n", "m", "gain", "stop"),
+    [(0, 12, 7, 30.0, 3), (3, 9, 4, 3.0, 4), (1, 15, 12, 1.0, 5), (0, 12, 7, 1e5, 0)],
+)
+@pytest.mark.parametrize("size", [1.0, 1e3, 1e-17])
+def test_a_projection_stops_at_the_iterate_its_rule_picks(
+    seed: int, n: int, m: int, gain: float, stop: int, size: float
+) -> None:
+    """The augmented Lagrangian alone: slow ones (moves shrinking by 0.74 to 0.84 once their fast
+    parts are gone) stop at the third to fifth iterate, short of the projection, as the kernel
+    means them to (see _project); a fast one (penalties 1e5 times the rows' inertia) reaches the
+    exact projection and stalls at its round-off. Rates of size 1 to 1e3 and 1e-17: the rule is
+    relative to the rates' largest."""
+    p = _kernel_problem(seed, n, m, gain)
+    rng = p["rng"]
+    rates, target = size * rng.standard_normal(n), size * rng.standard_normal(m)
+    iterates = _augmented_lagrangian(p, rates, target)
+    got = _project_with_the_kernel(p, rates, target, False)
+    if stop:
+        assert _stop(iterates) == stop
+        expected = iterates[stop]
+        np.testing.assert_allclose(got, expected, rtol=0, atol=1e-12 * np.abs(expected).max())
+    else:  # converged: where round-off stalls it is round-off's choice
+        exact = _projected(p, rates, target)
+        np.testing.assert_allclose(got, exact, rtol=0, atol=1e-13 * np.abs(exact).max())
