@@ -21,13 +21,14 @@ from scipy.optimize import brentq
 
 import scenarios
 from reference_solver.compiled_system import constraint_system
-from reference_solver.dynamics.ali3p import Ali3p, StepState
+from reference_solver.dynamics.ali3p import PENALTY, Ali3p, StepState
 from reference_solver.dynamics.compiled_ali3p import CompiledAli3p, ali3p_stepper
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.fast import ali3p_kernel as kernel
 from reference_solver.fast.ali3p_matrix import factor
 from reference_solver.fast.dense_lu import lu_solve
+from reference_solver.fast.program import K_SLOT_COL, WIDTH
 from reference_solver.system import ConstraintSystem
 from tests.reference_solver.test_fast_ali3p_matrix import _bandwidth, _dense, _rows
 
@@ -321,3 +322,37 @@ def test_a_projection_stops_at_the_iterate_its_rule_picks(
     else:  # converged: where round-off stalls it is round-off's choice
         exact = _projected(p, rates, target)
         np.testing.assert_allclose(got, exact, rtol=0, atol=1e-13 * np.abs(exact).max())
+
+
+@pytest.mark.parametrize(("seed", "scale"), [(0, 10.0), (1, 1e-3)])
+@pytest.mark.parametrize("zero_rows", [(2,), (0, 1, 2, 3, 4, 5, 6)])
+def test_the_penalties_are_dynamics_ali3p_s(seed: int, scale: float, zero_rows: tuple[int, ...]) -> None:
+    """alpha_r = PENALTY 4/h^2 / max((C_q M^-1 C_q^T)_rr, 1e-12 of the largest, or of 1 where every
+    row is zero), as dynamics.ali3p fixes them; rows of C_q scaled by 10 and 1e-3 (the largest
+    diagonal away from 1), one row or every row without a used slot. The kernel sums the squares of
+    a row's slots: a program never holds a column twice in a row (equation.Equation's columns are
+    those of distinct bodies), so the random stores here hold none either."""
+    n, m, h = 12, 7, 2e-3
+    rng = np.random.default_rng(seed)
+    ints, store = _rows(rng, m, n, 4)
+    store *= scale
+    for r in range(m):  # no column twice in a row, as in every program (Equation's columns are unique)
+        cols = ints[r, K_SLOT_COL : K_SLOT_COL + WIDTH]
+        for k in range(1, WIDTH):
+            if cols[k] in cols[:k]:
+                cols[k] = -1
+    for r in zero_rows:
+        ints[r, K_SLOT_COL : K_SLOT_COL + WIDTH] = -1
+    jac = _dense(ints, store, m, n)
+    mass = rng.uniform(0.5, 2.0, n)
+    inertia = np.einsum("ij,j,ij->i", jac, 1 / mass, jac)
+    typical = float(np.max(inertia)) or 1.0
+    expected = PENALTY * 4 / (h * h) / np.maximum(inertia, 1e-12 * typical)
+    vec = np.full((kernel.VECTORS, n), np.nan)
+    vec[kernel.MASS] = mass
+    sizes = np.zeros(8, np.int64)
+    sizes[[kernel.S_N, kernel.S_M]] = n, m
+    params = np.zeros(5)
+    params[kernel.P_H], params[kernel.P_PENALTY] = h, PENALTY
+    kernel._penalties(ints, store, vec, sizes, params)
+    np.testing.assert_allclose(vec[kernel.ALPHA, :m], expected, rtol=1e-14)
