@@ -13,6 +13,7 @@ Lagrangian (it contracts by 1/(1 + PENALTY s^2) per iteration along the rocker's
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -25,11 +26,17 @@ from reference_solver.dynamics.ali3p import PENALTY, Ali3p, StepState
 from reference_solver.dynamics.compiled_ali3p import CompiledAli3p, ali3p_stepper
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
+from reference_solver.errors import ConvergenceError
 from reference_solver.fast import ali3p_kernel as kernel
 from reference_solver.fast.ali3p_matrix import factor
 from reference_solver.fast.dense_lu import lu_solve
 from reference_solver.fast.program import K_SLOT_COL, WIDTH
 from reference_solver.system import ConstraintSystem
+from scenarios import Point
+from scenarios.drivers import AbsoluteDriver
+from scenarios.joints import RevoluteRevolute
+from scenarios.motions import ConstantSpeed
+from tests.reference_solver.dynamics.test_compiled_ali3p_run import THETA0, _rod
 from tests.reference_solver.test_fast_ali3p_matrix import _bandwidth, _dense, _rows
 
 H = 1e-3
@@ -356,3 +363,52 @@ def test_the_penalties_are_dynamics_ali3p_s(seed: int, scale: float, zero_rows: 
     params[kernel.P_H], params[kernel.P_PENALTY] = h, PENALTY
     kernel._penalties(ints, store, vec, sizes, params)
     np.testing.assert_allclose(vec[kernel.ALPHA, :m], expected, rtol=1e-14)
+
+
+def test_a_step_newton_cannot_finish_takes_every_allowed_iteration() -> None:
+    """The rod of test_compiled_ali3p_run held at a fixed angle while its centre is driven along x:
+    no position meets both, so Newton runs its NEWTON_STEPS iterations (one constraint evaluation
+    each) and stops, no more and no fewer."""
+    rod = _rod()
+    slide = AbsoluteDriver("slide", "rod", "x", ConstantSpeed(0.5 * np.cos(THETA0), 5.0))
+    turn = AbsoluteDriver("turn", "rod", "theta", ConstantSpeed(THETA0, 0.0))
+    scenario = replace(rod, drivers=(turn, slide))
+    system = constraint_system(scenario)
+    mass = mass_diagonal(scenario, system.layout)
+    stepper = ali3p_stepper(system, mass, Loads(scenario, system.layout, mass), H)
+    assert isinstance(stepper, CompiledAli3p)
+    q = np.array([0.5 * np.cos(THETA0), 0.5 * np.sin(THETA0), THETA0])
+    s = StepState(0.0, q, np.zeros(3), np.zeros(3), np.zeros(system.size), system.jacobian(q, 0.0))
+    with pytest.raises(ConvergenceError):
+        stepper.step(s)
+    assert stepper.sizes[kernel.S_ITERATIONS] == kernel.NEWTON_STEPS == 60
+    assert stepper.evaluations == 60
+
+
+def test_the_penalties_are_fixed_at_the_first_factorization_with_one_row() -> None:
+    """A body swinging on a massless link to the ground (one row, whose C_q M^-1 C_q^T changes as it
+    swings, the link pinned off the body's centre): alpha stays the first step's formula,
+    PENALTY 4/h^2 / (C_q M^-1 C_q^T) at that step's predictor, through 100 later steps (over which
+    that diagonal changes by more than 1 %)."""
+    h = 1e-3
+    body = scenarios.Body("body", (1.0, 0.0, 0.0), mass=2.0, inertia=0.2, length=1.0)
+    link = RevoluteRevolute("link", Point("ground", (0.0, 0.0)), Point("body", (-0.4, 0.3)), 0.6**0.5)
+    scenario = scenarios.Scenario(
+        "swing", "default", (body,), (link,), (), 1.0, 10, 1.0, gravity=(0.0, -G), analysis="dynamic"
+    )
+    system = constraint_system(scenario)
+    mass = mass_diagonal(scenario, system.layout)
+    stepper = ali3p_stepper(system, mass, Loads(scenario, system.layout, mass), h)
+    assert isinstance(stepper, CompiledAli3p) and stepper.m == 1
+    q = np.array([0.6**0.5 + 0.4, -0.3, 0.0])
+    s = StepState(0.0, q, np.zeros(3), np.zeros(3), np.zeros(1), np.zeros((1, 3)))  # released at rest
+
+    def inertia(q: np.ndarray, t: float) -> float:
+        return float(system.jacobian(q, t)[0] ** 2 @ (1 / mass))
+
+    first = PENALTY * 4 / (h * h) / inertia(s.q + h * s.qd, h)
+    s, _, _ = stepper.run(s, 1, np.zeros(3), np.zeros(3))
+    assert stepper.alpha[0] == pytest.approx(first, rel=1e-12)
+    end, _, _ = stepper.run(s, 100, np.zeros(3), np.zeros(3))
+    assert abs(inertia(end.q, end.t) / inertia(s.q, s.t) - 1) > 1e-2
+    assert stepper.alpha[0] == pytest.approx(first, rel=1e-12)
