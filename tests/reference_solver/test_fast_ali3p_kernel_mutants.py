@@ -37,6 +37,7 @@ from scenarios.drivers import AbsoluteDriver
 from scenarios.joints import RevoluteRevolute
 from scenarios.motions import ConstantSpeed
 from tests.reference_solver.dynamics.test_compiled_ali3p_run import THETA0, _rod
+from tests.reference_solver.dynamics.test_compiled_ali3p_run import _start as _start_run
 from tests.reference_solver.test_fast_ali3p_matrix import _bandwidth, _dense, _rows
 
 H = 1e-3
@@ -126,8 +127,9 @@ def test_a_step_ending_next_to_the_singular_position_goes_through_the_schur_comp
     M q''_trapezoidal to 0.067 and 0.089 N, alpha C being alpha (4e14) times C's round-off (0.044 N)."""
     compiled, plain_step, plain, mass, loads = _one_loop()
     start, qhat = _start(off)
-    end = compiled.step(start)
+    end, power, work = compiled.run(start, 1, np.zeros(3), np.zeros(3))
     assert compiled.slow_steps >= 1
+    assert power.tolist() == [0.0, 0.0, 0.0] and work.tolist() == [0.0, 0.0, 0.0]  # no driver
     exact, _, _ = _branch(_trapezoidal_on_the_branch(qhat, mass, loads.gravity))
     assert np.max(np.abs(end.q - exact)) < 1.5e-11
     assert np.max(np.abs(plain_step.step(start).q - exact)) > 1e-9  # the stall the Schur path ends
@@ -412,3 +414,25 @@ def test_the_penalties_are_fixed_at_the_first_factorization_with_one_row() -> No
     end, _, _ = stepper.run(s, 100, np.zeros(3), np.zeros(3))
     assert abs(inertia(end.q, end.t) / inertia(s.q, s.t) - 1) > 1e-2
     assert stepper.alpha[0] == pytest.approx(first, rel=1e-12)
+
+
+def test_the_compiled_step_is_the_same_in_any_unit_of_length() -> None:
+    """As dynamics.ali3p's (test_ali3p.py): the compound double pendulum with links of 1 m under
+    g = 9.81 and of 1 km under g = 9.81e3 takes as many Newton iterations at every step, and gives
+    the same angles and lengths a thousand times (Newton measures its updates over the column
+    scales and C over the row scales)."""
+    runs = []
+    for length in (1.0, 1e3):
+        overrides = {"link_length": length, "gravity": 9.81 * length, "t_end": 0.01, "steps": 2}
+        stepper, _, s = _start_run(scenarios.build("compound_pendulum", overrides=overrides), True, 1e-3)
+        assert isinstance(stepper, CompiledAli3p)
+        states = []
+        for _ in range(5):
+            s = stepper.step(s)
+            states.append(s)
+        runs.append(states)
+    for metre, kilometre in zip(*runs, strict=True):
+        assert metre.iterations == kilometre.iterations
+        np.testing.assert_allclose(kilometre.q[2::3], metre.q[2::3], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(kilometre.q[0::3] / 1e3, metre.q[0::3], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(kilometre.q[1::3] / 1e3, metre.q[1::3], rtol=0, atol=1e-12)
