@@ -436,3 +436,23 @@ def test_the_compiled_step_is_the_same_in_any_unit_of_length() -> None:
         np.testing.assert_allclose(kilometre.q[2::3], metre.q[2::3], rtol=0, atol=1e-12)
         np.testing.assert_allclose(kilometre.q[0::3] / 1e3, metre.q[0::3], rtol=0, atol=1e-12)
         np.testing.assert_allclose(kilometre.q[1::3] / 1e3, metre.q[1::3], rtol=0, atol=1e-12)
+
+
+def test_a_newton_iteration_that_overflows_is_refused_as_the_plain_step_refuses_it() -> None:
+    """One-loop A02 a step before it passes 3e-3 rad from the horizontal, its multipliers lambda*
+    put 1e8 off along C_q's smallest singular direction: Newton overflows (updates of 1e270 in the
+    plain step). The plain step refuses it; so must the compiled one, whose largest update and
+    residual were maxima that skip NaN (max(0.0, nan) is 0.0), so it returned NaN positions as a
+    converged step."""
+    compiled, plain_step, plain, _, _ = _one_loop()
+    start, _ = _start(0.0)
+    q, dq, _ = _branch(start.q[2] + 3e-3)
+    first = compiled.step(replace(start, q=q, qd=dq * start.qd[2]))
+    smallest = np.linalg.svd(plain.jacobian(first.q, first.t))[0][:, -1]
+    off = replace(first, multipliers=first.multipliers + 1e8 * smallest)
+    with pytest.raises(ConvergenceError), np.errstate(all="ignore"):
+        plain_step.step(off)
+    with pytest.raises(
+        ConvergenceError, match=r"^n_four_bar: ALI3-P's Newton iteration did not converge at t=0\.002$"
+    ):
+        compiled.step(off)
