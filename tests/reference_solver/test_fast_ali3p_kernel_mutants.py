@@ -456,3 +456,27 @@ def test_a_newton_iteration_that_overflows_is_refused_as_the_plain_step_refuses_
         ConvergenceError, match=r"^n_four_bar: ALI3-P's Newton iteration did not converge at t=0\.002$"
     ):
         compiled.step(off)
+
+
+@pytest.mark.parametrize(("angle", "off"), [(3e-3, 1e4), (1e-3, 1e6)])
+def test_a_stall_at_newton_s_second_update_goes_through_the_schur_complement(
+    angle: float, off: float
+) -> None:
+    """A step from a state on the branch (the compiled step's own, `angle` before the horizontal)
+    whose lambda* is `off` along C_q's smallest singular direction: the predictor is good, so
+    Newton's first update is small and its second, the augmented Lagrangian's slow multiplier
+    correction along that direction, shrinks by less than SLOW. The stall counts from the second
+    update on: Newton goes through the Schur complement there and ends in 4 and 5 iterations
+    (measured; checking from the third update on, it takes 6 without the Schur complement), at the
+    trapezoidal equations' solution on the branch (measured 4.6e-15 and 3.5e-14 rad)."""
+    compiled, _, plain, mass, loads = _one_loop()
+    start, _ = _start(0.0)
+    q, dq, _ = _branch(start.q[2] + angle)
+    first = compiled.step(replace(start, q=q, qd=dq * start.qd[2]))
+    smallest = np.linalg.svd(plain.jacobian(first.q, first.t))[0][:, -1]
+    end = compiled.step(replace(first, multipliers=first.multipliers + off * smallest))
+    assert compiled.slow_steps == 1
+    assert end.iterations <= (4 if off < 1e5 else 5)
+    qhat = first.q + H * first.qd + H * H / 4 * first.qdd
+    exact, _, _ = _branch(_trapezoidal_on_the_branch(qhat, mass, loads.gravity))
+    assert np.max(np.abs(end.q - exact)) < 1e-13
