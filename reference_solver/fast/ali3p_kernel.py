@@ -231,12 +231,11 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
                 q[i] -= res[i]
                 step[i] -= res[i]
                 size = max(size, abs(res[i] / cols[i]))
-                finite = finite and abs(res[i]) < math.inf
+                finite = finite and math.isfinite(res[i])
             for r in range(m):
                 violation = max(violation, abs(c[r] / rows[r]))
-                finite = finite and abs(c[r]) < math.inf
             sizes[S_ITERATIONS] = iteration
-            if not finite:  # overflowed: max() skips NaN, so size and violation cannot tell
+            if not finite:  # overflowed (a non-finite C gives a non-finite update): max() skips NaN
                 return NOT_CONVERGED
             if violation <= TOLERANCE and size <= TOLERANCE:
                 converged = True
