@@ -339,6 +339,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/fast/ali3p_kernel.py": (
         f"{DYNAMICS}test_compiled_ali3p_run.py",
         f"{DYNAMICS}test_compiled_ali3p.py",
+        "tests/reference_solver/test_fast_ali3p_kernel_mutants.py",
     ),
     # --- end of ALI3-P's compiled step ---
 }

@@ -232,14 +232,17 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
             solve(band, n, w, res)
             if slow:
                 _kkt_correction(ints, store, vec, sizes, band, weight, schur, pivots, res, c, lam)
-            size, violation = 0.0, 0.0
+            size, violation, finite = 0.0, 0.0, True
             for i in range(n):
                 q[i] -= res[i]
                 step[i] -= res[i]
                 size = max(size, abs(res[i] / cols[i]))
+                finite = finite and math.isfinite(res[i])
             for r in range(m):
                 violation = max(violation, abs(c[r] / rows[r]))
             sizes[S_ITERATIONS] = iteration
+            if not finite:  # overflowed (a non-finite C gives a non-finite update): max() skips NaN
+                return NOT_CONVERGED
             if violation <= TOLERANCE and size <= TOLERANCE:
                 converged = True
                 break
