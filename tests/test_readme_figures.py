@@ -12,6 +12,7 @@ import pytest
 from tests.adapters import test_defaults_and_floors as defaults
 from tests.adapters.exudyn import test_forces as exudyn_forces
 from tests.adapters.mujoco import test_forces as mujoco_forces
+from tests.reference_solver.dynamics import test_ali3p as ali3p
 
 README = Path(__file__).resolve().parent.parent / "README.md"
 
@@ -86,6 +87,14 @@ def stated() -> list[tuple[str, str]]:
         (
             "MuJoCo forces at tc 8 steps",
             f"8 steps {figure(mujoco['slider_crank'][1])} and {figure(mujoco['four_bar'][1])}",
+        )
+    )
+    energy, rockers, crank = ali3p.A02_SPEC
+    out.append(
+        (
+            "A02 as specified at h = 2e-5",
+            f"| {figure(energy)} | {figure(rockers)} rad at a passage (6.4e-12 to {figure(rockers)} over "
+            f"the 20; 2.5e-13 elsewhere) | {figure(crank)} rad |",
         )
     )
     return out
