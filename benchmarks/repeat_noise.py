@@ -33,11 +33,11 @@ from scenarios import load as build_scenario
 def repeat_times(engines: list[str], low: float, high: float, repeats: int) -> list[list[float]]:
     """Each selected run's `repeats` timed seconds, in order."""
     found = []
+    loaded = {engine: adapters.load(engine) for engine in engines}
     for name in suites.main_scenarios():
         scenario = common_start(build_scenario(name))
         grid = np.asarray(scenario.times(), dtype=float)
-        for engine in engines:
-            adapter = adapters.load(engine)
+        for engine, adapter in loaded.items():
             for setting, _ in plan_engine(scenario, engine, adapter, True, None).jobs:
                 model = adapter.build(scenario, adapter.check_setting(setting))
                 adapter._warm_up(model, grid)()
