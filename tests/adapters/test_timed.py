@@ -13,10 +13,11 @@ import numpy as np
 import pytest
 
 from adapters import timing
-from adapters.base import WARMUP_POINTS, Adapter, Setting
+from adapters.base import WARMUP_POINTS
 from adapters.timing import fastest, timed
 from scenarios import Scenario, Trajectory
 from scenarios import load as load_scenario
+from tests.support.grid_engine import GridAdapter
 
 PER_POINT = 1e-3
 """Seconds a ClockAdapter's simulation spends per grid time on the fake clock."""
@@ -111,32 +112,21 @@ def test_fastest_is_timed_best_and_result(clock: Clock) -> None:
     assert fastest(spending(clock, [0.3, 0.2], [], "action"), repeats=2) == (pytest.approx(0.2), "action")
 
 
-class ClockAdapter(Adapter):
+class ClockAdapter(GridAdapter):
     """Spends PER_POINT seconds of the fake clock per grid time it simulates; `short` 'raise' makes
     a grid of WARMUP_POINTS times raise after spending its time (an engine that cannot take one)."""
 
     name = "clock"
-    modes = ("good",)
 
     def __init__(self, clock: Clock, short: str = "ok") -> None:
         super().__init__()
         self.clock, self.short = clock, short
 
-    def version(self) -> str:
-        return "0"
-
-    def default_setting(self, scenario: Scenario) -> Setting:
-        return Setting.of("good")
-
-    def build(self, scenario: Scenario, setting: Setting) -> Scenario:
-        return scenario
-
     def simulate(self, model: Scenario, times: np.ndarray) -> Trajectory:
         self.clock.spend(PER_POINT * len(times))
         if self.short == "raise" and len(times) <= WARMUP_POINTS:
             raise ValueError("a grid of fewer than three times")
-        levels = np.zeros((len(times), len(model.output_bodies), 3))
-        return Trajectory(np.asarray(times, dtype=float), model.output_bodies, levels, levels, levels)
+        return self.zeros(model, times)
 
 
 @pytest.fixture(scope="module")

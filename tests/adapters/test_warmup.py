@@ -11,21 +11,21 @@ import numpy as np
 import pytest
 
 import adapters
-from adapters.base import WARMUP_POINTS, Adapter, Diverged, Setting
+from adapters.base import WARMUP_POINTS, Diverged, Setting
 from adapters.timing import fastest
 from reports.harness.group_runs import LONG_RUN, RunConfig, timed_run
 from scenarios import Scenario, Trajectory
 from scenarios import load as load_scenario
+from tests.support.grid_engine import GridAdapter
 
 
-class RecordingAdapter(Adapter):
+class RecordingAdapter(GridAdapter):
     """Records the grid of every simulate call; `short` says how it treats a grid of fewer than
     three times ('ok', or 'raise' like an engine that cannot take one); `diverge_at` makes it
     raise Diverged at that grid index (as the runner's fake does: IndexError on a shorter grid);
     `sleep` seconds per call on a grid longer than WARMUP_POINTS (a tuple: in turn, call by call)."""
 
     name = "recording"
-    modes = ("good",)
 
     def __init__(
         self, short: str = "ok", diverge_at: int | None = None, sleep: float | tuple[float, ...] = 0.0
@@ -34,15 +34,6 @@ class RecordingAdapter(Adapter):
         self.grids: list[np.ndarray] = []
         self.short, self.diverge_at = short, diverge_at
         self.sleeps = itertools.cycle(sleep if isinstance(sleep, tuple) else (sleep,))
-
-    def version(self) -> str:
-        return "0"
-
-    def default_setting(self, scenario: Scenario) -> Setting:
-        return Setting.of("good")
-
-    def build(self, scenario: Scenario, setting: Setting) -> Scenario:
-        return scenario
 
     def simulate(self, model: Scenario, times: np.ndarray) -> Trajectory:
         self.grids.append(np.array(times, copy=True))
@@ -53,9 +44,7 @@ class RecordingAdapter(Adapter):
         if len(times) > WARMUP_POINTS:
             time.sleep(next(self.sleeps))
         self.count_steps(len(times) - 1)
-        bodies = model.output_bodies
-        levels = np.zeros((len(times), len(bodies), 3))
-        return Trajectory(np.asarray(times, dtype=float), bodies, levels, levels, levels)
+        return self.zeros(model, times)
 
 
 @pytest.fixture(scope="module")
