@@ -15,13 +15,15 @@ from reference_solver.fast.program import WIDTH, Program
 def residuals(ints, reals, profiles, splines, qs, times, row_scales, counted, out, work, scratch, points):  # type: ignore[no-untyped-def]
     """out[k] <- max |C(qs[k], times[k])[r]| / row_scales[r] over the rows r in `counted`, for every
     time k. points (contacts, 4, 2) is the profile points' scratch, work and scratch evaluate's."""
-    rows = ints.shape[0]
-    c, q_d, qd, band = np.empty(rows), np.empty(rows), np.zeros(qs.shape[1]), np.empty(0)
-    bodies = (qs.shape[1] - points.shape[0]) // 3
+    rows, n = ints.shape[0], qs.shape[1]
+    c, q_d, q, qd, band = np.empty(rows), np.empty(rows), np.empty(n), np.zeros(n), np.empty(0)
+    bodies = (n - points.shape[0]) // 3
     for k in range(times.size):
+        for j in range(n):  # a copy, not a view: a view made in a loop costs atomic reference counts
+            q[j] = qs[k, j]
         if profiles.shape[0]:
-            profile_points(profiles, splines, qs[k], bodies, points)
-        evaluate(ints, reals, qs[k], qd, times[k], c, q_d, band, work, scratch, points)
+            profile_points(profiles, splines, q, bodies, points)
+        evaluate(ints, reals, q, qd, times[k], c, q_d, band, work, scratch, points)
         worst = 0.0
         for r in counted:
             worst = max(worst, abs(c[r] / row_scales[r]))
