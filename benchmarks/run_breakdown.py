@@ -11,8 +11,8 @@ milliseconds per row):
 - truths (one per scenario), warming a scenario before a fork, forks;
 - hand-over: a worker's call less the child's time in it (pipes, pickling, waiting for a core);
 - in the child: the adapter's run beyond the work it measured, the constraint residual (cam
-  scenarios apart: their residual takes the native solver's plain rows) and the rest of the
-  comparison (errors per level, forces);
+  scenarios apart, each part with its milliseconds per run of its own: the cams' took the native
+  solver's plain rows until session 11) and the rest of the comparison (errors per level, forces);
 - in this process: the rows made, the store's add, the progress bar, the saves;
 - unaccounted: what is left (the loop itself, resume bookkeeping).
 On a shared machine the wall time of a step mostly measures the other processes: the CPU seconds
@@ -135,7 +135,8 @@ def breakdown(names: list[str], engines: list[str], suite_name: str, out: Path) 
     timed = sum(c["wall"].get("timed_run", 0.0) for c in children)
     compare = sum(c["wall"].get("measure", 0.0) for c in children)
     residual = sum(c["wall"].get("residual_metrics", 0.0) for c in children)
-    cams = sum(c["wall"].get("residual_metrics", 0.0) for c in children if c["scenario"].startswith("cam"))
+    cam_runs = [c for c in children if c["scenario"].startswith("cam")]
+    cams = sum(c["wall"].get("residual_metrics", 0.0) for c in cam_runs)
     lines = [
         ("set-up (engines, provenance)", set_up),
         ("planning", clock.wall["planning"]),
@@ -144,8 +145,11 @@ def breakdown(names: list[str], engines: list[str], suite_name: str, out: Path) 
         (f"forks ({clock.calls['forks']})", clock.wall["forks"]),
         ("hand-over (call - child)", clock.wall["calls"] - clock.wall["forks"] - in_child),
         ("child: adapter run beyond work", timed - sum(c["work"] for c in children)),
-        ("child: residual, cam scenarios", cams),
-        ("child: residual, others", residual - cams),
+        (f"child: residual, cams {_per_run(cams, len(cam_runs))}", cams),
+        (
+            f"child: residual, others {_per_run(residual - cams, len(children) - len(cam_runs))}",
+            residual - cams,
+        ),
         ("child: rest of the comparison", compare - residual),
         ("child: the rest of the call", in_child - timed - compare),
         ("rows", clock.wall["rows"]),
@@ -173,13 +177,18 @@ def table(found: dict[str, Any]) -> str:
         f"{over:.2f} s = {1000 * over / rows:.1f} ms per row (load {found['load']})"
     )
     body = [
-        f"  {label:<34} {seconds:8.3f} s {1000 * seconds / rows:8.2f} ms/row"
+        f"  {label:<50} {seconds:8.3f} s {1000 * seconds / rows:8.2f} ms/row"
         for label, seconds in found["lines"]
     ]
     parent, children = found["cpu"]
     steps = ", ".join(f"{step} {seconds:.3f}" for step, seconds in found["cpu_steps"].items())
     tail = f"CPU s: this process {parent:.2f} ({steps}); children's calls {children:.2f}"
     return "\n".join([head, *body, tail])
+
+
+def _per_run(seconds: float, runs: int) -> str:
+    """`(N runs, M ms a run)`: a step that only some runs take, over those runs."""
+    return f"({runs} runs, {1000 * seconds / max(runs, 1):.2f} ms a run)"
 
 
 def _seconds(value: float | None) -> float:

@@ -59,12 +59,17 @@ def rates_kernels() -> tuple[ModuleType | None, str]:
     return _kernels("rates")
 
 
+def residual_kernels() -> tuple[ModuleType | None, str]:
+    """The trajectory residual's module (reference_solver.residual, fast.residuals), or None and why."""
+    return _kernels("residuals")
+
+
 def ali3p_kernels() -> tuple[ModuleType | None, str]:
     """ALI3-P's time-step module (forward dynamics, fast.ali3p_kernel), or None and why."""
     return _kernels("ali3p_kernel")
 
 
-@lru_cache(maxsize=3)
+@lru_cache(maxsize=4)
 def _kernels(name: str) -> tuple[ModuleType | None, str]:
     if not AVAILABLE:
         return None, "numba is not installed"

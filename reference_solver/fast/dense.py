@@ -19,21 +19,6 @@ def rates_of_time(ints, reals, t, out):  # type: ignore[no-untyped-def]
         out[r] = -df
 
 
-@njit(cache=True, error_model="numpy")
-def residuals(ints, reals, qs, times, row_scales, out, work, scratch, points):  # type: ignore[no-untyped-def]
-    """out[k] <- max |C(qs[k], times[k])| / row_scales over the rows, for every time k (no Jacobian:
-    a residual over a whole trajectory in one call, where a call per time point cost about 10 us of
-    Python each)."""
-    rows = ints.shape[0]
-    c, q_d, qd, band = np.empty(rows), np.empty(rows), np.zeros(qs.shape[1]), np.empty(0)
-    for k in range(times.size):
-        evaluate(ints, reals, qs[k], qd, times[k], c, q_d, band, work, scratch, points)
-        worst = 0.0
-        for r in range(rows):
-            worst = max(worst, abs(c[r] / row_scales[r]))
-        out[k] = worst
-
-
 class DenseKernels:
     """One program's evaluation with its scratch arrays kept (no cam contacts: no profile points)."""
 
@@ -51,15 +36,6 @@ class DenseKernels:
         p = self.program
         evaluate(p.ints, p.reals, q, qd, float(t), c, q_d, store, self.work, self.scratch, self.points)
         return c, store.reshape(self.rows, self.columns), q_d
-
-    def residuals(self, qs: np.ndarray, times: np.ndarray, row_scales: np.ndarray) -> np.ndarray:
-        """The largest scaled |C| at each (qs[k], times[k]) (`residuals`), in scratch of its own: a
-        system kept for many trajectories may be asked from more than one thread."""
-        out = np.empty(len(times))
-        qs, times = np.ascontiguousarray(qs, dtype=float), np.ascontiguousarray(times, dtype=float)
-        p, work, scratch = self.program, np.zeros_like(self.work), np.zeros_like(self.scratch)
-        residuals(p.ints, p.reals, qs, times, row_scales, out, work, scratch, self.points)
-        return out
 
     def c_t(self, t: float) -> np.ndarray:
         out = np.empty(self.rows)

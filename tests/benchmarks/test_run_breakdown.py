@@ -20,7 +20,8 @@ def test_a_run_s_overhead_is_accounted_for_step_by_step(tmp_path: Path) -> None:
     assert all(seconds >= 0 for label, seconds in found["lines"] if label != "unaccounted")
     assert abs(lines["unaccounted"]) < 0.25 * found["wall"]
     text = table(found)
-    assert text.startswith("1 rows: run phase") and "child: residual, others" in text
+    assert text.startswith("1 rows: run phase") and "child: residual, others (1 runs, " in text
+    assert "child: residual, cams (0 runs, 0.00 ms a run)" in text  # each part over its own runs
 
 
 def test_a_run_that_failed_counts_no_work_and_leaves_nothing_unaccounted(tmp_path: Path) -> None:
