@@ -14,7 +14,8 @@ from reference_solver.fast.program import WIDTH, Program
 @njit(cache=True, error_model="numpy")
 def residuals(ints, reals, profiles, splines, qs, times, row_scales, counted, out, work, scratch, points):  # type: ignore[no-untyped-def]
     """out[k] <- max |C(qs[k], times[k])[r]| / row_scales[r] over the rows r in `counted`, for every
-    time k. points (contacts, 4, 2) is the profile points' scratch, work and scratch evaluate's."""
+    time k (NaN where a counted row is NaN). points (contacts, 4, 2) is the profile points'
+    scratch, work and scratch evaluate's."""
     rows, n = ints.shape[0], qs.shape[1]
     c, q_d, q, qd, band = np.empty(rows), np.empty(rows), np.empty(n), np.zeros(n), np.empty(0)
     bodies = (n - points.shape[0]) // 3
@@ -26,7 +27,11 @@ def residuals(ints, reals, profiles, splines, qs, times, row_scales, counted, ou
         evaluate(ints, reals, q, qd, times[k], c, q_d, band, work, scratch, points)
         worst = 0.0
         for r in counted:
-            worst = max(worst, abs(c[r] / row_scales[r]))
+            value = abs(c[r] / row_scales[r])
+            if np.isnan(value):  # a row that cannot be evaluated is no closed loop: NaN, not skipped
+                worst = np.nan
+                break
+            worst = max(worst, value)
         out[k] = worst
 
 
