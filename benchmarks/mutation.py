@@ -100,6 +100,10 @@ plain path to 1e-12 on every scenario, the compiled rows against the plain rows 
 Uncompiled, the whole-path tests take minutes per surviving mutant on the shared machine: the kernel
 modules other than the loop are mutated against the others only, which check the same values."""
 
+RESIDUAL_TESTS = tuple(f"tests/reference_solver/test_residual{suffix}.py" for suffix in ("", "_cams", "_nan"))
+"""The constraint residual's tests: compiled against plain rows on random states and solutions, cam
+contacts with and without their parameter, NaN coordinates."""
+
 LOOP_MUTANT_TESTS = "tests/reference_solver/test_fast_loop_mutants.py"
 LOOP_TESTS = (
     LOOP_MUTANT_TESTS,
@@ -237,7 +241,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/mobility.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_mobility.py"),
     "reference_solver/layout.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_layout.py"),
     "reference_solver/factorization.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_factorization.py"),
-    "reference_solver/residual.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_residual.py"),
+    "reference_solver/residual.py": (*PLAIN_PATH_TESTS, *RESIDUAL_TESTS),
     # --- native dynamics (session 8, s8-mut2) ---
     "reference_solver/dynamics/loads.py": (*FORCE_ELEMENT_TESTS, *DRIVEN_DYNAMICS_TESTS),
     "reference_solver/dynamics/mass.py": (f"{DYNAMICS}test_mass.py", *DRIVEN_DYNAMICS_TESTS),
@@ -280,8 +284,8 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/fast/dense.py": (
         "tests/reference_solver/test_fast_dense_mutants.py",
         COMPILED_SYSTEM_TESTS,
-        "tests/reference_solver/test_residual.py",
     ),
+    "reference_solver/fast/residuals.py": RESIDUAL_TESTS,
     "reference_solver/compiled_system.py": (COMPILED_SYSTEM_TESTS,),
     "reference_solver/equation.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_equation_mutants.py"),
     "reference_solver/solution.py": (
@@ -356,6 +360,7 @@ KERNEL_MODULES = frozenset(
         "load_kernel",
         "ali3p_matrix",
         "ali3p_kernel",
+        "residuals",
     )
 )
 """Modules of numba kernels, mutated as Python (NUMBA_DISABLE_JIT=1, their `@njit` lines removed)."""
