@@ -46,6 +46,7 @@ from adapters.modes import Mode, measures_of
 from adapters.probes import Probe
 from adapters.run_result import RunResult, failure_fields, first_nonfinite_time, warning_texts
 from adapters.setting import Option, OptionValue, Setting
+from adapters.spent import Stopwatch
 from adapters.timing import fastest, timed
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -175,8 +176,8 @@ class Adapter:
         `repeats` after `warmup` untimed runs over the grid's first interval (_warm_up), or once
         where the first timed run takes longer than `once_above` seconds, or fewer where a repeat
         agrees with the best before it to a relative `agree` (adapters.timing.timed); the warm-up's
-        and the repeats' seconds are measured too (what the run's timing cost). Never raises for an
-        engine's failure."""
+        and the repeats' seconds are measured too (what the run's timing cost), for a run that fails
+        up to its failure (adapters.spent). Never raises for an engine's failure."""
         setting = setting or self.default_setting(scenario)
         base: Mapping[str, Any] = {
             "engine": self.name,
@@ -193,19 +194,29 @@ class Adapter:
         if refused is not None:
             return RunResult(**base, status=refused[0], message=refused[1])
         caught: list[warnings.WarningMessage] = []
+        watch = Stopwatch()
         try:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
                 build_time, model = fastest(lambda: self.build(scenario, setting))
+                watch.built()
 
                 def simulate() -> Trajectory:
                     self._steps = 0
                     return self.simulate(model, grid)
 
-                warm = self._warm_up(model, grid)
+                warm = self._warm_up(model, grid, watch)
                 timing = timed(simulate, repeats, warmup, once_above=once_above, warm=warm, agree=agree)
         except Exception as error:  # an engine's failure, or its own exception: recorded, never raised
-            return RunResult(**base, **failure_fields(error), warnings=warning_texts(caught))
+            build, warmed, repeated = watch.spent(warmup)
+            return RunResult(
+                **base,
+                **failure_fields(error),
+                build_time=build,
+                warmup_time=warmed,
+                repeats_time=repeated,
+                warnings=warning_texts(caught),
+            )
         trajectory = timing.result
         if not trajectory.is_finite():
             return RunResult(
@@ -213,6 +224,9 @@ class Adapter:
                 status="diverged",
                 message="the trajectory has non-finite values",
                 failure_time=first_nonfinite_time(trajectory),
+                build_time=build_time,
+                warmup_time=timing.warmup_time,
+                repeats_time=timing.repeats_time,
                 warnings=warning_texts(caught),
             )
         return RunResult(
@@ -228,7 +242,7 @@ class Adapter:
             warnings=warning_texts(caught),
         )
 
-    def _warm_up(self, model: Any, grid: np.ndarray) -> Callable[[], object]:
+    def _warm_up(self, model: Any, grid: np.ndarray, watch: Stopwatch | None = None) -> Callable[[], object]:
         """One untimed warm-up run: the simulation over the grid's first WARMUP_POINTS times, which
         makes every first call a timed run would (imports, compiled kernels, the engine's programs
         and allocations for this model). Where that short run raises, the warm-up is the whole grid
@@ -238,9 +252,12 @@ class Adapter:
 
         def warm() -> Trajectory:
             try:
-                return self.simulate(model, prefix)
+                result = self.simulate(model, prefix)
             except Exception:
-                return self.simulate(model, grid)
+                result = self.simulate(model, grid)
+            if watch is not None:
+                watch.warmed()
+            return result
 
         return warm
 

@@ -29,10 +29,12 @@ class RunResult:
     message: str = ""
     trajectory: Trajectory | None = None
     build_time: float = math.nan
+    """Seconds to build the model (for a run that failed in the build, up to the failure)."""
     run_time: float = math.nan
-    """Seconds to simulate: the minimum of the timed repeats."""
+    """Seconds to simulate: the minimum of the timed repeats (empty for a run that is not ok)."""
     warmup_time: float = math.nan
-    """Seconds spent in the untimed warm-up runs, summed (0 without a warm-up)."""
+    """Seconds spent in the untimed warm-up runs, summed (0 without a warm-up); a run that failed,
+    up to its failure (adapters.spent), as for the build and the repeats."""
     repeats_time: float = math.nan
     """Seconds spent in the timed repeats, summed (`run_time` is their minimum)."""
     repeats: int = 0

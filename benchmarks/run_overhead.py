@@ -10,7 +10,8 @@ Each case runs the command line in a fresh interpreter into an empty directory, 
 - work: what the rows measured their timing spent, build + warm-up + timed repeats per row (the
   `build_time`, `warmup_time` and `repeats_time` columns, each measured where it ran);
 - overhead per run: (wall - work) / rows.
-A run that fails (a singular position, a timeout) stores no times: its work counts as overhead.
+A run that fails in its engine (a singular position, a divergence) stores what it spent up to the
+failure (adapters.spent), so its work counts as work; a timeout or a crash stores no times.
 Beside them, the wall time of a one-point `mbxval solve` of the same scenario, for the ratio the
 issue's target names (the native sweep in at most 3 times a one-point solve).
 

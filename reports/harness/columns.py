@@ -179,7 +179,7 @@ DECLARED: tuple[Column, ...] = (
         math.nan,
         "runs reporting joint reactions: error against the native solver's (harness.forces)",
     ),
-    Column("build_time", math.nan, "seconds to build the engine's model"),
+    Column("build_time", math.nan, "seconds to build the engine's model (a failed build: up to its failure)"),
     Column("run_time", math.nan, "seconds to simulate, minimum of repeats after a warm-up"),
     Column("steps", 0, "engine steps taken"),
     Column("repeats", 0, "timed repeats"),
@@ -192,13 +192,16 @@ DECLARED: tuple[Column, ...] = (
     Column(
         "warmup_time",
         math.nan,
-        "seconds spent in the untimed warm-up runs, summed (0 without one); NaN where not ok or not recorded",
+        "seconds spent in the untimed warm-up runs, summed (0 without one); a run that failed in its "
+        "engine records what it spent up to the failure; NaN where not recorded (a timeout, a crash, "
+        "a run not made)",
     ),
     Column(
         "repeats_time",
         math.nan,
         "seconds spent in the timed repeats, summed (run_time is their minimum): with build_time and "
-        "warmup_time, the work the run's timing did; NaN where not ok or not recorded",
+        "warmup_time, the work the run's timing did, a failed run's up to its failure; NaN where not "
+        "recorded (a timeout, a crash, a run not made)",
     ),
     Column("grid_points", 0, "time points compared"),
     Column("t_end", math.nan, "end of the time grid, s"),
