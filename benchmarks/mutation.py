@@ -100,9 +100,11 @@ plain path to 1e-12 on every scenario, the compiled rows against the plain rows 
 Uncompiled, the whole-path tests take minutes per surviving mutant on the shared machine: the kernel
 modules other than the loop are mutated against the others only, which check the same values."""
 
-RESIDUAL_TESTS = tuple(f"tests/reference_solver/test_residual{suffix}.py" for suffix in ("", "_cams", "_nan"))
+RESIDUAL_TESTS = tuple(
+    f"tests/reference_solver/test_residual{suffix}.py" for suffix in ("", "_cams", "_nan", "_reach")
+)
 """The constraint residual's tests: compiled against plain rows on random states and solutions, cam
-contacts with and without their parameter, NaN coordinates."""
+contacts with and without their parameter, NaN coordinates, two contacts and an 81-body chain."""
 
 LOOP_MUTANT_TESTS = "tests/reference_solver/test_fast_loop_mutants.py"
 LOOP_TESTS = (
