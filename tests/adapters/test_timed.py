@@ -12,7 +12,7 @@ import time
 import numpy as np
 import pytest
 
-from adapters import timing
+from adapters import spent, timing
 from adapters.base import WARMUP_POINTS
 from adapters.timing import fastest, timed
 from scenarios import Scenario, Trajectory
@@ -40,6 +40,7 @@ class Clock:
 def clock(monkeypatch: pytest.MonkeyPatch) -> Clock:
     fake = Clock()
     monkeypatch.setattr(timing, "time", fake)
+    monkeypatch.setattr(spent, "time", fake)
     return fake
 
 
@@ -151,10 +152,12 @@ def test_a_warm_up_that_falls_back_to_the_whole_grid_counts_both(clock: Clock, s
     assert result.warmup_time == pytest.approx((WARMUP_POINTS + points) * PER_POINT, rel=1e-9)
 
 
-def test_a_failed_run_records_no_times(scenario) -> None:
-    result = ClockAdapter(Clock(), short="raise").run(scenario, times=[0.0, 0.1], repeats=1, warmup=1)
-    assert result.status == "failed"
-    assert math.isnan(result.warmup_time) and math.isnan(result.repeats_time)
+def test_a_failed_run_records_what_it_spent_and_no_run_time(clock: Clock, scenario) -> None:
+    result = ClockAdapter(clock, short="raise").run(scenario, times=[0.0, 0.1], repeats=1, warmup=1)
+    assert result.status == "failed" and math.isnan(result.run_time)
+    # the warm-up's prefix raised, then the whole grid (the same two times): both in the warm-up
+    assert result.warmup_time == pytest.approx(2 * 2 * PER_POINT, rel=1e-9)
+    assert (result.build_time, result.repeats_time) == (0.0, 0.0)
 
 
 def test_on_the_machines_clock_the_warm_up_time_is_the_sleep_it_made() -> None:
