@@ -12,33 +12,16 @@ import pytest
 
 import adapters
 import scenarios
-from adapters import spent, timing
+from adapters import timing
 from adapters.base import WARMUP_POINTS
 from adapters.failures import Singular
 from reports.harness.rows import result_row
 from scenarios import Scenario, Trajectory
+from tests.support.fake_clock import Clock
 from tests.support.grid_engine import GridAdapter
 
 BUILD, PREFIX, WHOLE = 0.3, 0.01, 0.2
 """Fake seconds of a build, of a warm-up over the grid's first interval, of a run over the grid."""
-
-
-class Clock:
-    """A perf_counter that moves only when a call spends time on it."""
-
-    def __init__(self) -> None:
-        self.now = 0.0
-
-    def perf_counter(self) -> float:
-        return self.now
-
-
-@pytest.fixture
-def clock(monkeypatch: pytest.MonkeyPatch) -> Clock:
-    fake = Clock()
-    monkeypatch.setattr(timing, "time", fake)
-    monkeypatch.setattr(spent, "time", fake)
-    return fake
 
 
 class FailingAdapter(GridAdapter):
@@ -53,14 +36,14 @@ class FailingAdapter(GridAdapter):
         self.clock, self.where, self.fail_at, self.timed_runs = clock, where, fail_at, 0
 
     def build(self, scenario: Scenario, setting: object) -> Scenario:  # type: ignore[override]
-        self.clock.now += BUILD
+        self.clock.spend(BUILD)
         if self.where == "build":
             raise ValueError("no model")
         return scenario
 
     def simulate(self, model: Scenario, times: np.ndarray) -> Trajectory:
         short = len(times) <= WARMUP_POINTS
-        self.clock.now += PREFIX if short else WHOLE
+        self.clock.spend(PREFIX if short else WHOLE)
         if self.where == "warm-up":
             raise Singular("dead point", time=0.5)
         if not short:

@@ -12,36 +12,15 @@ import time
 import numpy as np
 import pytest
 
-from adapters import spent, timing
 from adapters.base import WARMUP_POINTS
 from adapters.timing import fastest, timed
 from scenarios import Scenario, Trajectory
 from scenarios import load as load_scenario
+from tests.support.fake_clock import Clock
 from tests.support.grid_engine import GridAdapter
 
 PER_POINT = 1e-3
 """Seconds a ClockAdapter's simulation spends per grid time on the fake clock."""
-
-
-class Clock:
-    """A perf_counter that moves only when a call spends time on it."""
-
-    def __init__(self) -> None:
-        self.now = 0.0
-
-    def perf_counter(self) -> float:
-        return self.now
-
-    def spend(self, seconds: float) -> None:
-        self.now += seconds
-
-
-@pytest.fixture
-def clock(monkeypatch: pytest.MonkeyPatch) -> Clock:
-    fake = Clock()
-    monkeypatch.setattr(timing, "time", fake)
-    monkeypatch.setattr(spent, "time", fake)
-    return fake
 
 
 def spending(clock: Clock, seconds: list[float], calls: list[str], name: str):  # type: ignore[no-untyped-def]

@@ -1,0 +1,5 @@
+"""Fixtures shared by the adapters' timing tests."""
+
+from tests.support.fake_clock import clock
+
+__all__ = ["clock"]
