@@ -117,9 +117,13 @@ def independent_truth(scenario: Scenario, times: np.ndarray) -> NamedTruth:
 def with_native_forces(scenario: Scenario, times: np.ndarray, truth: Trajectory) -> Trajectory:
     """The truth with the native inverse dynamics' driving forces and reactions added as extras
     (harness.forces), the force level's truth; unchanged where the native solver cannot give them
-    (a body without mass, no configuration on the grid)."""
+    (a body without mass, no configuration on the grid). A truth with no configuration from some
+    time on (NaN positions: past a dead point) is returned as it is, without asking the native
+    solver, whose approach to that point would cost about half a second only to fail there too."""
     from reference_solver.errors import SolverError  # on first use, as above
 
+    if truth.position is not None and not np.all(np.isfinite(truth.position)):
+        return truth  # no configuration somewhere on the grid: nor will the native solver find one
     try:
         forces = native_forces(scenario, times)
     except SolverError:
