@@ -319,9 +319,9 @@ MODULES: dict[str, tuple[str, ...]] = {
     ),
     "reference_solver/fast/load_kernel.py": LOAD_KERNEL_TESTS,
     "reference_solver/fast/load_program.py": LOAD_KERNEL_TESTS,
-    "reference_solver/kept.py": (
+    "scenarios/kept.py": (
         f"{WHOLE_PATH_TESTS}::test_an_empty_grid_and_an_unhashable_scenario",
-        "tests/reference_solver/test_kept.py",
+        "tests/scenarios/test_kept.py",
     ),
     "reference_solver/fast/cache_guard.py": (
         f"{KERNEL_TESTS}::test_cache_guard_drops_machine_code_of_changed_sources",

@@ -11,9 +11,9 @@ import numpy as np
 from reference_solver.fast import residual_kernels
 from reference_solver.fast.constraint_rows import NotCompiled
 from reference_solver.fast.program import Program, compile_dense
-from reference_solver.kept import kept
 from reference_solver.layout import Layout
 from reference_solver.system import ConstraintSystem, equation_for
+from scenarios.kept import kept
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 

@@ -21,11 +21,11 @@ from reference_solver.fast.constraint_rows import NotCompiled
 from reference_solver.fast.loop import EVENTS, OK
 from reference_solver.fast.loop import run as run_kernel
 from reference_solver.fast.program import Program, compile_program
-from reference_solver.kept import kept
 from reference_solver.layout import Layout
 from reference_solver.limits import ASSEMBLY_ITERATIONS, BACKTRACK_HALVINGS, SINGULAR_RCOND
 from reference_solver.solution import Analysis
 from reference_solver.system import ConstraintSystem
+from scenarios.kept import kept
 from scenarios.scenario import Scenario
 
 HANDOVER = 100.0 * SINGULAR_RCOND

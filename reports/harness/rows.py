@@ -16,6 +16,7 @@ from reports.harness.level_error import characteristic_rate
 from reports.harness.provenance import now
 from reports.harness.scenario_identity import digest
 from scenarios import catalogue
+from scenarios.kept import kept
 from scenarios.scenario import Scenario
 
 
@@ -47,17 +48,10 @@ def base_row(
     return row
 
 
+@kept(maxsize=64)
 def scenario_digest(scenario: Scenario) -> str:
     """scenarios.identity.digest, once per scenario (every row of a scenario states it: about 0.3
     to 0.8 ms each, a file's text hashed; equal scenarios have the same digest)."""
-    try:
-        return _digest(scenario)
-    except TypeError:  # an unhashable scenario: digested every time
-        return digest(scenario)
-
-
-@functools.lru_cache(maxsize=64)
-def _digest(scenario: Scenario) -> str:
     return digest(scenario)
 
 

@@ -1,6 +1,6 @@
-"""reference_solver.kept: a build kept for the last `maxsize` scenarios, least recently used out
+"""scenarios.kept: a build kept for the last `maxsize` scenarios, least recently used out
 first, and an unhashable scenario built each time. The decorator is applied here, inside the tests
-(the solver's own uses are decorated at import, before any test runs)."""
+(the solver's and the harness's own uses are decorated at import, before any test runs)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import dataclasses
 from collections.abc import Callable
 
 import scenarios
-from reference_solver.kept import kept
+from scenarios.kept import kept
 from scenarios.scenario import Scenario
 
 

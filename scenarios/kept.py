@@ -1,5 +1,7 @@
 """Per-scenario results kept for the last few scenarios, for work a harness repeats for every run of
-a scenario's group (compiling its program, building its constraint system)."""
+a scenario's group (the native solver compiling its program or building its constraint system, the
+harness digesting the scenario for each row). It needs nothing but the scenario, so the solver and
+the harness share it from here without one importing the other."""
 
 from __future__ import annotations
 
