@@ -11,7 +11,8 @@ Each case runs the command line in a fresh interpreter into an empty directory, 
   `build_time`, `warmup_time` and `repeats_time` columns, each measured where it ran);
 - overhead per run: (wall - work) / rows.
 A run that fails in its engine (a singular position, a divergence) stores what it spent up to the
-failure (adapters.spent), so its work counts as work; a timeout or a crash stores no times.
+failure (adapters.spent), so its work counts as work; a timeout stores the limit it hit, a crash
+no times.
 Beside them, the wall time of a one-point `mbxval solve` of the same scenario, for the ratio the
 issue's target names (the native sweep in at most 3 times a one-point solve).
 

@@ -8,7 +8,8 @@ points, each engine at its default setting timed once without warm-up (the quick
 Both runs start from an empty store and include everything the runner does (truths, forked runs,
 saving the store after each group); the Dask run includes starting the cluster. Beside each wall
 time, the work its rows measured (build, warm-up and timed repeats, benchmarks.run_overhead.work)
-and the ratio the issue bounds (serial wall at most 1.5 times the work). With --out, the Dask
+and the ratio the issue bounds (serial wall at most 1.5 times the work), and the failed rows' share
+of the work (a run that stops at the dead point records what it spent). With --out, the Dask
 run's results and report (with the swept stability map) are kept there.
 """
 
@@ -63,7 +64,11 @@ def timing_line(label: str, wall: float, out: Path) -> str:
     rows, _ = read_results(out)
     done = work(rows)
     ratio = f"{wall / done:.2f}" if done > 0 else "-"
-    return f"{label:<17} {wall:8.1f} s wall, {done:8.2f} s work ({len(rows)} rows), wall/work {ratio}"
+    failed = rows[rows["status"] != "ok"]
+    return (
+        f"{label:<17} {wall:8.1f} s wall, {done:8.2f} s work ({len(rows)} rows), wall/work {ratio}"
+        f" [failed rows: {len(failed)}, {work(failed):.2f} s of the work]"
+    )
 
 
 if __name__ == "__main__":

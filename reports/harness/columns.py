@@ -193,15 +193,15 @@ DECLARED: tuple[Column, ...] = (
         "warmup_time",
         math.nan,
         "seconds spent in the untimed warm-up runs, summed (0 without one); a run that failed in its "
-        "engine records what it spent up to the failure; NaN where not recorded (a timeout, a crash, "
-        "a run not made)",
+        "engine records what it spent up to the failure; NaN where not recorded (a timeout, a "
+        "crash, a run not made)",
     ),
     Column(
         "repeats_time",
         math.nan,
         "seconds spent in the timed repeats, summed (run_time is their minimum): with build_time and "
-        "warmup_time, the work the run's timing did, a failed run's up to its failure; NaN where not "
-        "recorded (a timeout, a crash, a run not made)",
+        "warmup_time, the work the run's timing did, a failed run's up to its failure, a timeout's the "
+        "limit it hit; NaN where not recorded (a crash, a run not made)",
     ),
     Column("grid_points", 0, "time points compared"),
     Column("t_end", math.nan, "end of the time grid, s"),

@@ -169,7 +169,9 @@ def _stored(
     scenario = group.scenario
     if outcome.kind == "timeout":
         timed_out.add(setting.mode)
-        return failure(group, setting, is_default, "timeout", outcome.message), None
+        row = failure(group, setting, is_default, "timeout", outcome.message)
+        row["repeats_time"] = config.timeout  # it spent the limit it hit (its child killed there)
+        return row, None
     if outcome.kind != "ok" or outcome.value is None:
         return failure(group, setting, is_default, "failed", outcome.message), None
     result, repeats, metrics, levels, note = outcome.value
