@@ -32,8 +32,8 @@ def test_a_round_off_refusal_names_the_largest_coordinate_below_one() -> None:
     sqrt(l^2 - r^2 sin(theta0)^2) = 0.587 m by hand, every other below 0.4."""
     scenario = scenarios.build("slider_crank")
     system = ConstraintSystem(scenario)
-    r, l, theta0 = 0.2, 0.4, 0.3
-    slider_x = r * math.cos(theta0) + math.sqrt(l**2 - (r * math.sin(theta0)) ** 2)
+    crank, rod, theta0 = 0.2, 0.4, 0.3
+    slider_x = crank * math.cos(theta0) + math.sqrt(rod**2 - (crank * math.sin(theta0)) ** 2)
     with pytest.raises(AssemblyError) as caught:
         assemble(system, system.layout.initial_guess(scenario), 0.0, 1e-16)
     match = FLOORED.fullmatch(str(caught.value))

@@ -96,7 +96,8 @@ def test_a_grid_point_newton_confirms_on_an_exactly_singular_c_q_is_near_singula
     scenario = _slider_through_the_pin()
     u = 4e-6
     h = math.sqrt(2 * u / (A * W * W))
-    assert A * W**4 * h**4 / 8 == pytest.approx(5e-13)
+    miss = A * W**4 * h**4 / 8
+    assert miss == pytest.approx(5e-13)
     assert _rcond(_scaled_c_q(scenario, _q(-h)), 1) > 3 * path.HANDOVER
     run = path.run(scenario, np.array([-h, 0.0]))
     assert (run.event, run.index, run.analysis) == (EVENTS[NEAR_SINGULAR], 1, None)
@@ -114,8 +115,8 @@ def test_a_halved_step_newton_confirms_on_an_exactly_singular_c_q_is_near_singul
     A mutant taking rc = 1 there (`run` 419) went on with rates solved on the singular factors. With
     25 iterations the full step converges at D and the run completes (the halving is what stops)."""
     scenario = _slider_through_the_pin()
-    assert 2 / 3 * A * W**4 * D**4 == pytest.approx(2.5e-12)
-    assert A * W**4 * D**4 / 8 == pytest.approx(4.6875e-13)
+    full, half = 2 / 3 * A * W**4 * D**4, A * W**4 * D**4 / 8
+    assert full == pytest.approx(2.5e-12) and half == pytest.approx(4.6875e-13)
     assert -D + D == 0.0
     run = path.run(scenario, np.array([-D, D]), TOLERANCE, 1)
     assert (run.event, run.index, run.analysis) == (EVENTS[NEAR_SINGULAR], 1, None)
