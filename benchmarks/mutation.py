@@ -234,6 +234,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/analysis.py": (
         "tests/reference_solver/test_analysis.py",
         "tests/reference_solver/test_analysis_assemble_s10.py",
+        "tests/reference_solver/test_analysis_assemble_s11.py",
         "tests/reference_solver/test_branch_guard.py",
         "tests/reference_solver/test_fast_path.py",
         "tests/reference_solver/test_failures.py",
@@ -281,7 +282,11 @@ MODULES: dict[str, tuple[str, ...]] = {
         "tests/reference_solver/test_fast_band_rcond.py",
     ),
     "reference_solver/fast/dense_lu.py": (KERNEL_TESTS,),
-    "reference_solver/fast/loop.py": (*LOOP_TESTS, "tests/reference_solver/test_fast_loop_mutants_s10.py"),
+    "reference_solver/fast/loop.py": (
+        *LOOP_TESTS,
+        "tests/reference_solver/test_fast_loop_mutants_s10.py",
+        "tests/reference_solver/test_fast_loop_mutants_s11.py",
+    ),
     "reference_solver/fast/path.py": (LOOP_MUTANT_TESTS, KERNEL_TESTS, WHOLE_PATH_TESTS),
     "reference_solver/fast/dense.py": (
         "tests/reference_solver/test_fast_dense_mutants.py",
