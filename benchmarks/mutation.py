@@ -340,6 +340,7 @@ MODULES: dict[str, tuple[str, ...]] = {
         f"{DYNAMICS}test_compiled_ali3p_run.py",
         f"{DYNAMICS}test_compiled_ali3p.py",
         "tests/reference_solver/test_fast_ali3p_kernel_mutants.py",
+        "tests/reference_solver/test_fast_ali3p_kernel_s11.py",
     ),
     # --- end of ALI3-P's compiled step ---
 }
