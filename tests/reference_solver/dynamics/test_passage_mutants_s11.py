@@ -69,3 +69,14 @@ def test_a_reading_returns_s_and_keeps_the_last_two() -> None:
         assert s == pytest.approx(expected, rel=1e-12)
         values.append(s)
     assert watch.readings == [(0.1, values[1]), (0.2, values[2])]
+
+
+def test_one_row_and_a_c_q_that_vanishes() -> None:
+    """A single row, normalized, has the singular value 1 whatever it is; a C_q whose rows all vanish
+    (every constraint's gradient zero there) has only zero singular values, so s = 0 at any rank the
+    rows had elsewhere (not infinity, which means no rows or rank 0: nothing to watch)."""
+    mass = np.array([1.0, 2.0, 0.5])
+    assert smallest_singular_value(np.array([[3.0, 4.0, 1.0]]), mass, 1) == pytest.approx(1.0, rel=1e-14)
+    assert smallest_singular_value(np.zeros((1, 3)), mass, 1) == 0.0
+    assert smallest_singular_value(np.zeros((2, 3)), mass, 2) == 0.0
+    assert smallest_singular_value(np.zeros((0, 3)), mass, 1) == math.inf
