@@ -17,10 +17,14 @@ import pytest
 from reference_solver.compiled_system import constraint_system
 from reference_solver.dynamics import simulate
 from reference_solver.dynamics.ali3p import PENALTY, StepState
+from reference_solver.dynamics.ali3p_grid import integrate
 from reference_solver.dynamics.compiled_ali3p import CompiledAli3p
+from reference_solver.dynamics.forward import initial_state
+from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.passage import CAREFUL
 from tests.reference_solver.dynamics.test_ali3p import _chain
+from tests.reference_solver.dynamics.test_compiled_ali3p_run import _rod
 
 H = 0.77 / 38500
 """The step of test_passage's chain at the instant's phase 0.41 (t* = 36015.41 h)."""
@@ -125,3 +129,19 @@ def test_a_placement_ends_on_the_span_s_end_or_is_not_made(
         assert placed[-1][5] == end
     else:
         assert placed == [] and calls[-1][3]
+
+
+def test_an_output_within_a_step_s_round_off_of_the_start_is_the_start() -> None:
+    """A grid whose first output is 1e-14 s after the start (within SAME_TIME of a step of 1e-3):
+    no step is taken for it, and the output is the start state itself with no work done; the next
+    output, a step on, is a step's state."""
+    scenario = _rod()
+    system = constraint_system(scenario)
+    mass = mass_diagonal(scenario, system.layout)
+    loads = Loads(scenario, system.layout, mass)
+    start = initial_state(system, mass, loads, 0.0)
+    states, works, _ = integrate(system, mass, loads, start, np.array([0.0, 1e-14, 1e-3]), 1e-3)
+    np.testing.assert_array_equal(states[1].q, start.q)
+    np.testing.assert_array_equal(states[1].qd, start.qd)
+    assert works[1].tolist() == [0.0, 0.0, 0.0]
+    assert states[2].t == 1e-3 and not np.array_equal(states[2].q, start.q)
