@@ -15,7 +15,6 @@ import numpy as np
 import pytest
 
 from reference_solver.compiled_system import constraint_system
-from reference_solver.dynamics import simulate
 from reference_solver.dynamics.ali3p import PENALTY, StepState
 from reference_solver.dynamics.ali3p_grid import integrate
 from reference_solver.dynamics.compiled_ali3p import CompiledAli3p
@@ -34,11 +33,15 @@ Call = tuple[float, int, float, bool, float, float]
 the time it returns."""
 
 
-def _record(monkeypatch: pytest.MonkeyPatch, loops: int, t_end: float) -> tuple[list[Call], float, float]:
-    """The chain over t_end at the step H, its stepper's calls recorded; with t* and the span's end."""
+def _record(
+    monkeypatch: pytest.MonkeyPatch, loops: int, t_end: float, t0: float = 0.0
+) -> tuple[list[Call], float, float]:
+    """The chain over t_end at the step H from time t0 (no drivers: the same motion, t0 later),
+    its stepper's calls recorded; with t* and the span's end."""
     scenario, grid, reduced = _chain(loops, t_end)
     system = constraint_system(scenario)
     mass = mass_diagonal(scenario, system.layout)
+    loads = Loads(scenario, system.layout, mass)
     calls: list[Call] = []
     run = CompiledAli3p.run
 
@@ -54,9 +57,11 @@ def _record(monkeypatch: pytest.MonkeyPatch, loops: int, t_end: float) -> tuple[
         return out
 
     monkeypatch.setattr(CompiledAli3p, "run", spied)
-    analysis = simulate(scenario, grid, method="ali3p", step=H * (1 + 1e-9), fast=True)
-    assert analysis.times[-1] == t_end
-    return calls, float(reduced.t_events[0][0]), t_end  # type: ignore[attr-defined]
+    start = initial_state(system, mass, loads, t0)
+    states, _, _ = integrate(system, mass, loads, start, t0 + grid, H * (1 + 1e-9))
+    end = float(t0 + grid[-1])
+    assert states[-1].t == end
+    return calls, t0 + float(reduced.t_events[0][0]), end  # type: ignore[attr-defined]
 
 
 def _ends(calls: list[Call]) -> list[float]:
@@ -83,23 +88,25 @@ def _placed(calls: list[Call], instant: float) -> list[Call]:
     return []
 
 
-def test_the_steps_around_a_chain_s_passage(monkeypatch: pytest.MonkeyPatch) -> None:
-    """10 loops over 0.77 s (the passage at t* = 0.7203 s): from 0 to the end without a gap; every
-    step h long except three, which start on a grid point t_j and end on t_{j+3}, each 0.5 to 1.5 h,
-    the middle one with t* inside, at least 0.45 h from either end (the prediction is within 0.01 h,
-    test_passage); no other step ends within half a step of t*. The steps are careful where s <
-    sqrt(CAREFUL / PENALTY) = 2e-4 (read every NEAR steps: s moves by 1.3e-5 in between, so
-    careful wherever s < 0.8 of that and not wherever s > 1.2 of it), the three placed ones among
-    them; none before t* - 100 h or after t* + 100 h."""
-    calls, instant, end = _record(monkeypatch, 10, 0.77)
+@pytest.mark.parametrize("t0", [0.0, 0.25])
+def test_the_steps_around_a_chain_s_passage(t0: float, monkeypatch: pytest.MonkeyPatch) -> None:
+    """10 loops over 0.77 s (the passage at t* = 0.7203 s after the start), started at t0 = 0 and
+    0.25: from t0 to the end without a gap; every step h long except three, which start on a grid
+    point t0 + j h and end on t0 + (j + 3) h, each 0.5 to 1.5 h, the middle one with t* inside, at
+    least 0.45 h from either end (the prediction is within 0.01 h, test_passage); no other step ends
+    within half a step of t*. The steps are careful where s < sqrt(CAREFUL / PENALTY) = 2e-4 (read
+    every NEAR steps: s moves by 1.3e-5 in between, so careful wherever s < 0.8 of that and not
+    wherever s > 1.2 of it), the three placed ones among them; none before t* - 100 h or after
+    t* + 100 h."""
+    calls, instant, end = _record(monkeypatch, 10, 0.77, t0)
     ends = _ends(calls)
-    assert calls[0][0] == 0.0 and ends[-1] == pytest.approx(end, abs=1e-12)
+    assert calls[0][0] == t0 and ends[-1] == pytest.approx(end, abs=1e-12)
     placed = _placed(calls, instant)
     assert len(placed) == 3
     first, middle, last = placed
-    j = round(first[0] / H)
-    assert first[0] == pytest.approx(j * H, rel=1e-12)
-    assert last[0] + last[2] == pytest.approx((j + 3) * H, rel=1e-12)
+    j = round((first[0] - t0) / H)
+    assert first[0] == pytest.approx(t0 + j * H, abs=1e-12)
+    assert last[0] + last[2] == pytest.approx(t0 + (j + 3) * H, abs=1e-12)
     assert all(0.5 * H <= c[2] <= 1.5 * H for c in placed)
     assert min(instant - middle[0], middle[0] + middle[2] - instant) >= 0.45 * H
     assert min(abs(t - instant) for t in ends) >= 0.45 * H
