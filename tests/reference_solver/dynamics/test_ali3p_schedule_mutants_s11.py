@@ -21,7 +21,7 @@ from reference_solver.dynamics.compiled_ali3p import CompiledAli3p
 from reference_solver.dynamics.forward import initial_state
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
-from reference_solver.dynamics.passage import CAREFUL
+from reference_solver.dynamics.passage import CAREFUL, END_VALUE
 from tests.reference_solver.dynamics.test_ali3p import _chain
 from tests.reference_solver.dynamics.test_compiled_ali3p_run import _rod
 
@@ -34,9 +34,9 @@ the time it returns."""
 
 
 def _record(
-    monkeypatch: pytest.MonkeyPatch, loops: int, t_end: float, t0: float = 0.0
+    monkeypatch: pytest.MonkeyPatch, loops: int, t_end: float, t0: float = 0.0, h: float = H
 ) -> tuple[list[Call], float, float]:
-    """The chain over t_end at the step H from time t0 (no drivers: the same motion, t0 later),
+    """The chain over t_end at the step h from time t0 (no drivers: the same motion, t0 later),
     its stepper's calls recorded; with t* and the span's end."""
     scenario, grid, reduced = _chain(loops, t_end)
     system = constraint_system(scenario)
@@ -58,7 +58,7 @@ def _record(
 
     monkeypatch.setattr(CompiledAli3p, "run", spied)
     start = initial_state(system, mass, loads, t0)
-    states, _, _ = integrate(system, mass, loads, start, t0 + grid, H * (1 + 1e-9))
+    states, _, _ = integrate(system, mass, loads, start, t0 + grid, h * (1 + 1e-9))
     end = float(t0 + grid[-1])
     assert states[-1].t == end
     return calls, t0 + float(reduced.t_events[0][0]), end  # type: ignore[attr-defined]
@@ -75,16 +75,16 @@ def _ends(calls: list[Call]) -> list[float]:
     return ends[1:]
 
 
-def _placed(calls: list[Call], instant: float) -> list[Call]:
+def _placed(calls: list[Call], instant: float, h: float = H) -> list[Call]:
     """The calls next to the one whose step holds the instant, and it, if each is a single step
     and some is not h long; every other call's steps are h long."""
     i = next(k for k, c in enumerate(calls) if c[0] < instant < c[5])
     around = calls[i - 1 : i + 2]
     others = calls[: i - 1] + calls[i + 2 :]
-    assert all(c[2] == pytest.approx(H, rel=1e-9) for c in others)
-    if all(c[1] == 1 for c in around) and any(c[2] != pytest.approx(H, rel=1e-9) for c in around):
+    assert all(c[2] == pytest.approx(h, rel=1e-9) for c in others)
+    if all(c[1] == 1 for c in around) and any(c[2] != pytest.approx(h, rel=1e-9) for c in around):
         return around
-    assert all(c[2] == pytest.approx(H, rel=1e-9) for c in around)
+    assert all(c[2] == pytest.approx(h, rel=1e-9) for c in around)
     return []
 
 
@@ -152,3 +152,16 @@ def test_an_output_within_a_step_s_round_off_of_the_start_is_the_start() -> None
     np.testing.assert_array_equal(states[1].qd, start.qd)
     assert works[1].tolist() == [0.0, 0.0, 0.0]
     assert states[2].t == 1e-3 and not np.array_equal(states[2].q, start.q)
+
+
+def test_the_step_across_a_slow_passage_is_longer_than_a_step() -> None:
+    """At h = 4e-6 (192500 steps over 0.77 s) the chain's s falls slower than 2 END_VALUE / h per
+    second (0.63 / s), so the step across the instant is 2 END_VALUE / slope long, not h: s is
+    END_VALUE at both its ends (measured 0.99987 and 1.00022 of it, by a dense SVD at each step's
+    start), and it is 1.26 h long (measured); the steps beside it 0.5 to 1.5 h. 12 s."""
+    h = 0.77 / 192500
+    with pytest.MonkeyPatch.context() as monkeypatch:
+        calls, instant, _ = _record(monkeypatch, 10, 0.77, h=h)
+    first, middle, last = _placed(calls, instant, h)
+    assert middle[2] > 1.1 * h and all(0.5 * h <= c[2] <= 1.5 * h for c in (first, last))
+    assert middle[4] == pytest.approx(END_VALUE, rel=0.02) and last[4] == pytest.approx(END_VALUE, rel=0.02)
