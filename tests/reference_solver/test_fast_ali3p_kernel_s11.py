@@ -8,6 +8,7 @@ skips NaN, so a NaN move read as settled)."""
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 import pytest
@@ -69,7 +70,7 @@ def test_a_careful_step_next_to_the_singular_position_factors_s_once(off: float)
     assert np.max(np.abs(end.qdd - projected)) < 1.2e-11 * np.max(np.abs(accel))
 
 
-def _schur_problem(zero_row: int | None) -> tuple[dict[str, object], np.ndarray]:
+def _schur_problem(zero_row: int | None) -> tuple[dict[str, Any], np.ndarray]:
     """A random 12 x 7 row store (test_fast_ali3p_matrix's generator), its row `zero_row` without a
     used slot, unit penalties; W factored. Returns the kernel's arguments and C_q densely."""
     n, m, weight = 12, 7, 0.25e-6
@@ -99,9 +100,10 @@ def test_schur_reports_a_schur_complement_that_is_exactly_singular(zero_row: int
     assert np.linalg.matrix_rank(jac) == (7 if zero_row is None else 6)
     m = 7
     schur, pivots = np.zeros((m, m)), np.zeros(m, np.int64)
-    ok = kernel._schur(*arguments.values(), schur, pivots)
+    a = arguments
+    ok = kernel._schur(a["ints"], a["store"], a["vec"], a["sizes"], a["band"], a["weight"], schur, pivots)
     assert ok is (zero_row is None)
-    assert arguments["sizes"][kernel.S_SLOW] == 1  # type: ignore[index]
+    assert a["sizes"][kernel.S_SLOW] == 1
 
 
 def _tied() -> tuple[CompiledAli3p, StepState]:
