@@ -21,7 +21,7 @@ from reference_solver.dynamics.compiled_ali3p import CompiledAli3p
 from reference_solver.dynamics.forward import initial_state
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
-from reference_solver.dynamics.passage import CAREFUL, END_VALUE
+from reference_solver.dynamics.passage import CAREFUL, END_VALUE, FIRST, Watch
 from tests.reference_solver.dynamics.test_ali3p import _chain
 from tests.reference_solver.dynamics.test_compiled_ali3p_run import _rod
 
@@ -37,7 +37,8 @@ def _record(
     monkeypatch: pytest.MonkeyPatch, loops: int, t_end: float, t0: float = 0.0, h: float = H
 ) -> tuple[list[Call], float, float]:
     """The chain over t_end at the step h from time t0 (no drivers: the same motion, t0 later),
-    its stepper's calls recorded; with t* and the span's end."""
+    its stepper's calls recorded; with t* and the span's end. The watch reads s first at t0 and
+    then FIRST steps on (passage.FIRST)."""
     scenario, grid, reduced = _chain(loops, t_end)
     system = constraint_system(scenario)
     mass = mass_diagonal(scenario, system.layout)
@@ -57,10 +58,19 @@ def _record(
         return out
 
     monkeypatch.setattr(CompiledAli3p, "run", spied)
+    read = Watch.read
+
+    def reading(self: Watch, t: float, jac: np.ndarray) -> float:
+        readings.append(t)
+        return read(self, t, jac)
+
+    readings: list[float] = []
+    monkeypatch.setattr(Watch, "read", reading)
     start = initial_state(system, mass, loads, t0)
     states, _, _ = integrate(system, mass, loads, start, t0 + grid, h * (1 + 1e-9))
     end = float(t0 + grid[-1])
     assert states[-1].t == end
+    assert readings[:2] == [t0, pytest.approx(t0 + FIRST * h, abs=1e-12)]  # passage.FIRST
     return calls, t0 + float(reduced.t_events[0][0]), end  # type: ignore[attr-defined]
 
 
