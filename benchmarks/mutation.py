@@ -305,7 +305,10 @@ MODULES: dict[str, tuple[str, ...]] = {
         "tests/reference_solver/test_failures.py",
     ),
     # --- ALI3-P's plain step and its grid (session 8, s8-mut5) ---
-    "reference_solver/dynamics/ali3p_grid.py": ALI3P_STEP_TESTS,
+    "reference_solver/dynamics/ali3p_grid.py": (
+        *ALI3P_STEP_TESTS,
+        f"{DYNAMICS}test_ali3p_schedule_mutants_s11.py",  # the watch's and the placement's use
+    ),
     "reference_solver/dynamics/ali3p.py": ALI3P_STEP_TESTS,
     # --- end of ALI3-P ---
     # --- the partitioned method (session 8, s8-mut4) ---
@@ -351,8 +354,20 @@ MODULES: dict[str, tuple[str, ...]] = {
         f"{DYNAMICS}test_compiled_ali3p_run.py",
         f"{DYNAMICS}test_compiled_ali3p.py",
         "tests/reference_solver/test_fast_ali3p_kernel_mutants.py",
+        "tests/reference_solver/test_fast_ali3p_kernel_s11.py",
     ),
     # --- end of ALI3-P's compiled step ---
+    # --- ALI3-P's singular passages (session 11, s11-mutdyn) ---
+    "reference_solver/dynamics/passage.py": (
+        f"{DYNAMICS}test_passage.py",
+        f"{DYNAMICS}test_passage_mutants_s11.py",
+    ),
+    "reference_solver/dynamics/ali3p_schedule.py": (
+        f"{DYNAMICS}test_passage.py",
+        f"{DYNAMICS}test_ali3p_grid.py",
+        f"{DYNAMICS}test_ali3p_schedule_mutants_s11.py",
+    ),
+    # --- end of ALI3-P's singular passages ---
 }
 
 KERNEL_MODULES = frozenset(

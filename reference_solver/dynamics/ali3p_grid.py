@@ -50,9 +50,11 @@ def integrate(
     for time in grid[1:]:
         schedule.advance(float(time))
         before, current = schedule.before, schedule.state
-        fraction = (
-            1.0 if current.t == before.t else min(1.0, (float(time) - before.t) / (current.t - before.t))
-        )
+        if current is first:  # no step yet (an output within SAME_TIME of the start): the start
+            states.append(start)
+            works.append(np.zeros(3))
+            continue
+        fraction = min(1.0, (float(time) - before.t) / (current.t - before.t))
         point = (
             current
             if fraction >= 1.0 - SAME_TIME

@@ -84,12 +84,14 @@ class CompiledAli3p(Ali3p):
         self.alpha = vec[k.ALPHA, :m].copy()
         if status == k.NOT_POSITIVE:
             raise np.linalg.LinAlgError("ALI3-P's iteration matrix is not positive definite")
-        if status != k.OK:
+        if status != k.OK:  # t is the failed step's start
+            end = t + float(self.params[k.P_H])
+            what = {
+                k.SINGULAR: "ALI3-P's Schur complement C_q W^-1 C_q^T is singular (C_q lost rank)",
+                k.NOT_PROJECTED: "ALI3-P's projection of the rates gave non-finite rates",
+            }.get(status, "ALI3-P's Newton iteration did not converge")
             raise ConvergenceError(
-                f"{self.system.scenario.name}: ALI3-P's Newton iteration did not converge at "
-                f"t={t + self.h:.6g}",
-                time=t + self.h,
-                q=vec[k.Q, :n].copy(),
+                f"{self.system.scenario.name}: {what} at t={end:.6g}", time=end, q=vec[k.Q, :n].copy()
             )
         q = vec[k.Q, :n].copy()
         state = StepState(

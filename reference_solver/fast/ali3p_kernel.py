@@ -48,7 +48,10 @@ P_H, P_T, P_PENALTY, P_WORK, P_POWER, P_CAREFUL = range(6)
 the last state's driver power, and whether the steps are careful (nonzero: Newton and the projections
 go through the Schur complement from their first iteration, as next to a singular passage, where the
 augmented Lagrangian barely moves the directions C_q is losing; dynamics.passage)."""
-OK, NOT_CONVERGED, NOT_POSITIVE = 0, 1, 2
+OK, NOT_CONVERGED, NOT_POSITIVE, SINGULAR, NOT_PROJECTED = 0, 1, 2, 3, 4
+"""`advance`'s status: a step done; Newton not converged; W not positive definite; the Schur
+complement exactly singular (an exactly zero pivot: C_q lost rank); a projection of the rates that
+gave non-finite rates (a non-finite target, such as a driver's acceleration that overflows)."""
 NEWTON_STEPS = 60
 TOLERANCE = 1e-13
 """As in dynamics.ali3p: the scaled constraint residual and update Newton must reach."""
@@ -81,7 +84,8 @@ finishes through the Schur complement."""
 
 @njit(cache=True, error_model="numpy")
 def _schur(ints, store, vec, sizes, band, weight, schur, pivots):  # type: ignore[no-untyped-def]
-    """schur <- the LU factors of S = weight C_q W^-1 C_q^T (dense)."""
+    """schur <- the LU factors of S = weight C_q W^-1 C_q^T (dense). False if S is exactly singular
+    (a zero pivot: its factors would divide by zero)."""
     n, m, w = sizes[S_N], sizes[S_M], sizes[S_W]
     column, image = vec[COLUMN], vec[IMAGE]
     for r in range(m):
@@ -95,8 +99,8 @@ def _schur(ints, store, vec, sizes, band, weight, schur, pivots):  # type: ignor
         jac_times(ints, store, m, column, image)
         for i in range(m):
             schur[i, r] = image[i]
-    lu_factor(schur, m, pivots)
     sizes[S_SLOW] += 1
+    return not lu_factor(schur, m, pivots)
 
 
 @njit(cache=True, error_model="numpy")
@@ -126,7 +130,8 @@ def _project(ints, store, vec, sizes, band, weight, schur, pivots, rates, target
     factored next to this C_q). Where Newton did not and the projection is slow (stalled, no move
     before it shrinking by SLOW_START), it stops as the positions did, short of the directions C_q
     is losing: an exact projection there, from positions held only by the augmented Lagrangian,
-    set the rockers of a two-loop A02 off the crank by 1e-8 rad, this by 3e-9."""
+    set the rockers of a two-loop A02 off the crank by 1e-8 rad, this by 3e-9. False if a move is
+    not finite (the largest move is a max(), which skips NaN: a NaN move would read as settled)."""
     n, m, w = sizes[S_N], sizes[S_M], sizes[S_W]
     mass, alpha, move, gap = vec[MASS], vec[ALPHA], vec[RES], vec[GAP]
     given, kkt = vec[GIVEN], vec[KKT]
@@ -152,10 +157,13 @@ def _project(ints, store, vec, sizes, band, weight, schur, pivots, rates, target
             for r in range(m):
                 gap[r] -= target[r]
             _kkt_correction(ints, store, vec, sizes, band, weight, schur, pivots, move, gap, kkt)
-        size = 0.0
+        size, finite = 0.0, True
         for i in range(n):
             rates[i] -= move[i]
             size = max(size, abs(move[i]))
+            finite = finite and math.isfinite(move[i])
+        if not finite:
+            return False
         size /= scale
         jac_times(ints, store, m, rates, gap)
         for r in range(m):
@@ -163,12 +171,13 @@ def _project(ints, store, vec, sizes, band, weight, schur, pivots, rates, target
             if not slow:
                 kkt[r] += alpha[r] * gap[r]
         if size <= SETTLED:
-            return
+            return True
         if size > 0.5 * previous and (slow or size < PROJECTION_STALLED or best >= SLOW_START):
-            return  # stalled: round-off, or slow where Newton was not (see above)
+            return True  # stalled: round-off, or slow where Newton was not (see above)
         if previous < math.inf:
             best = min(best, size / previous)
         previous = size
+    return True
 
 
 @njit(cache=True, error_model="numpy")
@@ -193,8 +202,9 @@ def _penalties(ints, store, vec, sizes, params):  # type: ignore[no-untyped-def]
 @njit(cache=True, error_model="numpy")
 def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, work, scratch, us):  # type: ignore[no-untyped-def]
     """`count` ALI3-P steps from the state in vec (Q, QD, QDD, LAM) at params[P_T], in place, the
-    drivers' work accumulated by the trapezoidal rule. Returns OK, NOT_CONVERGED (the state is then
-    Newton's last iterate) or NOT_POSITIVE. Long on purpose: the step of dynamics.ali3p, its parts
+    drivers' work accumulated by the trapezoidal rule. Returns OK, or at the first step that fails
+    NOT_CONVERGED (the state is then Newton's last iterate), NOT_POSITIVE, SINGULAR or NOT_PROJECTED
+    (params[P_T] is then that step's start). Long on purpose: the step of dynamics.ali3p, its parts
     (predictor, Newton, projections, power) marked by comments."""
     n, m, w = sizes[S_N], sizes[S_M], sizes[S_W]
     h = params[P_H]
@@ -219,7 +229,8 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
                 if not factor(ints, store, vec[MASS], vec[ALPHA], n, m, w, band, weight):
                     return NOT_POSITIVE
                 if params[P_CAREFUL] != 0.0:
-                    _schur(ints, store, vec, sizes, band, weight, schur, pivots)
+                    if not _schur(ints, store, vec, sizes, band, weight, schur, pivots):
+                        return SINGULAR
                     slow = True
             elif not slow:
                 for r in range(m):
@@ -253,13 +264,13 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
                         if size < STALLED and violation <= TOLERANCE:
                             converged = True
                             break
+                    elif not _schur(ints, store, vec, sizes, band, weight, schur, pivots):
+                        return SINGULAR
                     else:
-                        _schur(ints, store, vec, sizes, band, weight, schur, pivots)
                         slow = True
             previous = size
         if not converged:
             return NOT_CONVERGED
-        params[P_T] = t
         evaluate(ints, reals, q, zero, t, c, q_d, store, work, scratch, us)  # projections
         for i in range(n):
             qd[i] = 2.0 / h * step[i] - qd[i]
@@ -267,9 +278,12 @@ def advance(count, ints, reals, vec, sizes, params, store, band, schur, pivots, 
         c_t(ints, reals, t, target)
         for r in range(m):
             target[r] = -target[r]
-        _project(ints, store, vec, sizes, band, weight, schur, pivots, qd, target, slow)
+        if not _project(ints, store, vec, sizes, band, weight, schur, pivots, qd, target, slow):
+            return NOT_PROJECTED
         evaluate(ints, reals, q, qd, t, c, target, store[:0], work, scratch, us)
-        _project(ints, store, vec, sizes, band, weight, schur, pivots, qdd, target, slow)
+        if not _project(ints, store, vec, sizes, band, weight, schur, pivots, qdd, target, slow):
+            return NOT_PROJECTED
+        params[P_T] = t
         jac_times(ints, store, m, qd, push)  # the drivers' power, -lambda* . C_q q' over their rows
         power = 0.0
         for r in range(sizes[S_DRIVERS], m):
