@@ -1,7 +1,8 @@
 """The compiled residual where the catalogue's cam scenes do not reach: two cam contacts on one cam
 (the profile points of each, and the body count taken from a layout with two contact parameters),
 and a chain of 81 moving bodies whose 242 rows outnumber the instructions' width and whose bodies
-outnumber the kernels' scratch width. Each against the plain rows at random states."""
+outnumber the kernels' scratch width, each against the plain rows at random states; and a scene with
+no constraint at all."""
 
 from __future__ import annotations
 
@@ -62,3 +63,12 @@ def test_a_chain_of_81_bodies_on_the_compiled_rows_as_on_the_plain() -> None:
     trajectory = random_states(scenario, np.array([0.0, 0.37, 1.9]), 7)
     plain = plain_constraint_residual(scenario, trajectory)
     np.testing.assert_allclose(constraint_residual(scenario, trajectory), plain, rtol=1e-13, atol=0)
+
+
+def test_a_scene_with_no_constraint_has_none_to_violate() -> None:
+    """Two free links (the compound pendulum without its pins): no constraint, a residual of 0."""
+    pendulum = scenarios.load("compound_pendulum")
+    free = dataclasses.replace(pendulum, joints=(), drivers=())
+    trajectory = random_states(free, np.asarray(free.times())[:4], 3)
+    for measure in (constraint_residual, plain_constraint_residual):
+        np.testing.assert_array_equal(measure(free, trajectory), np.zeros(4))
