@@ -15,17 +15,16 @@ import numpy as np
 import pytest
 
 from reference_solver.compiled_system import constraint_system
-from reference_solver.dynamics import ali3p_schedule
 from reference_solver.dynamics.ali3p import PENALTY, StepState
 from reference_solver.dynamics.ali3p_grid import integrate
-from reference_solver.dynamics.compiled_ali3p import CompiledAli3p, ali3p_stepper
+from reference_solver.dynamics.compiled_ali3p import CompiledAli3p
 from reference_solver.dynamics.forward import initial_state
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.passage import CAREFUL, END_VALUE, FIRST, Watch
-from reference_solver.errors import ConvergenceError
 from tests.reference_solver.dynamics.test_ali3p import _chain
 from tests.reference_solver.dynamics.test_compiled_ali3p_run import _rod
+from tests.reference_solver.dynamics.test_passage import compiled_schedule, fail_when_careful
 
 H = 0.77 / 38500
 """The step of test_passage's chain at the instant's phase 0.41 (t* = 36015.41 h)."""
@@ -183,25 +182,9 @@ def test_a_placed_careful_step_that_fails_is_retaken_at_its_length(monkeypatch: 
     """As test_passage's retry, for a placed step (another length than h): the careful step that
     raises is taken again without care at the same length, giving the state the uncareful step of
     that length gives (the time h/2 on, the same q)."""
-    scenario = _rod()
-    system = constraint_system(scenario)
-    mass = mass_diagonal(scenario, system.layout)
-    loads = Loads(scenario, system.layout, mass)
-    start = initial_state(system, mass, loads, 0.0)
-    first = StepState(start.t, start.q, start.qd, start.qdd, start.lam.copy(), start.jac)
-    stepper = ali3p_stepper(system, mass, loads, 1e-3)
-    assert isinstance(stepper, CompiledAli3p)
+    stepper, first, schedule = compiled_schedule(_rod())
     expected, _, _ = stepper.run_length(first, 5e-4, np.zeros(3), np.zeros(3))
-    schedule = ali3p_schedule.Schedule(stepper, loads, first, 10, 0.01, None)
-    run = stepper.run
-
-    def failing(*args: object) -> object:
-        if stepper.careful:
-            raise ConvergenceError("careful step failed", time=5e-4)
-        return run(*args)  # type: ignore[arg-type]
-
-    monkeypatch.setattr(stepper, "run", failing)
-    stepper.careful = True
+    fail_when_careful(monkeypatch, stepper, 5e-4)
     schedule._take(1, 5e-4)
     assert not stepper.careful and schedule.state.t == expected.t == 5e-4
     np.testing.assert_array_equal(schedule.state.q, expected.q)

@@ -113,11 +113,11 @@ def test_a_chain_s_rockers_stay_on_the_crank_through_a_placed_passage(
     assert plain[0] == pytest.approx(errors[0], rel=0.15) and plain[2] == pytest.approx(errors[2], rel=0.02)
 
 
-def test_a_careful_step_that_fails_is_taken_again_without_care(monkeypatch: pytest.MonkeyPatch) -> None:
-    """The schedule's step: a careful step that raises (a Schur complement next to an instant the
-    watch did not predict) is taken again with the augmented Lagrangian alone, which gives the
-    state an uncareful step gives; a step that fails without care still raises."""
-    scenario = scenarios.build("n_four_bar", overrides={"loops": 2, "t_end": 0.01, "steps": 1})
+def compiled_schedule(
+    scenario: scenarios.Scenario,
+) -> tuple[CompiledAli3p, StepState, ali3p_schedule.Schedule]:
+    """The compiled ALI3-P stepper of `scenario` at h = 1e-3, its assembled start and a schedule of
+    10 steps over 0.01 s from it, without a watch."""
     system = constraint_system(scenario)
     mass = mass_diagonal(scenario, system.layout)
     loads = Loads(scenario, system.layout, mass)
@@ -125,17 +125,31 @@ def test_a_careful_step_that_fails_is_taken_again_without_care(monkeypatch: pyte
     first = StepState(start.t, start.q, start.qd, start.qdd, start.lam.copy(), start.jac)
     stepper = ali3p_stepper(system, mass, loads, 1e-3)
     assert isinstance(stepper, CompiledAli3p)
-    expected = stepper.step(first)
-    schedule = ali3p_schedule.Schedule(stepper, loads, first, 10, 0.01, None)
+    return stepper, first, ali3p_schedule.Schedule(stepper, loads, first, 10, 0.01, None)
+
+
+def fail_when_careful(monkeypatch: pytest.MonkeyPatch, stepper: CompiledAli3p, time: float) -> None:
+    """From now on, the stepper's careful steps raise (as a Schur complement next to an instant the
+    watch did not predict may); it is careful now."""
     run = stepper.run
 
     def failing(*args: object) -> object:
         if stepper.careful:
-            raise ConvergenceError("careful step failed", time=0.001)
+            raise ConvergenceError("careful step failed", time=time)
         return run(*args)  # type: ignore[arg-type]
 
     monkeypatch.setattr(stepper, "run", failing)
     stepper.careful = True
+
+
+def test_a_careful_step_that_fails_is_taken_again_without_care(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The schedule's step: a careful step that raises (a Schur complement next to an instant the
+    watch did not predict) is taken again with the augmented Lagrangian alone, which gives the
+    state an uncareful step gives; a step that fails without care still raises."""
+    scenario = scenarios.build("n_four_bar", overrides={"loops": 2, "t_end": 0.01, "steps": 1})
+    stepper, first, schedule = compiled_schedule(scenario)
+    expected = stepper.step(first)
+    fail_when_careful(monkeypatch, stepper, 0.001)
     schedule.advance(0.001)
     assert not stepper.careful and schedule.before is first
     np.testing.assert_array_equal(schedule.state.q, expected.q)
