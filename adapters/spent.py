@@ -33,7 +33,7 @@ class Stopwatch:
         if self.built_at is None:
             return now - self.start, 0.0, 0.0
         build = self.built_at - self.start
-        if self.warmups < warmup or (warmup and self.warmed_at is None):
+        if self.warmups < warmup:
             return build, now - self.built_at, 0.0
-        timed_from = self.warmed_at if warmup and self.warmed_at is not None else self.built_at
+        timed_from = self.built_at if self.warmed_at is None else self.warmed_at
         return build, timed_from - self.built_at, now - timed_from
