@@ -34,8 +34,8 @@ def constraint_residual(scenario: Scenario, trajectory: Trajectory) -> np.ndarra
     if compiled is None:
         return _plain_residual(scenario, trajectory)
     layout = compiled.layout
-    qs = _coordinates(layout, trajectory)
     known = _known_contacts(layout, trajectory)
+    qs = _coordinates(layout, trajectory, known)
     counted = np.flatnonzero([contact is None or contact in known for contact in compiled.row_contacts])
     times = np.asarray(trajectory.times, dtype=float)
     measure = compiled.kernels.trajectory_residuals
@@ -83,14 +83,14 @@ def _known_contacts(layout: Layout, trajectory: Trajectory) -> set[str]:
     return {c for c in layout.contacts if f"{c}.phi" in trajectory.extras}
 
 
-def _coordinates(layout: Layout, trajectory: Trajectory) -> np.ndarray:
-    """q at every time point: the bodies' poses in the layout's order, then each contact parameter
-    the trajectory carries (0 for the others, whose rows do not count)."""
+def _coordinates(layout: Layout, trajectory: Trajectory, known: set[str]) -> np.ndarray:
+    """q at every time point: the bodies' poses in the layout's order, then each `known` contact's
+    parameter (0 for the others, whose rows do not count)."""
     assert trajectory.position is not None
     order = [trajectory.bodies.index(b) for b in layout.bodies]
     qs = np.zeros((len(trajectory.times), layout.size))
     qs[:, : 3 * len(order)] = trajectory.position[:, order, :].reshape(len(trajectory.times), -1)
-    for c in _known_contacts(layout, trajectory):
+    for c in known:
         qs[:, layout.phi_column(c)] = trajectory.extras[f"{c}.phi"]
     return qs
 
@@ -112,7 +112,7 @@ def plain_constraint_residual(scenario: Scenario, trajectory: Trajectory) -> np.
 def _plain_residual(scenario: Scenario, trajectory: Trajectory) -> np.ndarray:
     assert trajectory.position is not None
     layout = Layout.of(scenario)
-    known_phi = {c for c in layout.contacts if f"{c}.phi" in trajectory.extras}
+    known_phi = _known_contacts(layout, trajectory)
     constraints = [
         c for c in scenario.joints + scenario.drivers if c not in scenario.cams or c.name in known_phi
     ]
