@@ -36,6 +36,7 @@ from scenarios import Point
 from scenarios.drivers import AbsoluteDriver
 from scenarios.joints import RevoluteRevolute
 from scenarios.motions import ConstantSpeed
+from tests.reference_solver.dynamics.test_ali3p import steps_alike_in_metres_and_kilometres
 from tests.reference_solver.dynamics.test_compiled_ali3p_run import THETA0, _rod
 from tests.reference_solver.dynamics.test_compiled_ali3p_run import _start as _start_run
 from tests.reference_solver.test_fast_ali3p_matrix import _bandwidth, _dense, _rows
@@ -431,21 +432,13 @@ def test_the_compiled_step_is_the_same_in_any_unit_of_length() -> None:
     g = 9.81 and of 1 km under g = 9.81e3 takes as many Newton iterations at every step, and gives
     the same angles and lengths a thousand times (Newton measures its updates over the column
     scales and C over the row scales)."""
-    runs = []
-    for length in (1.0, 1e3):
-        overrides = {"link_length": length, "gravity": 9.81 * length, "t_end": 0.01, "steps": 2}
-        stepper, _, s = _start_run(scenarios.build("compound_pendulum", overrides=overrides), True, 1e-3)
+
+    def compiled(scenario: scenarios.Scenario, h: float) -> tuple[Ali3p, StepState]:
+        stepper, _, start = _start_run(scenario, True, h)
         assert isinstance(stepper, CompiledAli3p)
-        states = []
-        for _ in range(5):
-            s = stepper.step(s)
-            states.append(s)
-        runs.append(states)
-    for metre, kilometre in zip(*runs, strict=True):
-        assert metre.iterations == kilometre.iterations
-        np.testing.assert_allclose(kilometre.q[2::3], metre.q[2::3], rtol=0, atol=1e-12)
-        np.testing.assert_allclose(kilometre.q[0::3] / 1e3, metre.q[0::3], rtol=0, atol=1e-12)
-        np.testing.assert_allclose(kilometre.q[1::3] / 1e3, metre.q[1::3], rtol=0, atol=1e-12)
+        return stepper, start
+
+    steps_alike_in_metres_and_kilometres(compiled)
 
 
 def test_a_newton_iteration_that_overflows_is_refused_as_the_plain_step_refuses_it() -> None:

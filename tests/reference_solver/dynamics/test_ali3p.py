@@ -8,6 +8,7 @@ of 1 m and 1 kg), which also gives the passage times (theta a multiple of pi).""
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -336,10 +337,19 @@ def test_the_step_is_the_same_in_any_unit_of_length() -> None:
     (lengths and g scaled alike, so the angles move the same in time): every step takes as many
     Newton iterations and gives the same angles, and lengths a thousand times (the stopping rule
     measures updates over the column scales and residuals over the row scales)."""
+    steps_alike_in_metres_and_kilometres(_stepper)
+
+
+def steps_alike_in_metres_and_kilometres(
+    stepper_of: Callable[[scenarios.Scenario, float], tuple[Ali3p, StepState]],
+) -> None:
+    """Asserts that 5 steps of h = 1e-3 by `stepper_of`'s stepper (of a scenario and h, with its
+    start) take as many Newton iterations on the compound pendulum with links of 1 m under g = 9.81
+    as with links of 1 km under g = 9.81e3, to the same angles and a thousand times the lengths."""
     runs = []
     for length in (1.0, 1e3):
         overrides = {"link_length": length, "gravity": 9.81 * length, "t_end": 0.01, "steps": 2}
-        stepper, s = _stepper(scenarios.build("compound_pendulum", overrides=overrides), 1e-3)
+        stepper, s = stepper_of(scenarios.build("compound_pendulum", overrides=overrides), 1e-3)
         states = []
         for _ in range(5):
             s = stepper.step(s)
