@@ -56,7 +56,7 @@ def reach(frame: pd.DataFrame, target: float = TARGET) -> pd.DataFrame:
                 **{f"default_{c}": _worst(defaults[c]) for c in LEVELS},
                 "best_worst": float(best_rows["worst"].max()),
                 "best_cost": float(np.median(best_costs)) if best_costs.size else math.nan,
-                "scenarios": int(len(best_rows)),
+                "scenarios": len(best_rows),
                 "reached": int(costs.size),
                 "median_cost": float(np.median(costs)) if costs.size else math.nan,
             }
