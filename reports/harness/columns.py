@@ -106,6 +106,12 @@ RECORDED_COLUMNS: tuple[Column, ...] = (
     ),
     Column("map_stiffness", math.nan, "dynamics map cell: the spring stiffness, N/m"),
     Column("map_dt", math.nan, "dynamics map cell: the output step, s"),
+    Column(
+        "is_untuned",
+        False,
+        "the engine's own defaults as a new user's model gets them, at the rule's step "
+        "(Adapter.untuned_setting): the report's untuned point",
+    ),
     Column("scenario_rank", -1, "the scenario's place in the catalogue (the report's order); -1 not listed"),
     Column(
         "engine_rank", -1, "the engine's place in the engine registry (the report's order); -1 not listed"
