@@ -59,3 +59,21 @@ def _cubic(s: float, h: float, y0: np.ndarray, d0: np.ndarray, y1: np.ndarray, d
     h00, h10 = (1.0 + 2.0 * s) * (1.0 - s) ** 2, s * (1.0 - s) ** 2
     h01, h11 = s * s * (3.0 - 2.0 * s), s * s * (s - 1.0)
     return h00 * y0 + h10 * h * d0 + h01 * y1 + h11 * h * d1  # type: ignore[no-any-return]
+
+
+def outputs_on_steps(times: np.ndarray, h: float) -> float:
+    """The step the march takes so that every output time falls on it: `h` where the grid's times
+    are already whole steps from its first (or it has one time), else, for an evenly spaced grid, the
+    output spacing over the fewest whole steps no longer than `h` (spacing / ceil(spacing / h)); `h`
+    for an uneven grid, whose outputs between steps are then interpolated (`hermite`)."""
+    grid = np.asarray(times, dtype=float)
+    if grid.size < 2:
+        return h
+    t0 = float(grid[0])
+    if all(lattice_point(t0, float(t), h)[1] == 0.0 for t in grid):
+        return h
+    gaps = np.diff(grid)
+    spacing = float(grid[-1] - t0) / (grid.size - 1)
+    if spacing <= 0.0 or np.max(np.abs(gaps - spacing)) > ON_LATTICE * spacing:
+        return h
+    return spacing / math.ceil(spacing / h * (1.0 - ON_LATTICE))

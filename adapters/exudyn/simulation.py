@@ -1,6 +1,8 @@
 """Running an Exudyn model: assembly by Exudyn's static solver, velocity and acceleration solves on
-Exudyn's own constraint Jacobian, and the three ways to march: generalized-alpha (index 3),
-the trapezoidal rule with index-2 constraints, and a static solve per time point.
+Exudyn's own constraint Jacobian, and the three ways to march: generalized-alpha (index 3, after a
+run-in on kinematic scenes: adapters.exudyn.run_in), the trapezoidal rule with index-2 constraints,
+and a static solve per time point. The march steps onto the output times (adapters.lattice,
+outputs_on_steps); only an uneven grid is interpolated, with a warning saying so.
 
 Everything stays in memory and silent: no solution, sensor or solver files, no console output.
 An Exudyn solver error becomes an EngineFailure (Singular when its linear solver failed) carrying
@@ -10,6 +12,7 @@ Exudyn's own message and the simulated time.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -21,7 +24,8 @@ import numpy as np
 from adapters.base import EngineFailure, Singular
 from adapters.exudyn.force_sensors import force_columns
 from adapters.exudyn.model import ExudynModel
-from adapters.lattice import check_grid, hermite, lattice_point, lattice_steps
+from adapters.exudyn.run_in import negative_times, positions_back
+from adapters.lattice import check_grid, hermite, lattice_point, lattice_steps, outputs_on_steps
 from scenarios.bodies import GROUND
 from scenarios.trajectory import Trajectory
 
@@ -38,13 +42,17 @@ DYNAMIC = {
 class Plan:
     """How to march: `solver` GA, TR2 or STATIC; the requested step `dt`; GA's spectral radius;
     Newton's tolerance on the increment of each step (or of each static solve); whether the
-    integrator keeps Exudyn's modified Newton (else full Newton)."""
+    integrator keeps Exudyn's modified Newton (else full Newton); the steps of run-in before the
+    first output (adapters.exudyn.run_in); `untuned`: Exudyn's own default settings, its own
+    initial accelerations, no run-in."""
 
     solver: str
     dt: float
     rho: float
     tolerance: float
     modified_newton: bool = False
+    run_in: int = 0
+    untuned: bool = False
 
 
 @dataclass
@@ -92,6 +100,19 @@ def simulation_settings(tolerance: float) -> Any:
         solver.newton.relativeTolerance = tolerance
         solver.newton.absoluteTolerance = tolerance
     s.timeIntegration.automaticStepSize = False
+    return s
+
+
+def untuned_settings() -> Any:
+    """Exudyn's own default settings, quiet and file-free only (what a new user's model runs with)."""
+    s = exu.SimulationSettings()
+    s.solution.file.write = False
+    s.solution.sensors.active = False
+    s.solution.restart.write = False
+    s.show.computationTime = s.show.statistics = s.show.globalTimers = False
+    s.timeIntegration.verboseMode = 0
+    s.timeIntegration.stepInformation = 0
+    s.staticSolver.verboseMode = 0
     return s
 
 
@@ -274,24 +295,49 @@ def _empty(n_times: int, n: int) -> States:
 
 
 def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any) -> tuple[States, int]:
-    """March whole steps `plan.dt` from the first output time past the last (the lattice,
-    adapters.lattice), Exudyn's sensors recording every step; outputs between two steps are the
-    Hermite interpolant of the two (Exudyn's solver runs in one call: no side step)."""
+    """March whole steps from `plan.run_in` steps before the first output time past the last, the
+    step being `plan.dt` or the largest below it that puts the outputs on the steps (adapters.lattice),
+    Exudyn's sensors recording every step; an output between two steps (an uneven grid) is the Hermite
+    interpolant of the two, with a warning (Exudyn's solver runs in one call: no side step)."""
     check_grid(times, float(times[0]))
-    t0, h = float(times[0]), plan.dt
-    steps = lattice_steps(t0, float(times[-1]), h)
+    t0, h, n = float(times[0]), outputs_on_steps(times, plan.dt), plan.run_in
+    first = t0 - n * h
+    steps = lattice_steps(t0, float(times[-1]), h) + n
     ti = settings.timeIntegration
     ti.generalizedAlpha.spectralRadius = plan.rho
     settings.solution.sensors.active = True
     settings.solution.sensors.writePeriod = 0.5 * h  # every step, once
     solver = DYNAMIC[plan.solver]
-    initial = _initial_forces(model, settings, solver, t0, h)
-    ti.startTime, ti.endTime, ti.numberOfSteps = t0, t0 + steps * h, steps
-    ti.generalizedAlpha.computeInitialAccelerations = False  # the assembled start has them
-    _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
-    states = _on_grid(_sensed(model, t0, h, steps), times, h)
-    states.forces = force_columns(model.mbs, model.force_sensors, times, h, initial)
+    initial = _initial_forces(model, settings, solver, t0, h) if n == 0 and not plan.untuned else None
+    if n:
+        write_initial(model, run_in_start(model, settings, t0, h, n))
+    # the assembled start has its accelerations; an untuned run lets Exudyn compute them
+    ti.generalizedAlpha.computeInitialAccelerations = plan.untuned
+    with negative_times():
+        ti.startTime, ti.endTime, ti.numberOfSteps = first, first + steps * h, steps
+        _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
+    lattice = _sensed(model, first, h, steps)
+    lattice = States(lattice.q[n:], lattice.v[n:], lattice.a[n:])
+    states = _on_grid(lattice, times, h)
+    angle = {body: states.q[:, k + 2] for body, k in model.index.items()}
+    states.forces = force_columns(model.mbs, model.force_sensors, times, h, initial, angle)
     return states, steps
+
+
+def run_in_start(model: ExudynModel, settings: Any, t0: float, h: float, n: int) -> States:
+    """The consistent state at t0 - n h: the mechanism assembled there (positions stepped back from
+    the start at t0 on Exudyn's constraints), its rates solved as the start's; kept per (t0, h, n)."""
+    key = (t0, h, n)
+    if key not in model.run_in_starts:
+        start = np.array(model.mbs.systemData.GetODE2Coordinates(INITIAL))
+        probe = ConstraintProbe(model, settings)
+        size = max(1.0, float(np.max(np.abs(start))))
+        with negative_times():
+            q = positions_back(probe.jacobian, probe.residual, start, t0, h, n, size)
+            v, a = probe.rates(q, t0 - n * h, *_scales(model))
+        probe.close(settings)
+        model.run_in_starts[key] = States(q[None, :], v[None, :], a[None, :])
+    return model.run_in_starts[key]
 
 
 def _initial_forces(model: ExudynModel, settings: Any, solver: Any, t0: float, h: float) -> list[np.ndarray]:
@@ -328,16 +374,26 @@ def _sensed(model: ExudynModel, t0: float, h: float, steps: int) -> States:
     return states
 
 
+INTERPOLATED = (
+    "Exudyn: {count} of {total} output times fall between its steps (an uneven grid) and are "
+    "interpolated: cubic Hermite in position and velocity (error O(h^4)), linear in acceleration (O(h^2))"
+)
+
+
 def _on_grid(lattice: States, times: np.ndarray, h: float) -> States:
-    """The lattice states at the output times (adapters.lattice)."""
+    """The lattice states at the output times (adapters.lattice); a warning where any is interpolated."""
     out = _empty(len(times), lattice.q.shape[1])
+    between = 0
     for i, t in enumerate(times):
         whole, rest = lattice_point(float(times[0]), float(t), h)
         if rest == 0.0:
             out.q[i], out.v[i], out.a[i] = lattice.q[whole], lattice.v[whole], lattice.a[whole]
             continue
+        between += 1
         ends = [(level.q[j], level.v[j], level.a[j]) for level in (lattice,) for j in (whole, whole + 1)]
         out.q[i], out.v[i], out.a[i] = hermite(rest / h, h, ends[0], ends[1])
+    if between:
+        warnings.warn(INTERPOLATED.format(count=between, total=len(times)), stacklevel=2)
     return out
 
 
