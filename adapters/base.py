@@ -14,7 +14,9 @@ A subclass provides exactly:
                                                curves (`sweep`, its old name, still works: deprecated)
     build(scenario, setting) -> model          the engine's own model (not timed)
     simulate(model, times) -> Trajectory       the timed part; must not depend on earlier calls.
-It may also provide export(scenario, setting, path) in the engine's own file format, and call
+It may also provide export(scenario, setting, path) in the engine's own file format,
+untuned_setting(scenario) (the engine's own defaults as a new user's model gets them, at the rule's
+step; None where the engine declares none), and call
 `self.count_steps(n)` inside `simulate` to report the engine steps taken. Its other facts are data
 here too, so that nothing outside its subpackage names it: `colour` (its colour in the report's
 figures), `packages` (the distributions whose versions a run records) and `probe_settings` (its
@@ -102,6 +104,10 @@ class Adapter:
 
     def default_setting(self, scenario: Scenario) -> Setting:
         raise NotImplementedError
+
+    def untuned_setting(self, scenario: Scenario) -> Setting | None:
+        """The engine's own defaults as a new user's model gets them, at the rule's step, or None."""
+        return None
 
     def ladder(self, scenario: Scenario) -> list[Setting]:
         """The settings ladder: the settings the work-precision curves run over (by default the

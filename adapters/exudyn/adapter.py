@@ -49,7 +49,7 @@ from adapters.exudyn.initial_state import released_start
 from adapters.exudyn.loads import FORCES
 from adapters.exudyn.model import ExudynModel, ModelError, build_model
 from adapters.exudyn.run_in import MAX_RUN_IN, run_in_steps
-from adapters.exudyn.settings import STEPS_PER_PERIOD, rule_default, rule_ladder
+from adapters.exudyn.settings import STEPS_PER_PERIOD, rule_default, rule_ladder, rule_untuned
 from adapters.exudyn.simulation import (
     Plan,
     States,
@@ -126,7 +126,10 @@ class ExudynAdapter(Adapter):
     colour = "#d62728"
     packages = ("exudyn",)
     dynamics = True
-    rule = f"GA3 (spectral radius 0.9, full Newton) at 1/{STEPS_PER_PERIOD} of the shortest period"
+    rule = (
+        f"GA3 (spectral radius 0.9, full Newton) at 1/{STEPS_PER_PERIOD} of the shortest period, "
+        f"after a run-in of {run_in_steps(0.9)} steps on kinematic scenes"
+    )
     measured = (
         Mode(
             "GA3",
@@ -202,6 +205,10 @@ class ExudynAdapter(Adapter):
 
     def default_setting(self, scenario: Scenario) -> Setting:
         setting = rule_default(scenario)
+        return setting.replace(cam_model=default_cam_model(scenario)) if scenario.cams else setting
+
+    def untuned_setting(self, scenario: Scenario) -> Setting:
+        setting = rule_untuned(scenario)
         return setting.replace(cam_model=default_cam_model(scenario)) if scenario.cams else setting
 
     def ladder(self, scenario: Scenario) -> list[Setting]:

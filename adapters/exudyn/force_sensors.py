@@ -59,7 +59,9 @@ def add_force_sensors(mbs: Any, items: dict[str, tuple[object, list[int]]]) -> l
         else:
             continue
         handle = mbs.AddSensor(
-            SensorObject(objectNumber=objects[0], storeInternal=True, writeToFile=False, outputVariableType=output)
+            SensorObject(
+                objectNumber=objects[0], storeInternal=True, writeToFile=False, outputVariableType=output
+            )
         )
         sensors.append(ForceSensor(handle, columns, frame))
     return sensors
@@ -93,7 +95,10 @@ def force_columns(
                 values[i] += (rest / h) * (lattice[whole + 1] - lattice[whole])
         if sensor.frame != GROUND:
             c, s = np.cos(angle[sensor.frame]), np.sin(angle[sensor.frame])
-            values[:, 0], values[:, 1] = c * values[:, 0] - s * values[:, 1], s * values[:, 0] + c * values[:, 1]
+            values[:, 0], values[:, 1] = (
+                c * values[:, 0] - s * values[:, 1],
+                s * values[:, 0] + c * values[:, 1],
+            )
         for column, component, sign in sensor.columns:
             out[column] = sign * values[:, component]
     return out

@@ -25,7 +25,14 @@ from adapters.base import EngineFailure, Singular
 from adapters.exudyn.force_sensors import force_columns
 from adapters.exudyn.model import ExudynModel
 from adapters.exudyn.run_in import negative_times, positions_back
-from adapters.lattice import check_grid, hermite, lattice_point, lattice_steps, outputs_on_steps
+from adapters.lattice import (
+    check_grid,
+    hermite,
+    interpolation_cost,
+    lattice_point,
+    lattice_steps,
+    outputs_on_steps,
+)
 from scenarios.bodies import GROUND
 from scenarios.trajectory import Trajectory
 
@@ -318,7 +325,7 @@ def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any)
         _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
     lattice = _sensed(model, first, h, steps)
     lattice = States(lattice.q[n:], lattice.v[n:], lattice.a[n:])
-    states = _on_grid(lattice, times, h)
+    states = _on_grid(lattice, times, h, _scales(model)[0])
     angle = {body: states.q[:, k + 2] for body, k in model.index.items()}
     states.forces = force_columns(model.mbs, model.force_sensors, times, h, initial, angle)
     return states, steps
@@ -376,14 +383,17 @@ def _sensed(model: ExudynModel, t0: float, h: float, steps: int) -> States:
 
 INTERPOLATED = (
     "Exudyn: {count} of {total} output times fall between its steps (an uneven grid) and are "
-    "interpolated: cubic Hermite in position and velocity (error O(h^4)), linear in acceleration (O(h^2))"
+    "interpolated: cubic Hermite in position and velocity, linear in acceleration; the positions' "
+    "interpolation error is about {cost:.2g} (lengths over the characteristic length, angles in rad: "
+    "their largest difference from the quintic through the accelerations too)"
 )
 
 
-def _on_grid(lattice: States, times: np.ndarray, h: float) -> States:
-    """The lattice states at the output times (adapters.lattice); a warning where any is interpolated."""
+def _on_grid(lattice: States, times: np.ndarray, h: float, scale: np.ndarray) -> States:
+    """The lattice states at the output times (adapters.lattice); a warning where any is interpolated,
+    with an estimate of what that costs in positions (each coordinate over its `scale`)."""
     out = _empty(len(times), lattice.q.shape[1])
-    between = 0
+    between, cost = 0, 0.0
     for i, t in enumerate(times):
         whole, rest = lattice_point(float(times[0]), float(t), h)
         if rest == 0.0:
@@ -392,8 +402,9 @@ def _on_grid(lattice: States, times: np.ndarray, h: float) -> States:
         between += 1
         ends = [(level.q[j], level.v[j], level.a[j]) for level in (lattice,) for j in (whole, whole + 1)]
         out.q[i], out.v[i], out.a[i] = hermite(rest / h, h, ends[0], ends[1])
+        cost = max(cost, float(np.max(interpolation_cost(rest / h, h, ends[0], ends[1]) / scale)))
     if between:
-        warnings.warn(INTERPOLATED.format(count=between, total=len(times)), stacklevel=2)
+        warnings.warn(INTERPOLATED.format(count=between, total=len(times), cost=cost), stacklevel=2)
     return out
 
 
