@@ -252,7 +252,7 @@ class ExudynAdapter(Adapter):
                 model = build_model(scenario, float(setting.get("mass_scale", 1.0)), cams == "native")
         except ModelError as error:
             raise Unsupported(str(error)) from error
-        times = scenario.times()
+        times = np.asarray(scenario.times(), dtype=float)
         t0 = float(times[0])
         settings = _settings(model, replace(plan, untuned=False))  # every start is assembled alike
         with quiet():
