@@ -32,7 +32,7 @@ spectral radius), `tol` (Newton's tolerance on its increment, per unit of coordi
 it), `cams` ('native' puts knife-edge and roller followers on a circular disc on Exudyn's distance
 connector; 'user' sends every cam through the user-function connector).
 Every run starts from a consistent state that Exudyn's static solver finds from the scenario's
-rough guess (adapters.exudyn.simulation.assemble). Exudyn has no model file format (its models are Python
+rough guess (adapters.exudyn.assembly.assemble). Exudyn has no model file format (its models are Python
 scripts), so there is no export.
 """
 
@@ -45,22 +45,13 @@ import exudyn as exu
 import numpy as np
 
 from adapters.base import Adapter, Option, Setting, Unsupported
+from adapters.exudyn.assembly import States, assemble
 from adapters.exudyn.initial_state import released_start
 from adapters.exudyn.loads import FORCES
 from adapters.exudyn.model import ExudynModel, ModelError, build_model
-from adapters.exudyn.run_in import MAX_RUN_IN, run_in_steps
+from adapters.exudyn.run_in import MAX_RUN_IN, run_in_start, run_in_steps
 from adapters.exudyn.settings import STEPS_PER_PERIOD, rule_default, rule_ladder, rule_untuned
-from adapters.exudyn.simulation import (
-    Plan,
-    States,
-    assemble,
-    march,
-    quiet,
-    run_in_start,
-    simulation_settings,
-    trajectory,
-    untuned_settings,
-)
+from adapters.exudyn.simulation import Plan, march, quiet, simulation_settings, trajectory, untuned_settings
 from adapters.lattice import outputs_on_steps
 from adapters.modes import ENGINE, Mode
 from scenarios.cam_linkage import CAM_MODELS, default_cam_model, linkage_reason
@@ -134,7 +125,8 @@ class ExudynAdapter(Adapter):
         Mode(
             "GA3",
             ENGINE,
-            "Exudyn's generalized-alpha (index 3, spectral radius 0.9), all levels from its state",
+            "Exudyn's generalized-alpha (index 3, spectral radius 0.9; after a run-in on kinematic scenes), "
+            "all levels from its state",
         ),
         Mode(
             "GA3-rho0.5",

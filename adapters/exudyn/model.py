@@ -83,7 +83,7 @@ class ExudynModel:
     """Drivers' forces and joints' reactions (adapters.exudyn.force_sensors)."""
     run_in_starts: dict[tuple[float, float, int], Any] = field(default_factory=dict)
     """The assembled states a run-in starts from, per (first output time, step, steps of run-in)
-    (adapters.exudyn.simulation.run_in_start)."""
+    (adapters.exudyn.run_in.run_in_start)."""
 
 
 def build_model(scenario: Scenario, mass_scale: float = 1.0, native_cams: bool = True) -> ExudynModel:

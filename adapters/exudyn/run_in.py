@@ -23,11 +23,14 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from typing import Any
 
 import exudyn as exu
 import numpy as np
 
 from adapters.base import EngineFailure
+from adapters.exudyn.assembly import INITIAL, ConstraintProbe, States, coordinate_scales
+from adapters.exudyn.model import ExudynModel
 
 DECAY = 1e-9
 """The run-in lasts until the transient's envelope n rho^n has fallen below this."""
@@ -84,3 +87,19 @@ def positions_back(
         if not math.isfinite(float(np.max(np.abs(q)))):
             raise EngineFailure(f"the run-in's assembly diverged at t = {t:.6g}", t)
     return q
+
+
+def run_in_start(model: ExudynModel, settings: Any, t0: float, h: float, n: int) -> States:
+    """The consistent state at t0 - n h: the mechanism assembled there (positions stepped back from
+    the start at t0 on Exudyn's constraints), its rates solved as the start's; kept per (t0, h, n)."""
+    key = (t0, h, n)
+    if key not in model.run_in_starts:
+        start = np.array(model.mbs.systemData.GetODE2Coordinates(INITIAL))
+        probe = ConstraintProbe(model, settings)
+        size = max(1.0, float(np.max(np.abs(start))))
+        with negative_times():
+            q = positions_back(probe.jacobian, probe.residual, start, t0, h, n, size)
+            v, a = probe.rates(q, t0 - n * h, *coordinate_scales(model))
+        probe.close(settings)
+        model.run_in_starts[key] = States(q[None, :], v[None, :], a[None, :])
+    return model.run_in_starts[key]

@@ -1,12 +1,10 @@
-"""Running an Exudyn model: assembly by Exudyn's static solver, velocity and acceleration solves on
-Exudyn's own constraint Jacobian, and the three ways to march: generalized-alpha (index 3, after a
-run-in on kinematic scenes: adapters.exudyn.run_in), the trapezoidal rule with index-2 constraints,
-and a static solve per time point. The march steps onto the output times (adapters.lattice,
-outputs_on_steps); only an uneven grid is interpolated, with a warning saying so.
+"""Running an Exudyn model from its assembled start (adapters.exudyn.assembly), three ways:
+generalized-alpha (index 3, after a run-in on kinematic scenes: adapters.exudyn.run_in), the
+trapezoidal rule with index-2 constraints, and a static solve per time point. The march steps onto
+the output times (adapters.lattice.outputs_on_steps); only an uneven grid is interpolated, with a
+warning saying so.
 
 Everything stays in memory and silent: no solution, sensor or solver files, no console output.
-An Exudyn solver error becomes an EngineFailure (Singular when its linear solver failed) carrying
-Exudyn's own message and the simulated time.
 """
 
 from __future__ import annotations
@@ -15,16 +13,25 @@ import math
 import warnings
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import exudyn as exu
 import numpy as np
 
-from adapters.base import EngineFailure, Singular
+from adapters.base import EngineFailure
+from adapters.exudyn.assembly import (
+    INITIAL,
+    ConstraintProbe,
+    States,
+    assemble,
+    coordinate_scales,
+    guarded,
+    write_initial,
+)
 from adapters.exudyn.force_sensors import force_columns
 from adapters.exudyn.model import ExudynModel
-from adapters.exudyn.run_in import negative_times, positions_back
+from adapters.exudyn.run_in import negative_times, run_in_start
 from adapters.lattice import (
     check_grid,
     hermite,
@@ -36,8 +43,6 @@ from adapters.lattice import (
 from scenarios.bodies import GROUND
 from scenarios.trajectory import Trajectory
 
-INITIAL = exu.ConfigurationType.Initial
-CURRENT = exu.ConfigurationType.Current
 DYNAMIC = {
     "GA": exu.DynamicSolverType.GeneralizedAlpha,
     "TR2": exu.DynamicSolverType.TrapezoidalIndex2,
@@ -62,17 +67,6 @@ class Plan:
     untuned: bool = False
 
 
-@dataclass
-class States:
-    """Coordinates, velocities and accelerations (n_times x n_ode2) at the grid times."""
-
-    q: np.ndarray
-    v: np.ndarray
-    a: np.ndarray
-    forces: dict[str, np.ndarray] = field(default_factory=dict)
-    """Drivers' forces and joints' reactions where the integrator recorded them (force_sensors)."""
-
-
 @contextmanager
 def quiet() -> Iterator[None]:
     """Exudyn's console output off for the duration (it is a process-wide switch)."""
@@ -82,9 +76,6 @@ def quiet() -> Iterator[None]:
         yield
     finally:
         exu.config.printToConsole = before
-
-
-ASSEMBLY_TOLERANCE = 1e-14
 
 
 def simulation_settings(tolerance: float) -> Any:
@@ -121,148 +112,6 @@ def untuned_settings() -> Any:
     s.timeIntegration.stepInformation = 0
     s.staticSolver.verboseMode = 0
     return s
-
-
-class ConstraintProbe:
-    """Exudyn's constraint Jacobian C_q and velocity-level constraints C_q v + C_t at any state,
-    through the interface of its static solver."""
-
-    def __init__(self, model: ExudynModel, settings: Any) -> None:
-        self.mbs = model.mbs
-        self.solver = _static_solver()
-        self.solver.InitializeSolver(self.mbs, settings)
-        self.n = self.solver.GetODE2size()
-        # a joint with a row switched off (a prismatic joint free to turn) keeps it as lambda = 0:
-        # no coordinate in it, a 1 on the multiplier's diagonal; only the other rows constrain
-        full = self._full_jacobian()
-        self.live = np.flatnonzero(np.diag(full[self.n :, self.n :]) == 0.0)
-        if len(self.live) != self.n:
-            raise EngineFailure(
-                f"not kinematically driven in Exudyn: {self.n} coordinates, {len(self.live)} constraints"
-            )
-
-    def _set(self, q: np.ndarray, v: np.ndarray, t: float) -> None:
-        data = self.mbs.systemData
-        data.SetODE2Coordinates(q.tolist(), CURRENT)
-        data.SetODE2Coordinates_t(v.tolist(), CURRENT)
-        data.SetTime(t)
-
-    def _full_jacobian(self) -> np.ndarray:
-        self.solver.ComputeJacobianODE2RHS(
-            self.mbs, scalarFactor_ODE2=-1.0, scalarFactor_ODE2_t=0.0
-        )  # resets
-        self.solver.ComputeJacobianAE(self.mbs, scalarFactor_ODE2=1.0, scalarFactor_ODE2_t=0.0)
-        return np.array(self.solver.GetSystemJacobian())
-
-    def jacobian(self, q: np.ndarray, t: float) -> np.ndarray:
-        self._set(q, np.zeros_like(q), t)
-        return self._full_jacobian()[self.n + self.live, : self.n]
-
-    def residual(self, q: np.ndarray, t: float) -> np.ndarray:
-        """C(q, t), the constraints at position level."""
-        self._set(q, np.zeros_like(q), t)
-        self.solver.ComputeAlgebraicEquations(self.mbs, velocityLevel=False)
-        return np.array(self.solver.GetSystemResidual())[self.n + self.live]
-
-    def rate_residual(self, q: np.ndarray, v: np.ndarray, t: float) -> np.ndarray:
-        """C_q v + C_t, the constraints at velocity level."""
-        self._set(q, v, t)
-        self.solver.ComputeAlgebraicEquations(self.mbs, velocityLevel=True)
-        return np.array(self.solver.GetSystemResidual())[self.n + self.live]
-
-    def rates(
-        self, q: np.ndarray, t: float, scale: np.ndarray, frequency: float
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """Velocities from C_q v = -C_t and accelerations from C_q a = Q_d, Q_d being minus the
-        derivative of C_q v + C_t along the motion at fixed v (fourth-order central differences
-        over a thousandth of the time a coordinate takes to move its own scale, or of 1/frequency)."""
-        jac = self.jacobian(q, t)
-        v = _solve(jac, -self.rate_residual(q, np.zeros_like(q), t), t)
-        h = 1e-3 / max(float(np.max(np.abs(v) / scale)), frequency)
-
-        def along(s: float) -> np.ndarray:
-            return self.rate_residual(q + s * h * v, v, t + s * h)
-
-        derivative = (8.0 * (along(1) - along(-1)) - (along(2) - along(-2))) / (12.0 * h)
-        return v, _solve(jac, -derivative, t)
-
-    def close(self, settings: Any) -> None:
-        self.solver.FinalizeSolver(self.mbs, settings)
-
-
-def _static_solver() -> Any:
-    """Exudyn's static solver interface, typed Any: Exudyn's stubs of its methods lack `self`."""
-    return exu.MainSolverStatic()
-
-
-def _solve(jac: np.ndarray, rhs: np.ndarray, t: float) -> np.ndarray:
-    if not np.all(np.isfinite(jac)) or np.linalg.cond(jac) > 1e14:
-        raise Singular("Exudyn's constraint Jacobian is singular", t)
-    return np.linalg.solve(jac, rhs)
-
-
-def _scales(model: ExudynModel) -> tuple[np.ndarray, float]:
-    """Per ODE2 coordinate the characteristic length for x and y, 1 for angles and phi; and the
-    scenario's characteristic frequency, 2 pi over its duration."""
-    scale = np.ones(len(model.guess))
-    for index in model.index.values():
-        scale[index : index + 2] = model.scenario.characteristic_length
-    return scale, 2.0 * math.pi / model.scenario.t_end
-
-
-def assemble(model: ExudynModel, t0: float, settings: Any) -> States:
-    """A consistent start found by Exudyn: its static solver from the guess at t0, then velocity
-    and acceleration solves; written into the system's initial state."""
-    if t0 < 0.0:
-        raise EngineFailure(f"Exudyn's static solver cannot start at negative time {t0}", t0)
-    data = model.mbs.systemData
-    data.SetODE2Coordinates(model.guess.tolist(), INITIAL)
-    data.SetODE2Coordinates_t(np.zeros_like(model.guess).tolist(), INITIAL)
-    static = settings.staticSolver
-    static.numberOfLoadSteps, static.loadStepStart, static.loadStepDuration = 1, t0, 1e-30
-    tolerance = ASSEMBLY_TOLERANCE * max(1.0, float(np.max(np.abs(model.guess))))
-    static.newton.relativeTolerance, static.newton.absoluteTolerance = tolerance, tolerance
-    _guarded(model, "staticSolver", lambda: model.mbs.SolveStatic(settings, updateInitialValues=True))
-    q0 = np.array(data.GetODE2Coordinates(INITIAL))
-    probe = ConstraintProbe(model, settings)
-    # Exudyn's static solve ends at t0 + 1e-30 (a load step must last); one Newton step on its
-    # equations lands the start exactly at t0
-    q0 = q0 - _solve(probe.jacobian(q0, t0), probe.residual(q0, t0), t0)
-    gap = float(np.max(np.abs(probe.residual(q0, t0)), initial=0.0))
-    if not gap <= 1e-9 * max(1.0, model.scenario.characteristic_length):
-        raise EngineFailure(
-            f"Exudyn's static solver did not assemble the mechanism: constraint residual {gap:.3g}", t0
-        )
-    q0 = _nearest_turns(model, probe, q0, t0, gap + 1e-12)
-    v0, a0 = probe.rates(q0, t0, *_scales(model))
-    probe.close(settings)
-    start = States(q0[None, :], v0[None, :], a0[None, :])
-    write_initial(model, start)
-    return start
-
-
-def write_initial(model: ExudynModel, start: States) -> None:
-    """`start` as the system's initial state."""
-    data = model.mbs.systemData
-    data.SetODE2Coordinates(start.q[0].tolist(), INITIAL)
-    data.SetODE2Coordinates_t(start.v[0].tolist(), INITIAL)
-    data.SetODE2Coordinates_tt(start.a[0].tolist(), INITIAL)
-
-
-def _nearest_turns(
-    model: ExudynModel, probe: ConstraintProbe, q: np.ndarray, t: float, gap: float
-) -> np.ndarray:
-    """Each angle (and cam parameter) that Newton threw whole turns from its guess, brought back
-    where no constraint minds (drivers and gears do fix absolute angles): the same configuration,
-    on the continuous angle the guess asks for."""
-    for k in [i + 2 for i in model.index.values()] + list(model.phi_index.values()):
-        turns = round((q[k] - model.guess[k]) / (2.0 * math.pi))
-        if turns:
-            trial = q.copy()
-            trial[k] -= 2.0 * math.pi * turns
-            if float(np.max(np.abs(probe.residual(trial, t)))) <= gap:
-                q = trial
-    return q
 
 
 def march(
@@ -322,29 +171,13 @@ def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any)
     ti.generalizedAlpha.computeInitialAccelerations = plan.untuned
     with negative_times():
         ti.startTime, ti.endTime, ti.numberOfSteps = first, first + steps * h, steps
-        _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
+        guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
     lattice = _sensed(model, first, h, steps)
     lattice = States(lattice.q[n:], lattice.v[n:], lattice.a[n:])
-    states = _on_grid(lattice, times, h, _scales(model)[0])
+    states = _on_grid(lattice, times, h, coordinate_scales(model)[0])
     angle = {body: states.q[:, k + 2] for body, k in model.index.items()}
     states.forces = force_columns(model.mbs, model.force_sensors, times, h, initial, angle)
     return states, steps
-
-
-def run_in_start(model: ExudynModel, settings: Any, t0: float, h: float, n: int) -> States:
-    """The consistent state at t0 - n h: the mechanism assembled there (positions stepped back from
-    the start at t0 on Exudyn's constraints), its rates solved as the start's; kept per (t0, h, n)."""
-    key = (t0, h, n)
-    if key not in model.run_in_starts:
-        start = np.array(model.mbs.systemData.GetODE2Coordinates(INITIAL))
-        probe = ConstraintProbe(model, settings)
-        size = max(1.0, float(np.max(np.abs(start))))
-        with negative_times():
-            q = positions_back(probe.jacobian, probe.residual, start, t0, h, n, size)
-            v, a = probe.rates(q, t0 - n * h, *_scales(model))
-        probe.close(settings)
-        model.run_in_starts[key] = States(q[None, :], v[None, :], a[None, :])
-    return model.run_in_starts[key]
 
 
 def _initial_forces(model: ExudynModel, settings: Any, solver: Any, t0: float, h: float) -> list[np.ndarray]:
@@ -361,7 +194,7 @@ def _initial_forces(model: ExudynModel, settings: Any, solver: Any, t0: float, h
     ti = settings.timeIntegration
     ti.startTime, ti.endTime, ti.numberOfSteps = t0, t0 + h, 1
     ti.generalizedAlpha.computeInitialAccelerations = True
-    _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
+    guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
     found = [np.asarray(model.mbs.GetSensorStoredData(s.handle))[0, 1:].copy() for s in model.force_sensors]
     write_initial(model, States(kept[0][None, :], kept[1][None, :], kept[2][None, :]))
     return found
@@ -418,10 +251,10 @@ def _static_load_steps(model: ExudynModel, times: np.ndarray, settings: Any, tol
     states.q[0] = np.array(model.mbs.systemData.GetODE2Coordinates(INITIAL))
     interval = float(times[1] - times[0])
     model.mbs.SetPostStepUserFunction(_recorder(model, times, states, 1e-6 * interval))
-    _guarded(model, "staticSolver", lambda: model.mbs.SolveStatic(settings))
+    guarded(model, "staticSolver", lambda: model.mbs.SolveStatic(settings))
     _check_complete(states, times)
     probe = ConstraintProbe(model, settings)
-    scales = _scales(model)
+    scales = coordinate_scales(model)
     for k, t in enumerate(times):
         states.v[k], states.a[k] = probe.rates(states.q[k], float(t), *scales)
     probe.close(settings)
@@ -432,33 +265,6 @@ def _check_complete(states: States, times: np.ndarray) -> None:
     missing = np.flatnonzero(~np.isfinite(states.q).all(axis=1))
     if missing.size:
         raise EngineFailure(f"Exudyn reported no state at t = {times[missing[0]]}", float(times[missing[0]]))
-
-
-def _guarded(model: ExudynModel, key: str, solve: Callable[[], Any]) -> None:
-    """Run an Exudyn solve; its failure becomes an EngineFailure with Exudyn's message."""
-    try:
-        ok = solve()
-    except exu.SolverError as error:
-        raise _failure(model, key, str(error)) from error
-    except RuntimeError as error:  # Exudyn raises plain RuntimeErrors from inside its solvers too
-        raise _failure(model, key, f"{type(error).__name__}: {error}") from error
-    if ok is False:
-        raise _failure(model, key, "solver returned failure")
-
-
-def _failure(model: ExudynModel, key: str, text: str) -> EngineFailure:
-    t = float(model.mbs.systemData.GetTime())
-    solver = model.mbs.sys.get(key)
-    name = "SolveStatic" if key == "staticSolver" else "SolveDynamic"
-    if solver is None:
-        return EngineFailure(f"Exudyn {name}: {text}", t)
-    conv = solver.conv
-    reason = solver.GetErrorString() or text
-    detail = f"Newton residual {conv.residual:.3g}"
-    if conv.linearSolverFailed:
-        detail += f"; the linear solver failed (singular Jacobian, row {conv.linearSolverCausingRow})"
-    kind = Singular if conv.linearSolverFailed else EngineFailure
-    return kind(f"Exudyn {name}: {reason} ({detail})", t)
 
 
 def trajectory(model: ExudynModel, times: np.ndarray, states: States) -> Trajectory:
