@@ -89,17 +89,29 @@ def positions_back(
     return q
 
 
-def run_in_start(model: ExudynModel, settings: Any, t0: float, h: float, n: int) -> States:
+def run_in_start(model: ExudynModel, settings: Any, t0: float, h: float, n: int) -> States | str:
     """The consistent state at t0 - n h: the mechanism assembled there (positions stepped back from
-    the start at t0 on Exudyn's constraints), its rates solved as the start's; kept per (t0, h, n)."""
+    the start at t0 on Exudyn's constraints), its rates solved as the start's; or why it cannot be
+    (no configuration before the start: a dead point, a singular Jacobian). Kept per (t0, h, n)."""
     key = (t0, h, n)
     if key not in model.run_in_starts:
         start = np.array(model.mbs.systemData.GetODE2Coordinates(INITIAL))
         probe = ConstraintProbe(model, settings)
         size = max(1.0, float(np.max(np.abs(start))))
-        with negative_times():
-            q = positions_back(probe.jacobian, probe.residual, start, t0, h, n, size)
-            v, a = probe.rates(q, t0 - n * h, *coordinate_scales(model))
-        probe.close(settings)
-        model.run_in_starts[key] = States(q[None, :], v[None, :], a[None, :])
-    return model.run_in_starts[key]
+        try:
+            with negative_times():
+                q = positions_back(probe.jacobian, probe.residual, start, t0, h, n, size)
+                v, a = probe.rates(q, t0 - n * h, *coordinate_scales(model))
+            model.run_in_starts[key] = States(q[None, :], v[None, :], a[None, :])
+        except (EngineFailure, np.linalg.LinAlgError) as error:
+            model.run_in_starts[key] = str(error)
+        finally:
+            probe.close(settings)
+    found: States | str = model.run_in_starts[key]
+    return found
+
+
+NO_RUN_IN = (
+    "Exudyn: no run-in ({reason}): generalized-alpha starts at the first output, its start-up "
+    "transient included"
+)

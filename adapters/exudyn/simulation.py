@@ -13,7 +13,7 @@ import math
 import warnings
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import exudyn as exu
@@ -31,7 +31,7 @@ from adapters.exudyn.assembly import (
 )
 from adapters.exudyn.force_sensors import force_columns
 from adapters.exudyn.model import ExudynModel
-from adapters.exudyn.run_in import negative_times, run_in_start
+from adapters.exudyn.run_in import NO_RUN_IN, negative_times, run_in_start
 from adapters.lattice import (
     check_grid,
     hermite,
@@ -127,7 +127,7 @@ def march(
         return start, 0
     if plan.solver == "STATIC":
         return _static_load_steps(model, times, settings, plan.tolerance), len(times) - 1
-    return _integrate(model, plan, times, settings)
+    return _integrate(model, plan, times, settings, start)
 
 
 def _recorder(model: ExudynModel, times: np.ndarray, states: States, tolerance: float) -> Callable[..., bool]:
@@ -150,13 +150,19 @@ def _empty(n_times: int, n: int) -> States:
     return States(q, v, a)
 
 
-def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any) -> tuple[States, int]:
+def _integrate(
+    model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any, start: States
+) -> tuple[States, int]:
     """March whole steps from `plan.run_in` steps before the first output time past the last, the
     step being `plan.dt` or the largest below it that puts the outputs on the steps (adapters.lattice),
     Exudyn's sensors recording every step; an output between two steps (an uneven grid) is the Hermite
     interpolant of the two, with a warning (Exudyn's solver runs in one call: no side step)."""
     check_grid(times, float(times[0]))
     t0, h, n = float(times[0]), outputs_on_steps(times, plan.dt), plan.run_in
+    begin = run_in_start(model, settings, t0, h, n) if n else None
+    if isinstance(begin, str):
+        warnings.warn(NO_RUN_IN.format(reason=begin), stacklevel=2)
+        begin, n = None, 0
     first = t0 - n * h
     steps = lattice_steps(t0, float(times[-1]), h) + n
     ti = settings.timeIntegration
@@ -165,8 +171,8 @@ def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any)
     settings.solution.sensors.writePeriod = 0.5 * h  # every step, once
     solver = DYNAMIC[plan.solver]
     initial = _initial_forces(model, settings, solver, t0, h) if n == 0 and not plan.untuned else None
-    if n:
-        write_initial(model, run_in_start(model, settings, t0, h, n))
+    if begin is not None:
+        write_initial(model, begin)
     # the assembled start has its accelerations; an untuned run lets Exudyn compute them
     ti.generalizedAlpha.computeInitialAccelerations = plan.untuned
     with negative_times():
@@ -174,10 +180,23 @@ def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any)
         guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
     lattice = _sensed(model, first, h, steps)
     lattice = States(lattice.q[n:], lattice.v[n:], lattice.a[n:])
-    states = _on_grid(lattice, times, h, coordinate_scales(model)[0])
+    scale = coordinate_scales(model)[0]
+    if n and float(np.max(np.abs(lattice.q[0] - start.q[0]) / scale)) > SAME_START:
+        # the run-in passed a singular configuration onto another branch: start without it
+        model.run_in_starts[(t0, h, n)] = OTHER_BRANCH
+        warnings.warn(NO_RUN_IN.format(reason=OTHER_BRANCH), stacklevel=2)
+        write_initial(model, start)
+        return _integrate(model, replace(plan, run_in=0), times, settings, start)
+    states = _on_grid(lattice, times, h, scale)
     angle = {body: states.q[:, k + 2] for body, k in model.index.items()}
     states.forces = force_columns(model.mbs, model.force_sensors, times, h, initial, angle)
     return states, steps
+
+
+SAME_START = 1e-8
+"""The run-in reaches the assembled start when its positions there agree to this (over the
+coordinates' scales; both are on the constraints to Newton's tolerance)."""
+OTHER_BRANCH = "it reaches the start on another assembly branch"
 
 
 def _initial_forces(model: ExudynModel, settings: Any, solver: Any, t0: float, h: float) -> list[np.ndarray]:

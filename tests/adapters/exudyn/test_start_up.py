@@ -128,6 +128,16 @@ def test_the_untuned_setting_at_its_measured_errors(name: str) -> None:
     )
 
 
+def test_a_motion_with_no_configuration_before_its_start_runs_without_a_run_in_and_says_so() -> None:
+    """The slider driven 1.6 times past the crank's reach: its dead centre lies 0.675 / omega before
+    the start, inside the run-in's 0.785 / omega; after it, 0.675 / omega ahead, past the grid."""
+    scenario = build("slider_crank/slider_drive", overrides={"stroke_fraction": 1.6})
+    times = np.linspace(0.0, 0.3 / float(scenario.parameter("omega")), 11)
+    result = EXUDYN.run(scenario, times=times)
+    assert result.status == "ok", result.message
+    assert any("no run-in" in w and "did not converge" in w for w in result.warnings), result.warnings
+
+
 def test_a_run_in_is_refused_where_it_has_no_meaning() -> None:
     assert math.isfinite(run_in_steps(0.0))
     free = build("four_bar_gravity")
