@@ -1,13 +1,15 @@
-"""Outputs at the grid's times from a march on the step's own lattice, so that the output grid never
-changes how an engine integrates.
+"""Outputs at the grid's times from a march on the step's own lattice, so that the output grid does
+not change how an engine integrates.
 
 An engine marches whole steps t0 + k h from the grid's first time. An output time on the lattice is
 read as reached. One between two lattice points is reached by a side step: from a copy of the
 lattice state before it, one step of the remainder, after which the march goes on from the lattice
-state (the copy is dropped). Where an engine cannot take a side step (Exudyn's solver runs in one
-call), the output is interpolated from the two lattice states around it, each level from itself and its
-derivative (cubic Hermite for positions and velocities, linear for accelerations): an error of
-order h^4, h^4 and h^2 of the motion's own derivatives, below the integrator's.
+state (the copy is dropped). An engine that cannot take a side step (Exudyn's solver runs in one
+call) shortens its step so that an even grid's outputs fall on its steps (`outputs_on_steps`); an
+uneven grid's output between two steps is interpolated from the two lattice states around it, each
+level from itself and its derivative (cubic Hermite for positions and velocities, linear for
+accelerations: an error of order h^4, h^4 and h^2 of the motion's own derivatives), with an estimate
+of what that costs (`interpolation_cost`).
 """
 
 from __future__ import annotations

@@ -6,10 +6,10 @@ velocities with an O(h^2) error and its algorithmic accelerations a quarter-step
 motion; a start from the exact state (q, v, a) at t0 is therefore off the method's own smooth
 solution by O(h^2) in velocity, which the position constraints turn into an O(h) error in the
 accelerations and constraint forces. Its error recursion has a double root at -rho (the spectral
-radius), so the transient grows and decays as n rho^n over the steps n: on the four-bar at rho 0.9
-it peaks at about step 16 and is gone after some 200 steps. Exudyn's initial-acceleration solve
-does not remove it (its accelerations are the exact ones already), a smaller rho shortens it but
-costs accuracy at every later step, and the index-2 variants drift in position.
+radius), so the transient grows and decays as n rho^n over the steps n. Exudyn's
+initial-acceleration solve does not remove it (it gives the exact accelerations, which the start
+already has), a smaller rho shortens it but costs accuracy at every later step, and the index-2
+variants drift in position (docs/settings-rule.md measures each).
 
 So a kinematic scene's march starts `run_in_steps(rho)` steps before the first output, from the
 mechanism assembled there (Newton on Exudyn's own constraints, stepped back from the assembled
