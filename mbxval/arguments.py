@@ -16,8 +16,8 @@ import unicodedata
 from collections.abc import Callable, Mapping, Sequence
 from typing import TypeVar
 
-SHOWN = 60
-"""The most characters of a refused value a message repeats."""
+from scenarios.shown import shown
+
 NOT_TEXT = ("Cc", "Zl", "Zp")
 """Unicode categories a name or path may not hold: control characters and line separators."""
 
@@ -28,15 +28,8 @@ class ArgumentError(ValueError):
     """An argument the command line would refuse (the message is the command line's)."""
 
 
-def shown(value: object) -> str:
-    """The value's type and its repr, cut short: one line whatever it holds."""
-    text = " ".join(repr(value).split())  # the repr of an array or a frame spans lines
-    text = text if len(text) <= SHOWN else text[: SHOWN - 3] + "..."
-    return f"{type(value).__name__} {text}"
-
-
 def refuse(name: str, expected: str, value: object) -> ArgumentError:
-    return ArgumentError(f"{name} must be {expected}, got {shown(value)}")
+    return ArgumentError(f"{name} must be {expected}, got {type(value).__name__} {shown(value)}")
 
 
 def _plain(name: str, value: str, longest: int | None) -> str:
