@@ -70,6 +70,35 @@ def test_a_bad_sweep_cell_renders_its_row_unswept(
     assert (copy / "index.html").stat().st_size > 0
 
 
+# (column, value) of a swept row's verdict that no run stores: each cell is drawn in the colour of
+# verdicts without one of their own, under its text in the legend
+BAD_VERDICTS = {
+    "an unknown verdict": ("verdict", "<b>&amp;$x$</b>"),
+    "a long verdict": ("verdict", "x" * 5000),
+    "no verdict": ("verdict", ""),
+    "a missing verdict": ("verdict", None),
+    "ok without an error": ("verdict_error", None),
+    "ok with an error of NaN": ("verdict_error", float("nan")),
+}
+
+
+@pytest.mark.parametrize("case", BAD_VERDICTS)
+def test_a_swept_row_with_a_verdict_no_run_stores_is_drawn(
+    case: str, swept: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    column, value = BAD_VERDICTS[case]
+
+    def edit(frame: pd.DataFrame) -> None:
+        frame[column] = frame[column].astype(object)
+        frame.at[frame.index[0], column] = value
+
+    copy = doctor(swept, tmp_path / "copy", edit)
+    capsys.readouterr()
+    assert main(["report", str(copy)]) == 0, capsys.readouterr().err
+    (only,) = swept_maps(ReportData.load(copy))
+    assert len(only.cells) == len(POINTS)
+
+
 @pytest.mark.parametrize(
     ("cell", "values"),
     [
