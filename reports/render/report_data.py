@@ -6,7 +6,7 @@ from __future__ import annotations
 import json
 import math
 import os
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -76,7 +76,7 @@ class ReportData:
             trajectories = read_trajectories(path)
         except FileNotFoundError:  # lost: the report draws no curves until a resume rebuilds them
             trajectories = {}
-        return cls(frame, meta, trajectories, read_drawings(path))
+        return cls(frame, readable_meta(meta), trajectories, read_drawings(path))
 
     def native_engine(self) -> str:
         """The native engine's name, as the run stored it ('' for a store from before it did)."""
@@ -130,6 +130,26 @@ class ReportData:
 
     def status_counts(self) -> dict[str, int]:
         return {str(k): int(v) for k, v in self.frame["status"].value_counts().items()}
+
+
+SIDECAR_SHAPES: dict[str, type | tuple[type, ...]] = {
+    "engines": Mapping,
+    "packages": Mapping,
+    "machine": Mapping,
+    "engine_colours": Mapping,
+    "revisions": list,
+    "repeats": (int, float),
+    "warmup": (int, float),
+    "timeout": (int, float),
+}
+"""The shape of each sidecar field the report reads that is not text (text fields are shown as
+text whatever they hold)."""
+
+
+def readable_meta(meta: Mapping[str, Any]) -> dict[str, Any]:
+    """The sidecar as the report reads it: a field of another shape than a run writes (a store
+    edited by hand) is left out, so the page says '?' or nothing there instead of failing."""
+    return {k: v for k, v in meta.items() if isinstance(v, SIDECAR_SHAPES.get(k, object))}
 
 
 def is_swept(frame: pd.DataFrame) -> pd.Series:

@@ -140,3 +140,31 @@ def test_a_stored_colour_that_cannot_be_drawn_gives_a_palette_colour(
 def test_a_stored_colour_that_can_be_drawn_is_kept(swept: Path) -> None:
     ReportData.load(swept)
     assert plots.colour("reference") == adapters.adapter_class("reference").colour  # as the run stored it
+
+
+# sidecar fields of another shape than a run writes: the page says '?' or nothing there
+BAD_SIDECARS = {
+    "engines a number": ("engines", 5),
+    "engines a text": ("engines", "x"),
+    "engines null": ("engines", None),
+    "packages a list": ("packages", ["numpy"]),
+    "machine a text": ("machine", "x"),
+    "revisions a number": ("revisions", 5),
+    "timeout a text": ("timeout", "abc"),
+    "repeats a table": ("repeats", {"a": 1}),
+    "warmup a list": ("warmup", [1]),
+}
+
+
+@pytest.mark.parametrize("case", BAD_SIDECARS)
+def test_a_sidecar_field_of_another_shape_is_left_out(
+    case: str, swept: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    key, value = BAD_SIDECARS[case]
+    copy = tmp_path / "copy"
+    shutil.copytree(swept, copy, symlinks=True)
+    store = ResultsStore(copy)
+    store.save({**store.meta, key: value})
+    capsys.readouterr()
+    assert main(["report", str(copy)]) == 0, capsys.readouterr().err
+    assert key not in ReportData.load(copy).meta
