@@ -29,6 +29,7 @@ class ArgumentError(ValueError):
 
 
 def refuse(name: str, expected: str, value: object) -> ArgumentError:
+    """The error for argument `name`: what it must be and what it got, on one line."""
     return ArgumentError(f"{name} must be {expected}, got {type(value).__name__} {shown(value)}")
 
 
@@ -48,6 +49,7 @@ def text(name: str, value: object, longest: int | None = None) -> str:
 
 
 def optional_text(name: str, value: object) -> str | None:
+    """None, or text as `text` takes it."""
     return None if value is None else text(name, value)
 
 
