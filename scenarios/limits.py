@@ -25,6 +25,9 @@ MAX_TRAJECTORY_BYTES = MAX_RUN_BYTES // COPIES_PER_RUN
 MAX_KEPT_BYTES = 4 * 1024**3
 """What a whole `run` keeps for its report: per scenario the truth's and each engine's default
 trajectory (trajectories.parquet), estimated from the grids before anything runs."""
+MAX_LABEL_LENGTH = 100
+"""The most characters of a label (`compare --label`, the API's `label`): it names an engine's rows
+and can become part of a file name, whose length the file system bounds (255 bytes on most)."""
 
 
 def check_t_end(name: str, t_end: float) -> None:
