@@ -13,13 +13,23 @@ import pytest
 from distributed import Client
 
 from reports.cli.main import main
+from reports.harness.columns import WALL_COLUMNS
 from reports.harness.dask_backend import DaskRunner, local_cluster
 from reports.harness.results_store import KEY, ResultsStore, read_results
 from reports.harness.runner import RunConfig, Runner
 from tests.support.fake_engine import fake_loader, fake_truth
 
 QUICK = RunConfig(ladder=False, repeats=1, warmup=0, timeout=120.0)
-TIMING = ["build_time", "run_time", "warmup_time", "repeats_time", "recorded_at", "host", "workers"]
+TIMING = [
+    "build_time",
+    "run_time",
+    "warmup_time",
+    "repeats_time",
+    *(column.name for column in WALL_COLUMNS),
+    "recorded_at",
+    "host",
+    "workers",
+]
 SCENARIOS = ["slider_crank", "four_bar[crank_length=0.08]"]  # the second meets a dead point
 ENGINES = ["reference", "mujoco"]
 
