@@ -1,5 +1,6 @@
 """Running the groups on a Dask cluster: `--workers N` starts a local one of N single-threaded worker
-processes (one BLAS thread each, adapters.threads: the parallelism is the processes'), `--cluster tcp://HOST:PORT` uses an existing scheduler.
+processes (one BLAS thread each, adapters.threads: the parallelism is the processes'), `--cluster
+tcp://HOST:PORT` uses an existing scheduler.
 
 One task is one scenario x engine group (reports.harness.runner.run_group, run on the worker exactly
 as the serial runner runs it: each setting in a forked child with its time limit); the truth of each
