@@ -230,7 +230,7 @@ class Adapter:
                 repeats_time_wall=repeated_wall,
                 warnings=warning_texts(caught),
             )
-        spent = {
+        spent: dict[str, Any] = {
             "build_time": built.best,
             "warmup_time": timing.warmup_time,
             "repeats_time": timing.repeats_time,

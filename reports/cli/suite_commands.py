@@ -329,6 +329,8 @@ BENCHMARKS = {
     "dynamics": "benchmarks.dynamics_speed",
     "store": "benchmarks.store_append",
     "mutation": "benchmarks.mutation",
+    "startup": "benchmarks.startup",
+    "threads": "benchmarks.blas_threads",
 }
 
 
@@ -388,7 +390,10 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         "breakdown: where a run phase's overhead goes, step by step (--scenario, --engine, --sweep); "
         "repeats: how far apart timed repeats are, and what stopping where two agree saves; "
         "store: a save of 100 rows onto stores of 1k, 10k and 100k rows, whole rewrite against append; "
-        "mutation: mutmut over a module with its own tests (--module PATH)",
+        "mutation: mutmut over a module with its own tests (--module PATH); "
+        "startup: CPU, wall and memory of --help, a start-up, a 16-point sweep, Andrews and A02 from a fresh "
+        "process, with and without OPENBLAS_NUM_THREADS=1; threads: the native solver with one BLAS thread "
+        "beside the library's default",
     )
     bench.add_argument("options", nargs=argparse.REMAINDER, help="passed to the benchmark (see its --help)")
 
