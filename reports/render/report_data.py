@@ -156,21 +156,29 @@ def revision_label(meta: dict[str, Any]) -> str:
 
 
 def timing_note(rows: pd.DataFrame) -> str:
-    """Where the run times were measured and alongside how many other runs: parallel workers
-    share the machine, so their times are noisier (and often longer) than one-by-one runs'."""
-    shown = clock_label(rows)
-    clock = f"Run times: {shown} seconds{'' if shown == OLD_WALL else f' ({CLOCKS})'}. "
+    """Where the run times were measured and alongside how many other runs (parallel workers
+    share the machine, so their wall times are longer than one-by-one runs'), and on which clock."""
+    return f"{_where_timed(rows)} {clock_note(rows)}"
+
+
+def _where_timed(rows: pd.DataFrame) -> str:
     if "workers" not in rows or rows.empty:
-        return clock + "Where and how many at once not recorded (results from before that)."
+        return "Run times: where and how many at once not recorded (results from before that)."
     hosts = sorted({str(h) for h in rows["host"] if str(h)}) or ["an unrecorded host"]
     counts = sorted({int(w) for w in rows["workers"] if int(w) > 0})
     if not counts:
-        return clock + f"Measured on {', '.join(hosts)}; how many runs at once was not recorded."
+        return f"Run times measured on {', '.join(hosts)}; how many runs at once was not recorded."
     ways = " and ".join("one at a time" if w == 1 else f"{w} at once (Dask workers)" for w in counts)
-    note = clock + f"Measured on {', '.join(hosts)}, {ways}"
+    note = f"Run times measured on {', '.join(hosts)}, {ways}"
     if counts != [1]:
         note += "; runs made in parallel share the machine, so their wall times are longer than serial ones"
     return note + "."
+
+
+def clock_note(rows: pd.DataFrame) -> str:
+    """Which clock the rows' run times were read on (reports.render.clock), as a sentence."""
+    shown = clock_label(rows)
+    return f"Run times are {shown} seconds{'' if shown == OLD_WALL else f' ({CLOCKS})'}."
 
 
 CLOCKS = (

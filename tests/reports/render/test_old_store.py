@@ -91,5 +91,5 @@ def test_a_store_from_before_cpu_time_says_its_run_times_are_wall(
     frame = pd.read_parquet(before / "results.parquet")
     frame.drop(columns=[c.name for c in WALL_COLUMNS]).to_parquet(before / "results.parquet", index=False)
     render_reports(before, tmp_path / "page")
-    assert f"Run times: {OLD_WALL} seconds." in (tmp_path / "page" / "summary.md").read_text()
-    assert f"Run times: {CPU} seconds (" in (fresh / "summary.md").read_text()
+    assert f"Run times are {OLD_WALL} seconds." in (tmp_path / "page" / "summary.md").read_text()
+    assert f"Run times are {CPU} seconds (" in (fresh / "summary.md").read_text()
