@@ -105,4 +105,4 @@ class Trajectory:
         writer.writerow(columns)
         values = np.column_stack([np.asarray(v, dtype=float) for v in columns.values()])
         for row in values.tolist():
-            writer.writerow(["" if x != x else "%.17g" % x for x in row])
+            writer.writerow(["" if x != x else f"{x:.17g}" for x in row])
