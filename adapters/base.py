@@ -50,7 +50,7 @@ from adapters.probes import Probe
 from adapters.run_result import RunResult, failure_fields, first_nonfinite_time, warning_texts
 from adapters.setting import Option, OptionValue, Setting
 from adapters.spent import Stopwatch
-from adapters.timing import fastest, timed
+from adapters.timing import timed
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -184,7 +184,8 @@ class Adapter:
         where the first timed run takes longer than `once_above` seconds, or fewer where a repeat
         agrees with the best before it to a relative `agree` (adapters.timing.timed); the warm-up's
         and the repeats' seconds are measured too (what the run's timing cost), for a run that fails
-        up to its failure (adapters.spent). Never raises for an engine's failure."""
+        up to its failure (adapters.spent). Times are the process's CPU seconds, the wall clock's
+        beside them (adapters.timing). Never raises for an engine's failure."""
         setting = setting or self.default_setting(scenario)
         base: Mapping[str, Any] = {
             "engine": self.name,
@@ -205,7 +206,8 @@ class Adapter:
         try:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
-                build_time, model = fastest(lambda: self.build(scenario, setting))
+                built = timed(lambda: self.build(scenario, setting))
+                model = built.result
                 watch.built()
 
                 def simulate() -> Trajectory:
@@ -216,14 +218,26 @@ class Adapter:
                 timing = timed(simulate, repeats, warmup, once_above=once_above, warm=warm, agree=agree)
         except Exception as error:  # an engine's failure, or its own exception: recorded, never raised
             build, warmed, repeated = watch.spent(warmup)
+            build_wall, warmed_wall, repeated_wall = watch.spent_wall(warmup)
             return RunResult(
                 **base,
                 **failure_fields(error),
                 build_time=build,
                 warmup_time=warmed,
                 repeats_time=repeated,
+                build_time_wall=build_wall,
+                warmup_time_wall=warmed_wall,
+                repeats_time_wall=repeated_wall,
                 warnings=warning_texts(caught),
             )
+        spent: dict[str, Any] = {
+            "build_time": built.best,
+            "warmup_time": timing.warmup_time,
+            "repeats_time": timing.repeats_time,
+            "build_time_wall": built.best_wall,
+            "warmup_time_wall": timing.warmup_time_wall,
+            "repeats_time_wall": timing.repeats_time_wall,
+        }
         trajectory = timing.result
         if not trajectory.is_finite():
             return RunResult(
@@ -231,19 +245,16 @@ class Adapter:
                 status="diverged",
                 message="the trajectory has non-finite values",
                 failure_time=first_nonfinite_time(trajectory),
-                build_time=build_time,
-                warmup_time=timing.warmup_time,
-                repeats_time=timing.repeats_time,
+                **spent,
                 warnings=warning_texts(caught),
             )
         return RunResult(
             **base,
             status="ok",
             trajectory=trajectory,
-            build_time=build_time,
             run_time=timing.best,
-            warmup_time=timing.warmup_time,
-            repeats_time=timing.repeats_time,
+            run_time_wall=timing.best_wall,
+            **spent,
             repeats=timing.repeats,
             steps=self._steps,
             warnings=warning_texts(caught),

@@ -29,14 +29,22 @@ class RunResult:
     message: str = ""
     trajectory: Trajectory | None = None
     build_time: float = math.nan
-    """Seconds to build the model (for a run that failed in the build, up to the failure)."""
+    """CPU seconds to build the model (for a run that failed in the build, up to the failure)."""
     run_time: float = math.nan
-    """Seconds to simulate: the minimum of the timed repeats (empty for a run that is not ok)."""
+    """CPU seconds to simulate: the minimum of the timed repeats (empty for a run that is not ok)."""
     warmup_time: float = math.nan
-    """Seconds spent in the untimed warm-up runs, summed (0 without a warm-up); a run that failed,
-    up to its failure (adapters.spent), as for the build and the repeats."""
+    """CPU seconds spent in the untimed warm-up runs, summed (0 without a warm-up); a run that
+    failed, up to its failure (adapters.spent), as for the build and the repeats."""
     repeats_time: float = math.nan
-    """Seconds spent in the timed repeats, summed (`run_time` is their minimum)."""
+    """CPU seconds spent in the timed repeats, summed (`run_time` is their minimum)."""
+    build_time_wall: float = math.nan
+    """`build_time` on the wall clock."""
+    run_time_wall: float = math.nan
+    """Wall seconds to simulate: the minimum of the same timed repeats."""
+    warmup_time_wall: float = math.nan
+    """`warmup_time` on the wall clock."""
+    repeats_time_wall: float = math.nan
+    """`repeats_time` on the wall clock."""
     repeats: int = 0
     """Timed repeats made (one where the first took longer than the run's `once_above`)."""
     steps: int = 0

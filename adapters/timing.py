@@ -1,5 +1,8 @@
 """Run time as the minimum over repeats after untimed warm-ups: the one way mbxval times anything
 (engine runs, benchmarks), because the minimum is the least disturbed by a shared, noisy machine.
+Time is the process's CPU time (`time.process_time`: every thread of the process, an engine's own
+threads included), the same clock for every engine, so that the figure measures the work and not
+the load of the moment; the wall-clock time is measured beside it (`Instant`, `Timing.best_wall`).
 A warm-up is the action itself unless a cheaper call that pays the same first-call costs is given
 (an engine run's warm-up simulates the grid's first interval only, adapters.base). What the
 timing itself cost is measured too (`timed`): the warm-up's seconds and the timed calls' summed,
@@ -15,23 +18,54 @@ from typing import Generic, TypeVar
 
 T = TypeVar("T")
 
+CPU_CLOCK = "process CPU time"
+"""What the figures of `timed` measure, as a report names it."""
+
+
+@dataclass(frozen=True)
+class Instant:
+    """A moment on both clocks: the process's CPU seconds and the wall clock's."""
+
+    cpu: float
+    wall: float
+
+    def __sub__(self, earlier: Instant) -> Instant:
+        return Instant(self.cpu - earlier.cpu, self.wall - earlier.wall)
+
+    def __add__(self, other: Instant) -> Instant:
+        return Instant(self.cpu + other.cpu, self.wall + other.wall)
+
+
+ZERO = Instant(0.0, 0.0)
+
+
+def now() -> Instant:
+    """The process's CPU time and the wall clock, read together."""
+    return Instant(time.process_time(), time.perf_counter())
+
 
 @dataclass(frozen=True)
 class Timing(Generic[T]):
     """What timing an action measured: its time per call and its last call's result, and what
-    the timing spent (every call measured, none estimated)."""
+    the timing spent (every call measured, none estimated); CPU seconds, wall seconds beside."""
 
     best: float
-    """Seconds per call: the minimum over the timed repeats."""
+    """CPU seconds per call: the minimum over the timed repeats."""
     result: T
     """The last call's result."""
     repeats: int
     """Timed repeats made (fewer than asked where the first took longer than `once_above`, or
     where a repeat agreed with the best before it within `agree`)."""
     repeats_time: float
-    """Seconds of all timed repeats, summed (`best` is their minimum, per call)."""
+    """CPU seconds of all timed repeats, summed (`best` is their minimum, per call)."""
     warmup_time: float
-    """Seconds of the untimed warm-up calls, summed (0 without a warm-up)."""
+    """CPU seconds of the untimed warm-up calls, summed (0 without a warm-up)."""
+    best_wall: float = math.nan
+    """Wall seconds per call: the minimum over the same repeats."""
+    repeats_time_wall: float = math.nan
+    """Wall seconds of all timed repeats, summed."""
+    warmup_time_wall: float = math.nan
+    """Wall seconds of the untimed warm-up calls, summed."""
 
 
 def timed(
@@ -44,29 +78,30 @@ def timed(
     agree: float = 0.0,
 ) -> Timing[T]:
     """`warmup` untimed calls of `warm` (by default the action itself), then the minimum over
-    `repeats` (at least one) of the time of `number` calls, divided by `number`; a first timed call
-    longer than `once_above` seconds is the only one (its noise is small against its length), and
-    the repeats stop early where one agrees with the best before it to a relative `agree` (two
-    undisturbed repeats: the minimum is known to that fraction, and more would only cost time; on
-    a busy machine they disagree and the repeats go on). The warm-up's and the repeats' seconds
-    are summed as they run."""
-    start = time.perf_counter()
+    `repeats` (at least one) of the CPU time of `number` calls, divided by `number`; a first timed
+    call longer than `once_above` CPU seconds is the only one (its noise is small against its
+    length), and the repeats stop early where one agrees with the best before it to a relative
+    `agree` (two undisturbed repeats: the minimum is known to that fraction, and more would only
+    cost time; where they disagree the repeats go on). The warm-up's and the repeats' seconds are
+    summed as they run, on both clocks."""
+    start = now()
     for _ in range(warmup):
         (action if warm is None else warm)()
-    warmup_time = time.perf_counter() - start
-    best, total, made = math.inf, 0.0, 0
+    warmed = now() - start
+    best, best_wall, total, made = math.inf, math.inf, ZERO, 0
     result: T
     for _ in range(max(1, repeats)):
-        start = time.perf_counter()
+        start = now()
         for _ in range(max(1, number)):
             result = action()
-        spent = time.perf_counter() - start
-        per_call = spent / max(1, number)
+        spent = now() - start
+        per_call = spent.cpu / max(1, number)
         done = enough(per_call, best, once_above, agree)
-        best, total, made = min(best, per_call), total + spent, made + 1
+        best, best_wall = min(best, per_call), min(best_wall, spent.wall / max(1, number))
+        total, made = total + spent, made + 1
         if done:
             break
-    return Timing(best, result, made, total, warmup_time)
+    return Timing(best, result, made, total.cpu, warmed.cpu, best_wall, total.wall, warmed.wall)
 
 
 def enough(latest: float, best_before: float, once_above: float, agree: float) -> bool:
@@ -84,7 +119,7 @@ def fastest(
     number: int = 1,
     warm: Callable[[], object] | None = None,
 ) -> tuple[float, T]:
-    """(seconds per call, the last call's result) of `timed` with the same arguments: every
+    """(CPU seconds per call, the last call's result) of `timed` with the same arguments: every
     repeat made (the short cuts, `once_above` and `agree`, are the harness's, for engine runs)."""
     timing = timed(action, repeats, warmup, number, warm=warm)
     return timing.best, timing.result

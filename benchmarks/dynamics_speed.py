@@ -46,14 +46,15 @@ def best(run: Callable[[], object], repeats: int) -> float:
 
 
 def interleaved(runs: list[Callable[[], object]], repeats: int) -> list[list[float]]:
-    """The wall time of each run in each round, the runs taking turns within a round, so that a
-    burst of load on a shared machine falls on both sides of a ratio alike."""
+    """The CPU time of each run in each round (the harness's clock, adapters.timing), the runs
+    taking turns within a round, so that a burst of load on a shared machine falls on both sides of
+    a ratio alike."""
     times: list[list[float]] = [[] for _ in runs]
     for _ in range(repeats):
         for run, kept in zip(runs, times, strict=True):
-            start = time.perf_counter()
+            start = time.process_time()
             run()
-            kept.append(time.perf_counter() - start)
+            kept.append(time.process_time() - start)
     return times
 
 

@@ -6,10 +6,11 @@ accuracy and saves in time (the AGREE rule of reports.harness.group_runs).
 For every run of the default suite's plan (each engine's whole settings ladder) whose first timed
 repeat takes between --low and --high seconds (the runs the rule touches: shorter ones cost little,
 longer ones are timed once), the simulation is built, warmed as the harness warms it, and timed
---repeats times, each repeat apart. Printed: the load; how far apart the first two repeats are
-(median, 90th percentile, the share within AGREE); the minimum the rule finds (repeats stop where
-one agrees with the best before it to AGREE, at most three, one above LONG_RUN) against the
-minimum of three and of all; and the timed seconds of the rule against three repeats each.
+--repeats times on the process's CPU clock (the harness's), each repeat apart. Printed: the load;
+how far apart the first two repeats are (median, 90th percentile, the share within AGREE); the
+minimum the rule finds (repeats stop where one agrees with the best before it to AGREE, at most
+three, one above LONG_RUN) against the minimum of three and of all; and the timed seconds of the
+rule against three repeats each.
 """
 
 from __future__ import annotations
@@ -43,9 +44,9 @@ def repeat_times(engines: list[str], low: float, high: float, repeats: int) -> l
                 adapter._warm_up(model, grid)()
                 each: list[float] = []
                 for _ in range(repeats):
-                    start = time.perf_counter()
+                    start = time.process_time()
                     adapter.simulate(model, grid)
-                    each.append(time.perf_counter() - start)
+                    each.append(time.process_time() - start)
                     if not low <= each[0] <= high:
                         break
                 if len(each) == repeats:

@@ -9,9 +9,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.interpolate import CubicSpline
+
+if TYPE_CHECKING:  # scipy.interpolate is imported by the first tabulated profile's spline only
+    from scipy.interpolate import CubicSpline
 
 
 @dataclass(frozen=True)
@@ -42,6 +45,8 @@ class SplineProfile:
     @cached_property
     def spline(self) -> CubicSpline:
         """The periodic cubic spline through the table (scipy), closed at 2 pi."""
+        from scipy.interpolate import CubicSpline
+
         n = len(self.table)
         phis = np.linspace(0.0, 2.0 * math.pi, n + 1)
         values = np.append(np.asarray(self.table), self.table[0])

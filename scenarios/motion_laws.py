@@ -9,9 +9,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
-from scipy.interpolate import CubicSpline
+if TYPE_CHECKING:  # scipy.interpolate is imported by the first tabulated law's spline only
+    from scipy.interpolate import CubicSpline
 
 Ends = Literal["periodic", "clamped"]
 
@@ -56,6 +57,8 @@ class TabulatedLaw:
     @cached_property
     def spline(self) -> CubicSpline:
         """The scipy spline through the table with the chosen end conditions."""
+        from scipy.interpolate import CubicSpline
+
         if self.ends == "periodic":
             return CubicSpline(self.times, self.values, bc_type="periodic")
         return CubicSpline(self.times, self.values, bc_type=((1, self.slopes[0]), (1, self.slopes[1])))

@@ -7,11 +7,14 @@ derivatives. A level an engine cannot give is None, never filled in.
 
 from __future__ import annotations
 
+import csv
 from dataclasses import dataclass, field
-from typing import IO
+from typing import IO, TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
+
+if TYPE_CHECKING:  # pandas is imported where a frame is asked for: a solve writes its CSV without it
+    import pandas as pd
 
 from scenarios.scenario import Level
 
@@ -61,6 +64,8 @@ class Trajectory:
 
     def to_frame(self) -> pd.DataFrame:
         """Column t, then <body>.x <body>.y <body>.theta <body>.vx ... per body, then extras."""
+        import pandas as pd
+
         return pd.DataFrame(self.columns())
 
     def columns(self) -> dict[str, np.ndarray]:
@@ -93,4 +98,11 @@ class Trajectory:
         return cls(frame["t"].to_numpy(dtype=float), bodies, extras=extras, **arrays)
 
     def write_csv(self, stream: IO[str]) -> None:
-        self.to_frame().to_csv(stream, index=False, float_format="%.17g")
+        """The columns of `to_frame` as CSV, every number to 17 significant digits (round-trips),
+        a NaN as an empty field: as pandas writes the frame, without importing pandas."""
+        columns = self.columns()
+        writer = csv.writer(stream, lineterminator="\n")
+        writer.writerow(columns)
+        values = np.column_stack([np.asarray(v, dtype=float) for v in columns.values()])
+        for row in values.tolist():
+            writer.writerow(["" if x != x else f"{x:.17g}" for x in row])

@@ -12,19 +12,20 @@ import argparse
 import math
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import adapters
 from reports.cli.usage import UsageError, pairs, scenario_argument
 from reports.harness import scenario_identity, store_files
-from reports.harness.imported import Score, add_to_store, score
 from reports.harness.level_error import LEVEL_COLUMNS, characteristic_rate
-from reports.harness.results_store import TRUTH, ResultsStore
 from reports.harness.store_lock import WriterLock
-from reports.harness.trajectory_file import TrajectoryFileError, read_trajectory
-from reports.render.first_screen import BEST, WORST
 from scenarios import Scenario, load
 from scenarios.loading import is_scenario_file
 from scenarios.scenario import LEVELS
+
+if TYPE_CHECKING:  # the store, the scoring and the report's scale are imported when a comparison runs
+    from reports.harness.imported import Score
+    from reports.harness.results_store import ResultsStore
 
 SCALE_WORDS = ("green", "yellow", "red")
 
@@ -32,6 +33,8 @@ SCALE_WORDS = ("green", "yellow", "red")
 def colour_word(error: float) -> str:
     """Where `error` falls on the report's colour scale: green up to 10^(BEST + a third of the
     span), red from two thirds on (the report colours by log error; it has no pass/fail line)."""
+    from reports.render.first_screen import BEST, WORST
+
     if math.isinf(error):
         return SCALE_WORDS[-1]
     share = (math.log10(max(error, 1e-300)) - BEST) / (WORST - BEST)
@@ -40,6 +43,8 @@ def colour_word(error: float) -> str:
 
 def check_label(label: str) -> str:
     """A label that cannot be mistaken for an engine's rows or the truth's."""
+    from reports.harness.results_store import TRUTH
+
     if not label.strip():
         raise UsageError("--label must not be empty")
     if label in adapters.names() or label == TRUTH:
@@ -49,6 +54,8 @@ def check_label(label: str) -> str:
 
 def verdict(scenario: Scenario, scored: Score, label: str) -> list[str]:
     """The lines of the one-screen verdict."""
+    from reports.render.first_screen import BEST, WORST
+
     row, imported = scored.row, scored.imported
     lines = [
         f"{label}: {imported.source} against {scenario.name} ({len(imported.trajectory.times)} times, "
@@ -77,6 +84,10 @@ def verdict(scenario: Scenario, scored: Score, label: str) -> list[str]:
 
 
 def cmd_compare(args: argparse.Namespace) -> int:
+    from reports.harness.imported import add_to_store, score
+    from reports.harness.results_store import ResultsStore
+    from reports.harness.trajectory_file import TrajectoryFileError, read_trajectory
+
     scenario = load(args.scenario, pairs(args.set, "--set"))
     label = check_label(args.label if args.label is not None else Path(args.trajectory).stem)
     try:
@@ -114,6 +125,8 @@ def beside(store: ResultsStore, name: str) -> list[str]:
 
 def _check_store(out: Path, given: str, scenario: Scenario) -> None:
     """Refuse a store that holds another mechanism under the scenario's name (a file's only)."""
+    from reports.harness.results_store import ResultsStore
+
     if not is_scenario_file(given) or store_files.committed(out) is None:
         return
     rows = ResultsStore(out).rows.values()

@@ -24,6 +24,7 @@ import reports.cli.store_command as store_command
 import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
 from adapters.step_rule import RULE
+from adapters.threads import one_blas_thread
 from reports.cli.usage import Parser, UsageError, Versions, pairs, scenario_argument
 from reports.harness import self_check, stop
 from reports.harness.atomic_write import atomic_output, atomic_path, output_target, write_text
@@ -154,6 +155,7 @@ def solve_trajectory(
     times = time_grid(scenario, *grid)
     adapter = load_engine(engine)
     setting = engine_setting(adapter, scenario, mode, list(options))
+    one_blas_thread()
     result = adapter.run(scenario, setting, times)
     if result.status != "ok" or result.trajectory is None:
         when = "" if result.failure_time is None else f" at t={result.failure_time:.6g}"

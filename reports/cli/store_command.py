@@ -9,10 +9,11 @@ from pathlib import Path
 from typing import Any
 
 from reports.harness.store_lock import WriterLock
-from reports.harness.store_repair import Repair, holds_a_store
 
 
 def cmd_store(args: argparse.Namespace) -> int:
+    from reports.harness.store_repair import Repair, holds_a_store  # pandas: imported when it runs
+
     directory = Path(args.directory)
     if not holds_a_store(directory):  # before the lock, which would leave its file there
         raise FileNotFoundError(f"no results store at {directory}")

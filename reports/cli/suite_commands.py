@@ -17,11 +17,9 @@ from typing import Any
 import adapters
 import reports.cli.run_overrides as run_overrides
 from reports.cli.usage import UsageError
-from reports.harness import baselines, gate, gate_files, scenario_identity, stop, store_files, suites, sweep
-from reports.harness import recording as harness_recording
+from reports.harness import baselines, gate, scenario_identity, stop, store_files, suites, sweep
 from reports.harness.atomic_write import output_target
-from reports.harness.results_store import ResultsStore, read_results
-from reports.harness.runner import RunConfig, Runner
+from reports.harness.group_runs import RunConfig
 from reports.harness.store_lock import WriterLock
 from reports.harness.suites import Suite
 from scenarios import Scenario, limits
@@ -137,6 +135,8 @@ def select(args: argparse.Namespace, out: Path, rerun: bool = False) -> Selectio
 def check_scenario_names(names: list[str], out: Path, rerun: bool) -> None:
     """Refuse (UsageError) two different mechanisms under one scenario name: two files of this run,
     or a file and what the store in `out` holds under its name (unless `rerun` replaces it)."""
+    from reports.harness.results_store import read_results  # pandas: imported when a store is read
+
     given = {name: build_scenario(name) for name in names}
     clash = scenario_identity.name_clash(given)
     if clash is None and not rerun and store_files.committed(out) is not None:
@@ -152,6 +152,9 @@ def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = 
     """Run a checked selection into `out` (the caller holds its writer lock), and with `draw` draw
     its mechanisms beside the results for a report; returns the rows this run made, by status (the
     store may hold more: rows kept from earlier runs)."""
+    from reports.harness.results_store import ResultsStore
+    from reports.harness.runner import Runner
+
     suite, backend = selection.suite, selection.backend
     arguments: dict[str, Any] = {
         "truth": suite.truth,
@@ -180,6 +183,8 @@ def record_verdicts(out: Path, suite: str) -> None:
     stored results read back as a report reads them, so that a verdict is the one the stored
     trajectories give. The caller holds the store's writer lock."""
     from reports.dynamics import recording as dynamics_recording  # the native solver: imported when needed
+    from reports.harness import recording as harness_recording
+    from reports.harness.results_store import ResultsStore
     from reports.stress import recording as stress_recording
 
     store = ResultsStore(out)
@@ -198,6 +203,8 @@ def _draw(out: Path, planned: Iterable[Scenario]) -> None:
 
 def run_summary(made: Counter[str], out: Path, page: Path | None) -> str:
     """The last line of a run: this run's rows by status, then the store's total apart."""
+    from reports.harness.results_store import read_results
+
     counts = ", ".join(f"{status} {n}" for status, n in made.most_common())
     frame = read_results(out)[0]
     made_now = f"{made.total()} runs ({counts or 'all stored already'})"
@@ -277,6 +284,9 @@ def cmd_check(args: argparse.Namespace) -> int:
 
 def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, Any]] | None) -> int:
     """Compare the results in `directory` with the baseline, or write the baseline (--update)."""
+    from reports.harness import gate_files
+    from reports.harness.results_store import read_results
+
     frame, meta = read_results(directory)
     if baseline is None:
         print(gate.update_baseline(args.baseline, frame, meta))
@@ -319,6 +329,8 @@ BENCHMARKS = {
     "dynamics": "benchmarks.dynamics_speed",
     "store": "benchmarks.store_append",
     "mutation": "benchmarks.mutation",
+    "startup": "benchmarks.startup",
+    "threads": "benchmarks.blas_threads",
 }
 
 
@@ -378,7 +390,10 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         "breakdown: where a run phase's overhead goes, step by step (--scenario, --engine, --sweep); "
         "repeats: how far apart timed repeats are, and what stopping where two agree saves; "
         "store: a save of 100 rows onto stores of 1k, 10k and 100k rows, whole rewrite against append; "
-        "mutation: mutmut over a module with its own tests (--module PATH)",
+        "mutation: mutmut over a module with its own tests (--module PATH); "
+        "startup: CPU, wall and memory of --help, a start-up, a 16-point sweep, Andrews and A02 from a fresh "
+        "process, with and without OPENBLAS_NUM_THREADS=1; threads: the native solver with one BLAS thread "
+        "beside the library's default",
     )
     bench.add_argument("options", nargs=argparse.REMAINDER, help="passed to the benchmark (see its --help)")
 

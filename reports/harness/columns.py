@@ -28,6 +28,7 @@ __all__ = [
     "RECORDED_COLUMNS",
     "SCALE_DEFINITION",
     "STARTUP_DEFINITION",
+    "WALL_COLUMNS",
     "Column",
     "empty_row",
 ]
@@ -128,6 +129,22 @@ RECORDED_COLUMNS: tuple[Column, ...] = (
 """Columns a report shows as stored, decided when the run was made (appended: older stores lack them)."""
 
 
+WALL_COLUMNS: tuple[Column, ...] = (
+    Column(
+        "run_time_wall",
+        math.nan,
+        "wall-clock seconds to simulate, minimum of the same repeats as run_time (time.perf_counter): "
+        "what the run took on the machine as loaded then; NaN in stores recorded before CPU time, "
+        "whose run_time is this wall time",
+    ),
+    Column("build_time_wall", math.nan, "build_time on the wall clock"),
+    Column("warmup_time_wall", math.nan, "warmup_time on the wall clock"),
+    Column("repeats_time_wall", math.nan, "repeats_time on the wall clock (a timeout's: the limit it hit)"),
+)
+"""The wall clock beside the CPU-time columns (appended: older stores lack them, and their run_time is
+wall time; reports.render.report_data.clock_label says which a report shows)."""
+
+
 DECLARED: tuple[Column, ...] = (
     Column("scenario", "", "scenario name, family/variant"),
     Column("family", "", "mechanism family"),
@@ -198,8 +215,19 @@ DECLARED: tuple[Column, ...] = (
         math.nan,
         "runs reporting joint reactions: error against the native solver's (harness.forces)",
     ),
-    Column("build_time", math.nan, "seconds to build the engine's model (a failed build: up to its failure)"),
-    Column("run_time", math.nan, "seconds to simulate, minimum of repeats after a warm-up"),
+    Column(
+        "build_time",
+        math.nan,
+        "CPU seconds to build the engine's model (a failed build: up to its failure); wall: build_time_wall",
+    ),
+    Column(
+        "run_time",
+        math.nan,
+        "CPU seconds to simulate, minimum of repeats after a warm-up: the process CPU time of the run's "
+        "worker (time.process_time), the same clock for every engine, counting every thread the "
+        "process runs (an engine's own threads included; BLAS held to one thread per worker); "
+        "wall clock: run_time_wall",
+    ),
     Column("steps", 0, "engine steps taken"),
     Column("repeats", 0, "timed repeats"),
     Column(
@@ -211,16 +239,17 @@ DECLARED: tuple[Column, ...] = (
     Column(
         "warmup_time",
         math.nan,
-        "seconds spent in the untimed warm-up runs, summed (0 without one); a run that failed in its "
+        "CPU seconds spent in the untimed warm-up runs, summed (0 without one); a run that failed in its "
         "engine records what it spent up to the failure; NaN where not recorded (a timeout, a "
         "crash, a run not made)",
     ),
     Column(
         "repeats_time",
         math.nan,
-        "seconds spent in the timed repeats, summed (run_time is their minimum): with build_time and "
+        "CPU seconds spent in the timed repeats, summed (run_time is their minimum): with build_time and "
         "warmup_time, the work the run's timing did, a failed run's up to its failure, a timeout's the "
-        "limit it hit; NaN where not recorded (a crash, a run not made)",
+        "limit it hit (a wall-clock limit: at most that much CPU); NaN where not recorded (a crash, a "
+        "run not made)",
     ),
     Column("grid_points", 0, "time points compared"),
     Column("t_end", math.nan, "end of the time grid, s"),
@@ -232,6 +261,7 @@ DECLARED: tuple[Column, ...] = (
     Column("revision", "", "git revision the row was made under (harness.resume)"),
     Column("stale", False, "kept by a resume under another revision or engine version (--keep-stale)"),
     *RECORDED_COLUMNS,
+    *WALL_COLUMNS,
 )
 COLUMNS: tuple[str, ...] = tuple(c.name for c in DECLARED)
 

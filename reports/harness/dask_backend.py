@@ -1,5 +1,6 @@
 """Running the groups on a Dask cluster: `--workers N` starts a local one of N single-threaded worker
-processes, `--cluster tcp://HOST:PORT` uses an existing scheduler.
+processes (one BLAS thread each, adapters.threads: the parallelism is the processes'), `--cluster
+tcp://HOST:PORT` uses an existing scheduler.
 
 One task is one scenario x engine group (reports.harness.runner.run_group, run on the worker exactly
 as the serial runner runs it: each setting in a forked child with its time limit); the truth of each
@@ -84,8 +85,10 @@ def warm_plugin() -> Any:
         idempotent = True  # registered again by a later run on the same cluster: kept, not rerun
 
         def setup(self, worker: Any) -> None:
+            from adapters.threads import one_blas_thread
             from reports.harness.warm import warm_kernels
 
+            one_blas_thread()  # parallelism is the workers'; each holds one BLAS thread
             warm_kernels()
 
         def teardown(self, worker: Any) -> None:

@@ -22,13 +22,14 @@ import json
 import math
 import os
 from dataclasses import dataclass
-from typing import Any
-
-import pandas as pd
+from typing import TYPE_CHECKING, Any
 
 from reports.harness.atomic_write import atomic_output, output_target
-from reports.harness.results_store import SCHEMA_VERSION
+from reports.harness.store_layout import SCHEMA_VERSION
 from scenarios.files.bounded_read import MAX_BASELINE_BYTES, read_bounded_text
+
+if TYPE_CHECKING:  # frames are handed in; the command line imports the gate without pandas
+    import pandas as pd
 
 DEFAULT_FACTOR = 10.0
 ERROR_FLOOR = 1e-12

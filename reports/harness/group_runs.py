@@ -170,7 +170,8 @@ def _stored(
     if outcome.kind == "timeout":
         timed_out.add(setting.mode)
         row = failure(group, setting, is_default, "timeout", outcome.message)
-        row["repeats_time"] = config.timeout  # it spent the limit it hit (its child killed there)
+        # it spent the limit it hit on the wall clock (its child killed there), at most that in CPU
+        row["repeats_time"] = row["repeats_time_wall"] = config.timeout
         return row, None
     if outcome.kind != "ok" or outcome.value is None:
         return failure(group, setting, is_default, "failed", outcome.message), None

@@ -28,6 +28,8 @@ from dataclasses import dataclass
 from multiprocessing.connection import Connection
 from typing import Any, Generic, Literal, TypeVar
 
+from adapters.threads import one_blas_thread
+
 T = TypeVar("T")
 A = TypeVar("A")
 
@@ -180,6 +182,7 @@ def _serve(function: Callable[[Any], Any], ends: tuple[Connection, ...], output_
     os.dup2(output_fd, 1)
     os.dup2(output_fd, 2)
     faulthandler.enable(file=2)  # a hard crash leaves its Python stack in the output file
+    one_blas_thread()  # inherited from a parent that set it; set here for one that did not
     while True:
         try:
             what, argument = tasks.recv()

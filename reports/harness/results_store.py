@@ -29,6 +29,7 @@ from reports.harness import store_files
 from reports.harness.columns import COLUMNS, DECLARED
 from reports.harness.store_changes import ChangedRows, Changes
 from reports.harness.store_layout import CURRENT, damaged
+from reports.harness.store_layout import SCHEMA_VERSION as SCHEMA_VERSION  # its name here too
 from reports.harness.store_parts import plan_save
 from reports.harness.store_tables import (
     PART_COLUMN,
@@ -42,8 +43,6 @@ from reports.harness.store_tables import (
 )
 from scenarios.trajectory import Trajectory
 
-SCHEMA_VERSION = 1
-"""The rows' schema (the gate's baselines share it)."""
 STORE_VERSION = 2
 """The sidecar's schema_version: 2 for tables as folders of parts (an mbxval from before parts
 refuses it in one line, "schema version 2, this mbxval reads 1"), 1 for one file per table."""

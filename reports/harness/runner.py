@@ -29,6 +29,7 @@ import tqdm
 
 import adapters
 from adapters.base import Adapter, Setting
+from adapters.threads import one_blas_thread
 from reports.harness import provenance, stop
 from reports.harness.common_start import common_start
 from reports.harness.engine_facts import colours, engine_packages
@@ -106,6 +107,7 @@ class Runner:
         """Plan every group, then run what is not stored yet, saving as RunConfig.save_interval says
         and at the end."""
         self.saved_at = time.monotonic()
+        one_blas_thread()  # the truths solved here, and every worker forked from here
         groups = [g for name in scenario_names for g in self._plan(name)]
         self.planned = {g.scenario.name: g.scenario for g in groups}
         stored = self.stored = StoredRuns(self.store, self.revision, self.policy)

@@ -23,6 +23,8 @@ from typing import Any
 
 from scenarios.files.bounded_read import MiB, read_bounded_text
 
+SCHEMA_VERSION = 1
+"""The rows' schema (the gate's baselines share it)."""
 GENERATIONS, CURRENT, SIDECAR = ".generations", "current", "results.json"
 LEGACY = "results.parquet"  # what a store from before generations (or a plain copy) holds in DIR
 GENERATION = re.compile(r"g\d{6,}")

@@ -7,7 +7,8 @@ Per engine, over the scenarios of the results:
 - what it reaches: per scenario the best error any of its settings gives (the largest over the
   levels it produces), and the worst of those bests over the scenarios, with the median over the
   scenarios of the run time of each one's best setting;
-- the cost of a target (TARGET at every level it produces): per scenario the least run time among
+- the cost of a target (TARGET at every level it produces): per scenario the least run time (on the
+  clock the store recorded, reports.render.clock) among
   the settings that meet it, as DiffEqDevTools reads a work-precision set; how many scenarios it
   meets the target on, and the median of those costs.
 """
@@ -21,6 +22,7 @@ import numpy as np
 import pandas as pd
 
 from reports.harness.columns import LEVEL_COLUMNS
+from reports.render.clock import CPU, clock_label
 
 TARGET = 1e-6
 LEVELS = list(LEVEL_COLUMNS.values())
@@ -69,9 +71,11 @@ def _worst(errors: pd.Series) -> float:
     return float(errors.astype(float).max()) if len(errors) else math.nan
 
 
-def sentences(table: pd.DataFrame, target: float = TARGET) -> list[tuple[str, str, str, str, str]]:
+def sentences(
+    table: pd.DataFrame, target: float = TARGET, clock: str = CPU
+) -> list[tuple[str, str, str, str, str]]:
     """(engine, untuned, its default, best reached with its cost, cost of the target) as words, one
-    per engine."""
+    per engine, the costs in seconds of `clock` (reports.render.clock)."""
 
     def short(value: float) -> str:
         return "-" if math.isnan(value) else f"{value:.1e}"
@@ -84,11 +88,11 @@ def sentences(table: pd.DataFrame, target: float = TARGET) -> list[tuple[str, st
         default = " / ".join(short(row[f"default_{c}"]) for c in LEVELS)
         best = f"{short(row['best_worst'])} (worst scenario's best setting)"
         if not math.isnan(row["best_cost"]):
-            best += f", median {row['best_cost'] * 1e3:.3g} ms a run"
+            best += f", median {row['best_cost'] * 1e3:.3g} ms a run ({clock})"
         if row["reached"]:
             cost = (
                 f"{row['reached']} of {row['scenarios']} scenarios, median "
-                f"{row['median_cost'] * 1e3:.3g} ms a run"
+                f"{row['median_cost'] * 1e3:.3g} ms a run ({clock})"
             )
         else:
             cost = f"not reached on any of {row['scenarios']} scenarios"
@@ -110,7 +114,7 @@ def html_table(frame: pd.DataFrame, escape: Callable[[object], str]) -> str:
     head = "".join(f"<th>{escape(h)}</th>" for h in HEADERS)
     body = "".join(
         "<tr>" + "".join(f"<td>{escape(cell)}</td>" for cell in row) + "</tr>"
-        for row in sentences(reach(frame))
+        for row in sentences(reach(frame), clock=clock_label(frame))
     )
     return f"<table><tr>{head}</tr>{body}</table>"
 
@@ -118,5 +122,6 @@ def html_table(frame: pd.DataFrame, escape: Callable[[object], str]) -> str:
 def markdown_lines(frame: pd.DataFrame, text: Callable[[object], str]) -> list[str]:
     """The same table in Markdown, every cell through `text`."""
     rows = ["| " + " | ".join(HEADERS) + " |", "|" + "---|" * len(HEADERS)]
-    rows += ["| " + " | ".join(text(cell) for cell in row) + " |" for row in sentences(reach(frame))]
+    shown = sentences(reach(frame), clock=clock_label(frame))
+    rows += ["| " + " | ".join(text(cell) for cell in row) + " |" for row in shown]
     return rows

@@ -30,6 +30,7 @@ from reports.render import (
     svg_figure,
     sweep_render,
 )
+from reports.render.clock import clock_label
 from reports.render.report_data import ReportData, map_cell_rows, number, revision_label, table, timing_note
 
 STYLE = """
@@ -202,7 +203,8 @@ def _counts(data: ReportData) -> str:
 def _overview(data: ReportData) -> str:
     summary = overview.summary(data.frame, float(data.meta.get("timeout", float("nan"))))
     truths = first_screen.truth_names(data.frame)
-    figure = overview.overview_figure(summary, truths) if not summary.empty else None
+    clock = clock_label(data.frame)
+    figure = overview.overview_figure(summary, truths, clock) if not summary.empty else None
     return _image(figure, "overview of error against run time", _why_none(data.frame)) + _muted(
         " ".join(filter(None, (overview.untimed_note(data.frame), overview.DEFINITION)))
     )

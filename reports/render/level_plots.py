@@ -17,6 +17,7 @@ from matplotlib.patches import Rectangle
 from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator
 
 from reports.harness.columns import ERROR_SERIES, LEVEL_COLUMNS
+from reports.render.clock import time_axis_label
 from reports.render.markup import figure_text
 from reports.render.plots import FLOOR, MARKERS, colour, legend_entries, swept_value, untimed, value_text
 from reports.render.svg_figure import hover
@@ -72,7 +73,7 @@ def work_precision(rows: pd.DataFrame, truth: str) -> Figure | None:
     if not drawn:
         plt.close(figure)
         return None
-    axes_row[0].set_ylabel("run time [s]")
+    axes_row[0].set_ylabel(time_axis_label(rows))
     finish(figure, axes_row, f"work-precision against the truth ({truth}); ringed: default setting")
     return figure
 

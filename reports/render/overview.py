@@ -22,6 +22,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from reports.harness.columns import LEVEL_COLUMNS
+from reports.render.clock import CPU
 from reports.render.level_plots import MARGINS, finish
 from reports.render.plots import FLOOR, MARKERS, colour, untimed, value_text
 from reports.render.svg_figure import hover
@@ -117,8 +118,9 @@ def summary(frame: pd.DataFrame, timeout: float) -> pd.DataFrame:
     return pd.DataFrame(records)
 
 
-def overview_figure(table: pd.DataFrame, truth: str) -> Figure | None:
-    """Error (x) against run time (y), one panel per level, one line per engine-mode."""
+def overview_figure(table: pd.DataFrame, truth: str, clock: str = CPU) -> Figure | None:
+    """Error (x) against run time (y) on `clock` (reports.render.clock), one panel per level, one
+    line per engine-mode."""
     if table.empty:
         return None
     figure, axes_row = plt.subplots(1, 3, figsize=(13.5, 3.9), sharey=True)
@@ -148,7 +150,7 @@ def overview_figure(table: pd.DataFrame, truth: str) -> Figure | None:
     if not drawn:
         plt.close(figure)
         return None
-    axes_row[0].set_ylabel("run time [s]")
+    axes_row[0].set_ylabel(f"run time [s], {clock}")
     title = (
         f"error against run time over the suite (shifted geometric mean; truth: {truth}; "
         "ringed: the default on most scenarios; (n): scenarios)"

@@ -14,6 +14,7 @@ import pandas as pd
 
 from reports.harness.results_store import TRUTH, Key, read_results, read_trajectories
 from reports.render import plots
+from reports.render.clock import OLD_WALL, clock_label
 from reports.render.drawings import read_drawings
 from scenarios.trajectory import Trajectory
 
@@ -193,8 +194,12 @@ def revision_label(meta: dict[str, Any]) -> str:
 
 
 def timing_note(rows: pd.DataFrame) -> str:
-    """Where the run times were measured and alongside how many other runs: parallel workers
-    share the machine, so their times are noisier (and often longer) than one-by-one runs'."""
+    """Where the run times were measured and alongside how many other runs (parallel workers
+    share the machine, so their wall times are longer than one-by-one runs'), and on which clock."""
+    return f"{_where_timed(rows)} {clock_note(rows)}"
+
+
+def _where_timed(rows: pd.DataFrame) -> str:
     if "workers" not in rows or rows.empty:
         return "Run times: where and how many at once not recorded (results from before that)."
     hosts = sorted({str(h) for h in rows["host"] if str(h)}) or ["an unrecorded host"]
@@ -204,8 +209,20 @@ def timing_note(rows: pd.DataFrame) -> str:
     ways = " and ".join("one at a time" if w == 1 else f"{w} at once (Dask workers)" for w in counts)
     note = f"Run times measured on {', '.join(hosts)}, {ways}"
     if counts != [1]:
-        note += "; runs made in parallel share the machine, so their times are noisier than serial ones"
+        note += "; runs made in parallel share the machine, so their wall times are longer than serial ones"
     return note + "."
+
+
+def clock_note(rows: pd.DataFrame) -> str:
+    """Which clock the rows' run times were read on (reports.render.clock), as a sentence."""
+    shown = clock_label(rows)
+    return f"Run times are {shown} seconds{'' if shown == OLD_WALL else f' ({CLOCKS})'}."
+
+
+CLOCKS = (
+    "CPU: the process CPU time of the run's worker, every thread of it, one BLAS thread per worker; "
+    "the wall clock's figure is stored beside it, as run_time_wall"
+)
 
 
 def cell_text(row: pd.Series | None) -> str:

@@ -111,10 +111,10 @@ def test_the_native_solver_at_a_dead_point_records_the_seconds_of_its_approach()
     # a crank of 0.2 m: the four-bar meets a dead point early in the crank's turn
     scenario = scenarios.load("four_bar", {"crank_length": "0.2"})
     native = adapters.load("reference")
-    before = timing.time.perf_counter()
+    before = timing.time.process_time()
     found = native.run(scenario, repeats=2, warmup=1)
-    wall = timing.time.perf_counter() - before
+    cpu = timing.time.process_time() - before
     assert found.status == "singular" and found.failure_time is not None and math.isnan(found.run_time)
     work = found.build_time + found.warmup_time + found.repeats_time
     assert found.build_time > 0 and found.repeats_time > 0
-    assert 0.5 * wall < work <= wall  # nearly the whole call: the approach to the dead point is the work
+    assert 0.5 * cpu < work <= cpu  # nearly the whole call: the approach to the dead point is the work

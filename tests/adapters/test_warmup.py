@@ -5,7 +5,6 @@ a real engine's result is the same bit for bit with the prefix warm-up as with n
 from __future__ import annotations
 
 import itertools
-import time
 
 import numpy as np
 import pytest
@@ -16,6 +15,7 @@ from adapters.timing import fastest
 from reports.harness.group_runs import LONG_RUN, RunConfig, timed_run
 from scenarios import Scenario, Trajectory
 from scenarios import load as load_scenario
+from tests.support.busy import work
 from tests.support.grid_engine import GridAdapter
 
 
@@ -42,7 +42,7 @@ class RecordingAdapter(GridAdapter):
         if self.diverge_at is not None:  # IndexError on a grid too short to reach it
             raise Diverged("state exploded", time=float(times[self.diverge_at]))
         if len(times) > WARMUP_POINTS:
-            time.sleep(next(self.sleeps))
+            work(next(self.sleeps))
         self.count_steps(len(times) - 1)
         return self.zeros(model, times)
 
@@ -113,7 +113,7 @@ def test_fastest_times_the_action_not_the_warm_up() -> None:
 
     def warm() -> None:
         calls.append("warm")
-        time.sleep(0.05)
+        work(0.05)
 
     def action() -> int:
         calls.append("action")

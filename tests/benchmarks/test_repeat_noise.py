@@ -9,15 +9,7 @@ from adapters import timing
 from adapters.timing import enough, timed
 from benchmarks.repeat_noise import by_the_rule
 from reports.harness.group_runs import AGREE, LONG_RUN
-
-
-class Clock:
-    def __init__(self) -> None:
-        self.now = 0.0
-
-    def perf_counter(self) -> float:
-        return self.now
-
+from tests.support.fake_clock import Clock
 
 CASES = [
     [0.100, 0.1015, 0.5, 0.1],  # agree at the second: 2 repeats
@@ -35,7 +27,7 @@ def test_the_replayed_rule_is_timed_s(each: list[float], monkeypatch: pytest.Mon
     left = iter(each)
 
     def action() -> None:
-        clock.now += next(left)
+        clock.spend(next(left))
 
     found = timed(action, repeats=3, once_above=LONG_RUN, agree=AGREE)
     best, spent = by_the_rule(each)

@@ -1,10 +1,10 @@
-"""A fake engine whose warm-up and timed runs sleep known times, and a run of the runner with it,
-for the tests of what a row says its timing spent (a fake is fine for testing the runner)."""
+"""A fake engine whose warm-up and timed runs spend known CPU times (tests.support.busy), and a
+run of the runner with it, for the tests of what a row says its timing spent (a fake is fine for
+testing the runner)."""
 
 from __future__ import annotations
 
 import itertools
-import time
 from pathlib import Path
 
 import numpy as np
@@ -13,18 +13,19 @@ from adapters.base import WARMUP_POINTS, Adapter, Setting
 from reports.harness.results_store import ResultsStore
 from reports.harness.runner import RunConfig, Runner
 from scenarios import Scenario, Trajectory
+from tests.support.busy import work
 from tests.support.fake_engine import GOOD, FakeAdapter, fake_loader, fake_truth
 
 SCENARIO = "slider_crank"
 WARM, RUN = 0.06, 0.01
-"""Seconds a Sleeper sleeps in a warm-up run (a grid of WARMUP_POINTS times) and in a timed run
+"""CPU seconds a Sleeper spends in a warm-up run (a grid of WARMUP_POINTS times) and in a timed run
 (RUN and 2 x RUN in turn, so that no two repeats agree and a row makes all its repeats)."""
 CONFIG = RunConfig(ladder=False, repeats=3, warmup=2, timeout=20.0)
 
 
 class Sleeper(FakeAdapter):
-    """The fake at its default setting, sleeping WARM in a warm-up run and RUN or 2 x RUN in a
-    timed one."""
+    """The fake at its default setting, working WARM in a warm-up run and RUN or 2 x RUN in a
+    timed one (named for the sleeps it made before runs were timed on the CPU clock)."""
 
     name = "sleeper"
     timed_sleeps = itertools.cycle((RUN, 2 * RUN))
@@ -33,7 +34,7 @@ class Sleeper(FakeAdapter):
         return [GOOD[1]]
 
     def simulate(self, model: tuple[Scenario, Setting], times: np.ndarray) -> Trajectory:
-        time.sleep(WARM if len(times) <= WARMUP_POINTS else next(self.timed_sleeps))
+        work(WARM if len(times) <= WARMUP_POINTS else next(self.timed_sleeps))
         return super().simulate(model, times)
 
 

@@ -12,14 +12,25 @@ import pandas as pd
 import pytest
 from distributed import Client
 
+from adapters.threads import blas_threads
 from reports.cli.main import main
-from reports.harness.dask_backend import DaskRunner, local_cluster
+from reports.harness.columns import WALL_COLUMNS
+from reports.harness.dask_backend import DaskRunner, local_cluster, warm_plugin
 from reports.harness.results_store import KEY, ResultsStore, read_results
 from reports.harness.runner import RunConfig, Runner
 from tests.support.fake_engine import fake_loader, fake_truth
 
 QUICK = RunConfig(ladder=False, repeats=1, warmup=0, timeout=120.0)
-TIMING = ["build_time", "run_time", "warmup_time", "repeats_time", "recorded_at", "host", "workers"]
+TIMING = [
+    "build_time",
+    "run_time",
+    "warmup_time",
+    "repeats_time",
+    *(column.name for column in WALL_COLUMNS),
+    "recorded_at",
+    "host",
+    "workers",
+]
 SCENARIOS = ["slider_crank", "four_bar[crank_length=0.08]"]  # the second meets a dead point
 ENGINES = ["reference", "mujoco"]
 
@@ -58,6 +69,13 @@ def test_the_cluster_gives_the_serial_runner_s_rows(cluster: str, tmp_path: Path
     assert (parallel["host"] != "").all()
     truths = ResultsStore(tmp_path / "dask").trajectories
     assert {(s, e) for s, e, _ in truths if e == "truth"} == {(s, "truth") for s in SCENARIOS}
+
+
+def test_each_dask_worker_holds_one_blas_thread(cluster: str) -> None:
+    with Client(cluster) as client:
+        client.register_plugin(warm_plugin(), name="mbxval-warm")
+        found = client.run(blas_threads)
+    assert len(found) == 2 and all(threads and set(threads.values()) == {1} for threads in found.values())
 
 
 def test_a_killed_worker_costs_its_group_and_a_resume_redoes_only_that(cluster: str, tmp_path: Path) -> None:

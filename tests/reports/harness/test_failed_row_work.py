@@ -1,12 +1,11 @@
 """A failed run's row holds what it spent (issue #27), measured in the worker where it ran: a fake
-engine whose timed run sleeps a known time and then raises gives a row whose repeats_time is that
-sleep (two-sided), whose run_time is empty (no failed run shows a time), and a run that hangs past
+engine whose timed run works a known CPU time and then raises gives a row whose repeats_time is
+that work (two-sided), whose run_time is empty (no failed run shows a time), and a run that hangs past
 the time limit a row whose repeats_time is the limit. (A fake is fine for testing the runner.)"""
 
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 import pandas as pd
@@ -16,16 +15,18 @@ from adapters.base import WARMUP_POINTS, Adapter, Setting
 from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import RunConfig, Runner
 from scenarios import Scenario, Trajectory
+from tests.support.busy import work
 from tests.support.fake_engine import FakeAdapter, fake_loader, fake_truth
 
 SCENARIO = "slider_crank"
 WARM, RUN = 0.05, 0.2
-"""Seconds a SlowFailer sleeps in its warm-up run and in its timed run before it raises."""
-CONFIG = RunConfig(ladder=True, repeats=3, warmup=1, timeout=1.5)
+"""CPU seconds a SlowFailer works in its warm-up run and in its timed run before it raises."""
+CONFIG = RunConfig(ladder=True, repeats=3, warmup=1, timeout=4.0)
+"""A wall-clock limit the work keeps well under on a loaded machine."""
 
 
 class SlowFailer(FakeAdapter):
-    """Mode 'raise' sleeps WARM in a warm-up run and RUN in a timed one, which then raises;
+    """Mode 'raise' works WARM CPU seconds in a warm-up run and RUN in a timed one, which then raises;
     mode 'hang' never returns."""
 
     name = "slowfail"
@@ -38,7 +39,7 @@ class SlowFailer(FakeAdapter):
 
     def simulate(self, model: tuple[Scenario, Setting], times: np.ndarray) -> Trajectory:
         if model[1].mode == "raise":
-            time.sleep(WARM if len(times) <= WARMUP_POINTS else RUN)
+            work(WARM if len(times) <= WARMUP_POINTS else RUN)
             if len(times) <= WARMUP_POINTS:
                 return super().simulate((model[0], Setting.of("good", dt=0.01)), times)
         return super().simulate(model, times)
@@ -79,5 +80,5 @@ def test_a_failed_run_holds_its_warm_up_and_the_failing_repeat_and_no_run_time(r
 def test_a_timed_out_run_holds_the_limit_it_hit(rows: pd.DataFrame) -> None:
     row = rows.loc[Setting.of("hang").label]
     assert row["status"] == "timeout"
-    assert row["repeats_time"] == CONFIG.timeout
+    assert row["repeats_time"] == row["repeats_time_wall"] == CONFIG.timeout
     assert math.isnan(row["run_time"])

@@ -15,6 +15,7 @@ import pytest
 
 import adapters
 from reports.harness import kept_workers
+from reports.harness.columns import WALL_COLUMNS
 from reports.harness.common_start import common_start
 from reports.harness.dask_backend import group_task, truth_task
 from reports.harness.group_runs import RunConfig, run_group
@@ -25,7 +26,14 @@ from scenarios import load as build_scenario
 
 CONFIG = RunConfig(repeats=1, warmup=0, timeout=60.0)
 SCENARIOS = ("slider_crank", "four_bar", "cam_roller")  # the cam's residual takes the plain rows
-TIMING = ("build_time", "run_time", "warmup_time", "repeats_time", "recorded_at")
+TIMING = (
+    "build_time",
+    "run_time",
+    "warmup_time",
+    "repeats_time",
+    *(c.name for c in WALL_COLUMNS),
+    "recorded_at",
+)
 T = TypeVar("T")
 
 

@@ -14,6 +14,7 @@ import pandas as pd
 
 from adapters.base import Adapter, Setting
 from reports.harness import warm
+from reports.harness.columns import WALL_COLUMNS
 from reports.harness.isolation import run_isolated
 from reports.harness.results_store import KEY, ResultsStore, read_results
 from reports.harness.runner import RunConfig, Runner
@@ -27,6 +28,7 @@ TIMING = [
     "run_time",
     "warmup_time",
     "repeats_time",
+    *(column.name for column in WALL_COLUMNS),
     "recorded_at",
     "host",
     "workers",

@@ -5,6 +5,7 @@ solver, stress case or engine is imported to render it)."""
 from __future__ import annotations
 
 import json
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -13,8 +14,9 @@ import pandas as pd
 import pytest
 
 from reports.cli.main import main
-from reports.harness.columns import NOT_RECORDED, RECORDED_COLUMNS
+from reports.harness.columns import NOT_RECORDED, RECORDED_COLUMNS, WALL_COLUMNS
 from reports.harness.results_store import read_results
+from reports.render.clock import CPU, OLD_WALL
 from reports.render.report import render_reports
 from tests.support.stores import write_schema_1
 
@@ -79,3 +81,15 @@ def test_rendering_imports_no_solver_engine_or_case(old: Path, tmp_path: Path) -
     )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert json.loads(done.stdout.strip().splitlines()[-1]) == []
+
+
+def test_a_store_from_before_cpu_time_says_its_run_times_are_wall(
+    fresh: Path, old: Path, tmp_path: Path
+) -> None:
+    before = tmp_path / "store"
+    shutil.copytree(old, before)
+    frame = pd.read_parquet(before / "results.parquet")
+    frame.drop(columns=[c.name for c in WALL_COLUMNS]).to_parquet(before / "results.parquet", index=False)
+    render_reports(before, tmp_path / "page")
+    assert f"Run times are {OLD_WALL} seconds." in (tmp_path / "page" / "summary.md").read_text()
+    assert f"Run times are {CPU} seconds (" in (fresh / "summary.md").read_text()

@@ -1,0 +1,71 @@
+"""Each command imports what it uses (issue #40): `mbxval --help` and `--version` import no pandas,
+matplotlib, numba or scipy.interpolate, and a kinematic solve none but the compiled path's numba.
+Checked by the modules a fresh interpreter holds after the command, never by time."""
+
+from __future__ import annotations
+
+import io
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pandas as pd
+
+from scenarios import Trajectory
+
+HEAVY = ("pandas", "matplotlib", "numba", "scipy.interpolate", "tqdm", "pyarrow", "dask", "distributed")
+
+PROBE = """
+import contextlib, io, json, sys
+from reports.entry import main
+with contextlib.redirect_stdout(io.StringIO()), contextlib.suppress(SystemExit):
+    main(json.loads(sys.argv[1]))
+print(json.dumps(sorted(name for name in json.loads(sys.argv[2]) if name in sys.modules)))
+"""
+
+
+def imported(argv: list[str]) -> set[str]:
+    """Which of HEAVY a fresh interpreter has imported after running `mbxval` with `argv`."""
+    done = subprocess.run(
+        [sys.executable, "-c", PROBE, json.dumps(argv), json.dumps(HEAVY)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=True,
+    )
+    return set(json.loads(done.stdout.strip().splitlines()[-1]))
+
+
+def test_help_imports_none_of_them() -> None:
+    assert imported(["--help"]) == set()
+
+
+def test_a_commands_help_imports_none_of_them() -> None:
+    assert imported(["run", "--help"]) == set()
+
+
+def test_version_imports_none_of_them() -> None:
+    assert imported(["--version"]) == set()
+
+
+def test_a_kinematic_solve_imports_only_the_compiled_paths_numba() -> None:
+    assert imported(["solve", "four_bar", "--steps", "1"]) <= {"numba"}
+
+
+def test_the_probe_sees_an_import() -> None:
+    # the check can fail: a command that reads a store imports pandas, and the probe says so
+    assert "pandas" in imported(["report", "/nonexistent/mbxval-store"])
+
+
+def test_the_csv_a_solve_writes_is_the_one_pandas_writes() -> None:
+    times = np.linspace(0.0, 1.0, 5)
+    values = np.array([[[0.1, -0.0, 1 / 3]], [[np.nan, np.inf, -np.inf]], [[1e-300, 3e20, 2.0]]] * 2)[:5]
+    extras = {"odd": np.array([np.nan, 0.25, -7.5, 1e17, 5.0])}
+    trajectory = Trajectory(times, ("crank",), extras=extras, position=values, velocity=2 * values)
+    written, expected = io.StringIO(), io.StringIO()
+    trajectory.write_csv(written)
+    trajectory.to_frame().to_csv(expected, index=False, float_format="%.17g")
+    assert written.getvalue() == expected.getvalue()
+    back = Trajectory.from_frame(pd.read_csv(io.StringIO(written.getvalue())))
+    np.testing.assert_array_equal(back.position, trajectory.position)  # type: ignore[arg-type]
