@@ -139,7 +139,7 @@ class DaskRunner(Runner):
         self._save()
         truths, futures = self._submit(self.client, todo)
         try:
-            self._gather(futures, truths)
+            self._gather(futures, truths, sum(g.reason_row is not None for g, _ in groups))
         finally:
             left = [f for f, _, _ in futures.values()] + [f for f in truths.values() if f is not None]
             self.client.cancel(left)
@@ -163,15 +163,17 @@ class DaskRunner(Runner):
             futures[future.key] = (future, group, jobs)
         return truths, futures
 
-    def _gather(self, futures: dict[str, Any], truths: dict[str, Any]) -> None:
+    def _gather(self, futures: dict[str, Any], truths: dict[str, Any], made: int) -> None:
         """Store each group's rows as it finishes, saving after each batch of finished groups. The
         client drops its reference to a finished group's result, and to a scenario's truth once its
-        last group is in, so the workers release them: a long sweep holds only what still runs."""
+        last group is in, so the workers release them: a long sweep holds only what still runs.
+        The bar starts at the `made` rows stored already (the reasons an engine does not run)."""
         from distributed import as_completed
 
         waiting = Counter(group.scenario.name for _, group, _ in futures.values())
         runs = sum(len(jobs) for _, _, jobs in futures.values())
-        with progress_bar(runs, self.progress, "run") as bar:
+        with progress_bar(runs + made, self.progress, "run") as bar:
+            bar.update(made)
             for batch in as_completed([f for f, _, _ in futures.values()]).batches():
                 for future in batch:
                     _, group, jobs = futures.pop(future.key)
