@@ -21,6 +21,7 @@ Dask is imported here only: the serial runner does not import it.
 from __future__ import annotations
 
 import contextlib
+import tempfile
 from collections import Counter
 from collections.abc import Iterator, Sequence
 from typing import Any
@@ -44,18 +45,22 @@ LOCAL_CONFIG = {
 
 @contextlib.contextmanager
 def local_cluster(workers: int) -> Iterator[Any]:
-    """A LocalCluster of `workers` single-threaded processes on the loopback address, no dashboard."""
+    """A LocalCluster of `workers` single-threaded processes on the loopback address, no dashboard;
+    its scratch space (the workers' spill and lock files) in a private temporary directory removed
+    when the cluster closes, even by Ctrl-C or SIGTERM, not left in the system's."""
     import dask
     from distributed import LocalCluster
 
     with (
-        dask.config.set(LOCAL_CONFIG),
+        tempfile.TemporaryDirectory(prefix="mbxval-dask-", ignore_cleanup_errors=True) as scratch,
+        dask.config.set({**LOCAL_CONFIG, "temporary-directory": scratch}),
         LocalCluster(
             n_workers=workers,
             threads_per_worker=1,
             processes=True,
             host="127.0.0.1",
             dashboard_address=None,
+            local_directory=scratch,
         ) as cluster,
     ):
         yield cluster
