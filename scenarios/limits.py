@@ -61,19 +61,25 @@ def work_seconds(points: float, bodies: int, dense: bool) -> float:
 def check_work(name: str, points: float, bodies: int, dense: bool) -> None:
     """Refuse, before any work, a problem estimated above MAX_WORK_SECONDS or a dense one of more
     than MAX_DENSE_ROWS rows, naming the limit and what would be admitted."""
-    rows = 3 * bodies
-    if dense and rows > MAX_DENSE_ROWS:
-        raise ScenarioError(
-            f"{name}: {bodies} bodies make {rows} constraint rows, above the limit of "
-            f"{MAX_DENSE_ROWS} rows ({MAX_DENSE_ROWS // 3} bodies) for dense solves (dynamics, the "
-            "engines, a run's forces); solve it kinematically with the reference engine"
-        )
+    if dense:
+        check_dense_rows(name, bodies)
     estimate = work_seconds(points, bodies, dense)
     if estimate > MAX_WORK_SECONDS:
         most = math.floor(MAX_WORK_SECONDS / work_seconds(1, bodies, dense)) - 1
         raise ScenarioError(
             f"{name}: {points:.4g} grid points of {bodies} bodies would take about {estimate:.3g} s "
             f"of work, above the limit of {MAX_WORK_SECONDS:g} s; use at most {max(most, 1)} steps"
+        )
+
+
+def check_dense_rows(name: str, bodies: int) -> None:
+    """Refuse a problem of more than MAX_DENSE_ROWS rows (3 a body) for a dense solve."""
+    rows = 3 * bodies
+    if rows > MAX_DENSE_ROWS:
+        raise ScenarioError(
+            f"{name}: {bodies} bodies make {rows} constraint rows, above the limit of "
+            f"{MAX_DENSE_ROWS} rows ({MAX_DENSE_ROWS // 3} bodies) for dense solves (dynamics, the "
+            "engines, a run's forces); solve it kinematically with the reference engine"
         )
 
 

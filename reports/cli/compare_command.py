@@ -22,7 +22,7 @@ from reports.harness.results_store import TRUTH, ResultsStore
 from reports.harness.store_lock import WriterLock
 from reports.harness.trajectory_file import TrajectoryFileError, read_trajectory
 from reports.render.first_screen import BEST, WORST
-from scenarios import Scenario, load
+from scenarios import Scenario, limits, load
 from scenarios.loading import is_scenario_file
 from scenarios.scenario import LEVELS
 
@@ -79,10 +79,13 @@ def verdict(scenario: Scenario, scored: Score, label: str) -> list[str]:
 def cmd_compare(args: argparse.Namespace) -> int:
     scenario = load(args.scenario, pairs(args.set, "--set"))
     label = check_label(args.label if args.label is not None else Path(args.trajectory).stem)
+    limits.check_dense_rows(scenario.name, len(scenario.bodies))  # the truth's forces: before reading
     try:
         imported = read_trajectory(args.trajectory, scenario)
     except TrajectoryFileError as error:
         raise UsageError(str(error)) from None
+    bodies, points = len(scenario.bodies), imported.trajectory.times.size
+    limits.check_grid(scenario.name, points, bodies, dense=True)  # the truth's forces are dense
     out = Path(args.out) if args.out is not None else None
     if out is not None:
         if out.exists() and not out.is_dir():

@@ -66,21 +66,22 @@ def test_dense_work_on_a_long_chain_is_refused_and_the_kinematic_solve_admitted(
 def test_the_costs_per_row_step_bound_what_they_estimate() -> None:
     """The measured costs the estimate uses are not below what the solves cost here: the banded
     kinematic loop on a 201-body chain and the dense inverse dynamics on a 101-body one (process
-    CPU time, every thread counted), within a factor 2 for the noise of a shared machine."""
+    CPU time, every thread counted, a threaded BLAS spinning when the machine is busy), within a
+    factor 3."""
     chain = scenarios.build("four_bar_chain", overrides={"loops": 100})
     grid = np.asarray(chain.times(steps=400))
     analyse(chain, grid[:3])  # compiled and cached
     started = time.process_time()
     analyse(chain, grid)
     spent = time.process_time() - started
-    assert spent < 2 * limits.work_seconds(grid.size, len(chain.bodies), dense=False)
+    assert spent < 3 * limits.work_seconds(grid.size, len(chain.bodies), dense=False)
     chain = scenarios.build("four_bar_chain", overrides={"loops": 50})
     few = analyse(chain, np.asarray(chain.times(steps=4)))
     inverse_dynamics(chain, analyse(chain, few.times[:2]))  # its Jacobian compiled
     started = time.process_time()
     inverse_dynamics(chain, few)
     spent = time.process_time() - started
-    assert spent < 2 * limits.work_seconds(few.times.size, len(chain.bodies), dense=True)
+    assert spent < 3 * limits.work_seconds(few.times.size, len(chain.bodies), dense=True)
 
 
 def _cpu_seconds(pid: int) -> float:
@@ -122,3 +123,23 @@ def test_a_long_solve_ends_soon_after_a_signal(tmp_path: Path, sent: int, status
     assert process.returncode == status and err.count("\n") == 1, err
     assert late < 3, f"{late:.1f} s after the signal"
     assert not out.exists() and not list(tmp_path.iterdir())
+
+
+def test_compare_refuses_dense_work_before_its_truth(capsys, tmp_path: Path) -> None:
+    """A trajectory of a 2001-body chain, solved kinematically (admitted): scoring it needs the
+    native forces, a dense solve of 6003 rows a grid point, refused before any."""
+    csv = tmp_path / "chain.csv"
+    chain = ["four_bar_chain", "--set", "loops=1000"]
+    assert main(["solve", *chain, "--out", str(csv)]) == 0
+    capsys.readouterr()
+    refused(capsys, ["compare", *chain, str(csv)], f"above the limit of {limits.MAX_DENSE_ROWS} rows")
+
+
+def test_a_long_chain_the_compiled_path_cannot_do_is_not_handed_to_the_dense_plain_path(capsys) -> None:
+    """Two steps over a 2001-body chain's swing are too long for the compiled loop; the plain path
+    it would hand them to factors 6003 rows densely (minutes in one uninterruptible call): refused."""
+    started = time.process_time()
+    assert main(["solve", "four_bar_chain", "--set", "loops=1000", "--steps", "2"]) == 2
+    assert time.process_time() - started < 20
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"above the limit of {limits.MAX_DENSE_ROWS}" in err, err
