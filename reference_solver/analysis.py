@@ -15,7 +15,7 @@ import numpy as np
 
 import reference_solver.fast as fast_path
 from reference_solver.diagnostics import rank_report
-from reference_solver.errors import AssemblyError, ConvergenceError, SingularConfigurationError
+from reference_solver.errors import AssemblyError, ConvergenceError, SingularConfigurationError, SolverError
 from reference_solver.factorization import Factorization
 from reference_solver.limits import (
     ASSEMBLY_ITERATIONS,
@@ -28,6 +28,7 @@ from reference_solver.mobility import check_mobility
 from reference_solver.newton import NewtonResult, NewtonSettings, newton
 from reference_solver.solution import Analysis
 from reference_solver.system import ConstraintSystem
+from scenarios.limits import MAX_DENSE_ROWS
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -118,6 +119,12 @@ def analyse(
             return done
     system = ConstraintSystem(scenario)
     layout = system.layout
+    if layout.size > MAX_DENSE_ROWS:  # its SVDs and LU factors are cubic, uninterruptible calls
+        raise SolverError(
+            f"the compiled path could not do this analysis, and the plain path's dense solves of "
+            f"{layout.size} coordinates are above the limit of {MAX_DENSE_ROWS} "
+            "(scenarios.limits.MAX_DENSE_ROWS): fewer bodies, or finer steps for the compiled path"
+        )
     guess = layout.initial_guess(scenario)
     check_mobility(system, guess)
     settings = NewtonSettings(tolerance, tolerance, max_iterations)

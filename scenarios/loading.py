@@ -9,7 +9,7 @@ from collections.abc import Mapping
 
 from scenarios.family import MAX_GRID_STEPS
 from scenarios.files import read_scenario
-from scenarios.limits import check_grid, check_t_end
+from scenarios.limits import check_grid, check_t_end, dense
 from scenarios.registry import build, family
 from scenarios.scenario import POINT_RESERVED, Scenario, ScenarioError
 
@@ -41,7 +41,7 @@ def load(name_or_path: str, overrides: Mapping[str, str] | None = None) -> Scena
     if base.endswith(".toml"):
         scenario = read_scenario(base, values)
         check_t_end(scenario.name, scenario.t_end)
-        check_grid(scenario.name, scenario.steps + 1, len(scenario.bodies))
+        check_grid(scenario.name, scenario.steps + 1, len(scenario.bodies), dense(scenario))
     else:
         values, grid = _grid_keys(base, values)
         scenario = _with_grid(build(base, overrides=values), grid)  # build checks the same bounds
@@ -75,5 +75,5 @@ def _with_grid(scenario: Scenario, grid: Mapping[str, str]) -> Scenario:
     if not 1 <= steps <= MAX_GRID_STEPS:
         raise ScenarioError(f"{name}: steps must be in [1, {MAX_GRID_STEPS}], got {steps}")
     check_t_end(name, t_end)
-    check_grid(name, steps + 1, len(scenario.bodies))
+    check_grid(name, steps + 1, len(scenario.bodies), dense(scenario))
     return dataclasses.replace(scenario, t_end=t_end, steps=steps)

@@ -23,7 +23,7 @@ from scenarios.families import (
     stiff_spring,
 )
 from scenarios.family import Family
-from scenarios.limits import check_grid, check_t_end
+from scenarios.limits import check_grid, check_t_end, dense
 from scenarios.scenario import ParameterValue, Scenario, ScenarioError
 
 FAMILIES: tuple[Family, ...] = tuple(
@@ -97,7 +97,7 @@ def build(
     except (ArithmeticError, ValueError) as error:  # a combination no single range excludes
         raise ScenarioError(f"{name}: cannot be built with these parameters: {error}") from error
     check_t_end(scenario.name, scenario.t_end)
-    check_grid(scenario.name, scenario.steps + 1, len(scenario.bodies))
+    check_grid(scenario.name, scenario.steps + 1, len(scenario.bodies), dense(scenario))
     return scenario
 
 

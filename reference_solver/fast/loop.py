@@ -6,7 +6,9 @@ a reciprocal condition number below `threshold`, a determinant sign change) it s
 the event and the time index, and the caller hands the run to the plain path.
 `run` is the one compiled entry: the helpers are inlined into it (numba re-optimizes every callee
 inside each caller, so a deep call tree would multiply the compile time), and every array is made
-once, at its top (an array view made in a loop costs atomic reference counts).
+once, at its top (an array view made in a loop costs atomic reference counts). It marches the grid
+points [start, stop) and can be called again from `stop`: compiled code never returns to the
+interpreter, so the caller marches a long grid in chunks and a signal's handler runs between them.
 """
 
 from __future__ import annotations
@@ -91,14 +93,17 @@ def _rates(  # type: ignore[no-untyped-def]
 def run(  # type: ignore[no-untyped-def]
     ints, reals, scales, perm, sizes, parity, profiles, splines,
     grid, guess, tolerance, max_iterations, assembly_iterations, halvings, threshold, margin,
-    q_all, qd_all, qdd_all, iterations, residual, rconds,
+    q_all, qd_all, qdd_all, iterations, residual, rconds, start, stop, state,
 ):  # fmt: skip
-    """The analysis over `grid` into the output arrays; returns (event, time index).
+    """The analysis over grid points [start, stop) into the output arrays; returns (event, time
+    index), the index `stop` when every point was done.
 
-    It starts with the mobility: sqrt(rcond_1 rcond_inf) of the scaled C_q at the guess, which bounds
-    the 2-norm reciprocal condition number from below, must exceed `margin`. Long on purpose: the
-    whole grid is one compiled call, and its steps (assembly, Newton with backtracking, the rate
-    solves) share the band factors in local arrays that a split would pass on every time point."""
+    From start 0 it first verifies the mobility: sqrt(rcond_1 rcond_inf) of the scaled C_q at the
+    guess, which bounds the 2-norm reciprocal condition number from below, must exceed `margin`;
+    then it assembles at the guess. From a later start it continues from the point before, as
+    stored in the output arrays, with that point's determinant sign in `state[0]` (written back on
+    return). Long on purpose: its steps (assembly, Newton with backtracking, the rate solves) share
+    the band factors in local arrays that a split would pass on every time point."""
     n, kl, ku, w = sizes[S_N], sizes[S_KL], sizes[S_KU], sizes[S_WIDTH]
     lu, piv, none, v = np.empty(n * w), np.empty(n, np.int64), np.empty(0), np.zeros((ROWS, n))
     c, q_d, zero, tmp, rhs, dx = v[C], v[Q_D], v[ZERO], v[TMP], v[RHS], v[DX]
@@ -106,20 +111,24 @@ def run(  # type: ignore[no-untyped-def]
     work, jac = np.empty((5, max(sizes[S_BODIES], WIDTH))), np.empty((2, 2, WIDTH))
     us = np.empty((profiles.shape[0], 4, 2))
     q, qd, qdd = guess.copy(), np.zeros(n), np.zeros(n)
-
-    # ---- mobility ----
-    _evaluate(ints, reals, profiles, splines, q, qd, 0.0, c, q_d, lu, work, jac, us)
-    anorm, anorm_inf = norm1(lu, n, kl, ku, w, tmp), norm_inf(lu, n, kl, ku, w)
-    at_guess = 0.0
-    if factor(lu, piv, n, kl, ku, w) != 0.0:
-        at_guess = rcond(lu, piv, n, kl, ku, w, anorm, est, signs, False)
-        at_guess = math.sqrt(at_guess * rcond(lu, piv, n, kl, ku, w, anorm_inf, est, signs, True))
-    if not at_guess > margin:
-        return UNVERIFIED, 0
-
+    previous = state[0]
     t0, t1, k = grid[0], grid[0], -1  # k = -1: the assembly, by damped Newton-Raphson from the guess
-    previous = 0.0
-    while k < grid.size:
+    if start > 0:  # continue from the point before
+        k, t0, t1 = start, grid[start - 1], grid[start]
+        for i in range(n):
+            q[i], qd[i], qdd[i] = q_all[start - 1, i], qd_all[start - 1, i], qdd_all[start - 1, i]
+    else:
+        # ---- mobility ----
+        _evaluate(ints, reals, profiles, splines, q, qd, 0.0, c, q_d, lu, work, jac, us)
+        anorm, anorm_inf = norm1(lu, n, kl, ku, w, tmp), norm_inf(lu, n, kl, ku, w)
+        at_guess = 0.0
+        if factor(lu, piv, n, kl, ku, w) != 0.0:
+            at_guess = rcond(lu, piv, n, kl, ku, w, anorm, est, signs, False)
+            at_guess = math.sqrt(at_guess * rcond(lu, piv, n, kl, ku, w, anorm_inf, est, signs, True))
+        if not at_guess > margin:
+            return UNVERIFIED, 0
+
+    while k < stop:
         # ---- advance (q, qd, qdd) from t0 to t1: Newton-Raphson from the predictor, and if that
         # fails, analysis._approach's halved steps (which also move qd and qdd) ----
         t, h, halving = t0, t1 - t0, False
@@ -210,6 +219,7 @@ def run(  # type: ignore[no-untyped-def]
                 q_all[k, i], qd_all[k, i], qdd_all[k, i] = q[i], qd[i], qdd[i]
             rconds[k] = rc
         k += 1
-        if k < grid.size:
+        if k < stop:
             t0, t1 = grid[max(k - 1, 0)], grid[k]
-    return OK, grid.size
+    state[0] = previous
+    return OK, stop

@@ -36,6 +36,11 @@ bounds sigma_min / sigma_max from below (||A||_2^2 <= ||A||_1 ||A||_inf), and th
 test needs sigma_min / sigma_max > RANK_TOLERANCE; the factor 100 covers the estimates (which can
 only overstate rcond, in practice by less than 10)."""
 
+CHUNK_ROW_STEPS = 500_000
+"""Constraint rows x grid points the kernel marches in one call (about a quarter of a second at its
+cost of about 0.5 microseconds a row-step): the interpreter, and so a SIGTERM's or Ctrl-C's
+handler, runs between two calls."""
+
 
 @dataclass(frozen=True)
 class Compiled:
@@ -78,12 +83,15 @@ def run(scenario: Scenario, grid: np.ndarray, tolerance: float = 1e-12, max_iter
     if count == 0:
         return FastRun("empty grid", 0, None)
     _drop_stale_cache()
-    event, index = run_kernel(
-        *c.program, grid, c.guess, float(tolerance), int(max_iterations), ASSEMBLY_ITERATIONS,
-        BACKTRACK_HALVINGS, HANDOVER, MOBILITY_MARGIN, q, qd, qdd, iterations, residual, rcond,
-    )  # fmt: skip
-    if event != OK:
-        return FastRun(EVENTS[event], int(index), None)
+    state, chunk = np.zeros(1), max(1, CHUNK_ROW_STEPS // n)
+    for start in range(0, count, chunk):  # a signal's handler runs between two chunks
+        event, index = run_kernel(
+            *c.program, grid, c.guess, float(tolerance), int(max_iterations), ASSEMBLY_ITERATIONS,
+            BACKTRACK_HALVINGS, HANDOVER, MOBILITY_MARGIN, q, qd, qdd, iterations, residual, rcond,
+            start, min(start + chunk, count), state,
+        )  # fmt: skip
+        if event != OK:
+            return FastRun(EVENTS[event], int(index), None)
     return FastRun(EVENTS[OK], count, Analysis(c.layout, grid, q, qd, qdd, iterations, residual, rcond))
 
 

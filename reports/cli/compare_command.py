@@ -19,7 +19,7 @@ from reports.cli.usage import UsageError, pairs, scenario_argument
 from reports.harness import scenario_identity, store_files
 from reports.harness.level_error import LEVEL_COLUMNS, characteristic_rate
 from reports.harness.store_lock import WriterLock
-from scenarios import Scenario, load
+from scenarios import Scenario, limits, load
 from scenarios.loading import is_scenario_file
 from scenarios.scenario import LEVELS
 
@@ -90,10 +90,13 @@ def cmd_compare(args: argparse.Namespace) -> int:
 
     scenario = load(args.scenario, pairs(args.set, "--set"))
     label = check_label(args.label if args.label is not None else Path(args.trajectory).stem)
+    limits.check_dense_rows(scenario.name, len(scenario.bodies))  # the truth's forces: before reading
     try:
         imported = read_trajectory(args.trajectory, scenario)
     except TrajectoryFileError as error:
         raise UsageError(str(error)) from None
+    bodies, points = len(scenario.bodies), imported.trajectory.times.size
+    limits.check_grid(scenario.name, points, bodies, dense=True)  # the truth's forces are dense
     out = Path(args.out) if args.out is not None else None
     if out is not None:
         if out.exists() and not out.is_dir():

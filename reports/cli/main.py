@@ -54,9 +54,12 @@ def load_engine(name: str) -> Adapter:
         raise UsageError(str(error)) from error
 
 
-def time_grid(scenario: Scenario, t_end: float | None, steps: int | None, dt: float | None) -> np.ndarray:
-    """The output grid: `steps` equal steps over [0, t_end] (Scenario.times), or multiples of `dt`
-    up to t_end."""
+def time_grid(
+    scenario: Scenario, t_end: float | None, steps: int | None, dt: float | None, dense: bool = False
+) -> np.ndarray:
+    """The output grid: `steps` equal steps over [0, t_end] (Scenario.times, the grid `run`
+    measures on), or multiples of `dt` up to t_end; refused before it is made if its work (`dense`
+    or not, scenarios.limits) is above the limit."""
     t_end = scenario.t_end if t_end is None else t_end
     if not (math.isfinite(t_end) and limits.MIN_T_END <= t_end <= limits.MAX_T_END):
         raise UsageError(f"--t-end must be in [{limits.MIN_T_END:g}, {limits.MAX_T_END:g}] s, got {t_end}")
@@ -64,14 +67,14 @@ def time_grid(scenario: Scenario, t_end: float | None, steps: int | None, dt: fl
     if dt is not None:
         if not (math.isfinite(dt) and 0 < dt <= t_end):
             raise UsageError(f"--dt must be positive and at most --t-end, got {dt}")
-        limits.check_grid(scenario.name, t_end / dt + 1, bodies)  # before allocating
+        limits.check_grid(scenario.name, t_end / dt + 1, bodies, dense)  # before allocating
         steps = math.floor(t_end / dt + 1e-9)
         return dt * np.arange(steps + 1)
     steps = scenario.steps if steps is None else steps
     if steps < 1:
         raise UsageError(f"--steps must be at least 1, got {steps}")
-    limits.check_grid(scenario.name, steps + 1, bodies)
-    return np.asarray(scenario.times(t_end, steps))  # the grid `run` measures on, to the bit
+    limits.check_grid(scenario.name, steps + 1, bodies, dense)
+    return np.asarray(scenario.times(t_end, steps))
 
 
 def engine_setting(adapter: Adapter, scenario: Scenario, mode: str | None, options: list[str]) -> Setting:
@@ -152,8 +155,8 @@ def solve_trajectory(
 ) -> Trajectory:
     """The trajectory of the scenario's output bodies by one engine, on the grid (t_end, steps, dt)
     gives (each None: the scenario's); UsageError for bad input or a run that is not ok."""
-    times = time_grid(scenario, *grid)
     adapter = load_engine(engine)
+    times = time_grid(scenario, *grid, dense=engine != adapters.NATIVE or limits.dense(scenario))
     setting = engine_setting(adapter, scenario, mode, list(options))
     one_blas_thread()
     result = adapter.run(scenario, setting, times)

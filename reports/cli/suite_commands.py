@@ -60,8 +60,11 @@ def _selection(args: argparse.Namespace) -> tuple[Suite, list[str], list[str]]:
     if unknown:
         raise UsageError(f"unknown engine '{unknown[0]}'; known: {', '.join(adapters.names())}")
     engines = args.engine or adapters.names()
-    grids = [(s.steps + 1.0, len(s.bodies)) for s in map(build_scenario, names)]
+    built = [build_scenario(name) for name in names]
+    grids = [(s.steps + 1.0, len(s.bodies)) for s in built]
     limits.check_kept([grid for grid in grids for _ in range(len(engines) + 1)])  # before any run
+    for scenario in built:  # the engines' own solves and the native forces are dense
+        limits.check_grid(scenario.name, scenario.steps + 1, len(scenario.bodies), dense=True)
     return suite, names, engines
 
 

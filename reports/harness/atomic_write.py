@@ -6,13 +6,20 @@ the old target as it was. The target must be a regular file or absent: a device,
 or a directory is refused before anything is written. A symbolic link is written through, as shell
 redirection does: the link stays and the file it points to is replaced. A new file's mode follows
 the umask (0666 masked, like any file a user creates); an existing file keeps its mode.
+
+A process killed outright (kill -9, a power cut) cannot remove its temporary file: the next write
+to the same folder removes those of our naming (`.<target>.<pid>.<hex>.tmp`) that are older than
+STALE_SECONDS and whose writer, the pid in the name, is no longer running (`remove_stale`).
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
+import re
 import secrets
 import stat
+import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -64,7 +71,8 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
         keep = stat.S_IMODE(os.stat(target).st_mode)
     except FileNotFoundError:
         keep = None
-    temp = target.parent / f".{target.name}.{secrets.token_hex(4)}.tmp"
+    remove_stale(target.parent)
+    temp = target.parent / f".{target.name}.{os.getpid()}.{secrets.token_hex(4)}.tmp"
     try:  # from its creation on: a signal arriving just after os.open still removes it
         try:
             fd = os.open(temp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)  # the umask applies
@@ -82,6 +90,43 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
     except BaseException:
         temp.unlink(missing_ok=True)
         raise
+
+
+STALE_SECONDS = 60.0
+"""A temporary file younger than this is never removed: its writer may be between creating it and
+writing its first byte."""
+TEMPORARY = re.compile(r"\..+?\.(?:(\d+)\.)?[0-9a-f]{8}\.tmp")
+"""Our temporary files' names: `.<target>.<pid>.<8 hex>.tmp`, or without the pid as written before
+it was named."""
+
+
+def remove_stale(folder: Path) -> None:
+    """Remove the temporary files of our naming in `folder` left by writers that died: older than
+    STALE_SECONDS, and with a writer's pid that no longer runs (or none). Best effort: a folder or
+    file that cannot be read or removed is left."""
+    now = time.time()
+    with contextlib.suppress(OSError), os.scandir(folder) as entries:
+        for entry in entries:
+            found = TEMPORARY.fullmatch(entry.name)
+            if found is None or not entry.is_file(follow_symlinks=False):
+                continue
+            with contextlib.suppress(OSError):
+                old = now - entry.stat(follow_symlinks=False).st_mtime > STALE_SECONDS
+                if old and not (found.group(1) and _running(int(found.group(1)))):
+                    os.unlink(entry.path)
+
+
+def _running(pid: int) -> bool:
+    """Whether a process `pid` exists (another user's counts: it cannot be signalled, but runs)."""
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OverflowError):
+        return True
+    return True
 
 
 @contextmanager

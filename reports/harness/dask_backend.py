@@ -22,6 +22,7 @@ Dask is imported here only: the serial runner does not import it.
 from __future__ import annotations
 
 import contextlib
+import tempfile
 from collections import Counter
 from collections.abc import Iterator, Sequence
 from typing import Any
@@ -45,18 +46,22 @@ LOCAL_CONFIG = {
 
 @contextlib.contextmanager
 def local_cluster(workers: int) -> Iterator[Any]:
-    """A LocalCluster of `workers` single-threaded processes on the loopback address, no dashboard."""
+    """A LocalCluster of `workers` single-threaded processes on the loopback address, no dashboard;
+    its scratch space (the workers' spill and lock files) in a private temporary directory removed
+    when the cluster closes, even by Ctrl-C or SIGTERM, not left in the system's."""
     import dask
     from distributed import LocalCluster
 
     with (
-        dask.config.set(LOCAL_CONFIG),
+        tempfile.TemporaryDirectory(prefix="mbxval-dask-", ignore_cleanup_errors=True) as scratch,
+        dask.config.set({**LOCAL_CONFIG, "temporary-directory": scratch}),
         LocalCluster(
             n_workers=workers,
             threads_per_worker=1,
             processes=True,
             host="127.0.0.1",
             dashboard_address=None,
+            local_directory=scratch,
         ) as cluster,
     ):
         yield cluster
@@ -142,7 +147,7 @@ class DaskRunner(Runner):
         self._save()
         truths, futures = self._submit(self.client, todo)
         try:
-            self._gather(futures, truths)
+            self._gather(futures, truths, sum(g.reason_row is not None for g, _ in groups))
         finally:
             left = [f for f, _, _ in futures.values()] + [f for f in truths.values() if f is not None]
             self.client.cancel(left)
@@ -166,15 +171,17 @@ class DaskRunner(Runner):
             futures[future.key] = (future, group, jobs)
         return truths, futures
 
-    def _gather(self, futures: dict[str, Any], truths: dict[str, Any]) -> None:
+    def _gather(self, futures: dict[str, Any], truths: dict[str, Any], made: int) -> None:
         """Store each group's rows as it finishes, saving after each batch of finished groups. The
         client drops its reference to a finished group's result, and to a scenario's truth once its
-        last group is in, so the workers release them: a long sweep holds only what still runs."""
+        last group is in, so the workers release them: a long sweep holds only what still runs.
+        The bar starts at the `made` rows stored already (the reasons an engine does not run)."""
         from distributed import as_completed
 
         waiting = Counter(group.scenario.name for _, group, _ in futures.values())
         runs = sum(len(jobs) for _, _, jobs in futures.values())
-        with progress_bar(runs, self.progress, "run") as bar:
+        with progress_bar(runs + made, self.progress, "run") as bar:
+            bar.update(made)
             for batch in as_completed([f for f, _, _ in futures.values()]).batches():
                 for future in batch:
                     _, group, jobs = futures.pop(future.key)

@@ -13,6 +13,7 @@ from adapters.base import RunResult, Setting, Status
 from reports.harness import self_check
 from reports.harness.columns import NOT_RUN, empty_row
 from reports.harness.level_error import characteristic_rate
+from reports.harness.lost import lost
 from reports.harness.provenance import now
 from reports.harness.scenario_identity import digest
 from scenarios import catalogue
@@ -121,7 +122,10 @@ def result_row(
         levels=",".join(levels),
     )
     row.update(metrics)
-    if result.status == "ok":  # an ok run that drifted says so, by its own figures
+    gone = lost(scenario, metrics) if result.status == "ok" else ""
+    if gone:  # ok by the engine, off by more than the mechanism's size from the truth
+        row.update(status="diverged", message="; ".join(m for m in (gone, row["message"]) if m))
+    elif result.status == "ok":  # an ok run that drifted says so, by its own figures
         residual, energy = (
             metrics.get("constraint_residual", math.nan),
             metrics.get("energy_change", math.nan),

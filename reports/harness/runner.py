@@ -124,7 +124,7 @@ class Runner:
 
     def _execute(self, groups: list[tuple[Group, list[tuple[Setting, bool]]]]) -> None:
         """Run each group's pending jobs here, one after another (unavailable groups left out)."""
-        total = sum(len(jobs) for _, jobs in groups)  # the bar counts runs: a truth is not one
+        total = sum(made_rows(group, jobs) for group, jobs in groups)
         truths: dict[str, NamedTruth | str] = {}
         workers = Workers(self.config, self.residual)  # one per engine, kept from group to group
         with progress_bar(total, self.progress, "run") as bar, workers:
@@ -133,6 +133,7 @@ class Runner:
                 self._reconcile(group)
                 if group.reason_row is not None:
                     self._add(group.reason_row)
+                    tick(bar, f"{name} {group.engine}", str(group.reason_row["status"]))
                     continue
                 if jobs and name not in truths:
                     bar.set_description(f"{name} truth", refresh=False)
@@ -212,6 +213,12 @@ def progress_bar(total: int, shown: bool, unit: str) -> tqdm.tqdm:
     tqdm.tqdm.monitor_interval = 0  # no monitor thread: the runs are forked
     interval = 0.1 if sys.stderr.isatty() else 10.0
     return tqdm.tqdm(total=total, file=sys.stderr, disable=not shown, unit=unit, mininterval=interval)
+
+
+def made_rows(group: Group, jobs: list[tuple[Setting, bool]]) -> int:
+    """The rows a group makes, which the bar counts as the run's last line does: one per run, or
+    its one row saying why the engine does not run the scenario (a truth is not a row)."""
+    return 1 if group.reason_row is not None else len(jobs)
 
 
 def tick(bar: tqdm.tqdm, what: str, label: str) -> None:

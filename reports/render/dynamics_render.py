@@ -17,7 +17,7 @@ from reports.harness.columns import DRIFT_DEFINITION, DRIFT_SERIES, NOT_RECORDED
 from reports.render import markup
 from reports.render.first_screen import truth_names
 from reports.render.plots import FLOOR, colour, legend_entries
-from reports.render.report_data import ReportData, map_cell_rows, number
+from reports.render.report_data import ReportData, drift_mark, map_cell_rows, number
 
 SHADES = {
     "stable": "#e6f4e6",
@@ -128,15 +128,19 @@ def summary_table(data: ReportData, names: list[str]) -> pd.DataFrame:
                 continue
             ok = rows[(rows["engine"] == engine) & (rows["status"] == "ok")]
             best = ok.loc[ok["error_position"].idxmin()] if ok["error_position"].notna().any() else None
-            best_text = "–" if best is None else f"{number(best['error_position'])} ({best['setting']})"
+            best_text = (
+                "–"
+                if best is None
+                else f"{number(best['error_position'])}{drift_mark(best)} ({best['setting']})"
+            )
             steps = float(default.get("steps", 0) or 0)
             records.append(
                 {
                     "scenario": name,
                     "engine": engine,
                     "default setting": f"{default['setting']} ({default['status']})",
-                    "pos": number(default.get("error_position")),
-                    "vel": number(default.get("error_velocity")),
+                    "pos": number(default.get("error_position")) + drift_mark(default),
+                    "vel": number(default.get("error_velocity")) + drift_mark(default),
                     "energy drift": number(default.get("energy_drift")),
                     "residual at end": number(default.get("constraint_residual_final")),
                     "µs per step": number(1e6 * float(default["run_time"]) / steps) if steps > 0 else "–",

@@ -11,11 +11,9 @@ import pandas as pd
 
 from reports.harness.columns import CLOSED_FORM, LEVEL_COLUMNS, NOT_RECORDED
 from reports.render import markup
-from reports.render.report_data import ReportData, number
+from reports.render.report_data import ReportData, drift_mark, number
 
 BEST, WORST = -14.0, -1.0  # log10 error drawn fully green, fully red
-DRIFT_MARK = " ⚠"
-"""Beside an ok run's errors when its own figures say it drifted (harness.self_check; no truth used)."""
 LEVEL_LETTERS = {"position": "pos", "velocity": "vel", "acceleration": "acc", "force": "force"}
 MATRIX_COLUMNS: dict[str, str] = {str(k): v for k, v in LEVEL_COLUMNS.items()} | {"force": "error_force"}
 """The matrix's columns per engine: the three levels, then the forces (harness.forces), whose truth
@@ -88,8 +86,8 @@ def matrix_cells(row: pd.Series | None) -> list[str]:
         tip = markup.escape(f"{row['setting']}: {row['message']}")
         return [f'<td class="{markup.escape(status)}" {SPAN} title="{tip}">{markup.escape(status)}</td>']
     cells = []
-    drift = str(row.get("self_check") or "")  # stored when the run was made (harness.self_check)
-    mark, why = (DRIFT_MARK, f"; {drift}") if drift else ("", "")
+    mark = drift_mark(row)  # stored when the run was made (harness.self_check)
+    why = f"; {row['self_check']}" if mark else ""
     for level, column in MATRIX_COLUMNS.items():
         value = float(row[column]) if column in row and row[column] is not None else math.nan
         force = ' class="force"' if level == "force" else ""

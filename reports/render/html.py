@@ -31,7 +31,15 @@ from reports.render import (
     sweep_render,
 )
 from reports.render.clock import clock_label
-from reports.render.report_data import ReportData, map_cell_rows, number, revision_label, table, timing_note
+from reports.render.report_data import (
+    DRIFT_MARK,
+    ReportData,
+    map_cell_rows,
+    number,
+    revision_label,
+    table,
+    timing_note,
+)
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 1.5em auto; max-width: 1200px; color: #222; }
@@ -99,7 +107,7 @@ def _page(meta: dict[str, Any], whole: ReportData, data: ReportData, listed: Rep
             first_screen.level_matrix(listed),
             f'<p class="muted">Runs by status: {markup.escape(_counts(data))}. Colour: log10 error from '
             f"1e{first_screen.BEST:.0f} (green) to 1e{first_screen.WORST:.0f} (red); hover a scenario for "
-            f"its truth. {first_screen.DRIFT_MARK.strip()}: the run ended ok but its own figures say it "
+            f"its truth. {DRIFT_MARK.strip()}: the run ended ok but its own figures say it "
             "drifted (a constraint residual above 1e-3, or T + V changed by more than 1e-2 of its kinetic "
             "energy in a conservative scene), found without any truth; hover the cell for the figure.</p>",
             "<h2>Each engine out of the box, and at its best</h2>",

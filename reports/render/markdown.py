@@ -6,7 +6,7 @@ from reports.harness.columns import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.render import engine_reach, stability_render, sweep_render
 from reports.render.first_screen import native_line, scenario_rate, truth_names
 from reports.render.markdown_table import markdown_table
-from reports.render.markup import markdown_text
+from reports.render.markup import markdown_code, markdown_text
 from reports.render.report_data import HEADINGS, ReportData, number, revision_label, table, timing_note
 
 SHOWN = ("engine", "setting", "status", *LEVEL_COLUMNS.values(), "constraint_residual", "run_time", "message")
@@ -16,31 +16,33 @@ SUMMARY_COLUMNS = tuple(HEADINGS.get(c, c) for c in SHOWN)
 def render(data: ReportData) -> str:
     """The summary; the points of parameter sweeps as one table per sweep, not scenario by scenario."""
     meta, whole, data = data.meta, data, data.unswept()
-    engines = markdown_text(", ".join(f"{k} {v}" for k, v in meta.get("engines", {}).items()))
+    engines = ", ".join(f"{k} {v}" for k, v in meta.get("engines", {}).items())
     machine = meta.get("machine", {})
-    revision = revision_label(meta)
+    machine = machine if isinstance(machine, dict) else {}
+    text = markdown_text  # every stored value passes through it (or markdown_code): none is trusted
     lines = [
         "# mbxval report",
         "",
-        f"Suite `{meta.get('suite', '?')}`, {meta.get('date', '?')}, git `{revision}`.",
-        f"Engines: {engines}. Python {meta.get('python', '?')}; "
-        f"{machine.get('processor', '?')}, {machine.get('cpus', '?')} CPUs.",
-        f"Timing: minimum of up to {meta.get('repeats', '?')} repeats "
-        f"after {meta.get('warmup', '?')} warm-up.",
+        f"Suite {markdown_code(meta.get('suite', '?'))}, {text(meta.get('date', '?'))}, "
+        f"git {markdown_code(revision_label(meta))}.",
+        f"Engines: {text(engines)}. Python {text(meta.get('python', '?'))}; "
+        f"{text(machine.get('processor', '?'))}, {text(machine.get('cpus', '?'))} CPUs.",
+        f"Timing: minimum of up to {text(meta.get('repeats', '?'))} repeats "
+        f"after {text(meta.get('warmup', '?'))} warm-up.",
         "",
-        f"{meta.get('scales', SCALE_DEFINITION)} The truth: {meta.get('truth', '')}.",
+        f"{text(meta.get('scales', SCALE_DEFINITION))} The truth: {text(meta.get('truth', ''))}.",
         "",
-        timing_note(whole.frame),
+        text(timing_note(whole.frame)),
     ]
     if not data.frame.empty:
-        lines[-4:-4] = [f"**{native_line(data.frame, data.native_engine())}**", ""]
+        lines[-4:-4] = [f"**{text(native_line(data.frame, data.native_engine()))}**", ""]
         lines += [
             "",
             "## Status and error (position / velocity / acceleration) at each engine's default setting",
             "",
             markdown_table(data.matrix(), "scenario"),
             "",
-            "Runs by status: " + ", ".join(f"{s} {n}" for s, n in data.status_counts().items()) + ".",
+            "Runs by status: " + text(", ".join(f"{s} {n}" for s, n in data.status_counts().items())) + ".",
             "",
             "## Each engine out of the box, and at its best",
             "",
@@ -59,11 +61,11 @@ def render(data: ReportData) -> str:
             f"## {markdown_text(scenario)}",
             "",
             f"Truth: {markdown_text(truth_names(data.rows(scenario)))}. "
-            f"Characteristic length {number(data.characteristic_length(scenario))} m, "
-            f"rate {number(scenario_rate(data, scenario))} rad/s.",
+            f"Characteristic length {text(number(data.characteristic_length(scenario)))} m, "
+            f"rate {text(number(scenario_rate(data, scenario)))} rad/s.",
             "",
             markdown_table(rows),
             "",
-            timing_note(data.rows(scenario)),
+            text(timing_note(data.rows(scenario))),
         ]
     return "\n".join(lines) + "\n"

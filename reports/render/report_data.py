@@ -225,15 +225,28 @@ CLOCKS = (
 )
 
 
+DRIFT_MARK = " ⚠"
+"""Beside an ok run's errors, wherever they are shown, when its own figures say it drifted (the
+stored `self_check` column, harness.self_check; no truth used)."""
+ERROR_COLUMNS = ("error_position", "error_velocity", "error_acceleration")
+
+
+def drift_mark(row: pd.Series | dict[str, Any]) -> str:
+    """DRIFT_MARK for an ok row its run called drifted, else ''."""
+    drift = row.get("self_check")
+    drifted = isinstance(drift, str) and drift != ""
+    return DRIFT_MARK if drifted and row.get("status") == "ok" else ""
+
+
 def cell_text(row: pd.Series | None) -> str:
     if row is None:
         return "not run"
     if row["status"] != "ok":
         return str(row["status"])
-    levels = [row.get(c, math.nan) for c in ("error_position", "error_velocity", "error_acceleration")]
+    levels = [row.get(c, math.nan) for c in ERROR_COLUMNS]
     if all(isinstance(v, float) and math.isnan(v) for v in levels):  # results from before the levels
-        return f"ok {number(row['error'])}"
-    return "ok " + " / ".join(number(v) for v in levels)
+        return f"ok {number(row['error'])}{drift_mark(row)}"
+    return "ok " + " / ".join(number(v) for v in levels) + drift_mark(row)
 
 
 def number(value: Any) -> str:
@@ -246,8 +259,8 @@ def number(value: Any) -> str:
 
 
 def table(rows: pd.DataFrame) -> pd.DataFrame:
-    """The per-scenario table: TABLE_COLUMNS, numbers as compact text, sorted by engine, mode and
-    setting (numerically: setting_key)."""
+    """The per-scenario table: TABLE_COLUMNS, numbers as compact text (the errors of a drifted row
+    marked), sorted by engine, mode and setting (numerically: setting_key)."""
     for column in TABLE_COLUMNS:  # results written before a column existed
         if column not in rows:
             rows = rows.assign(**{column: math.nan})
@@ -259,10 +272,14 @@ def table(rows: pd.DataFrame) -> pd.DataFrame:
             setting_key(rows["setting"].iloc[k]),
         ),
     )
-    shown = rows.iloc[order][list(TABLE_COLUMNS)].copy()
+    ordered = rows.iloc[order]
+    marks = [drift_mark(row) for _, row in ordered.iterrows()]
+    shown = ordered[list(TABLE_COLUMNS)].copy()
     for column in TABLE_COLUMNS:
         if column not in ("engine", "setting", "status", "message", "steps"):
             shown[column] = [number(v) for v in shown[column]]
+    for column in ERROR_COLUMNS:
+        shown[column] = [text + mark for text, mark in zip(shown[column], marks, strict=True)]
     shown["message"] = [str(m)[:160] for m in shown["message"]]
     return shown.reset_index(drop=True).rename(columns=HEADINGS)
 

@@ -60,6 +60,18 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     )
 
 
+ROUND_OFF = 8 * float(np.finfo(float).eps)
+"""How far past 1 the cosine of a closing triangle may come by round-off alone (at a dead point)."""
+
+
+def _closing_cosine(b: float, c: float, d: np.ndarray) -> np.ndarray:
+    """The cosine of the coupler's angle to the diagonal d of the triangle (b, c, d): clipped to
+    [-1, 1] within round-off, NaN where the triangle does not close (the crank past a dead point),
+    without a floating-point warning."""
+    cosine = (b**2 + d**2 - c**2) / (2 * b * d)
+    return np.where(np.abs(cosine) <= 1.0 + ROUND_OFF, np.clip(cosine, -1.0, 1.0), np.nan)
+
+
 def closed_form(s: Scenario, t: np.ndarray) -> Trajectory:
     """The four-bar's exact kinematics: the coupler's angle from the triangle A-B-O4 on `branch`, the
     rocker's from B; rates from a e2 + b e3 - c e4 = (g, 0) differentiated, by Cramer's rule."""
@@ -72,7 +84,7 @@ def closed_form(s: Scenario, t: np.ndarray) -> Trajectory:
     ax, ay = a * np.cos(th2), a * np.sin(th2)
     dx, dy = g - ax, -ay
     d = np.hypot(dx, dy)
-    th3 = np.unwrap(np.arctan2(dy, dx) + branch * np.arccos((b**2 + d**2 - c**2) / (2 * b * d)))
+    th3 = np.unwrap(np.arctan2(dy, dx) + branch * np.arccos(_closing_cosine(b, c, d)))
     bx, by = ax + b * np.cos(th3), ay + b * np.sin(th3)
     th4 = np.unwrap(np.arctan2(by, bx - g))
     # a e2 + b e3 - c e4 = (g, 0), differentiated: b w3 e3' - c w4 e4' = -a w2 e2'.

@@ -52,7 +52,7 @@ FAMILY = Family(
     name="n_four_bar",
     summary="IFToMM A02: N four-bar loops under gravity passing their singular horizontal position",
     parameters={
-        "loops": count(2, 1, 1000),
+        "loops": count(2, 1, 74),
         "speed": Parameter(1.0, "m/s", low=-1e6, high=1e6),
         "theta0": angle(math.pi / 2),
         "gravity": Parameter(9.81, "m/s^2", low=-1e6, high=1e6),

@@ -283,12 +283,17 @@ def test_a_hostile_name_and_label_render_as_text_in_the_page(hostile_store: Path
     assert HOSTILE_NAME in text and HOSTILE_LABEL in text  # shown as written
 
 
+def _as_markdown_text(value: str) -> str:
+    """The hostile values' characters as Markdown text: backslash doubled, HTML escaped, pipe escaped."""
+    return value.replace("\\", "\\\\").replace("<", "&lt;").replace(">", "&gt;").replace("|", "\\|")
+
+
 def test_a_hostile_name_and_label_are_text_in_the_markdown_summary(hostile_store: Path) -> None:
     summary = (hostile_store / "summary.md").read_text()
     assert "<script" not in summary and "<img" not in summary
-    heading = "## " + HOSTILE_NAME.replace("<", "&lt;").replace(">", "&gt;").replace("|", "\\|")
+    heading = "## " + _as_markdown_text(HOSTILE_NAME)
     assert heading in summary.splitlines()
-    label = HOSTILE_LABEL.replace("<", "&lt;").replace(">", "&gt;").replace("|", "\\|")
+    label = _as_markdown_text(HOSTILE_LABEL)
     table_rows = [line for line in summary.splitlines() if "onerror" in line]
     assert len(table_rows) == 3  # the matrix's heading, the engines' reach and the scenario's table
     for line in table_rows:  # the label is one whole cell: its pipe does not split the row
@@ -302,4 +307,6 @@ def test_markup_boundary_escapes_what_lands_in_each_place() -> None:
     assert markup.anchor("four_bar/stress_toggle") == "s-four_bar-stress_toggle"  # old links still work
     assert markup.anchor('x" y') == "s-x~22~20y"
     assert markup.markdown_text("a|b<i>\nc") == "a\\|b&lt;i&gt; c"
+    assert markup.markdown_text("`x` *y* [z](u) \\") == "\\`x\\` \\*y\\* \\[z\\](u) \\\\"
+    assert markup.markdown_code("a``b") == "```a``b```" and markup.markdown_code("`a") == "`` `a ``"
     assert markup.figure_text("$x$") == "\\$x\\$"

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import dataclasses
 import re
+import warnings
 
 import numpy as np
 import pytest
@@ -46,3 +47,22 @@ def test_a_four_bar_started_at_zero_matches_the_native_solver() -> None:
     solved, expected = solve(scenario), exact(scenario)
     for level in ("position", "velocity", "acceleration"):
         np.testing.assert_allclose(getattr(solved, level), getattr(expected, level), atol=1e-9, err_msg=level)
+
+
+def test_a_four_bar_past_its_dead_points_is_nan_there_without_a_warning() -> None:
+    """A non-Grashof four-bar (0.09 + 0.125 > 0.1 + 0.1) turned a whole revolution: the closed form
+    is finite until the triangle of coupler, rocker and diagonal A-O4 first fails to close
+    (|b - c| <= d <= b + c), NaN from there on (the branch is lost), and raises no floating-point
+    warning."""
+    g, a, b, c = 0.1, 0.09, 0.1, 0.125
+    scenario = scenarios.build("four_bar", overrides={"crank_length": a, "theta0": 0.0})
+    t = np.asarray(scenario.times(steps=720))
+    with np.errstate(all="raise"), warnings.catch_warnings():
+        warnings.simplefilter("error")
+        frame = exact(scenario, t).to_frame()
+    th2 = float(scenario.parameter("omega")) * t
+    d = np.hypot(g - a * np.cos(th2), a * np.sin(th2))
+    closes = (abs(b - c) <= d) & (d <= b + c)
+    assert 0 < closes.sum() < t.size
+    lost = np.logical_or.accumulate(~closes)
+    np.testing.assert_array_equal(np.isnan(frame["coupler.theta"].to_numpy()), lost)

@@ -20,6 +20,7 @@ import pytest
 
 from reports.cli.main import main
 from reports.harness import gate
+from reports.harness.atomic_write import write_text
 from reports.harness.results_store import read_results
 from reports.render.report import render_reports
 from tests.reports.test_reliability import ROOT, SCENARIO, one_line_error
@@ -168,3 +169,27 @@ def test_sigterm_while_writing_leaves_no_temporary_file(tmp_path: Path) -> None:
     assert process.returncode == 143
     assert err.startswith("mbxval: terminated by SIGTERM") and err.count("\n") == 1, err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_write_removes_the_temporary_files_killed_writers_left(tmp_path: Path) -> None:
+    """What a kill -9 leaves (`.index.html.<pid>.<hex>.tmp`) is removed by the next write to the
+    folder once it is a minute old and its writer is gone; a live writer's, a young one and files
+    of other names are kept."""
+    ended = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True)
+    dead = int(ended.stdout)
+    old = time.time() - 120
+    names = {
+        f".index.html.{dead}.0123abcd.tmp": False,  # a killed writer's, old: removed
+        ".big.csv.89abcdef.tmp": False,  # the naming without a pid, old: removed
+        f".big.csv.{os.getpid()}.0123abcd.tmp": True,  # a live writer's (this process): kept
+        f".summary.md.{dead}.fedcba98.tmp": True,  # young: kept
+        ".notes.tmp": True,  # not our naming: kept
+        "data.0123abcd.tmp": True,  # not hidden, not ours: kept
+    }
+    for name in names:
+        (tmp_path / name).write_text("partial")
+        if not name.startswith(".summary"):
+            os.utime(tmp_path / name, (old, old))
+    write_text(tmp_path / "index.html", "<p>new</p>")
+    left = {p.name for p in tmp_path.iterdir()} - {"index.html"}
+    assert left == {name for name, kept in names.items() if kept}

@@ -161,3 +161,20 @@ def test_each_worker_warms_the_kernels_once(cluster: str, tmp_path: Path) -> Non
     assert len(counts) == 2
     assert all(c["kernels"] == 1 for c in counts.values()), counts
     assert sum(c["scenarios"] for c in counts.values()) >= len(scenarios)  # each where it first ran
+
+
+def test_a_local_cluster_leaves_no_scratch_space_in_the_temporary_directory(
+    tmp_path: Path, monkeypatch
+) -> None:
+    """The workers' scratch space is the cluster's own temporary directory, removed when it closes:
+    nothing is left in the system's temporary directory (here a fresh one, TMPDIR)."""
+    import tempfile
+
+    system = tmp_path / "tmp"
+    system.mkdir()
+    monkeypatch.setenv("TMPDIR", str(system))
+    monkeypatch.setattr(tempfile, "tempdir", None)  # read TMPDIR again
+    with local_cluster(1) as running, Client(running) as client:
+        assert client.submit(sum, [1, 2]).result() == 3
+        assert next(p.name for p in system.iterdir()).startswith("mbxval-dask-")  # in use meanwhile
+    assert list(system.iterdir()) == []

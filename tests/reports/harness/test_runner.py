@@ -153,3 +153,25 @@ def test_rerun_redoes_stored_rows(first_run, tmp_path: Path) -> None:
     assert len(log.read_text().splitlines()) == 1
     run(tmp_path, log, RunConfig(ladder=False, repeats=1, warmup=0, timeout=5.0, rerun=True), ("fake",))
     assert len(log.read_text().splitlines()) == 2
+
+
+def test_the_progress_bar_counts_the_rows_the_run_says_it_made(tmp_path: Path, monkeypatch) -> None:
+    """An absent engine's row is made without a run: the bar counts it too, so that its total and
+    its count at the end are the run's last line's number of rows."""
+    import reports.harness.runner as runner_module
+
+    bars = []
+    made = runner_module.progress_bar
+
+    def recorded(total: int, shown: bool, unit: str):  # type: ignore[no-untyped-def]
+        bars.append(made(total, shown, unit))
+        return bars[-1]
+
+    monkeypatch.setattr(runner_module, "progress_bar", recorded)
+    runner = Runner(
+        ResultsStore(tmp_path / "r"), ("fake", "absent"), CONFIG, loader=fake_loader(tmp_path / "log"),
+        truth=fake_truth, progress=True, suite="test",
+    )  # fmt: skip
+    runner.run([SCENARIO])
+    assert runner.made["failed"] >= 1  # the absent engine's row
+    assert bars[0].total == bars[0].n == runner.made.total()
