@@ -42,8 +42,13 @@ class Physics:
     integrator: str
     timestep: float
     solref: tuple[float, float]
+    """The equalities' solref: (time constant, damping ratio), or (-stiffness, -damping) directly."""
     solimp: tuple[float, float, float, float, float]
     contact_solimp: tuple[float, float, float, float, float]
+    contact_solref: tuple[float, float] | None = None
+    """The cam contacts' solref (None: the equalities')."""
+    invweight: float = 1.0
+    """The factor on the compiled model's invweight0 (adapters.mujoco.weights)."""
     tolerance: float = 1e-15
     iterations: int = 50
     springs: dict[str, tuple[float, float]] = field(default_factory=dict)
@@ -79,7 +84,7 @@ def mjcf(
     for law in laws:
         if law.clock is not None:
             _clock(world, law, physics)
-    solref, solimp = num(*physics.solref), num(*physics.contact_solimp)
+    solref, solimp = num(*(physics.contact_solref or physics.solref)), num(*physics.contact_solimp)
     cam_geoms(elements, cams, solref, solimp)
     equalities(root, elements, tree, laws)
     _loads(root, elements, physics.loads)
