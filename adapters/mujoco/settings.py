@@ -33,15 +33,12 @@ STEPS_PER_PERIOD = 2000
 cam contacts' penetration four times)."""
 TC_STEPS = 128.0
 """The equalities' time constant in rule steps, with the regulariser scaled by INVWEIGHT."""
-INVWEIGHT = 1e-6
-"""The factor on the compiled model's invweight0 by default (adapters.mujoco.weights). Smaller
-factors take the regulariser further away (1e-8: slider-crank accelerations 2.1e-10 against
-3.2e-10) but leave the constraint solve without its conditioning: the drive's clock (armature 1e11
-times the mechanism's inertia) and the links in one solve, the forces come out of it to 1e-4
-(four-bar 7.8e-4 at 1e-8, 8.4e-6 at 1e-6, 1.8e-7 at 1e-5 where the accelerations are 8e-9)."""
-SCALED_RUNGS = ((1e-8, 256.0), (1e-4, 32.0))
-"""(factor, time constant in steps) of the ladder's rungs at other regularisers: the accelerations'
-floor, and the forces' (four-bar 3.5e-8)."""
+INVWEIGHT = 1e-8
+"""The factor on the compiled model's invweight0 by default (adapters.mujoco.weights): the
+regulariser's sag below RK4's error on the constraint mode at TC_STEPS (at 1e-6 a loop passing
+near a singular position, n_four_bar, sags to 3e-5 m)."""
+SCALED_RUNGS = ((1e-6, 128.0), (1e-4, 32.0))
+"""(factor, time constant in steps) of the ladder's rungs at larger regularisers."""
 OWN_TC_STEPS = 4.0
 """The time constant in rule steps with MuJoCo's own regulariser (cams by contact): at 2 steps RK4
 under-resolves the mode (slider-crank accelerations 4.0e-3), past 8 the regulariser's violation
