@@ -34,12 +34,13 @@ CLOCK_ARMATURE = 1.0e9
 CLOCK_INERTIA = 1.0
 """The clock body's own moment of inertia about its axis (its dof's inertia is this plus the armature)."""
 
-SCALED_TOLERANCE = 1e-30
-"""The solver's tolerance where the regulariser is scaled. MuJoCo's Newton solver stops on a
-relative improvement of its cost, which the scaled regulariser makes tiny after one iteration:
-at 1e-15 the constraint forces are off by 1e-5 to 1e-4 (slider-crank 6.2e-5, four-bar 7.8e-4);
-at 1e-30 they are at 1e-10, at 1.2 to 1.5 times the cost per step; at 0 the solver runs to its
-iteration limit in free dynamics (ten times the cost) for the same forces."""
+SCALED_TOLERANCE, SCALED_ITERATIONS = 1e-30, 5
+"""The solver's tolerance and iterations where the regulariser is scaled. MuJoCo's Newton solver
+stops on a relative improvement of its cost, which the scaled regulariser makes tiny after one
+iteration: at 1e-15 the constraint forces are off by 1e-5 to 1e-4 (slider-crank 6.2e-5, four-bar
+7.8e-4); at 1e-30 they are at 1e-10 after two iterations. Without a cap on the iterations the
+solver then goes on to its limit where nothing improves (Andrews' squeezer at 3.3 times the cost
+per step, free dynamics at 0 ten times); five keep the cost and the forces."""
 
 
 @dataclass(frozen=True)
@@ -57,8 +58,8 @@ class Physics:
     invweight: float = 1.0
     """The factor on the compiled model's invweight0 (adapters.mujoco.weights)."""
     tolerance: float = 1e-15
-    """The constraint solver's tolerance; SCALED_TOLERANCE where the regulariser is scaled
-    (`invweight` below 1, adapters.mujoco.weights)."""
+    """The constraint solver's tolerance (and `iterations`, its limit); SCALED_TOLERANCE and
+    SCALED_ITERATIONS where the regulariser is scaled (`invweight` below 1, adapters.mujoco.weights)."""
     iterations: int = 50
     springs: dict[str, tuple[float, float]] = field(default_factory=dict)
     """Preload springs: joint name -> (stiffness, springref)."""
@@ -116,7 +117,7 @@ def _options(root: ET.Element, scenario: Scenario, physics: Physics, cams: list[
         integrator=physics.integrator,
         gravity=num(*physics.loads.gravity, 0.0),
         tolerance=num(physics.tolerance if physics.invweight == 1.0 else SCALED_TOLERANCE),
-        iterations=str(physics.iterations),
+        iterations=str(physics.iterations if physics.invweight == 1.0 else SCALED_ITERATIONS),
         jacobian="dense",
     )
     # A scene carries only what it needs: without cams there is nothing to collide.
