@@ -11,14 +11,15 @@ A subclass provides exactly:
     supports(scenario) -> str | None           None, or why the engine cannot represent it faithfully
     default_setting(scenario) -> Setting       the setting used by `mbxval solve` and the status matrix
     ladder(scenario) -> list[Setting]          the settings ladder: settings for the work-precision
-                                               curves (`sweep`, its old name, still works: deprecated)
+                                               curves (`sweep`, its old name, still works: deprecated);
+                                               a mode named UNTUNED in it is the engine's own
+                                               defaults (`untuned_setting` finds it)
     build(scenario, setting) -> model          the engine's own model (not timed)
     simulate(model, times) -> Trajectory       the timed part; must not depend on earlier calls.
 It may also provide export(scenario, setting, path) in the engine's own file format,
 untuned_setting(scenario) (the engine's own defaults as a new user's model gets them, at the rule's
-step: the report's "untuned" point beside the default and the best; None where it declares none),
-and call
-`self.count_steps(n)` inside `simulate` to report the engine steps taken. Its other facts are data
+step: the report's "untuned" point beside the default and the best; by default the ladder's setting
+in the mode UNTUNED, None where there is none), and call `self.count_steps(n)` inside `simulate` to report the engine steps taken. Its other facts are data
 here too, so that nothing outside its subpackage names it: `colour` (its colour in the report's
 figures), `packages` (the distributions whose versions a run records) and `probe_settings` (its
 settings for a stress case that probes what it has knobs for, adapters.probes).
@@ -57,6 +58,7 @@ from scenarios.trajectory import Trajectory
 __all__ = [  # the contract a plug-in engine imports from here; failures and settings are their own modules
     "MAX_STEPS",
     "STATUSES",
+    "UNTUNED",
     "Adapter",
     "Diverged",
     "EngineFailure",
@@ -106,14 +108,15 @@ class Adapter:
     def default_setting(self, scenario: Scenario) -> Setting:
         raise NotImplementedError
 
-    def untuned_setting(self, scenario: Scenario) -> Setting | None:
-        """The engine's own defaults as a new user's model gets them, at the rule's step, or None."""
-        return None
-
     def ladder(self, scenario: Scenario) -> list[Setting]:
         """The settings ladder: the settings the work-precision curves run over (by default the
         default setting alone). Not the parameter sweep of `mbxval run --sweep`."""
         return [self.default_setting(scenario)]
+
+    def untuned_setting(self, scenario: Scenario) -> Setting | None:
+        """The engine as a new user's model has it (its own defaults at the rule's step): the
+        ladder's first setting in the mode named UNTUNED, or None for an engine without one."""
+        return next((s for s in self.ladder(scenario) if s.mode == UNTUNED), None)
 
     def sweep(self, scenario: Scenario) -> list[Setting]:
         """Deprecated: the old name of `ladder`. The ladder of the nearest class that declares one
@@ -301,6 +304,10 @@ class Adapter:
             self.__dict__["_known_version"] = known
         return known
 
+
+UNTUNED = "untuned"
+"""The mode name of an engine's own defaults as a new user's model has them, at the rule's step:
+the report's 'untuned' point beside the rule's default and the ladder's best."""
 
 LADDER_RENAMED = "Adapter.sweep is deprecated: the settings ladder is now `ladder(scenario)`"
 

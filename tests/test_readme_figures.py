@@ -85,8 +85,8 @@ def stated() -> list[tuple[str, str]]:
     )
     out.append(
         (
-            "MuJoCo forces at tc 8 steps",
-            f"8 steps {figure(mujoco['slider_crank'][1])} and {figure(mujoco['four_bar'][1])}",
+            "MuJoCo forces with its own regulariser",
+            f"4 steps) {figure(mujoco['slider_crank'][1])} and {figure(mujoco['four_bar'][1])}",
         )
     )
     energy, rockers, crank = ali3p.A02_SPEC

@@ -13,10 +13,13 @@ A dynamic scenario carries gravity and its loads (adapters.mujoco.loads), starts
 assembled poses and the bodies' rates without a run-in, and has its own settings
 (adapters.mujoco.dynamics).
 
-Settings: mode RK4 (default), implicitfast, Euler or implicit; dt, the engine step (by default the
-rule's, adapters.step_rule and adapters.mujoco.settings; the output grid never changes it: outputs
-between steps are reached by a side step, adapters.lattice); tc, the solref time constant in
-seconds (tc_steps, in steps, is the older form); impedance, solimp of the equalities; for cams
+Settings: mode RK4 (default), implicitfast, Euler or implicit, or untuned (MuJoCo's own defaults,
+adapters.mujoco.untuned); dt, the engine step (by default the rule's, adapters.step_rule and
+adapters.mujoco.settings; the output grid never changes it: outputs between steps are reached by a
+side step, adapters.lattice); tc, the solref time constant in seconds (tc_steps, in steps, is the
+older form); solref, its form (time constant, or stiffness and damping directly); invweight, the
+factor on the compiled model's invweight0 that sets the regulariser (adapters.mujoco.weights: the
+closed loops' accuracy floor); impedance, solimp of the equalities; for cams
 preload (N), contact_impedance and, for a profile other than a disc, cam_pieces (its facets);
 polynomial, how a polynomial drive of degree 2 to 4 is carried (adapters.mujoco.laws: polycoef,
 the default, or a steered clock).
@@ -47,9 +50,15 @@ from adapters.mujoco.pairs import collides
 from adapters.mujoco.scale import dof_sizes, scale_of
 from adapters.mujoco.settings import (
     IMPEDANCE,
+    INVWEIGHT,
     KINEMATIC_MODES,
+    OWN_TC_STEPS,
+    SOLREF_FORMS,
     STEPS_PER_PERIOD,
     TC_STEPS,
+    UNTUNED,
+    equality_solref,
+    own_regulariser,
     probe_settings,
     rule_default,
     rule_ladder,
@@ -57,24 +66,29 @@ from adapters.mujoco.settings import (
 )
 from adapters.mujoco.simulation import advance, read_outputs, record, side_step, soften
 from adapters.mujoco.tree import TreeError, plan_tree
+from adapters.mujoco.untuned import untuned
+from adapters.mujoco.weights import MUJOCO_S_OWN
 from adapters.probes import Probe
 from scenarios.cam_linkage import CAM_MODELS, cam_model_scenario, default_cam_model
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
 KINEMATIC = "kinematic"
+SWEPT = ("dt", "tc", "impedance", "invweight", "solref")
+"""The options the ladder's rungs set themselves (the default's others are carried onto each)."""
 RUN_IN = 50
 """Steps run before t = 0 from the assembled start, so soft constraints begin in steady state."""
 DYNAMIC_CAM_REASON = (
     "a cam contact in MuJoCo needs a preload spring on the follower, a force the scenario does not have"
 )
 POLYCOEF, STEERED = "polycoef", "steered"
-"""A polynomial drive of degree 2 to 4: MuJoCo's quartic equality on a unit-rate clock (the
-default), or a clock steered along f(t) by its motor (adapters.mujoco.controls). MuJoCo leaves
-out the dJ/dt v term of joint and tendon equalities (doc/computation: it computes it for connect
-and weld only), so polycoef's curvature P''(c) c'^2 is made up by the position feedback alone: the
-drive lags by about P'' tc^2 (5e-5 rad on a slider-crank at the rule's step), where the steered
-clock's equality is linear."""
+"""A polynomial drive of degree 2 to 4: MuJoCo's quartic equality on a unit-rate clock, or a clock
+steered along f(t) by its motor (adapters.mujoco.controls; the default). MuJoCo leaves out the
+dJ/dt v term of joint and tendon equalities (doc/computation: it computes it for connect and weld
+only), so polycoef's curvature P''(c) c'^2 is made up by the position feedback alone: the drive
+lags by about P'' tc^2 (5e-5 rad on a slider-crank at 4 steps of time constant, 6e-2 at the rule's
+128), where the steered clock's equality is linear; polycoef is swept at 4 steps with MuJoCo's own
+regulariser."""
 SOLIMP_WIDTH = 0.005
 """solimp's transition width in characteristic lengths (0.001 m on the nominal 0.2 m crank)."""
 
@@ -106,6 +120,12 @@ class MujocoAdapter(Adapter):
             "constraints, poses, velocities and accelerations read from MuJoCo's state",
         ),
         Mode(
+            UNTUNED,
+            ENGINE,
+            "MuJoCo as a new user's model has it: its own default integrator, solref, solimp, solver "
+            "tolerance and regulariser (adapters.mujoco.untuned), at the rule's step",
+        ),
+        Mode(
             "kinematic",
             ADAPTER,
             "Newton on MuJoCo's own constraint rows (efc_pos, efc_J) at each grid time (timing "
@@ -119,13 +139,29 @@ class MujocoAdapter(Adapter):
     dynamics = True
     rule = (
         f"RK4 at 1/{STEPS_PER_PERIOD} of the shortest period, the equalities' time constant tc = "
-        f"{TC_STEPS:g} steps (in seconds), impedance {IMPEDANCE}; every scenario, whatever its size"
+        f"{TC_STEPS:g} steps (in seconds) with the regulariser's invweight0 scaled by {INVWEIGHT:g}, "
+        f"impedance {IMPEDANCE}; cams by contact keep MuJoCo's own regulariser and tc = "
+        f"{OWN_TC_STEPS:g} steps; every scenario, whatever its size"
     )
     options = (
         Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
         Option("tc", float, 0.0, 1e3, low_open=True, unit="s", help="solref time constant of the equalities"),
         Option("tc_steps", float, 1.0, 1e6, help="solref time constant in steps (when tc is not given)"),
         Option("impedance", float, 0.0, 1.0, low_open=True, help="solimp of the equalities"),
+        Option(
+            "invweight",
+            float,
+            0.0,
+            1.0,
+            low_open=True,
+            help="factor on the compiled model's invweight0, the regulariser's scale (1: MuJoCo's own)",
+        ),
+        Option(
+            "solref",
+            str,
+            choices=SOLREF_FORMS,
+            help="the equalities' solref as (tc, 1), or directly as (-1/tc^2, -2/tc)",
+        ),
         Option("contact_impedance", float, 0.0, 1.0, low_open=True, help="solimp of cam contacts"),
         Option("preload", float, 0.0, 1e9, low_open=True, unit="N", help="follower spring preload"),
         Option(
@@ -165,6 +201,8 @@ class MujocoAdapter(Adapter):
                 setting = setting.replace(preload=preload(scenario), contact_impedance=0.99)
             if faceted(scenario):
                 setting = setting.replace(cam_pieces=DEFAULT_PIECES)
+        if _polycoef_drives(scenario):  # polycoef's lag grows as tc^2: a long tc needs the steered clock
+            setting = setting.replace(polynomial=STEERED)
         return setting
 
     def probe_settings(self, probe: Probe, scenario: Scenario) -> list[Setting] | None:
@@ -172,23 +210,21 @@ class MujocoAdapter(Adapter):
 
     def ladder(self, scenario: Scenario) -> list[Setting]:
         dynamic = scenario.analysis == "dynamic"
-        rungs = rule_ladder(scenario, DYNAMIC_MODES if dynamic else KINEMATIC_MODES, closes_loops(scenario))
         base = self.default_setting(scenario)
-        extra = {k: v for k, v in base.options if k not in ("dt", "tc", "impedance")}
+        built = cam_model_scenario(scenario, str(base.get("cam_model", default_cam_model(scenario))))
+        rungs = rule_ladder(scenario, DYNAMIC_MODES if dynamic else KINEMATIC_MODES, closes_loops(built))
+        extra = {k: v for k, v in base.options if k not in SWEPT}
         settings = [s.replace(**extra) if extra else s for s in rungs]
+        steps = [s for s in settings if _on_step_ladder(s, base)]
         if base.get("cam_model") == "linkage":  # MuJoCo's own cam contact: its step ladders
             contact: dict[str, OptionValue] = {
                 "cam_model": "contact",
                 "preload": preload(scenario),
                 "contact_impedance": 0.99,
             }
-            ladders = [s for s in settings if s["impedance"] == base["impedance"] and _at_tc(s)]
-            settings += [s.replace(**contact) for s in ladders]
-        if _polycoef_drives(scenario):  # the same drives by steered clocks: RK4's step ladder
-            ladder = [
-                s for s in settings if s.mode == "RK4" and s["impedance"] == base["impedance"] and _at_tc(s)
-            ]
-            settings += [s.replace(polynomial=STEERED) for s in ladder]
+            settings += [own_regulariser(s).replace(**contact) for s in steps]
+        if _polycoef_drives(scenario):  # the same drives through polycoef: RK4's step ladder at a short tc
+            settings += [own_regulariser(s).replace(polynomial=POLYCOEF) for s in steps if s.mode == "RK4"]
         return settings
 
     def build(self, scenario: Scenario, setting: Setting) -> Model:
@@ -198,7 +234,7 @@ class MujocoAdapter(Adapter):
             raise Unsupported(reason)
         kinematic = setting.mode == KINEMATIC
         dynamic = scenario.analysis == "dynamic"
-        if dynamic and setting.mode not in DYNAMIC_MODES:
+        if dynamic and setting.mode not in (*DYNAMIC_MODES, UNTUNED):
             raise Unsupported(f"mode {setting.mode} is not a MuJoCo integrator of free dynamics")
         # A cam's model adds what the scenario lacks (a link of LINK_MASS, or a preload spring):
         # its forces would be the model's, so none are reported.
@@ -218,12 +254,16 @@ class MujocoAdapter(Adapter):
         physics = Physics(
             "RK4" if kinematic else setting.mode,
             dt,
-            (time_constant(setting, dt), 1.0),
+            equality_solref(setting, dt),
             _solimp(float(setting.get("impedance", 0.9999)), scenario.characteristic_length),
             _solimp(float(setting.get("contact_impedance", 0.99)), scenario.characteristic_length),
             cam_pieces=int(setting.get("cam_pieces", DEFAULT_PIECES)),
             steer=setting.get("polynomial", POLYCOEF) == STEERED,
+            contact_solref=(time_constant(setting, dt), 1.0),
+            invweight=float(setting.get("invweight", MUJOCO_S_OWN)),
         )
+        if setting.mode == UNTUNED:
+            physics = untuned(physics)
         run_in = 0 if kinematic or dynamic else RUN_IN
         scale = scale_of(scenario)
         guessed = plan_tree(scenario)
@@ -255,7 +295,7 @@ class MujocoAdapter(Adapter):
             return self._kinematic(model, grid)
         check_grid(grid, 0.0)
         dt = model.dt
-        soften(m, dt, model.tc_steps * dt)
+        soften(m, model)
         d = mujoco.MjData(m)
         d.qpos[:], d.qvel[:] = model.qpos0, model.qvel0
         n, k = len(grid), len(model.bodies)
@@ -310,9 +350,13 @@ def _polycoef_drives(scenario: Scenario) -> bool:
         return False
 
 
-def _at_tc(setting: Setting) -> bool:
-    """Whether the setting's time constant is the rule's number of steps (a point of a step ladder)."""
-    return abs(float(setting["tc"]) - TC_STEPS * float(setting["dt"])) <= 1e-9 * float(setting["tc"])
+def _on_step_ladder(setting: Setting, base: Setting) -> bool:
+    """Whether `setting` is a rung of a step ladder: an integrator at the default's time constant
+    in steps, regulariser, solref form and impedance."""
+    if setting.mode == UNTUNED or any(setting.get(k) != base.get(k) for k in SWEPT[2:]):
+        return False
+    steps = float(setting["tc"]) / float(setting["dt"])
+    return abs(steps - float(base["tc"]) / float(base["dt"])) <= 1e-9 * steps
 
 
 def _solimp(impedance: float, length: float) -> tuple[float, float, float, float, float]:

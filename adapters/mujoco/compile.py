@@ -22,6 +22,7 @@ from adapters.mujoco.pairs import PairTable
 from adapters.mujoco.scale import Scale, clock_armature
 from adapters.mujoco.simulation import advance
 from adapters.mujoco.tree import Tree, angle
+from adapters.mujoco.weights import weigh
 from scenarios.bodies import Pose
 from scenarios.scenario import Scenario
 
@@ -36,13 +37,15 @@ def compile_model(
     transient. The clocks keep the state the run-in leaves them in: under a first-order integrator
     a harmonic clock is then off its law by its phase error (7e-6 m on the slider drive), but in
     step with the joints it drives; set back onto its law alone it would violate its drive equality
-    at t = 0 and start the transient the run-in is there to avoid. `linear`: every law linear in
-    its clock (the sizing model, see clock_armatures)."""
+    at t = 0 and start the transient the run-in is there to avoid. The regulariser is scaled before
+    either (adapters.mujoco.weights): scaled after, the start would carry the old model's offset.
+    `linear`: every law linear in its clock (the sizing model, see clock_armatures)."""
     found = laws(scenario, tree, physics.steer)
     if linear:
         found = [law.linearised() for law in found]
     cams = cam_pairs(scenario.cams, tree, physics.cam_pieces)
     m = mujoco.MjModel.from_xml_string(mjcf(scenario, tree, found, cams, physics))
+    weigh(m, physics.invweight)
     d = mujoco.MjData(m)
     table = PairTable.of(m)
     clocks = clocks_at(m, found, 0.0)
@@ -68,7 +71,8 @@ def compile_model(
         qpos0=d.qpos.copy(),
         qvel0=d.qvel.copy(),
         dt=physics.timestep,
-        tc_steps=physics.solref[0] / physics.timestep,
+        solref=physics.solref,
+        contact_solref=physics.contact_solref or physics.solref,
         bodies=outputs,
         sites=[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE, b) for b in outputs],
         theta=[angle(tree, b) for b in outputs],

@@ -34,6 +34,14 @@ CLOCK_ARMATURE = 1.0e9
 CLOCK_INERTIA = 1.0
 """The clock body's own moment of inertia about its axis (its dof's inertia is this plus the armature)."""
 
+SCALED_TOLERANCE, SCALED_ITERATIONS = 1e-30, 5
+"""The solver's tolerance and iterations where the regulariser is scaled. MuJoCo's Newton solver
+stops on a relative improvement of its cost, which the scaled regulariser makes tiny after one
+iteration: at 1e-15 the constraint forces are off by 1e-5 to 1e-4 (slider-crank 6.2e-5, four-bar
+7.8e-4); at 1e-30 they are at 1e-10 after two iterations. Without a cap on the iterations the
+solver then goes on to its limit where nothing improves (Andrews' squeezer at 3.3 times the cost
+per step, free dynamics at 0 ten times); five keep the cost and the forces."""
+
 
 @dataclass(frozen=True)
 class Physics:
@@ -42,9 +50,16 @@ class Physics:
     integrator: str
     timestep: float
     solref: tuple[float, float]
+    """The equalities' solref: (time constant, damping ratio), or (-stiffness, -damping) directly."""
     solimp: tuple[float, float, float, float, float]
     contact_solimp: tuple[float, float, float, float, float]
+    contact_solref: tuple[float, float] | None = None
+    """The cam contacts' solref (None: the equalities')."""
+    invweight: float = 1.0
+    """The factor on the compiled model's invweight0 (adapters.mujoco.weights)."""
     tolerance: float = 1e-15
+    """The constraint solver's tolerance (and `iterations`, its limit); SCALED_TOLERANCE and
+    SCALED_ITERATIONS where the regulariser is scaled (`invweight` below 1, adapters.mujoco.weights)."""
     iterations: int = 50
     springs: dict[str, tuple[float, float]] = field(default_factory=dict)
     """Preload springs: joint name -> (stiffness, springref)."""
@@ -79,7 +94,7 @@ def mjcf(
     for law in laws:
         if law.clock is not None:
             _clock(world, law, physics)
-    solref, solimp = num(*physics.solref), num(*physics.contact_solimp)
+    solref, solimp = num(*(physics.contact_solref or physics.solref)), num(*physics.contact_solimp)
     cam_geoms(elements, cams, solref, solimp)
     equalities(root, elements, tree, laws)
     _loads(root, elements, physics.loads)
@@ -101,8 +116,8 @@ def _options(root: ET.Element, scenario: Scenario, physics: Physics, cams: list[
         timestep=num(physics.timestep),
         integrator=physics.integrator,
         gravity=num(*physics.loads.gravity, 0.0),
-        tolerance=num(physics.tolerance),
-        iterations=str(physics.iterations),
+        tolerance=num(physics.tolerance if physics.invweight == 1.0 else SCALED_TOLERANCE),
+        iterations=str(physics.iterations if physics.invweight == 1.0 else SCALED_ITERATIONS),
         jacobian="dense",
     )
     # A scene carries only what it needs: without cams there is nothing to collide.

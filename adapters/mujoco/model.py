@@ -29,7 +29,10 @@ class Model:
     qpos0: np.ndarray
     qvel0: np.ndarray
     dt: float
-    tc_steps: float
+    solref: tuple[float, float]
+    """The equalities' solref (adapters.mujoco.mjcf.Physics)."""
+    contact_solref: tuple[float, float]
+    """The cam contacts' solref."""
     bodies: tuple[str, ...]
     sites: list[int]
     theta: list[Affine]

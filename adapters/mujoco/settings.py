@@ -2,31 +2,47 @@
 shortest period of the motion, the equalities' time constant `tc` (seconds) a fixed number of those
 steps, for every scenario whatever its size and its output grid.
 
-The time constant sets MuJoCo's constraint mode: a violation relaxes over tc, so RK4 sees the mode
-at tc / dt steps. At 2 steps (MuJoCo's floor) RK4 under-resolves it and the accelerations carry the
-ringing (slider-crank 4.0e-3); TC_STEPS resolves it at the same cost. Softness ((1 - d) tc^2) grows
-with tc, so positions lose a little of what accelerations gain.
+A closed loop's accuracy floor (adapters.mujoco.weights) is RK4's error on the constraint mode the
+time constant creates, which falls as (dt / tc)^4, and the regulariser's violation, which grows as
+tc^2. With the regulariser scaled away (INVWEIGHT) the time constant can be long: TC_STEPS steps
+bring the loops' accelerations from 1e-4 to 1e-10 at the same cost. A cam by contact keeps
+MuJoCo's own regulariser and OWN_TC_STEPS: a hard contact loses its follower or rings at every
+facet's vertex.
 
 The ladder (one work-precision curve per integrator): each integrator over rungs of steps per
-period; RK4's time constant over TC_LADDER steps at the default step and at a tenth of it; the
-impedance (solimp) at the default. A rung whose run takes more than STEP_BUDGET steps over the
-horizon (weighted by bodies / 8 above 8 bodies) is left out, the coarsest always kept: the suite's
-time goes to points that show something new. Euler at coarse steps is such a rung, swept, never a
-silent default for large systems.
+period; where a loop is closed, RK4's time constant over TC_LADDER steps (and the direct solref
+form) with the regulariser scaled, SCALED_RUNGS, OWN_TC_LADDER with MuJoCo's own, the impedance
+(solimp) at the default and a tenth of the default step; and MuJoCo as a new user's model has it
+(UNTUNED).
+A rung whose run takes more than STEP_BUDGET steps over the horizon (weighted by bodies / 8 above
+8 bodies) is left out, the coarsest always kept: the suite's time goes to points that show
+something new. Euler at coarse steps is such a rung, swept, never a silent default for large
+systems.
 """
 
 from __future__ import annotations
 
-from adapters.base import Setting
+from adapters.base import UNTUNED, Setting
 from adapters.probes import MASS, STIFFNESS, Probe
 from adapters.step_rule import at_step, rule_step
+from scenarios.cam_linkage import default_cam_model
 from scenarios.scenario import Scenario
 
 STEPS_PER_PERIOD = 2000
 """MuJoCo's constant of the rule (at 1000 the soft closures' positions are twice as far off, the
 cam contacts' penetration four times)."""
-TC_STEPS = 4.0
-"""The equalities' time constant in rule steps."""
+TC_STEPS = 128.0
+"""The equalities' time constant in rule steps, with the regulariser scaled by INVWEIGHT."""
+INVWEIGHT = 1e-8
+"""The factor on the compiled model's invweight0 by default (adapters.mujoco.weights): the
+regulariser's sag below RK4's error on the constraint mode at TC_STEPS (at 1e-6 a loop passing
+near a singular position, n_four_bar, sags to 3e-5 m)."""
+SCALED_RUNGS = ((1e-6, 128.0), (1e-4, 32.0))
+"""(factor, time constant in steps) of the ladder's rungs at larger regularisers."""
+OWN_TC_STEPS = 4.0
+"""The time constant in rule steps with MuJoCo's own regulariser (cams by contact): at 2 steps RK4
+under-resolves the mode (slider-crank accelerations 4.0e-3), past 8 the regulariser's violation
+grows as tc^2."""
 IMPEDANCE = 0.9999
 """solimp of the equalities: MuJoCo's stiffest."""
 LADDERS = {
@@ -39,24 +55,48 @@ LADDERS = {
 KINEMATIC_MODES = ("RK4", "implicitfast")
 """The integrators swept on driven mechanisms (implicit equals implicitfast there, Euler lies
 beneath implicitfast)."""
-TC_LADDER = (2.0, 4.0, 8.0, 16.0)
-"""RK4's time constant in steps, swept at the default step; at 10 times finer, from 8 steps (2 steps
-is dominated there: the accelerations stay on the 2-step error whatever the step)."""
+TC_LADDER = (16.0, 64.0, 256.0)
+"""RK4's time constant in steps with the regulariser scaled, swept at the default step."""
+DIRECT_TC_STEPS = (TC_STEPS, 1.0e4)
+"""The time constants (in steps) of the direct solref form's rungs (1e4: next to no stiffness and
+damping, the loop held by its exact acceleration alone)."""
+OWN_TC_LADDER = (2.0, 4.0, 16.0)
+"""RK4's time constant in steps with MuJoCo's own regulariser, swept at the default step."""
 IMPEDANCES = (0.99,)
 """Softer impedances swept at the default."""
 STEP_BUDGET = 1.0e5
 """Steps over the horizon above which a rung is left out."""
 
 
+def by_contact(scenario: Scenario) -> bool:
+    """Whether the scenario's cams are MuJoCo contacts by default (no equivalent linkage)."""
+    return bool(scenario.cams) and default_cam_model(scenario) == "contact"
+
+
 def rule_default(scenario: Scenario) -> Setting:
-    """RK4 at the rule's step, tc = TC_STEPS steps, the stiffest impedance."""
+    """RK4 at the rule's step, the stiffest impedance, tc = TC_STEPS steps with the regulariser
+    scaled by INVWEIGHT; OWN_TC_STEPS with MuJoCo's own on cams by contact."""
     dt = rule_step(scenario, STEPS_PER_PERIOD)
-    return Setting.of("RK4", dt=dt, tc=TC_STEPS * dt, impedance=IMPEDANCE)
+    if by_contact(scenario):
+        return own_regulariser(Setting.of("RK4", dt=dt, impedance=IMPEDANCE))
+    return Setting.of("RK4", dt=dt, tc=TC_STEPS * dt, impedance=IMPEDANCE, invweight=INVWEIGHT)
+
+
+def own_regulariser(setting: Setting, tc_steps: float = OWN_TC_STEPS) -> Setting:
+    """`setting` with MuJoCo's own regulariser and `tc_steps` steps of time constant."""
+    return setting.replace(invweight=1.0, tc=tc_steps * float(setting["dt"]))
+
+
+def untuned(scenario: Scenario) -> Setting:
+    """MuJoCo as a new user's model has it, at the rule's step."""
+    return Setting.of(UNTUNED, dt=rule_step(scenario, STEPS_PER_PERIOD))
 
 
 def rule_ladder(scenario: Scenario, modes: tuple[str, ...], closes_loops: bool) -> list[Setting]:
-    """Each of `modes` over its ladder within the budget, then (where a loop is closed) RK4's time
-    constant at two steps and the impedance at the default."""
+    """Each of `modes` over its ladder within the budget (the default's time constant in steps),
+    then, where a loop is closed or a cam is a contact, the time constants, the direct form, other
+    regularisers, MuJoCo's own and the impedance at the default step, and the default at a tenth
+    of it; MuJoCo untuned last."""
     default = rule_default(scenario)
     weight = max(1.0, len(scenario.bodies) / 8)
     settings = []
@@ -64,24 +104,42 @@ def rule_ladder(scenario: Scenario, modes: tuple[str, ...], closes_loops: bool) 
         for n in LADDERS[mode]:
             dt = rule_step(scenario, n)
             if n == LADDERS[mode][0] or scenario.t_end / dt * weight <= STEP_BUDGET:
-                settings.append(Setting(mode, default.options).replace(dt=dt, tc=TC_STEPS * dt))
-    if closes_loops:
-        for per_period in (STEPS_PER_PERIOD, 10 * STEPS_PER_PERIOD):
-            dt = rule_step(scenario, per_period)
-            if per_period != STEPS_PER_PERIOD and scenario.t_end / dt * weight > STEP_BUDGET:
-                continue
-            ladder = TC_LADDER if per_period == STEPS_PER_PERIOD else [k for k in TC_LADDER if k >= 8.0]
-            settings += [default.replace(dt=dt, tc=k * dt) for k in ladder if k != TC_STEPS]
+                settings.append(Setting(mode, at_step(default, dt).options))
+    if closes_loops or by_contact(scenario):
+        dt = float(default["dt"])
+        if default["invweight"] < 1.0:
+            settings += [default.replace(tc=k * dt) for k in TC_LADDER]
+            settings += [default.replace(tc=k * dt, solref=DIRECT_FORM) for k in DIRECT_TC_STEPS]
+            settings += [default.replace(invweight=w, tc=k * dt) for w, k in SCALED_RUNGS]
+        settings += [own_regulariser(default, k) for k in OWN_TC_LADDER]
         settings += [default.replace(impedance=imp) for imp in IMPEDANCES]
+        finer = at_step(default, dt / 10)
+        if scenario.t_end / float(finer["dt"]) * weight <= STEP_BUDGET:
+            settings.append(finer)
+    settings.append(untuned(scenario))
     return list(dict.fromkeys(settings))
 
 
 def time_constant(setting: Setting, dt: float) -> float:
     """The equalities' time constant in seconds: `tc`, else `tc_steps` steps (the older option),
-    else TC_STEPS steps."""
+    else OWN_TC_STEPS steps (a setting without `invweight` has MuJoCo's own regulariser)."""
     if setting.get("tc") is not None:
         return float(setting["tc"])
-    return float(setting.get("tc_steps", TC_STEPS)) * dt
+    return float(setting.get("tc_steps", OWN_TC_STEPS)) * dt
+
+
+TIME_FORM, DIRECT_FORM = "timeconst", "direct"
+SOLREF_FORMS = (TIME_FORM, DIRECT_FORM)
+"""The equalities' solref: MuJoCo's time-constant form (tc, damping ratio 1), or the direct form
+(-stiffness, -damping) with the stiffness and damping the same tc sets (1 / tc^2, 2 / tc)."""
+
+
+def equality_solref(setting: Setting, dt: float) -> tuple[float, float]:
+    """The equalities' solref for `setting` at the step `dt`."""
+    tc = time_constant(setting, dt)
+    if setting.get("solref", TIME_FORM) == DIRECT_FORM:
+        return (-1.0 / tc**2, -2.0 / tc)
+    return (tc, 1.0)
 
 
 STRESS_STEPS = (2e-3, 1e-3, 3e-4, 1e-4, 3e-5)

@@ -1,5 +1,5 @@
-"""Stepping a compiled MuJoCo model and reading its outputs: the step and the equalities' time
-constant, a side step to an output time between two steps, steps with instability caught (`Diverged` with its
+"""Stepping a compiled MuJoCo model and reading its outputs: the step and the constraints' solref, a
+side step to an output time between two steps, steps with instability caught (`Diverged` with its
 time), and each output body's pose, velocity and acceleration from MuJoCo's state."""
 
 from __future__ import annotations
@@ -17,13 +17,13 @@ BAD = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS, mujoc
 STATE = mujoco.mjtState.mjSTATE_INTEGRATION
 
 
-def soften(m: mujoco.MjModel, dt: float, tc: float) -> None:
-    """The step and the equalities' (and contacts') time constant `tc` in seconds: a contact's in its
-    explicit pair, or in both its geoms where they collide by bits (adapters.mujoco.cams)."""
-    m.opt.timestep = dt
-    m.eq_solref[:, 0] = tc
-    m.pair_solref[:, 0] = tc
-    m.geom_solref[(m.geom_contype | m.geom_conaffinity) != 0, 0] = tc
+def soften(m: mujoco.MjModel, model: Model) -> None:
+    """The model's step and its equalities' and contacts' solref: a contact's in its explicit pair,
+    or in both its geoms where they collide by bits (adapters.mujoco.cams)."""
+    m.opt.timestep = model.dt
+    m.eq_solref[:] = model.solref
+    m.pair_solref[:] = model.contact_solref
+    m.geom_solref[(m.geom_contype | m.geom_conaffinity) != 0] = model.contact_solref
 
 
 @contextmanager

@@ -14,7 +14,6 @@ import pytest
 import adapters
 import scenarios
 from adapters.base import Setting
-from adapters.step_rule import at_step
 from reports.harness.level_error import level_errors
 from reports.harness.truth import independent_truth
 from tests.support.bounds import held
@@ -34,10 +33,11 @@ def errors(name: str, engine: str, setting: Setting | None = None, **overrides: 
 
 
 KINEMATIC_DEFAULTS: dict[tuple[str, str], tuple[float, float, float]] = {
-    # RK4 at 1/2000 of the turn, tc 4 steps (before: tc 2 steps at 1e-4 s, A 4.0e-3)
-    ("slider_crank", "mujoco"): (7.3e-8, 1.9e-6, 2.2e-4),
-    ("four_bar", "mujoco"): (1.3e-7, 3.8e-6, 4.4e-4),
-    ("cam_roller", "mujoco"): (1.6e-8, 2.8e-7, 3.3e-5),
+    # RK4 at 1/2000 of the turn, tc 128 steps, the regulariser scaled by 1e-8 (before: tc 4 steps
+    # with MuJoCo's own regulariser, A 2.2e-4 / 4.4e-4 / 3.3e-5)
+    ("slider_crank", "mujoco"): (1.3e-11, 5.3e-11, 2.1e-10),
+    ("four_bar", "mujoco"): (2.4e-11, 1.7e-10, 8.7e-10),
+    ("cam_roller", "mujoco"): (2.5e-12, 8.5e-12, 3.0e-11),
     # GA3 at 1/2000 of the turn after its run-in: positions to Newton's tolerance (before the run-in
     # the accelerations carried the start-up transient: 6.1e-3, 5.7e-2, 1.6e-3)
     ("slider_crank", "exudyn"): (1.1e-15, 1.6e-6, 4.8e-6),
@@ -46,10 +46,10 @@ KINEMATIC_DEFAULTS: dict[tuple[str, str], tuple[float, float, float]] = {
 }
 """(scenario, engine): its errors per level at the engine's default setting, measured."""
 DYNAMIC_DEFAULTS: dict[tuple[str, str], tuple[float, float, float]] = {
-    ("four_bar_gravity", "mujoco"): (7.9e-8, 3.7e-6, 3.5e-3),
+    ("four_bar_gravity", "mujoco"): (2.8e-10, 1.5e-9, 1.8e-8),
     ("four_bar_gravity", "exudyn"): (1.6e-5, 8.2e-5, 9.2e-4),
     ("four_bar_gravity", "pinocchio"): (1.3e-9, 6.8e-9, 8.1e-8),
-    ("andrews_squeezer", "mujoco"): (1.4e-6, 3.6e-6, 1.8e-3),
+    ("andrews_squeezer", "mujoco"): (1.3e-9, 3.4e-9, 3.0e-8),
     ("andrews_squeezer", "exudyn"): (4.5e-5, 1.1e-4, 1.1e-3),
     ("andrews_squeezer", "pinocchio"): (1.5e-8, 3.8e-8, 3.5e-7),
     # the 9-link pendulum; MuJoCo no more Euler at 5e-3 s above 8 bodies (then 9.9e-2 / 1.3e-1 / 8.7e-1)
@@ -61,7 +61,7 @@ DYNAMIC_DEFAULTS: dict[tuple[str, str], tuple[float, float, float]] = {
 against the native forward dynamics (the compound pendulum with 9 links)."""
 OVERRIDES: dict[str, dict[str, float]] = {"compound_pendulum": {"links": 9}}
 FLOORS: dict[tuple[str, str], tuple[float, float, float]] = {
-    ("slider_crank", "mujoco"): (2.6e-9, 2.2e-8, 1.2e-5),
+    ("slider_crank", "mujoco"): (5.5e-12, 5.5e-12, 2.3e-11),
     ("andrews_squeezer", "pinocchio"): (1.3e-12, 2.3e-12, 2.0e-11),
     ("slider_crank", "exudyn"): (1.8e-15, 1.6e-8, 5.0e-6),
 }
@@ -80,13 +80,13 @@ def test_dynamic_default(name: str, engine: str) -> None:
     held(errors(name, engine, **OVERRIDES.get(name, {})), DYNAMIC_DEFAULTS[(name, engine)])
 
 
-def test_mujoco_s_acceleration_floor_is_the_impedance_s() -> None:
-    """Past 8 steps of time constant the accelerations stop falling with the step (1 - 0.9999 of
-    the constraint force): measured 1.3e-5 at a third of the default step, 1.2e-5 at a tenth."""
+def test_mujoco_s_floor_on_the_slider_crank() -> None:
+    """The ladder's longest time constant (256 steps at the default step, the regulariser scaled,
+    adapters.mujoco.weights): RK4's error on the constraint mode, (dt / tc)^4,
+    ten times below the default's."""
     adapter = adapters.load("mujoco")
     default = adapter.default_setting(scenarios.load("slider_crank"))
-    finer = at_step(default, float(default["dt"]) / 10)
-    floor = finer.replace(tc=8 * float(finer["dt"]))
+    floor = default.replace(tc=256 * float(default["dt"]))
     assert floor in adapter.ladder(scenarios.load("slider_crank"))
     held(errors("slider_crank", "mujoco", floor), FLOORS[("slider_crank", "mujoco")])
 

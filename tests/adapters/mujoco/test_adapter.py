@@ -1,11 +1,11 @@
 """MuJoCo adapter: every family against its closed form at the default setting, honest failures,
 the exported model file, and a generic mechanism outside the catalogue (a tendon gear law).
 
-The errors at the default (RK4 at the settings rule's step, equality time constant 4 steps, solimp
-0.9999; cams: contact solimp 0.99, 100 N preload) are held within a factor 3 either way (MEASURED):
-linkages 6e-9..6e-8 m, angles 4e-8..6e-7 rad; gears at round-off; disc cams 4e-10..1.2e-9 m.
-Velocities are worse than positions (a soft constraint's velocity error is its position error over
-its time constant) and accelerations worse again (the constraint's stabilising term).
+The errors at the default (RK4 at the settings rule's step, equality time constant 128 steps with
+the regulariser scaled by 1e-8, adapters.mujoco.weights, solimp 0.9999) are held within a factor 3
+either way (MEASURED): linkages 1e-12..3e-10 m, relative accelerations 1e-12..3e-9; gears at
+round-off; disc cams (by their linkage) near it. The chain of four-bars, at a coarser step for
+its longer period, is the least accurate.
 """
 
 from __future__ import annotations
@@ -34,23 +34,23 @@ from tests.support.mechanisms import differential_train
 ADAPTER = MujocoAdapter()
 
 MEASURED: dict[str, tuple[float, float, float, float]] = {
-    "slider_crank": (1.5e-08, 4.4e-08, 7.1e-07, 8.3e-05),
-    "slider_crank/offset": (1.8e-08, 5.6e-08, 7.7e-07, 9.2e-05),
-    "slider_crank/slider_drive": (4.9e-08, 5.5e-07, 2.0e-06, 5.5e-05),
-    "slider_crank/slider_drive_offset": (5.5e-08, 5.9e-07, 1.9e-06, 5.4e-05),
-    "four_bar": (6.1e-09, 1.0e-07, 2.2e-06, 1.4e-04),
-    "four_bar/crossed": (6.5e-09, 1.2e-07, 2.5e-06, 1.4e-04),
-    "spur_gears": (0.0e00, 2.5e-13, 3.4e-13, 1.1e-10),
-    "spur_gears/internal": (0.0e00, 2.5e-13, 3.4e-13, 1.1e-10),
+    "slider_crank": (2.7e-12, 4.7e-12, 1.9e-11, 7.0e-11),
+    "slider_crank/offset": (2.7e-12, 5.4e-12, 2.0e-11, 7.8e-11),
+    "slider_crank/slider_drive": (1.4e-11, 6.6e-11, 2.1e-10, 1.8e-10),
+    "slider_crank/slider_drive_offset": (1.5e-11, 7.3e-11, 2.0e-10, 1.7e-10),
+    "four_bar": (1.2e-12, 2.2e-11, 1.1e-10, 3.0e-10),
+    "four_bar/crossed": (3.1e-12, 5.0e-11, 1.6e-10, 2.6e-10),
+    "spur_gears": (0.0e00, 2.5e-13, 6.5e-15, 2.3e-14),
+    "spur_gears/internal": (0.0e00, 2.5e-13, 6.5e-15, 2.3e-14),
     "planetary_gears": (2.3e-14, 7.5e-13, 7.5e-15, 7.5e-15),
-    "rack_pinion": (5.9e-15, 2.5e-13, 1.8e-16, 0.0e00),
-    "cam_knife_edge": (4.3e-10, 1.7e-08, 4.2e-08, 1.7e-06),
-    "cam_roller": (4.0e-10, 1.6e-08, 3.8e-08, 1.6e-06),
-    "cam_flat_face": (1.2e-09, 1.6e-08, 3.2e-08, 1.4e-06),
-    "four_bar_chain": (4.2e-09, 4.0e-08, 4.9e-08, 1.7e-07),
+    "rack_pinion": (1.5e-14, 2.5e-13, 2.6e-15, 5.7e-15),
+    "cam_knife_edge": (1.1e-13, 2.4e-12, 9.2e-13, 1.6e-12),
+    "cam_roller": (1.1e-13, 2.5e-12, 9.3e-13, 1.5e-12),
+    "cam_flat_face": (1.0e-13, 2.9e-12, 9.7e-13, 1.3e-12),
+    "four_bar_chain": (3.2e-10, 3.2e-09, 2.4e-09, 3.2e-09),
 }
 """scenario: (position length [m], position angle [rad], velocity / max|v|, acceleration / max|a|)
-at the default setting, measured 2026-11-25 with MuJoCo 4.0.0, held two-sided (tests.support.bounds)."""
+at the default setting, measured with MuJoCo 4.0.1, held two-sided (tests.support.bounds)."""
 DISC_SCENARIOS = [n for n in scenarios.catalogue() if not n.endswith("/spline")]
 
 

@@ -9,10 +9,12 @@ back alone, the clock left its drive equality violated at the start, and the sti
 4 steps) pulled the mechanism back in a transient: implicitfast's acceleration error rose from
 1.1e-3 to 8.6e-2 on the slider drive and from 2.5e-4 to 2.8e-1 on the four-bar chain.
 
-Measured (2026-11, MuJoCo 4.0, default step and tc), start residual of the drive equalities, the
-velocity one over the clock's rate: slider drive 2.2e-8 (2.3e-8 offset), four-bar chain 1.7e-8,
-spur gears 9.4e-10 (implicitfast; 3.6e-16 under RK4), crank-driven slider-crank 8.7e-8, four-bar
-1.1e-7; with the clocks set back, 2.4e-4 on the slider drives.
+Measured (MuJoCo 4.0, default step and tc of 4 steps with MuJoCo's own regulariser), start
+residual of the drive equalities, the velocity one over the clock's rate: slider drive 2.2e-8
+(2.3e-8 offset), four-bar chain 1.7e-8, spur gears 9.4e-10 (implicitfast; 3.6e-16 under RK4),
+crank-driven slider-crank 8.7e-8, four-bar 1.1e-7; with the clocks set back, 2.4e-4 on the slider
+drives. At the rule's default (128 steps, the regulariser scaled) they are 1e-9 or less except the
+spur gears under implicitfast, 6.6e-8: the equality relaxes over 128 steps, longer than the run-in.
 """
 
 from __future__ import annotations
@@ -39,7 +41,7 @@ START_RESIDUAL = {
     "slider_crank/slider_drive": 7e-8,
     "slider_crank/slider_drive_offset": 7e-8,
     "four_bar_chain": 5e-8,
-    "spur_gears": 3e-9,
+    "spur_gears": 2e-7,
     "slider_crank": 3e-7,
     "four_bar": 3.5e-7,
 }
@@ -85,7 +87,7 @@ def test_the_start_keeps_each_clock_in_step_with_the_joints_it_drives(name: str,
 
 @pytest.mark.parametrize(
     ("name", "measured"),
-    (("slider_crank/slider_drive", 1.105e-3), ("four_bar_chain", 2.474e-4)),
+    (("slider_crank/slider_drive", 6.35e-3), ("four_bar_chain", 2.49e-4)),
 )
 def test_implicitfast_on_a_harmonic_drive_at_its_measured_acceleration_error(
     name: str, measured: float

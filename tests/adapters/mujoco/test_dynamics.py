@@ -1,13 +1,12 @@
 """MuJoCo in free dynamics against the native truth (DOP853 on the augmented formulation).
 
-What a careful MuJoCo model reaches, measured with the default (RK4 at 1e-4 s, or coarser where the
-horizon is long; solref time constant 4 steps, impedance 0.9999): on open chains the integrator
-alone (the compound pendulum to 3e-12 m, the stiff spring to 3e-10 m); on closed loops the soft
-`connect` equalities set the floor: the free four-bar to 1.9e-7 m over 1 s, the slider-crank to
-8.5e-8 m, Andrews' squeezer to 3.9e-4 (its step is coarse for the squeezer's 1e4 rad/s^2).
-Accelerations of closed loops carry the equalities' softness: MuJoCo applies at most 0.9999 of the
-constraint force (solimp's ceiling), so they are off by about 1e-4 of their size (0.15 m/s^2 where
-the four-bar's reach 1249 m/s^2).
+What a careful MuJoCo model reaches, measured with the default (RK4 at the rule's step, solref time
+constant 128 steps with the regulariser's invweight0 scaled by 1e-8, impedance 0.9999,
+adapters.mujoco.weights): on open chains the integrator alone (the compound pendulum to 3e-12 m,
+the stiff spring to 3e-10 m); on closed loops the `connect` equalities are held to 1e-8 in
+accelerations (four_bar_gravity, Andrews' squeezer). With MuJoCo's own regulariser, the time
+constant is held to a few steps and the accelerations carry RK4's error on the constraint mode
+(about 1e-4 of their size) or the regulariser's sag; the bounds below are upper bounds from then.
 """
 
 from __future__ import annotations
@@ -19,7 +18,7 @@ import pytest
 
 import scenarios
 from adapters.base import Setting
-from adapters.mujoco.settings import STEPS_PER_PERIOD, TC_STEPS
+from adapters.mujoco.settings import INVWEIGHT, STEPS_PER_PERIOD, TC_STEPS, UNTUNED
 from adapters.step_rule import shortest_period
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -32,9 +31,10 @@ SHORT = {"t_end": 0.25, "steps": 25}
 def test_the_adapter_runs_dynamics_with_mujocos_integrators() -> None:
     scenario = scenarios.load("four_bar_gravity")
     assert ADAPTER.dynamics
-    assert {s.mode for s in ADAPTER.ladder(scenario)} == {"RK4", "implicit", "implicitfast", "Euler"}
+    modes = {s.mode for s in ADAPTER.ladder(scenario)}
+    assert modes == {"RK4", "implicit", "implicitfast", "Euler", UNTUNED}
     dt = shortest_period(scenario) / STEPS_PER_PERIOD
-    expected = Setting.of("RK4", dt=dt, tc=TC_STEPS * dt, impedance=0.9999)
+    expected = Setting.of("RK4", dt=dt, tc=TC_STEPS * dt, impedance=0.9999, invweight=INVWEIGHT)
     assert ADAPTER.default_setting(scenario) == expected
 
 
