@@ -23,7 +23,7 @@ from reports.harness.store_lock import WriterLock
 from reports.harness.trajectory_file import TrajectoryFileError, read_trajectory
 from reports.render.first_screen import BEST, WORST
 from scenarios import Scenario, load
-from scenarios.loading import is_scenario_file
+from scenarios.names import NameRefused, safe_file_stem
 from scenarios.scenario import LEVELS
 
 SCALE_WORDS = ("green", "yellow", "red")
@@ -38,10 +38,14 @@ def colour_word(error: float) -> str:
     return SCALE_WORDS[min(max(int(share * 3), 0), 2)]
 
 
-def check_label(label: str) -> str:
-    """A label that cannot be mistaken for an engine's rows or the truth's."""
-    if not label.strip():
-        raise UsageError("--label must not be empty")
+def check_label(label: object) -> str:
+    """A label that cannot be mistaken for an engine's rows or the truth's, and is a name that may
+    become a file name (scenarios.names.safe_file_stem: a path, blank, over-long or control
+    characters are refused)."""
+    try:
+        label = safe_file_stem(label, "--label")
+    except NameRefused as refused:
+        raise UsageError(str(refused)) from None
     if label in adapters.names() or label == TRUTH:
         raise UsageError(f"--label '{label}' is the name of an engine or of the truth; choose another")
     return label
@@ -113,8 +117,9 @@ def beside(store: ResultsStore, name: str) -> list[str]:
 
 
 def _check_store(out: Path, given: str, scenario: Scenario) -> None:
-    """Refuse a store that holds another mechanism under the scenario's name (a file's only)."""
-    if not is_scenario_file(given) or store_files.committed(out) is None:
+    """Refuse a store that holds another mechanism under the scenario's name (a family's rows and a
+    file of its name, in either order: reports.harness.scenario_identity)."""
+    if store_files.committed(out) is None:
         return
     rows = ResultsStore(out).rows.values()
     clash = scenario_identity.stored_clash(rows, given, scenario, str(out))

@@ -19,14 +19,12 @@ import reports.cli.run_overrides as run_overrides
 from reports.cli.usage import UsageError
 from reports.harness import baselines, gate, gate_files, scenario_identity, stop, store_files, suites, sweep
 from reports.harness import recording as harness_recording
-from reports.harness.atomic_write import output_target
 from reports.harness.results_store import ResultsStore, read_results
 from reports.harness.runner import RunConfig, Runner
 from reports.harness.store_lock import WriterLock
 from reports.harness.suites import Suite
 from scenarios import Scenario, limits
 from scenarios import load as build_scenario
-from scenarios.loading import is_scenario_file
 
 DEFAULT_OUT = "mbxval-report"
 MAX_REPEATS = 1000
@@ -130,19 +128,19 @@ def select(args: argparse.Namespace, out: Path, rerun: bool = False) -> Selectio
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} is a file, not a directory")
     config = _run_config(args, suite, rerun or args.rerun)
-    check_scenario_names(args.scenario, out, config.rerun)
+    check_scenario_names(names, out, config.rerun)
     return Selection(suite, names, engines, config, _backend(args))
 
 
 def check_scenario_names(names: list[str], out: Path, rerun: bool) -> None:
-    """Refuse (UsageError) two different mechanisms under one scenario name: two files of this run,
-    or a file and what the store in `out` holds under its name (unless `rerun` replaces it)."""
+    """Refuse (UsageError) two different mechanisms under one scenario name: two of this run, or
+    one of this run (a family, a point or a file) and what the store in `out` holds under its name
+    under another digest, whichever came first (unless `rerun` replaces those rows)."""
     given = {name: build_scenario(name) for name in names}
     clash = scenario_identity.name_clash(given)
     if clash is None and not rerun and store_files.committed(out) is not None:
-        rows = read_results(out)[0].to_dict("records")
-        files = [name for name in names if is_scenario_file(name)]
-        found = (scenario_identity.stored_clash(rows, n, given[n], str(out)) for n in files)
+        rows = read_results(out)[0][["scenario", "scenario_digest"]].drop_duplicates().to_dict("records")
+        found = (scenario_identity.stored_clash(rows, n, given[n], str(out)) for n in names)
         clash = next((f"{c}, or add --rerun to replace those results" for c in found if c), None)
     if clash is not None:
         raise UsageError(clash)
@@ -242,6 +240,10 @@ def cmd_report(args: argparse.Namespace) -> int:
     if args.out is not None and Path(args.out).exists() and not Path(args.out).is_dir():
         raise UsageError(f"--out {args.out} is a file, not a directory")
     try:
+        identities = read_results(args.results)[0].reindex(columns=["scenario", "scenario_digest"]).fillna("")
+        mixed = scenario_identity.mixed_names(identities.drop_duplicates().to_dict("records"), args.results)
+        if mixed is not None:
+            raise UsageError(mixed)
         page = render_reports(args.results, args.out)
     except FileNotFoundError as error:
         raise UsageError(str(error)) from error
@@ -260,7 +262,7 @@ def cmd_check(args: argparse.Namespace) -> int:
             raise UsageError(f"{option} {target}: not a file in an existing directory")
     args.baseline = str(baselines.resolve(args.baseline))
     if args.update:
-        output_target(args.baseline)  # not a regular file: refused before running
+        gate.updatable_cells(args.baseline)  # not a regular file, or not a baseline: before running
     baseline = None if args.update else gate.read_baseline(args.baseline)  # bad baseline: before running
     if args.results is not None:
         return _check(args, Path(args.results), baseline)

@@ -1,0 +1,70 @@
+"""A label is a name, never a path: `compare` writes nothing anywhere for a DataFrame (the frame is
+checked in memory by the CSV reader's own checks), and a label with a separator, `..`, a control
+character, blank or over-long is refused before anything is read or written."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+import pytest
+
+import mbxval
+from scenarios.names import MAX_NAME_LENGTH
+
+STEPS = 10
+
+
+@pytest.fixture(scope="module")
+def frame():  # type: ignore[no-untyped-def]
+    return mbxval.solve("slider_crank", steps=STEPS)
+
+
+def _files(root: Path) -> set[Path]:
+    return {p for p in root.rglob("*")}
+
+
+@pytest.mark.parametrize(
+    "label",
+    ["../../victim", "a/b", "a\\b", "..", ".hidden", "", "  ", "tab\there", "esc\x1b]0;x\x07", "x" * 101],
+)
+def test_a_label_that_is_not_a_plain_name_is_refused_and_writes_nothing(
+    label: str, frame, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    inner = tmp_path / "a" / "b"
+    inner.mkdir(parents=True)
+    monkeypatch.setattr(tempfile, "tempdir", str(inner))  # where the reader once wrote `<label>.csv`
+    with pytest.raises(mbxval.ArgumentError) as refused:
+        mbxval.compare("slider_crank", frame, label=label, steps=STEPS)
+    message = str(refused.value)
+    assert message.startswith("--label") and "\n" not in message and "\x1b" not in message
+    assert _files(tmp_path) == {tmp_path / "a", inner}  # no victim.csv, above or inside
+
+
+def test_the_limit_is_stated_and_a_name_at_it_is_taken(frame) -> None:
+    assert MAX_NAME_LENGTH == 100
+    with pytest.raises(mbxval.ArgumentError, match=f"at most {MAX_NAME_LENGTH} characters"):
+        mbxval.compare("slider_crank", frame, label="x" * (MAX_NAME_LENGTH + 1), steps=STEPS)
+    row = mbxval.compare("slider_crank", frame, label="x" * MAX_NAME_LENGTH, steps=STEPS).iloc[0]
+    assert row["engine"] == "x" * MAX_NAME_LENGTH
+
+
+def test_a_frame_is_scored_without_a_file_written(frame, tmp_path: Path, monkeypatch) -> None:
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    made: list[str] = []
+    real_open = os.open
+
+    def watched(path, flags, *args, **kwargs):  # type: ignore[no-untyped-def]
+        if flags & (os.O_WRONLY | os.O_RDWR | os.O_CREAT):
+            made.append(str(path))
+        return real_open(path, flags, *args, **kwargs)
+
+    monkeypatch.setattr(os, "open", watched)
+    assert mbxval.compare("slider_crank", frame, label="mine", steps=STEPS).iloc[0]["engine"] == "mine"
+    assert made == [] and not any(tmp_path.iterdir())
+    broken = frame.drop(columns=["rod.theta"])  # checked exactly as a file is
+    with pytest.raises(
+        mbxval.ArgumentError, match=r"^the trajectory DataFrame: body 'rod' has rod\.x, rod\.y"
+    ):
+        mbxval.compare("slider_crank", broken, label="mine", steps=STEPS)
