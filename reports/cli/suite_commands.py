@@ -139,11 +139,17 @@ def check_scenario_names(names: list[str], out: Path, rerun: bool) -> None:
     given = {name: build_scenario(name) for name in names}
     clash = scenario_identity.name_clash(given)
     if clash is None and not rerun and store_files.committed(out) is not None:
-        rows = read_results(out)[0][["scenario", "scenario_digest"]].drop_duplicates().to_dict("records")
+        rows = stored_identities(out)
         found = (scenario_identity.stored_clash(rows, n, given[n], str(out)) for n in names)
         clash = next((f"{c}, or add --rerun to replace those results" for c in found if c), None)
     if clash is not None:
         raise UsageError(clash)
+
+
+def stored_identities(results: Path | str) -> list[dict[str, Any]]:
+    """Each scenario name the store holds with each digest its rows record, once."""
+    frame = read_results(results)[0].reindex(columns=["scenario", "scenario_digest"]).fillna("")
+    return frame.drop_duplicates().to_dict("records")  # type: ignore[no-any-return]
 
 
 def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = False) -> Counter[str]:
@@ -240,8 +246,7 @@ def cmd_report(args: argparse.Namespace) -> int:
     if args.out is not None and Path(args.out).exists() and not Path(args.out).is_dir():
         raise UsageError(f"--out {args.out} is a file, not a directory")
     try:
-        identities = read_results(args.results)[0].reindex(columns=["scenario", "scenario_digest"]).fillna("")
-        mixed = scenario_identity.mixed_names(identities.drop_duplicates().to_dict("records"), args.results)
+        mixed = scenario_identity.mixed_names(stored_identities(args.results), args.results)
         if mixed is not None:
             raise UsageError(mixed)
         page = render_reports(args.results, args.out)
