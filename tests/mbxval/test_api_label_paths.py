@@ -5,8 +5,10 @@ character, blank or over-long is refused before anything is read or written."""
 from __future__ import annotations
 
 import os
+import sys
 import tempfile
 from pathlib import Path
+from typing import ClassVar
 
 import pytest
 
@@ -50,19 +52,36 @@ def test_the_limit_is_stated_and_a_name_at_it_is_taken(frame) -> None:
     assert row["engine"] == "x" * MAX_NAME_LENGTH
 
 
-def test_a_frame_is_scored_without_a_file_written(frame, tmp_path: Path, monkeypatch) -> None:
-    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
-    made: list[str] = []
-    real_open = os.open
+class Writes:
+    """Every path made or opened for writing while `watching` (Python's audit events `open` and
+    `os.mkdir`: pandas, tempfile and os alike), from one hook added for the process."""
 
-    def watched(path, flags, *args, **kwargs):  # type: ignore[no-untyped-def]
-        if flags & (os.O_WRONLY | os.O_RDWR | os.O_CREAT):
-            made.append(str(path))
-        return real_open(path, flags, *args, **kwargs)
+    paths: ClassVar[list[str]] = []
+    watching = False
+    hooked = False
 
-    monkeypatch.setattr(os, "open", watched)
-    assert mbxval.compare("slider_crank", frame, label="mine", steps=STEPS).iloc[0]["engine"] == "mine"
-    assert made == [] and not any(tmp_path.iterdir())
+    @classmethod
+    def hook(cls, event: str, args: tuple) -> None:  # type: ignore[type-arg]
+        if not cls.watching:
+            return
+        if event == "os.mkdir":
+            cls.paths.append(str(args[0]))
+        elif event == "open" and args[0] is not None:
+            mode, flags = args[1], args[2]
+            if any(c in (mode or "") for c in "wax+") or flags & (os.O_WRONLY | os.O_RDWR | os.O_CREAT):
+                cls.paths.append(str(args[0]))
+
+
+def test_a_frame_is_scored_without_a_file_written(frame) -> None:  # type: ignore[no-untyped-def]
+    if not Writes.hooked:
+        sys.addaudithook(Writes.hook)
+        Writes.hooked = True
+    Writes.paths, Writes.watching = [], True
+    try:
+        row = mbxval.compare("slider_crank", frame, label="mine", steps=STEPS).iloc[0]
+    finally:
+        Writes.watching = False
+    assert row["engine"] == "mine" and Writes.paths == []
     broken = frame.drop(columns=["rod.theta"])  # checked exactly as a file is
     with pytest.raises(
         mbxval.ArgumentError, match=r"^the trajectory DataFrame: body 'rod' has rod\.x, rod\.y"
