@@ -38,12 +38,12 @@ def colour_word(error: float) -> str:
     return SCALE_WORDS[min(max(int(share * 3), 0), 2)]
 
 
-def check_label(label: object) -> str:
+def check_label(label: object, what: str = "--label") -> str:
     """A label that cannot be mistaken for an engine's rows or the truth's, and is a name that may
     become a file name (scenarios.names.safe_file_stem: a path, blank, over-long or control
     characters are refused)."""
     try:
-        label = safe_file_stem(label, "--label")
+        label = safe_file_stem(label, what)
     except NameRefused as refused:
         raise UsageError(str(refused)) from None
     if label in adapters.names() or label == TRUTH:
@@ -82,7 +82,12 @@ def verdict(scenario: Scenario, scored: Score, label: str) -> list[str]:
 
 def cmd_compare(args: argparse.Namespace) -> int:
     scenario = load(args.scenario, pairs(args.set, "--set"))
-    label = check_label(args.label if args.label is not None else Path(args.trajectory).stem)
+    if args.label is not None:
+        label = check_label(args.label)
+    else:
+        label = check_label(
+            Path(args.trajectory).stem, "the label (the file's stem unless --label gives one)"
+        )
     try:
         imported = read_trajectory(args.trajectory, scenario)
     except TrajectoryFileError as error:

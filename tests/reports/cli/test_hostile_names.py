@@ -106,3 +106,12 @@ def test_a_drawing_stays_well_formed_xml_for_any_name_it_takes(tmp_path: Path, c
     assert main(["draw", str(path), "--out", str(svg)]) == 0, capsys.readouterr().err
     root = ElementTree.parse(svg).getroot()
     assert "<cr&nk \"'>" in "".join(root.itertext())
+
+
+def test_a_trajectory_file_whose_stem_is_no_name_needs_a_label(tmp_path: Path, capsys) -> None:
+    csv = tmp_path / "mine\x1b[2J.csv"
+    assert main(["solve", "slider_crank", "--set", "steps=10", "--out", str(csv)]) == 0
+    _refused(
+        capsys, ["compare", "slider_crank", str(csv), "--set", "steps=10"], "the file's stem unless --label"
+    )
+    assert main(["compare", "slider_crank", str(csv), "--set", "steps=10", "--label", "mine"]) == 0
