@@ -109,30 +109,36 @@ def _lines(text: str) -> list[int]:
 def numbers(frame: pd.DataFrame, text: str, source: str) -> pd.DataFrame:
     """Every cell as a float; TrajectoryFileError naming the line and column of the first that is
     not a plain finite CSV number within MAX_MAGNITUDE."""
-    lines = _lines(text)
     values = {}
-    for place, column in enumerate(frame.columns, 1):
+    for place, column in enumerate(frame.columns):
         column_values = np.empty(len(frame))
         for row, cell in enumerate(frame[column]):
-            line = lines[row + 1] if row + 1 < len(lines) else None
-            where = f"line {line}" if line is not None else f"row {row + 1}"
-            column_values[row] = _number(source, f"{where}, column {place}", cell)
+            problem = _problem(cell)
+            if problem:
+                raise _fail(source, f"{_where(text, row)}, column {place + 1}: {problem}")
+            column_values[row] = float(cell)
         values[column] = column_values
     return pd.DataFrame(values)
 
 
-def _number(source: str, where: str, text: str) -> float:
-    """The cell's value; TrajectoryFileError saying what kind of cell it is, not what it says."""
+def _where(text: str, row: int) -> str:
+    """Where data row `row` (from 0) is in the text: its line, as the CSV reader skips blank lines."""
+    lines = _lines(text)
+    return f"line {lines[row + 1]}" if row + 1 < len(lines) else f"row {row + 1}"
+
+
+def _problem(text: str) -> str:
+    """What kind of cell `text` is when it is not a plain finite CSV number within MAX_MAGNITUDE
+    (never what it says); '' for a good one."""
     if not NUMBER.fullmatch(text.strip(" \t")):
         try:
             kind = "not a number" if math.isfinite(float(text)) else "not finite"
         except ValueError:
             kind = "empty" if not text.strip() else "not a number"
-        raise _fail(source, f"{where}: {kind}; expected a finite number (digits, a point and an exponent)")
-    value = float(text)
-    if not abs(value) <= MAX_MAGNITUDE:
-        raise _fail(source, f"{where}: beyond the largest magnitude a trajectory may hold, {MAX_MAGNITUDE:g}")
-    return value
+        return f"{kind}; expected a finite number (digits, a point and an exponent)"
+    if not abs(float(text)) <= MAX_MAGNITUDE:
+        return f"beyond the largest magnitude a trajectory may hold, {MAX_MAGNITUDE:g}"
+    return ""
 
 
 def check_columns(source: str, columns: list[str], scenario: Scenario) -> None:
