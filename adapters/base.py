@@ -14,7 +14,10 @@ A subclass provides exactly:
                                                curves (`sweep`, its old name, still works: deprecated)
     build(scenario, setting) -> model          the engine's own model (not timed)
     simulate(model, times) -> Trajectory       the timed part; must not depend on earlier calls.
-It may also provide export(scenario, setting, path) in the engine's own file format, and call
+It may also provide export(scenario, setting, path) in the engine's own file format,
+untuned_setting(scenario) (the engine's own defaults as a new user's model gets them, at the rule's
+step: the report's "untuned" point beside the default and the best; None where it declares none),
+and call
 `self.count_steps(n)` inside `simulate` to report the engine steps taken. Its other facts are data
 here too, so that nothing outside its subpackage names it: `colour` (its colour in the report's
 figures), `packages` (the distributions whose versions a run records) and `probe_settings` (its
@@ -83,8 +86,8 @@ class Adapter:
     dynamics: ClassVar[bool] = False
     """Whether the engine runs forward dynamics (scenarios whose `analysis` is "dynamic")."""
     colour: ClassVar[str] = ""
-    """The engine's colour in the report's figures, stored with its runs ('' for one from a shared
-    palette, reports.harness.engine_facts)."""
+    """The engine's colour in the report's figures, `#rrggbb` or `#rgb`, stored with its runs ('' for
+    one from a shared palette; anything else is warned about and given one: reports.harness.engine_facts)."""
     packages: ClassVar[tuple[str, ...]] = ()
     """The distributions (as pip names them) whose installed versions a run records beside ours."""
     _ladder_is_sweep: ClassVar[bool] = False
@@ -102,6 +105,10 @@ class Adapter:
 
     def default_setting(self, scenario: Scenario) -> Setting:
         raise NotImplementedError
+
+    def untuned_setting(self, scenario: Scenario) -> Setting | None:
+        """The engine's own defaults as a new user's model gets them, at the rule's step, or None."""
+        return None
 
     def ladder(self, scenario: Scenario) -> list[Setting]:
         """The settings ladder: the settings the work-precision curves run over (by default the

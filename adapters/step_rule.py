@@ -18,7 +18,8 @@ An engine's default step is this period divided by its steps-per-period constant
 own subpackage): `rule_step(scenario, steps_per_period)`. MuJoCo's constraint mode is set by its
 time constant, itself a fixed number of the rule's steps (adapters.mujoco.settings).
 The output grid (t_end, steps) is deliberately not an input: it changes where outputs are written,
-never how an engine integrates (adapters.lattice).
+not the rule's step (adapters.lattice; an engine that cannot side-step to an output shortens its
+step to put an even grid's outputs on its steps, adapters.lattice.outputs_on_steps).
 """
 
 from __future__ import annotations
@@ -41,8 +42,9 @@ RULE = (
     "default step = (shortest period of the motion) / (the engine's steps per period); the shortest "
     "period is the least of the drivers' and loads' periods and, in free dynamics, the springs' "
     "2 pi sqrt(m/k), the dampers' 2 pi m/c, the gravity chain's 2 pi / (2 sqrt(N g / l)) and the "
-    "start rates' 2 pi/|omega|; the output grid never sets the step (outputs off the step lattice "
-    "are reached by a side step from the lattice, or interpolated where the engine cannot)"
+    "start rates' 2 pi/|omega|; the output grid does not set the step (outputs off the step lattice "
+    "are reached by a side step from the lattice; an engine that cannot side-step shortens its step "
+    "to put an even grid's outputs on its steps, and interpolates an uneven grid's)"
 )
 """The rule in one sentence, as `mbxval list` prints it."""
 

@@ -1,8 +1,9 @@
 """The Python API: the command line's own steps (reports.cli), called with Python values.
 
-Each function checks its input exactly as the matching command does and raises what the command
-would report as `mbxval: error: ...`: ArgumentError (a ValueError) or ScenarioError (a ValueError
-too) with the same message.
+Each function checks every argument's type where it enters (mbxval.arguments), then its values
+exactly as the matching command does, and raises what the command would report as
+`mbxval: error: ...`: ArgumentError (a ValueError) or ScenarioError (a ValueError too) with the same
+message.
 """
 
 from __future__ import annotations
@@ -16,14 +17,18 @@ from pathlib import Path
 
 import pandas as pd
 
+import mbxval.arguments as check
 import reports.cli.compare_command as compare_command
 import reports.cli.suite_commands as suite_commands
 from adapters import NATIVE
 from adapters.base import OptionValue
+from mbxval.arguments import ArgumentError
 from reports.cli.main import parser, solve_trajectory
 from reports.cli.usage import UsageError
 from reports.harness import results_store
 from reports.harness.imported import score
+from reports.harness.store_layout import StoreDamaged
+from reports.harness.store_lock import StoreBusy
 from reports.harness.trajectory_file import (
     ImportedTrajectory,
     TrajectoryFileError,
@@ -32,28 +37,30 @@ from reports.harness.trajectory_file import (
 )
 from scenarios import Scenario
 from scenarios import load as load_by_name
+from scenarios.limits import MAX_LABEL_LENGTH
+
+__all__ = ["ArgumentError", "compare", "load_scenario", "read_results", "run", "solve"]
 
 Value = float | int | str
 """A parameter's value: given as a number or as the text `--set` would take."""
 PathLike = str | os.PathLike[str]
 
 
-class ArgumentError(ValueError):
-    """An argument the command line would refuse (the message is the command line's)."""
-
-
 @contextmanager
 def _checked() -> Iterator[None]:
-    """The command line's UsageError as an ArgumentError, with its message."""
+    """What the command line reports as one line (bad input, a store that is damaged or busy, a
+    path it cannot use) as an ArgumentError, with its message."""
     try:
         yield
-    except UsageError as error:
+    except (UsageError, StoreDamaged, StoreBusy) as error:
         raise ArgumentError(str(error)) from None
+    except OSError as error:
+        raise ArgumentError(str(error)) from error
 
 
-def _texts(values: Mapping[str, object] | None) -> list[str]:
-    """`NAME=VALUE` texts, as the command line takes them (str of a float round-trips)."""
-    return [f"{key}={value}" for key, value in (values or {}).items()]
+def _texts(values: Mapping[str, str]) -> list[str]:
+    """`NAME=VALUE` texts, as the command line takes them."""
+    return [f"{key}={value}" for key, value in values.items()]
 
 
 def load_scenario(name_or_file: str | PathLike, **parameters: Value) -> Scenario:
@@ -62,12 +69,13 @@ def load_scenario(name_or_file: str | PathLike, **parameters: Value) -> Scenario
     `--set` sets them: a family's by name, a file's by dotted key path (pass those as
     `**{"bodies.crank.mass": 2.0}`), and the grid keys `t_end` and `steps` for every scenario.
     Raises ScenarioError naming an unknown scenario or parameter, or a value out of its range."""
-    return load_by_name(os.fspath(name_or_file), {key: str(value) for key, value in parameters.items()})
+    name = check.scenario_name("name_or_file", name_or_file)
+    return load_by_name(name, check.mapping("parameters", parameters, check.scenario_value))
 
 
-def _scenario(scenario: str | PathLike | Scenario, parameters: Mapping[str, Value]) -> Scenario:
+def _scenario(scenario: object, parameters: Mapping[str, Value]) -> Scenario:
     if not isinstance(scenario, Scenario):
-        return load_scenario(scenario, **parameters)
+        return load_scenario(check.scenario_name("scenario", scenario), **parameters)
     if parameters:
         raise ArgumentError(f"parameters {', '.join(parameters)} given with a built Scenario: set them in it")
     return scenario
@@ -90,15 +98,17 @@ def solve(
     otherwise); `parameters` set the scenario's as in `load_scenario`. Raises ArgumentError for an
     unknown engine, mode or setting, a grid out of range, or a run that ends other than ok (its
     status and message), and ScenarioError for a scenario that cannot be built."""
+    engine, mode = check.text("engine", engine), check.optional_text("mode", mode)
+    options = _texts(check.mapping("settings", settings, check.option_value))
+    grid = (check.real("t_end", t_end), check.whole("steps", steps), None)
     built = _scenario(scenario, parameters)
     with _checked():
-        grid = (t_end, steps, None)
-        trajectory = solve_trajectory(built, engine, mode, _texts(settings), grid)
+        trajectory = solve_trajectory(built, engine, mode, options, grid)
     return trajectory.to_frame()
 
 
 def run(
-    scenarios: Sequence[str] | str | None = None,
+    scenarios: Sequence[str | PathLike] | str | PathLike | None = None,
     engines: Sequence[str] | str | None = None,
     *,
     suite: str = "default",
@@ -122,13 +132,19 @@ def run(
     `slider_crank[offset=0.05]`); `sweep` maps a parameter to a spec (`"log:1e-3:1e-1:5"`, `"a,b"`).
     `out` defaults to a new temporary directory; the directory is `frame.attrs["results"]`, and with
     `report` it holds index.html. Raises ArgumentError or ScenarioError before anything runs."""
-    target = Path(tempfile.mkdtemp(prefix="mbxval-run-")) if out is None else Path(out)
-    args = parser().parse_args(["run", "--out", str(target)])
-    args.scenario = [scenarios] if isinstance(scenarios, str) else list(scenarios or [])
-    args.engine = [engines] if isinstance(engines, str) else list(engines or [])
-    args.suite, args.t_end, args.steps, args.rerun = suite, t_end, steps, rerun
-    args.repeats, args.warmup, args.timeout = repeats, warmup, timeout
-    args.set, args.sweep = _texts(parameters), _texts(sweep)
+    args = parser().parse_args(["run"])
+    args.scenario = check.names("scenarios", scenarios, check.scenario_name)
+    args.engine = check.names("engines", engines, check.text)
+    args.suite = check.text("suite", suite)
+    args.t_end, args.timeout = check.real("t_end", t_end), check.real("timeout", timeout)
+    args.steps, args.repeats = check.whole("steps", steps), check.whole("repeats", repeats)
+    args.warmup = check.whole("warmup", warmup)
+    args.rerun, report = check.flag("rerun", rerun), check.flag("report", report)
+    progress = check.flag("progress", progress)
+    args.set = _texts(check.mapping("parameters", parameters, check.scenario_value))
+    args.sweep = _texts(check.mapping("sweep", sweep, check.text))
+    target = Path(tempfile.mkdtemp(prefix="mbxval-run-")) if out is None else Path(check.path("out", out))
+    args.out = str(target)
     try:
         with _checked():
             selection = suite_commands.select(args, target)
@@ -151,6 +167,9 @@ def compare(
     gives (bodies and levels may be missing) on the scenario's time grid. Returns the scored row
     (one row; `error_position`, `error_velocity`, `error_acceleration`, `truth`, ...). Raises
     ArgumentError for a trajectory that cannot be scored (the message says why)."""
+    label = check.text("label", label, MAX_LABEL_LENGTH)
+    if not isinstance(trajectory, pd.DataFrame):
+        trajectory = check.path("trajectory", trajectory, "a DataFrame or a CSV file's path")
     built = _scenario(scenario, parameters)
     with _checked():
         compare_command.check_label(label)
@@ -161,9 +180,9 @@ def compare(
     return pd.DataFrame([score(built, imported, label).row])
 
 
-def _read_file(path: PathLike, scenario: Scenario) -> ImportedTrajectory:
+def _read_file(path: str, scenario: Scenario) -> ImportedTrajectory:
     try:
-        return read_trajectory(os.fspath(path), scenario)
+        return read_trajectory(path, scenario)
     except TrajectoryFileError as error:
         raise ArgumentError(str(error)) from None
 
@@ -182,6 +201,8 @@ def read_results(directory: PathLike) -> pd.DataFrame:
     """The results table stored in `directory` (by `run`, `mbxval run` or `mbxval compare --out`),
     verified against its checksums; the sidecar (machine, versions, revision, date) is
     `frame.attrs["meta"]` and the directory `frame.attrs["results"]`."""
-    frame, meta = results_store.read_results(directory)
+    directory = check.path("directory", directory)
+    with _checked():
+        frame, meta = results_store.read_results(directory)
     frame.attrs.update(meta=meta, results=str(directory))
     return frame

@@ -11,8 +11,8 @@ import exudyn as exu
 import numpy as np
 
 from adapters.base import EngineFailure
+from adapters.exudyn.assembly import CURRENT, States, write_initial
 from adapters.exudyn.model import ExudynModel
-from adapters.exudyn.simulation import CURRENT, States, write_initial
 
 
 def released_start(model: ExudynModel, t0: float, settings: Any) -> States:

@@ -81,6 +81,9 @@ class ExudynModel:
     records the grid states itself (adapters.exudyn.simulation reads them)."""
     force_sensors: list[ForceSensor] = field(default_factory=list)
     """Drivers' forces and joints' reactions (adapters.exudyn.force_sensors)."""
+    run_in_starts: dict[tuple[float, float, int], Any] = field(default_factory=dict)
+    """The assembled states a run-in starts from (or why there is none), per (first output time,
+    step, steps of run-in) (adapters.exudyn.run_in.run_in_start)."""
 
 
 def build_model(scenario: Scenario, mass_scale: float = 1.0, native_cams: bool = True) -> ExudynModel:

@@ -1,32 +1,48 @@
-"""Running an Exudyn model: assembly by Exudyn's static solver, velocity and acceleration solves on
-Exudyn's own constraint Jacobian, and the three ways to march: generalized-alpha (index 3),
-the trapezoidal rule with index-2 constraints, and a static solve per time point.
+"""Running an Exudyn model from its assembled start (adapters.exudyn.assembly), three ways:
+generalized-alpha (index 3, after a run-in on kinematic scenes: adapters.exudyn.run_in), the
+trapezoidal rule with index-2 constraints, and a static solve per time point. The march steps onto
+the output times (adapters.lattice.outputs_on_steps); only an uneven grid is interpolated, with a
+warning saying so.
 
 Everything stays in memory and silent: no solution, sensor or solver files, no console output.
-An Exudyn solver error becomes an EngineFailure (Singular when its linear solver failed) carrying
-Exudyn's own message and the simulated time.
 """
 
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, replace
 from typing import Any
 
 import exudyn as exu
 import numpy as np
 
-from adapters.base import EngineFailure, Singular
+from adapters.base import EngineFailure
+from adapters.exudyn.assembly import (
+    INITIAL,
+    ConstraintProbe,
+    States,
+    assemble,
+    coordinate_scales,
+    guarded,
+    write_initial,
+)
 from adapters.exudyn.force_sensors import force_columns
 from adapters.exudyn.model import ExudynModel
-from adapters.lattice import check_grid, hermite, lattice_point, lattice_steps
+from adapters.exudyn.run_in import NO_RUN_IN, negative_times, run_in_start
+from adapters.lattice import (
+    check_grid,
+    hermite,
+    interpolation_cost,
+    lattice_point,
+    lattice_steps,
+    outputs_on_steps,
+)
 from scenarios.bodies import GROUND
 from scenarios.trajectory import Trajectory
 
-INITIAL = exu.ConfigurationType.Initial
-CURRENT = exu.ConfigurationType.Current
 DYNAMIC = {
     "GA": exu.DynamicSolverType.GeneralizedAlpha,
     "TR2": exu.DynamicSolverType.TrapezoidalIndex2,
@@ -38,24 +54,17 @@ DYNAMIC = {
 class Plan:
     """How to march: `solver` GA, TR2 or STATIC; the requested step `dt`; GA's spectral radius;
     Newton's tolerance on the increment of each step (or of each static solve); whether the
-    integrator keeps Exudyn's modified Newton (else full Newton)."""
+    integrator keeps Exudyn's modified Newton (else full Newton); the steps of run-in before the
+    first output (adapters.exudyn.run_in); `untuned`: Exudyn's own default settings, its own
+    initial accelerations, no run-in."""
 
     solver: str
     dt: float
     rho: float
     tolerance: float
     modified_newton: bool = False
-
-
-@dataclass
-class States:
-    """Coordinates, velocities and accelerations (n_times x n_ode2) at the grid times."""
-
-    q: np.ndarray
-    v: np.ndarray
-    a: np.ndarray
-    forces: dict[str, np.ndarray] = field(default_factory=dict)
-    """Drivers' forces and joints' reactions where the integrator recorded them (force_sensors)."""
+    run_in: int = 0
+    untuned: bool = False
 
 
 @contextmanager
@@ -67,9 +76,6 @@ def quiet() -> Iterator[None]:
         yield
     finally:
         exu.config.printToConsole = before
-
-
-ASSEMBLY_TOLERANCE = 1e-14
 
 
 def simulation_settings(tolerance: float) -> Any:
@@ -95,146 +101,17 @@ def simulation_settings(tolerance: float) -> Any:
     return s
 
 
-class ConstraintProbe:
-    """Exudyn's constraint Jacobian C_q and velocity-level constraints C_q v + C_t at any state,
-    through the interface of its static solver."""
-
-    def __init__(self, model: ExudynModel, settings: Any) -> None:
-        self.mbs = model.mbs
-        self.solver = _static_solver()
-        self.solver.InitializeSolver(self.mbs, settings)
-        self.n = self.solver.GetODE2size()
-        # a joint with a row switched off (a prismatic joint free to turn) keeps it as lambda = 0:
-        # no coordinate in it, a 1 on the multiplier's diagonal; only the other rows constrain
-        full = self._full_jacobian()
-        self.live = np.flatnonzero(np.diag(full[self.n :, self.n :]) == 0.0)
-        if len(self.live) != self.n:
-            raise EngineFailure(
-                f"not kinematically driven in Exudyn: {self.n} coordinates, {len(self.live)} constraints"
-            )
-
-    def _set(self, q: np.ndarray, v: np.ndarray, t: float) -> None:
-        data = self.mbs.systemData
-        data.SetODE2Coordinates(q.tolist(), CURRENT)
-        data.SetODE2Coordinates_t(v.tolist(), CURRENT)
-        data.SetTime(t)
-
-    def _full_jacobian(self) -> np.ndarray:
-        self.solver.ComputeJacobianODE2RHS(
-            self.mbs, scalarFactor_ODE2=-1.0, scalarFactor_ODE2_t=0.0
-        )  # resets
-        self.solver.ComputeJacobianAE(self.mbs, scalarFactor_ODE2=1.0, scalarFactor_ODE2_t=0.0)
-        return np.array(self.solver.GetSystemJacobian())
-
-    def jacobian(self, q: np.ndarray, t: float) -> np.ndarray:
-        self._set(q, np.zeros_like(q), t)
-        return self._full_jacobian()[self.n + self.live, : self.n]
-
-    def residual(self, q: np.ndarray, t: float) -> np.ndarray:
-        """C(q, t), the constraints at position level."""
-        self._set(q, np.zeros_like(q), t)
-        self.solver.ComputeAlgebraicEquations(self.mbs, velocityLevel=False)
-        return np.array(self.solver.GetSystemResidual())[self.n + self.live]
-
-    def rate_residual(self, q: np.ndarray, v: np.ndarray, t: float) -> np.ndarray:
-        """C_q v + C_t, the constraints at velocity level."""
-        self._set(q, v, t)
-        self.solver.ComputeAlgebraicEquations(self.mbs, velocityLevel=True)
-        return np.array(self.solver.GetSystemResidual())[self.n + self.live]
-
-    def rates(
-        self, q: np.ndarray, t: float, scale: np.ndarray, frequency: float
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """Velocities from C_q v = -C_t and accelerations from C_q a = Q_d, Q_d being minus the
-        derivative of C_q v + C_t along the motion at fixed v (fourth-order central differences
-        over a thousandth of the time a coordinate takes to move its own scale, or of 1/frequency)."""
-        jac = self.jacobian(q, t)
-        v = _solve(jac, -self.rate_residual(q, np.zeros_like(q), t), t)
-        h = 1e-3 / max(float(np.max(np.abs(v) / scale)), frequency)
-
-        def along(s: float) -> np.ndarray:
-            return self.rate_residual(q + s * h * v, v, t + s * h)
-
-        derivative = (8.0 * (along(1) - along(-1)) - (along(2) - along(-2))) / (12.0 * h)
-        return v, _solve(jac, -derivative, t)
-
-    def close(self, settings: Any) -> None:
-        self.solver.FinalizeSolver(self.mbs, settings)
-
-
-def _static_solver() -> Any:
-    """Exudyn's static solver interface, typed Any: Exudyn's stubs of its methods lack `self`."""
-    return exu.MainSolverStatic()
-
-
-def _solve(jac: np.ndarray, rhs: np.ndarray, t: float) -> np.ndarray:
-    if not np.all(np.isfinite(jac)) or np.linalg.cond(jac) > 1e14:
-        raise Singular("Exudyn's constraint Jacobian is singular", t)
-    return np.linalg.solve(jac, rhs)
-
-
-def _scales(model: ExudynModel) -> tuple[np.ndarray, float]:
-    """Per ODE2 coordinate the characteristic length for x and y, 1 for angles and phi; and the
-    scenario's characteristic frequency, 2 pi over its duration."""
-    scale = np.ones(len(model.guess))
-    for index in model.index.values():
-        scale[index : index + 2] = model.scenario.characteristic_length
-    return scale, 2.0 * math.pi / model.scenario.t_end
-
-
-def assemble(model: ExudynModel, t0: float, settings: Any) -> States:
-    """A consistent start found by Exudyn: its static solver from the guess at t0, then velocity
-    and acceleration solves; written into the system's initial state."""
-    if t0 < 0.0:
-        raise EngineFailure(f"Exudyn's static solver cannot start at negative time {t0}", t0)
-    data = model.mbs.systemData
-    data.SetODE2Coordinates(model.guess.tolist(), INITIAL)
-    data.SetODE2Coordinates_t(np.zeros_like(model.guess).tolist(), INITIAL)
-    static = settings.staticSolver
-    static.numberOfLoadSteps, static.loadStepStart, static.loadStepDuration = 1, t0, 1e-30
-    tolerance = ASSEMBLY_TOLERANCE * max(1.0, float(np.max(np.abs(model.guess))))
-    static.newton.relativeTolerance, static.newton.absoluteTolerance = tolerance, tolerance
-    _guarded(model, "staticSolver", lambda: model.mbs.SolveStatic(settings, updateInitialValues=True))
-    q0 = np.array(data.GetODE2Coordinates(INITIAL))
-    probe = ConstraintProbe(model, settings)
-    # Exudyn's static solve ends at t0 + 1e-30 (a load step must last); one Newton step on its
-    # equations lands the start exactly at t0
-    q0 = q0 - _solve(probe.jacobian(q0, t0), probe.residual(q0, t0), t0)
-    gap = float(np.max(np.abs(probe.residual(q0, t0)), initial=0.0))
-    if not gap <= 1e-9 * max(1.0, model.scenario.characteristic_length):
-        raise EngineFailure(
-            f"Exudyn's static solver did not assemble the mechanism: constraint residual {gap:.3g}", t0
-        )
-    q0 = _nearest_turns(model, probe, q0, t0, gap + 1e-12)
-    v0, a0 = probe.rates(q0, t0, *_scales(model))
-    probe.close(settings)
-    start = States(q0[None, :], v0[None, :], a0[None, :])
-    write_initial(model, start)
-    return start
-
-
-def write_initial(model: ExudynModel, start: States) -> None:
-    """`start` as the system's initial state."""
-    data = model.mbs.systemData
-    data.SetODE2Coordinates(start.q[0].tolist(), INITIAL)
-    data.SetODE2Coordinates_t(start.v[0].tolist(), INITIAL)
-    data.SetODE2Coordinates_tt(start.a[0].tolist(), INITIAL)
-
-
-def _nearest_turns(
-    model: ExudynModel, probe: ConstraintProbe, q: np.ndarray, t: float, gap: float
-) -> np.ndarray:
-    """Each angle (and cam parameter) that Newton threw whole turns from its guess, brought back
-    where no constraint minds (drivers and gears do fix absolute angles): the same configuration,
-    on the continuous angle the guess asks for."""
-    for k in [i + 2 for i in model.index.values()] + list(model.phi_index.values()):
-        turns = round((q[k] - model.guess[k]) / (2.0 * math.pi))
-        if turns:
-            trial = q.copy()
-            trial[k] -= 2.0 * math.pi * turns
-            if float(np.max(np.abs(probe.residual(trial, t)))) <= gap:
-                q = trial
-    return q
+def untuned_settings() -> Any:
+    """Exudyn's own default settings, quiet and file-free only (what a new user's model runs with)."""
+    s = exu.SimulationSettings()
+    s.solution.file.write = False
+    s.solution.sensors.active = False
+    s.solution.restart.write = False
+    s.show.computationTime = s.show.statistics = s.show.globalTimers = False
+    s.timeIntegration.verboseMode = 0
+    s.timeIntegration.stepInformation = 0
+    s.staticSolver.verboseMode = 0
+    return s
 
 
 def march(
@@ -250,7 +127,7 @@ def march(
         return start, 0
     if plan.solver == "STATIC":
         return _static_load_steps(model, times, settings, plan.tolerance), len(times) - 1
-    return _integrate(model, plan, times, settings)
+    return _integrate(model, plan, times, settings, start)
 
 
 def _recorder(model: ExudynModel, times: np.ndarray, states: States, tolerance: float) -> Callable[..., bool]:
@@ -273,25 +150,53 @@ def _empty(n_times: int, n: int) -> States:
     return States(q, v, a)
 
 
-def _integrate(model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any) -> tuple[States, int]:
-    """March whole steps `plan.dt` from the first output time past the last (the lattice,
-    adapters.lattice), Exudyn's sensors recording every step; outputs between two steps are the
-    Hermite interpolant of the two (Exudyn's solver runs in one call: no side step)."""
+def _integrate(
+    model: ExudynModel, plan: Plan, times: np.ndarray, settings: Any, start: States
+) -> tuple[States, int]:
+    """March whole steps from `plan.run_in` steps before the first output time past the last, the
+    step being `plan.dt` or the largest below it that puts the outputs on the steps (adapters.lattice),
+    Exudyn's sensors recording every step; an output between two steps (an uneven grid) is the Hermite
+    interpolant of the two, with a warning (Exudyn's solver runs in one call: no side step)."""
     check_grid(times, float(times[0]))
-    t0, h = float(times[0]), plan.dt
-    steps = lattice_steps(t0, float(times[-1]), h)
+    t0, h, n = float(times[0]), outputs_on_steps(times, plan.dt), plan.run_in
+    begin = run_in_start(model, settings, t0, h, n) if n else None
+    if isinstance(begin, str):
+        warnings.warn(NO_RUN_IN.format(reason=begin), stacklevel=2)
+        begin, n = None, 0
+    first = t0 - n * h
+    steps = lattice_steps(t0, float(times[-1]), h) + n
     ti = settings.timeIntegration
     ti.generalizedAlpha.spectralRadius = plan.rho
     settings.solution.sensors.active = True
     settings.solution.sensors.writePeriod = 0.5 * h  # every step, once
     solver = DYNAMIC[plan.solver]
-    initial = _initial_forces(model, settings, solver, t0, h)
-    ti.startTime, ti.endTime, ti.numberOfSteps = t0, t0 + steps * h, steps
-    ti.generalizedAlpha.computeInitialAccelerations = False  # the assembled start has them
-    _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
-    states = _on_grid(_sensed(model, t0, h, steps), times, h)
-    states.forces = force_columns(model.mbs, model.force_sensors, times, h, initial)
+    initial = _initial_forces(model, settings, solver, t0, h) if n == 0 and not plan.untuned else None
+    if begin is not None:
+        write_initial(model, begin)
+    # the assembled start has its accelerations; an untuned run lets Exudyn compute them
+    ti.generalizedAlpha.computeInitialAccelerations = plan.untuned
+    with negative_times():
+        ti.startTime, ti.endTime, ti.numberOfSteps = first, first + steps * h, steps
+        guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
+    lattice = _sensed(model, first, h, steps)
+    lattice = States(lattice.q[n:], lattice.v[n:], lattice.a[n:])
+    scale = coordinate_scales(model)[0]
+    if n and float(np.max(np.abs(lattice.q[0] - start.q[0]) / scale)) > SAME_START:
+        # the run-in passed a singular configuration onto another branch: start without it
+        model.run_in_starts[(t0, h, n)] = OTHER_BRANCH
+        warnings.warn(NO_RUN_IN.format(reason=OTHER_BRANCH), stacklevel=2)
+        write_initial(model, start)
+        return _integrate(model, replace(plan, run_in=0), times, settings, start)
+    states = _on_grid(lattice, times, h, scale)
+    angle = {body: states.q[:, k + 2] for body, k in model.index.items()}
+    states.forces = force_columns(model.mbs, model.force_sensors, times, h, initial, angle)
     return states, steps
+
+
+SAME_START = 1e-8
+"""The run-in reaches the assembled start when its positions there agree to this (over the
+coordinates' scales; both are on the constraints to Newton's tolerance)."""
+OTHER_BRANCH = "it reaches the start on another assembly branch"
 
 
 def _initial_forces(model: ExudynModel, settings: Any, solver: Any, t0: float, h: float) -> list[np.ndarray]:
@@ -308,7 +213,7 @@ def _initial_forces(model: ExudynModel, settings: Any, solver: Any, t0: float, h
     ti = settings.timeIntegration
     ti.startTime, ti.endTime, ti.numberOfSteps = t0, t0 + h, 1
     ti.generalizedAlpha.computeInitialAccelerations = True
-    _guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
+    guarded(model, "dynamicSolver", lambda: model.mbs.SolveDynamic(settings, solverType=solver))
     found = [np.asarray(model.mbs.GetSensorStoredData(s.handle))[0, 1:].copy() for s in model.force_sensors]
     write_initial(model, States(kept[0][None, :], kept[1][None, :], kept[2][None, :]))
     return found
@@ -328,16 +233,30 @@ def _sensed(model: ExudynModel, t0: float, h: float, steps: int) -> States:
     return states
 
 
-def _on_grid(lattice: States, times: np.ndarray, h: float) -> States:
-    """The lattice states at the output times (adapters.lattice)."""
+INTERPOLATED = (
+    "Exudyn: {count} of {total} output times fall between its steps (an uneven grid) and are "
+    "interpolated: cubic Hermite in position and velocity, linear in acceleration; the positions' "
+    "interpolation error is about {cost:.2g} (lengths over the characteristic length, angles in rad: "
+    "their largest difference from the quintic through the accelerations too)"
+)
+
+
+def _on_grid(lattice: States, times: np.ndarray, h: float, scale: np.ndarray) -> States:
+    """The lattice states at the output times (adapters.lattice); a warning where any is interpolated,
+    with an estimate of what that costs in positions (each coordinate over its `scale`)."""
     out = _empty(len(times), lattice.q.shape[1])
+    between, cost = 0, 0.0
     for i, t in enumerate(times):
         whole, rest = lattice_point(float(times[0]), float(t), h)
         if rest == 0.0:
             out.q[i], out.v[i], out.a[i] = lattice.q[whole], lattice.v[whole], lattice.a[whole]
             continue
+        between += 1
         ends = [(level.q[j], level.v[j], level.a[j]) for level in (lattice,) for j in (whole, whole + 1)]
         out.q[i], out.v[i], out.a[i] = hermite(rest / h, h, ends[0], ends[1])
+        cost = max(cost, float(np.max(interpolation_cost(rest / h, h, ends[0], ends[1]) / scale)))
+    if between:
+        warnings.warn(INTERPOLATED.format(count=between, total=len(times), cost=cost), stacklevel=2)
     return out
 
 
@@ -351,10 +270,10 @@ def _static_load_steps(model: ExudynModel, times: np.ndarray, settings: Any, tol
     states.q[0] = np.array(model.mbs.systemData.GetODE2Coordinates(INITIAL))
     interval = float(times[1] - times[0])
     model.mbs.SetPostStepUserFunction(_recorder(model, times, states, 1e-6 * interval))
-    _guarded(model, "staticSolver", lambda: model.mbs.SolveStatic(settings))
+    guarded(model, "staticSolver", lambda: model.mbs.SolveStatic(settings))
     _check_complete(states, times)
     probe = ConstraintProbe(model, settings)
-    scales = _scales(model)
+    scales = coordinate_scales(model)
     for k, t in enumerate(times):
         states.v[k], states.a[k] = probe.rates(states.q[k], float(t), *scales)
     probe.close(settings)
@@ -365,33 +284,6 @@ def _check_complete(states: States, times: np.ndarray) -> None:
     missing = np.flatnonzero(~np.isfinite(states.q).all(axis=1))
     if missing.size:
         raise EngineFailure(f"Exudyn reported no state at t = {times[missing[0]]}", float(times[missing[0]]))
-
-
-def _guarded(model: ExudynModel, key: str, solve: Callable[[], Any]) -> None:
-    """Run an Exudyn solve; its failure becomes an EngineFailure with Exudyn's message."""
-    try:
-        ok = solve()
-    except exu.SolverError as error:
-        raise _failure(model, key, str(error)) from error
-    except RuntimeError as error:  # Exudyn raises plain RuntimeErrors from inside its solvers too
-        raise _failure(model, key, f"{type(error).__name__}: {error}") from error
-    if ok is False:
-        raise _failure(model, key, "solver returned failure")
-
-
-def _failure(model: ExudynModel, key: str, text: str) -> EngineFailure:
-    t = float(model.mbs.systemData.GetTime())
-    solver = model.mbs.sys.get(key)
-    name = "SolveStatic" if key == "staticSolver" else "SolveDynamic"
-    if solver is None:
-        return EngineFailure(f"Exudyn {name}: {text}", t)
-    conv = solver.conv
-    reason = solver.GetErrorString() or text
-    detail = f"Newton residual {conv.residual:.3g}"
-    if conv.linearSolverFailed:
-        detail += f"; the linear solver failed (singular Jacobian, row {conv.linearSolverCausingRow})"
-    kind = Singular if conv.linearSolverFailed else EngineFailure
-    return kind(f"Exudyn {name}: {reason} ({detail})", t)
 
 
 def trajectory(model: ExudynModel, times: np.ndarray, states: States) -> Trajectory:

@@ -1,9 +1,12 @@
 """numba's on-disk cache knows only the source file of each cached function, not the files of the
-functions it calls; this guard drops the package's cached machine code whenever any of its sources
-changed, so an edit to a kernel never runs stale code."""
+functions it inlines or the module constants it freezes; this guard drops the package's cached
+machine code whenever any source the kernels compile changed: the package's own modules and every
+module of the project they import (the cam profiles, the solver's limits), so an edit to any of
+them never runs stale code."""
 
 from __future__ import annotations
 
+import ast
 import hashlib
 from pathlib import Path
 
@@ -27,10 +30,56 @@ def refresh(package: Path) -> None:
         pass  # a read-only checkout: numba then caches elsewhere (NUMBA_CACHE_DIR) or not at all
 
 
+def compiled_sources(package: Path) -> list[Path]:
+    """The package's modules and the project's modules they import, in path order: every file whose
+    text can reach the compiled kernels. A module is the project's when it resolves to a file under
+    the folder that holds the package's top-level package."""
+    root = _source_root(package)
+    own = sorted(package.glob("*.py"))
+    imported: set[Path] = set()
+    for source in own:
+        for name in _imported_modules(source):
+            imported.update(_module_files(root, name))
+    return sorted(set(own) | imported)
+
+
 def _digest(package: Path) -> str:
-    """SHA-256 over each source's name and its own SHA-256, in name order: text moved across the
-    boundary of two files, or a file renamed, changes it (a digest of the joined sources did not)."""
+    """SHA-256 over each source's path below the source root and its own SHA-256, in path order:
+    text moved across the boundary of two files, or a file renamed, changes it."""
+    root = _source_root(package)
     whole = hashlib.sha256()
-    for source in sorted(package.glob("*.py")):
-        whole.update(source.name.encode() + b"\0" + hashlib.sha256(source.read_bytes()).digest())
+    for source in compiled_sources(package):
+        name = source.relative_to(root).as_posix()
+        whole.update(name.encode() + b"\0" + hashlib.sha256(source.read_bytes()).digest())
     return whole.hexdigest()
+
+
+def _source_root(package: Path) -> Path:
+    """The folder holding the outermost package that contains `package`."""
+    top = package
+    while (top.parent / "__init__.py").exists():
+        top = top.parent
+    return top.parent
+
+
+def _imported_modules(source: Path) -> set[str]:
+    """Absolute module names imported by `source`; for `from X import a`, both X and X.a (a may be
+    a module or a name in X)."""
+    try:
+        tree = ast.parse(source.read_bytes())
+    except (OSError, SyntaxError, ValueError):
+        return set()
+    names: set[str] = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            names.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            names.add(node.module)
+            names.update(f"{node.module}.{alias.name}" for alias in node.names)
+    return names
+
+
+def _module_files(root: Path, name: str) -> list[Path]:
+    """The file of module `name` under root (a module file or a package's __init__), if any."""
+    base = root.joinpath(*name.split("."))
+    return [path for path in (base.with_suffix(".py"), base / "__init__.py") if path.is_file()]

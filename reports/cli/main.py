@@ -55,7 +55,8 @@ def load_engine(name: str) -> Adapter:
 
 
 def time_grid(scenario: Scenario, t_end: float | None, steps: int | None, dt: float | None) -> np.ndarray:
-    """The output grid: `steps` equal steps over [0, t_end], or multiples of `dt` up to t_end."""
+    """The output grid: `steps` equal steps over [0, t_end] (Scenario.times), or multiples of `dt`
+    up to t_end."""
     t_end = scenario.t_end if t_end is None else t_end
     if not (math.isfinite(t_end) and limits.MIN_T_END <= t_end <= limits.MAX_T_END):
         raise UsageError(f"--t-end must be in [{limits.MIN_T_END:g}, {limits.MAX_T_END:g}] s, got {t_end}")
@@ -70,7 +71,7 @@ def time_grid(scenario: Scenario, t_end: float | None, steps: int | None, dt: fl
     if steps < 1:
         raise UsageError(f"--steps must be at least 1, got {steps}")
     limits.check_grid(scenario.name, steps + 1, bodies)
-    return np.linspace(0.0, t_end, steps + 1)
+    return np.asarray(scenario.times(t_end, steps))  # the grid `run` measures on, to the bit
 
 
 def engine_setting(adapter: Adapter, scenario: Scenario, mode: str | None, options: list[str]) -> Setting:

@@ -11,6 +11,7 @@ from reports.harness.energy_drift import DRIFT_DEFINITION
 from reports.harness.forces import FORCE_DEFINITION
 from reports.harness.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.harness.metrics import METRIC_COLUMNS
+from reports.harness.startup import STARTUP_DEFINITION
 
 __all__ = [
     "CLOSED_FORM",
@@ -26,6 +27,7 @@ __all__ = [
     "NOT_RUN",
     "RECORDED_COLUMNS",
     "SCALE_DEFINITION",
+    "STARTUP_DEFINITION",
     "Column",
     "empty_row",
 ]
@@ -106,6 +108,12 @@ RECORDED_COLUMNS: tuple[Column, ...] = (
     ),
     Column("map_stiffness", math.nan, "dynamics map cell: the spring stiffness, N/m"),
     Column("map_dt", math.nan, "dynamics map cell: the output step, s"),
+    Column(
+        "is_untuned",
+        False,
+        "the engine's own defaults as a new user's model gets them, at the rule's step "
+        "(Adapter.untuned_setting): the report's untuned point",
+    ),
     Column("scenario_rank", -1, "the scenario's place in the catalogue (the report's order); -1 not listed"),
     Column(
         "engine_rank", -1, "the engine's place in the engine registry (the report's order); -1 not listed"
@@ -151,6 +159,17 @@ DECLARED: tuple[Column, ...] = (
         for level, name in LEVEL_COLUMNS.items()
     ),
     *(Column(name, math.nan, "error statistic: level_quantity_statistic") for name in METRIC_COLUMNS),
+    Column(
+        "startup_excess",
+        math.nan,
+        "start-up transient: the first half's largest error over the second half's, at the level where "
+        "it is largest (harness.startup)",
+    ),
+    Column(
+        "startup_time",
+        math.nan,
+        "start-up transient: how long after the start the error settles, s (harness.startup)",
+    ),
     Column("constraint_residual", math.nan, "largest scaled constraint residual"),
     Column(
         "constraint_residual_final", math.nan, "scaled constraint residual at the last grid time (its drift)"

@@ -13,6 +13,7 @@ from reports.harness.energy_drift import energy_drift
 from reports.harness.forces import force_columns, force_errors
 from reports.harness.level_error import level_errors
 from reports.harness.metrics import Residual, compared_levels, error_metrics, residual_metrics
+from reports.harness.startup import startup
 from scenarios import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -35,6 +36,7 @@ def measure(
         metrics.update(level_errors(scenario, result.trajectory, truth))
         metrics["error"] = metrics["error_position"]  # one headline: the position level
         levels = compared_levels(scenario, result.trajectory, truth)
+        metrics.update(startup(scenario, result.trajectory, truth, levels))
     except (ValueError, KeyError) as error:  # the engine's trajectory is not what it should be
         raise ComparisonError(f"cannot compare with the truth: {error}") from error
     if residual is None:

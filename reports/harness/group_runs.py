@@ -176,6 +176,7 @@ def _stored(
         return failure(group, setting, is_default, "failed", outcome.message), None
     result, repeats, metrics, levels, note = outcome.value
     row = result_row(scenario, result, is_default, repeats, config.warmup, metrics, levels, note)
+    row["is_untuned"] = group.is_untuned(setting)
     row["engine"] = group.engine  # the name it was asked by, whatever the adapter calls itself
     row["truth"] = truth.name if isinstance(truth, NamedTruth) else ""
     keep = result.trajectory if is_default and result.status == "ok" else None
@@ -184,7 +185,9 @@ def _stored(
 
 def failure(group: Group, setting: Setting, is_default: bool, status: Any, message: str) -> dict[str, Any]:
     """The row of a run of the group that produced nothing to compare."""
-    return failure_row(group.scenario, group.engine, group.version, setting, is_default, status, message)
+    row = failure_row(group.scenario, group.engine, group.version, setting, is_default, status, message)
+    row["is_untuned"] = group.is_untuned(setting)
+    return row
 
 
 def timed_run(

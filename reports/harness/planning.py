@@ -25,6 +25,11 @@ class Group:
     version: str
     jobs: list[tuple[Setting, bool]] = field(default_factory=list)
     reason_row: dict[str, Any] | None = None
+    untuned: Setting | None = None
+    """The engine's own defaults (Adapter.untuned_setting), run beside its ladder; None if it has none."""
+
+    def is_untuned(self, setting: Setting) -> bool:
+        return self.untuned is not None and setting == self.untuned
 
 
 def plan_engine(
@@ -47,6 +52,9 @@ def plan_engine(
         chosen = settings(scenario, adapter) if settings else None
         if chosen:
             default, planned = chosen[0], chosen
+        elif ladder:
+            group.untuned = adapter.untuned_setting(scenario)
+            planned = [*planned, *([group.untuned] if group.untuned is not None else [])]
     except Exception as error:  # a broken adapter costs its own rows only
         message = f"cannot plan the runs: {type(error).__name__}: {error}"
         group.reason_row = failure_row(scenario, engine, version, None, True, "failed", message)

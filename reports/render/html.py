@@ -122,10 +122,12 @@ def _page(meta: dict[str, Any], whole: ReportData, data: ReportData, listed: Rep
 
 
 REACH_NOTE = (
-    "Out of the box: each engine at the default its settings rule gives (docs/settings-rule.md). At its "
-    "best: per scenario the smallest error, over the levels it produces, of any setting it was run "
-    f"at; the column gives the worst scenario's. The cost of {engine_reach.TARGET:g}: per scenario the "
-    "least run time among the settings that meet it at every level, read off the work-precision front."
+    "Untuned: each engine with its own defaults as a new user's model gets them, at the rule's step "
+    "(engines with no separate defaults declare none). Its default: the setting its settings rule "
+    "gives (docs/settings-rule.md). At its best: per scenario the smallest error, over the levels it "
+    "produces, of any setting it was run at; the column gives the worst scenario's, and the median run "
+    f"time of those best settings. The cost of {engine_reach.TARGET:g}: per scenario the least run time "
+    "among the settings that meet it at every level, read off the work-precision front."
 )
 
 

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 from matplotlib.axes import Axes
+from matplotlib.colors import is_color_like
 
 from reports.render.markup import figure_text
 
@@ -22,11 +23,13 @@ its colour from one report to the next."""
 _STORED: dict[str, str] = {}
 
 
-def use_stored_colours(colours: Mapping[str, Any]) -> None:
+def use_stored_colours(colours: object) -> None:
     """Draw each engine in the colour its store records (the sidecar's `engine_colours`, which the
-    run took from the engine's adapter); ReportData.load calls it."""
+    run took from the engine's adapter); ReportData.load calls it. A colour matplotlib cannot draw,
+    or a sidecar entry that is no mapping (a store edited by hand), leaves the palette's."""
     _STORED.clear()
-    _STORED.update({str(k): str(v) for k, v in colours.items() if isinstance(v, str) and v})
+    if isinstance(colours, Mapping):
+        _STORED.update({str(k): v for k, v in colours.items() if isinstance(v, str) and is_color_like(v)})
 
 
 def colour(engine: str) -> str:

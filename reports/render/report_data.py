@@ -3,9 +3,10 @@ views the HTML and Markdown reports share (ordering, the status matrix, number f
 
 from __future__ import annotations
 
+import json
 import math
 import os
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -66,7 +67,7 @@ class ReportData:
     """{scenario: SVG} of the mechanisms the run drew beside its results (reports.render.drawings)."""
 
     def __post_init__(self) -> None:
-        plots.use_stored_colours(self.meta.get("engine_colours") or {})  # the figures draw these
+        plots.use_stored_colours(self.meta.get("engine_colours"))  # the figures draw these
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> ReportData:
@@ -75,7 +76,7 @@ class ReportData:
             trajectories = read_trajectories(path)
         except FileNotFoundError:  # lost: the report draws no curves until a resume rebuilds them
             trajectories = {}
-        return cls(frame, meta, trajectories, read_drawings(path))
+        return cls(frame, readable_meta(meta), trajectories, read_drawings(path))
 
     def native_engine(self) -> str:
         """The native engine's name, as the run stored it ('' for a store from before it did)."""
@@ -131,11 +132,48 @@ class ReportData:
         return {str(k): int(v) for k, v in self.frame["status"].value_counts().items()}
 
 
+SIDECAR_SHAPES: dict[str, type | tuple[type, ...]] = {
+    "engines": Mapping,
+    "packages": Mapping,
+    "machine": Mapping,
+    "engine_colours": Mapping,
+    "revisions": list,
+    "repeats": (int, float),
+    "warmup": (int, float),
+    "timeout": (int, float),
+}
+"""The shape of each sidecar field the report reads that is not text (text fields are shown as
+text whatever they hold)."""
+
+
+def readable_meta(meta: Mapping[str, Any]) -> dict[str, Any]:
+    """The sidecar as the report reads it: a field of another shape than a run writes (a store
+    edited by hand) is left out, so the page says '?' or nothing there instead of failing."""
+    return {k: v for k, v in meta.items() if isinstance(v, SIDECAR_SHAPES.get(k, object))}
+
+
 def is_swept(frame: pd.DataFrame) -> pd.Series:
-    """Which rows are points of a parameter sweep (the `sweep` column)."""
+    """Which rows are points of a parameter sweep (a `sweep` cell that holds their values)."""
     if "sweep" not in frame:
         return pd.Series(False, index=frame.index)
-    return frame["sweep"].fillna("").astype(str) != ""
+    return frame["sweep"].map(lambda cell: swept_point(cell) is not None).astype(bool)
+
+
+def swept_point(cell: object) -> dict[str, str] | None:
+    """The parameter values a row's `sweep` cell holds (the JSON object of names to values a run
+    stores, reports.harness.rows), or None: off a sweep, and for a cell that holds anything else (a
+    store edited by hand), whose row is then drawn as an unswept one rather than failing the map."""
+    if not isinstance(cell, str) or not cell:
+        return None
+    try:
+        values = json.loads(cell)
+    except (ValueError, RecursionError):
+        return None
+    if not isinstance(values, dict) or not values:
+        return None
+    if not all(isinstance(v, str | int | float) and not isinstance(v, bool) for v in values.values()):
+        return None
+    return {str(k): str(v) for k, v in values.items()}
 
 
 def map_cell_rows(frame: pd.DataFrame) -> pd.DataFrame:

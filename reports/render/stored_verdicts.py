@@ -9,6 +9,7 @@ import math
 import pandas as pd
 
 from reports.harness.columns import LOST, NOT_RECORDED, Judgement
+from reports.render.report_data import is_swept
 
 STRESS_SUITE = "stress"
 """The suite whose rows the stability map shows."""
@@ -43,8 +44,7 @@ def stress_rows(frame: pd.DataFrame) -> pd.DataFrame:
     if (ranks >= 0).any():
         rows = frame[ranks >= 0].assign(_order=ranks[ranks >= 0])
     else:
-        swept = frame["sweep"].fillna("").astype(str) != "" if "sweep" in frame else False
-        rows = frame[~swept]
+        rows = frame[~is_swept(frame)]
         first = rows.groupby("scenario")["recorded_at"].transform("min") if "recorded_at" in rows else ""
         rows = rows.assign(_order=first)
     return rows.sort_values(["_order", "engine"], kind="stable").drop(columns="_order")

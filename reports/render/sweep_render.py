@@ -38,6 +38,9 @@ VERDICT_COLOURS = {
     "timeout": "#5b3a1a",
     "unsupported": "#ffffff",
 }
+OTHER_VERDICT = "#3b3b3b"
+"""The colour of a verdict without one of its own (failures alike; one a run never stores, such as
+a store edited by hand: its text still names it in the legend)."""
 MAX_FIGURES = 6
 """Combinations of the third and further swept parameters drawn, at most, per sweep."""
 LEGEND = (
@@ -71,7 +74,7 @@ def _image(swept: SweptMap, engine: str, fixed: dict[int, int]) -> tuple[np.ndar
         if cell.verdict == "ok" and math.isfinite(cell.error):
             image[y, cell.index[0]] = ERRORS(norm(math.log10(max(cell.error, plots.FLOOR))))
         else:
-            image[y, cell.index[0]] = to_rgba(VERDICT_COLOURS.get(cell.verdict, "#3b3b3b"))
+            image[y, cell.index[0]] = to_rgba(VERDICT_COLOURS.get(cell.verdict, OTHER_VERDICT))
             seen.add(cell.verdict)
     return image, seen
 
@@ -124,7 +127,12 @@ def figure(swept: SweptMap, fixed: dict[int, int]) -> Figure:
             axes.set_yticks([])
     axes_list[-1, 0].set_xlabel(swept.axes[0], fontsize=8)
     handles: list[Any] = [
-        Patch(facecolor=VERDICT_COLOURS[v], edgecolor="#999", label=v) for v in sorted(seen)
+        Patch(
+            facecolor=VERDICT_COLOURS.get(v, OTHER_VERDICT),
+            edgecolor="#999",
+            label=markup.figure_text(v[:40]),
+        )
+        for v in sorted(seen)
     ]
     if singular:
         handles.append(plt.Line2D([], [], marker="x", ls="", color="#00c8ff", label="native singular"))

@@ -11,12 +11,11 @@ configuration: the map marks them on every engine's panel.
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
 
 import pandas as pd
 
-from reports.render.report_data import ReportData, is_swept
+from reports.render.report_data import ReportData, is_swept, swept_point
 from reports.render.stored_verdicts import judgement
 
 SINGULAR = "singular detected"
@@ -66,7 +65,7 @@ def swept_maps(data: ReportData) -> list[SweptMap]:
     frame = data.frame[is_swept(data.frame) & data.frame["is_default"].astype(bool)]
     groups: dict[tuple[str, tuple[str, ...]], list[pd.Series]] = {}
     for _, row in frame.iterrows():
-        swept = json.loads(str(row["sweep"]))
+        swept = swept_point(row["sweep"]) or {}  # is_swept kept only the rows whose cell reads
         groups.setdefault((base_name(str(row["scenario"])), tuple(swept)), []).append(row)
     return [_swept_map(data, base, axes, rows) for (base, axes), rows in groups.items()]
 
@@ -90,7 +89,7 @@ def _sorted(values: set[Value]) -> tuple[Value, ...]:
 
 def _swept_map(data: ReportData, base: str, axes: tuple[str, ...], rows: list[pd.Series]) -> SweptMap:
     points = {
-        str(r["scenario"]): {k: _value(v) for k, v in json.loads(str(r["sweep"])).items()} for r in rows
+        str(r["scenario"]): {k: _value(v) for k, v in (swept_point(r["sweep"]) or {}).items()} for r in rows
     }
     values = tuple(_sorted({p[a] for p in points.values()}) for a in axes)
     engines = [e for e in data.engines() if any(str(r["engine"]) == e for r in rows)]

@@ -26,6 +26,7 @@ from scenarios.files.schema import (
     ANGLE_OUTPUT_KEYS,
     BODY_KEYS,
     FORMAT,
+    KIND,
     MOTIONS,
     POINT_KEYS,
     PROFILES,
@@ -216,9 +217,9 @@ class Reader:
         """A table whose `kind` key selects the vocabulary class it describes."""
         if not isinstance(raw, dict):
             self.fail(path, f"expected a table, got {toml_type(raw)}")
-        name = raw.get("kind")
-        if name is None:
+        if "kind" not in raw:
             self.fail(join(path, "kind"), f"missing; one of {', '.join(kinds)}")
+        name = self.text(raw["kind"], KIND, join(path, "kind"))  # a string before it is looked up
         if name not in kinds:
             self.fail(
                 join(path, "kind"),

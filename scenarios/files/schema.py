@@ -61,6 +61,8 @@ POINT = Key("point")
 MOTION = Key("motion")
 PROFILE = Key("profile")
 DIRECTION = Key("vec2", "nonzero")
+KIND = Key("string")
+"""The `kind` key of a table that it selects (joints, drivers, forces, motions, profiles)."""
 
 TOP_LEVEL: dict[str, Key] = {
     "format": Key("integer", "positive"),

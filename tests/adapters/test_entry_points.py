@@ -16,7 +16,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 PYPROJECT = """[build-system]
-requires = ["setuptools>=68"]
+requires = ["setuptools>=61"]
 build-backend = "setuptools.build_meta"
 
 [project]
@@ -56,13 +56,12 @@ def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
         "install",
         "-q",
         "--no-deps",
+        "--no-build-isolation",  # the test environment's own setuptools: no package index needed
         "--target",
         str(target),
         str(package),
     ]
     done = subprocess.run(install, capture_output=True, text=True, check=False)
-    if done.returncode and "Could not find a version" in done.stderr + done.stdout:
-        pytest.skip("no package index to build the throwaway package with")
     assert done.returncode == 0, done.stderr
     return target
 

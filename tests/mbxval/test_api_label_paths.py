@@ -40,7 +40,7 @@ def test_a_label_that_is_not_a_plain_name_is_refused_and_writes_nothing(
     with pytest.raises(mbxval.ArgumentError) as refused:
         mbxval.compare("slider_crank", frame, label=label, steps=STEPS)
     message = str(refused.value)
-    assert message.startswith("--label") and "\n" not in message and "\x1b" not in message
+    assert "label" in message and "\n" not in message and "\x1b" not in message
     assert _files(tmp_path) == {tmp_path / "a", inner}  # no victim.csv, above or inside
 
 

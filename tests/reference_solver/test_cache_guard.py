@@ -66,3 +66,68 @@ def test_a_package_whose_cache_cannot_be_made_is_left_alone(tmp_path: Path) -> N
     (tmp_path / "__pycache__").write_text("not a directory")
     refresh(tmp_path)
     assert (tmp_path / "__pycache__").read_text() == "not a directory"
+
+
+KERNEL = """
+from numba import njit
+
+from proj.profile import radius
+
+_radius = njit(cache=True, inline="always")(radius)
+
+
+@njit(cache=True)
+def run(x):
+    return _radius(x) + 1.0
+"""
+
+CALL = """
+import sys
+from pathlib import Path
+
+root = Path(sys.argv[1])
+if sys.argv[2] == "guarded":
+    from reference_solver.fast.cache_guard import refresh
+
+    refresh(root / "proj" / "fast")
+sys.path.insert(0, str(root))
+from proj.fast.kernel import run
+
+print(run(3.0))
+"""
+
+
+def test_an_edit_to_an_inlined_function_in_another_package_recompiles_the_kernel(tmp_path: Path) -> None:
+    """A kernel in proj/fast inlines proj.profile.radius, as fast/evaluate.py inlines the cam
+    profiles of scenarios/: numba's own cache, keyed on the kernel's file, keeps the old formula
+    after radius changes; the guard drops it and the kernel compiles the new one."""
+    import subprocess
+    import sys
+
+    (tmp_path / "proj" / "fast").mkdir(parents=True)
+    (tmp_path / "proj" / "__init__.py").write_text("")
+    (tmp_path / "proj" / "fast" / "__init__.py").write_text("")
+    (tmp_path / "proj" / "fast" / "kernel.py").write_text(KERNEL)
+    profile = tmp_path / "proj" / "profile.py"
+    profile.write_text("def radius(x):\n    return 2.0 * x\n")
+
+    def call(mode: str) -> float:
+        done = subprocess.run(
+            [sys.executable, "-c", CALL, str(tmp_path), mode], capture_output=True, text=True, check=True
+        )
+        return float(done.stdout)
+
+    assert call("guarded") == 7.0
+    profile.write_text("def radius(x):\n    return 3.0 * x\n")
+    assert call("unguarded") == 7.0  # numba alone: the stale machine code
+    assert call("guarded") == 10.0
+
+
+def test_the_compiled_path_s_sources_include_the_project_modules_its_kernels_inline() -> None:
+    import reference_solver.fast as fast
+    from reference_solver.fast.cache_guard import compiled_sources
+
+    package = Path(fast.__file__).parent
+    names = {source.relative_to(package.parents[1]).as_posix() for source in compiled_sources(package)}
+    assert {"scenarios/cam_profiles.py", "reference_solver/limits.py", "scenarios/motions.py"} <= names
+    assert {p.relative_to(package.parents[1]).as_posix() for p in package.glob("*.py")} <= names

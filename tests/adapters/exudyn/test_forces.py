@@ -1,5 +1,6 @@
 """Exudyn's driving forces and reactions (SensorObject Force on the driver's coordinate connector
-and the revolute joints) against the native solver's, at measured bounds, t = 0 included."""
+and the revolute joints, ForceLocal on the prismatic joints) against the native solver's, at
+measured bounds, t = 0 included."""
 
 from __future__ import annotations
 
@@ -27,12 +28,12 @@ def _run(name: str, setting: Setting | None, overrides: dict[str, object]):
 
 MEASURED: dict[tuple[str, str], float] = {
     ("slider_crank", "TR2"): 2.0e-6,
-    ("slider_crank", "GA3"): 3.7e-3,  # generalized-alpha's start-up transient
+    ("slider_crank", "GA3"): 2.6e-6,  # after its run-in (3.7e-3 without: the start-up transient)
     ("four_bar", "TR2"): 2.7e-5,
-    ("four_bar", "GA3"): 2.5e-2,
+    ("four_bar", "GA3"): 3.5e-5,  # (2.5e-2 without)
 }
-"""(scenario, mode at the default step): the force error over a whole turn, measured 2026-11-25,
-held two-sided (tests.support.bounds)."""
+"""(scenario, mode at the default step): the force error over a whole turn, measured 2026-11-25
+(GA3 after its run-in 2026-12-07), held two-sided (tests.support.bounds)."""
 
 
 @pytest.mark.parametrize(("name", "mode"), list(MEASURED))
@@ -44,18 +45,91 @@ def test_forces_match_the_native_inverse_dynamics(name: str, mode: str) -> None:
     assert np.isfinite(metrics["driver_force_error"]) and np.isfinite(metrics["reaction_error"])
 
 
-def test_the_start_s_forces_are_exudyn_s_own_not_zero() -> None:
-    """Exudyn records a start it did not solve as zero force; the adapter's first step solves it."""
-    scenario, times, run = _run("slider_crank", None, {"steps": 12})
+@pytest.mark.parametrize("run_in", [None, 0])
+def test_the_start_s_forces_are_exudyn_s_own_not_zero(run_in: int | None) -> None:
+    """Exudyn records a start it did not solve as zero force: without a run-in the adapter's first
+    step solves it (to 1e-6 of the scale); after one the start is a step of the run (GA3's own
+    error there, 2.3e-6)."""
+    setting = None if run_in is None else EXUDYN.default_setting(load("slider_crank")).replace(run_in=run_in)
+    scenario, times, run = _run("slider_crank", setting, {"steps": 12})
     native = native_forces(scenario, times)
     assert run.trajectory is not None
     torque = run.trajectory.extras["crank_drive.force"]
-    assert abs(torque[0] - native["crank_drive.force"][0]) < 1e-6 * np.max(
+    bound = 1e-6 if run_in == 0 else 1e-5
+    assert abs(torque[0] - native["crank_drive.force"][0]) < bound * np.max(
         np.abs(native["crank_drive.force"])
     )
+
+
+PRISMATIC = {("slider_crank", "slide"): 1.2e-6, ("cam_roller", "guide"): 1.7e-7}
+"""(scenario, prismatic joint): the error of its reaction (both components, over the mechanism's
+force scale, harness.forces) at the default, measured 2026-12-07: Exudyn's ForceLocal, in the
+marker-0 body's axes, turned into world axes. The slider's axis is x, the follower's y, so a
+mapping that took the joint's axial and normal components for x and y would fail the second."""
+
+
+@pytest.mark.parametrize(("name", "joint"), list(PRISMATIC))
+def test_a_prismatic_joint_s_reaction_matches_the_native_inverse_dynamics(name: str, joint: str) -> None:
+    scenario, times, run = _run(name, None, {})
+    native = native_forces(scenario, times)
+    assert run.trajectory is not None
+    scale = max(float(np.max(np.abs(v))) for v in native.values())
+    found = max(
+        float(np.max(np.abs(run.trajectory.extras[f"{joint}{axis}"] - native[f"{joint}{axis}"])))
+        for axis in (".fx", ".fy")
+    )
+    held([found / scale], [PRISMATIC[(name, joint)]], ("reaction",))
 
 
 def test_scaled_masses_report_no_forces() -> None:
     _, _, run = _run("slider_crank", Setting.of("GA3", mass_scale=2.0), {"steps": 4})
     assert run.trajectory is not None
     assert "crank_drive.force" not in run.trajectory.extras
+
+
+def test_exudyn_s_prismatic_force_local_is_in_the_marker_0_body_s_axes() -> None:
+    """The convention adapters.exudyn.force_sensors turns into world axes: a body turned by 0.5 rad,
+    sliding on a horizontal guide under gravity, carries the guide's force (0, m g) in world axes,
+    which Exudyn's ForceLocal gives as (m g sin 0.5, m g cos 0.5): the body's axes."""
+    import exudyn as exu
+    from exudyn.itemInterface import (
+        LoadMassProportional,
+        MarkerBodyMass,
+        MarkerBodyRigid,
+        NodeRigidBody2D,
+        ObjectGround,
+        ObjectJointPrismatic2D,
+        ObjectRigidBody2D,
+    )
+
+    from adapters.exudyn.simulation import quiet, simulation_settings
+
+    angle, mass, g = 0.5, 2.0, 9.81
+    mbs = exu.SystemContainer().AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    node = mbs.AddNode(
+        NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0], initialCoordinates=[0.0, 0.0, angle])
+    )
+    body = mbs.AddObject(ObjectRigidBody2D(nodeNumber=node, mass=mass, inertia=0.1))
+    mbs.AddLoad(
+        LoadMassProportional(
+            markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=body)), loadVector=[0, -g, 0]
+        )
+    )
+    joint = mbs.AddObject(
+        ObjectJointPrismatic2D(
+            markerNumbers=[
+                mbs.AddMarker(MarkerBodyRigid(bodyNumber=body)),
+                mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground)),
+            ],
+            axisMarker0=[np.cos(angle), -np.sin(angle), 0.0],
+            normalMarker1=[0.0, 1.0, 0.0],
+        )
+    )
+    mbs.Assemble()
+    settings = simulation_settings(1e-12)
+    settings.timeIntegration.numberOfSteps, settings.timeIntegration.endTime = 10, 0.01
+    with quiet():
+        mbs.SolveDynamic(settings)
+    local = np.asarray(mbs.GetObjectOutput(joint, exu.OutputVariableType.ForceLocal))[:2]
+    np.testing.assert_allclose(local, mass * g * np.array([np.sin(angle), np.cos(angle)]), rtol=1e-9)

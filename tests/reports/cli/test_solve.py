@@ -13,6 +13,7 @@ import pytest
 
 import scenarios
 from reports.cli.main import main
+from reports.harness.results_store import read_trajectories
 from scenarios.closed_form import exact
 from tests.support.engines import ENGINES
 
@@ -162,3 +163,39 @@ def test_console_script_exit_status() -> None:
     assert done.stderr.strip().splitlines() == [
         "mbxval: error: unknown scenario 'nothing'; known: " + ", ".join(scenarios.all_families())
     ]
+
+
+@pytest.mark.parametrize(
+    ("grid", "expected"),
+    [
+        (["--t-end", "0.3", "--steps", "7"], [0.3 * k / 7 for k in range(8)]),
+        (["--t-end", "0.3", "--dt", "0.1"], [0.0, 0.1, 0.2, 0.30000000000000004]),
+        (["--t-end", "0.3", "--dt", "0.08"], [0.0, 0.08, 0.16, 0.24]),
+        (["--t-end", "0.3", "--steps", "1"], [0.0, 0.3]),
+    ],
+)
+def test_solve_s_time_column_is_the_grid_the_options_name(
+    capsys, grid: list[str], expected: list[float]
+) -> None:  # type: ignore[no-untyped-def]
+    """The command's own grid builder, end to end: `--steps N` is N + 1 equal steps with both ends,
+    `--dt H` the multiples of H up to t_end (0.3 reached when 0.3 / 0.1 rounds below 3)."""
+    code, out, _ = run(capsys, "solve", "spur_gears", *grid)
+    assert code == 0
+    np.testing.assert_allclose(pd.read_csv(io.StringIO(out))["t"], expected, rtol=0, atol=1e-15)
+
+
+def test_solve_s_default_grid_is_the_scenario_s_and_run_s(capsys, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    """Without grid options: the family's declared steps over its t_end, the very times `run`
+    stores for the same scenario."""
+    code, out, _ = run(capsys, "solve", "four_bar")
+    assert code == 0
+    times = pd.read_csv(io.StringIO(out))["t"].to_numpy()
+    steps = scenarios.all_families()["four_bar"].parameters["steps"].default
+    t_end = scenarios.build("four_bar").t_end
+    assert len(times) == steps + 1 and times[0] == 0.0 and times[-1] == t_end
+    argv = ["run", "--suite", "quick", "--engine", "reference", "--scenario", "four_bar", "--quiet"]
+    assert main([*argv, "--out", str(tmp_path), "--repeats", "1", "--warmup", "0"]) == 0
+    stored = read_trajectories(tmp_path)
+    assert stored  # the truth's and the run's trajectories, each on the scenario's grid
+    for trajectory in stored.values():
+        np.testing.assert_array_equal(trajectory.times, times)

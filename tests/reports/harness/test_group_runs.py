@@ -59,3 +59,25 @@ def test_only_a_kept_trajectory_comes_back_from_the_worker(tmp_path: Path) -> No
     assert kept.kind == dropped.kind == "ok" and kept.value is not None and dropped.value is not None
     assert kept.value[0].trajectory is not None and dropped.value[0].trajectory is None
     assert np.isclose(dropped.value[2]["position_length_max"], 0.01, rtol=1e-12)  # measured all the same
+
+
+class UntunedFake(FakeAdapter):
+    """The fake with its own defaults declared apart from its ladder: dt = 0.1."""
+
+    def untuned_setting(self, scenario):  # type: ignore[no-untyped-def]
+        return Setting.of("good", dt=0.1)
+
+    def ladder(self, scenario):  # type: ignore[no-untyped-def]
+        return list(GOOD)
+
+
+def test_the_untuned_setting_runs_beside_the_ladder_and_its_row_says_so(tmp_path: Path) -> None:
+    scenario = common_start(build_scenario("four_bar"))
+    group = plan_engine(scenario, "fake", UntunedFake(tmp_path / "log"), True, None)
+    assert [s.label for s, _ in group.jobs] == [*(s.label for s in GOOD), "good dt=0.1"]
+    truth = NamedTruth(fake_truth(scenario, np.asarray(scenario.times())), "fake")
+    rows = [row for row, _ in run_group(group, group.jobs, truth, CONFIG, None)]
+    assert [row["is_untuned"] for row in rows] == [False, False, True]
+    assert np.isclose(rows[2]["position_length_max"], 0.1, rtol=1e-12)  # the fake's error is its dt
+    quick = plan_engine(scenario, "fake", UntunedFake(tmp_path / "log"), False, None)
+    assert [s for s, _ in quick.jobs] == [GOOD[1]]  # the quick suite runs the default alone

@@ -85,3 +85,20 @@ def test_no_alarm_on_a_default_run(engine: str) -> None:
     assert result.status == "ok" and result.trajectory is not None
     assert self_check.of_trajectory(scenario, result.trajectory) == ""
     assert self_check.energy_change(scenario, result.trajectory) < self_check.ENERGY_LIMIT / 1000
+
+
+@pytest.mark.parametrize(
+    ("residual", "energy", "drifted"),
+    [
+        (0.99e-3, math.nan, False),
+        (1.01e-3, math.nan, True),
+        (0.0, 0.99e-2, False),
+        (0.0, 1.01e-2, True),
+    ],
+)
+def test_each_limit_is_pinned_by_a_case_just_inside_and_just_outside(
+    residual: float, energy: float, drifted: bool
+) -> None:
+    """The documented limits (README: residual 1e-3, energy 1e-2), written here as numbers so that a
+    changed limit is caught."""
+    assert bool(self_check.verdict(residual, energy)) is drifted
