@@ -29,7 +29,12 @@ from reports.harness import results_store
 from reports.harness.imported import score
 from reports.harness.store_layout import StoreDamaged
 from reports.harness.store_lock import StoreBusy
-from reports.harness.trajectory_file import ImportedTrajectory, TrajectoryFileError, read_trajectory
+from reports.harness.trajectory_file import (
+    ImportedTrajectory,
+    TrajectoryFileError,
+    parse_trajectory,
+    read_trajectory,
+)
 from scenarios import Scenario
 from scenarios import load as load_by_name
 from scenarios.limits import MAX_LABEL_LENGTH
@@ -169,7 +174,7 @@ def compare(
     with _checked():
         compare_command.check_label(label)
         if isinstance(trajectory, pd.DataFrame):
-            imported = _read_frame(trajectory, built, label)
+            imported = _read_frame(trajectory, built)
         else:
             imported = _read_file(trajectory, built)
     return pd.DataFrame([score(built, imported, label).row])
@@ -182,15 +187,14 @@ def _read_file(path: str, scenario: Scenario) -> ImportedTrajectory:
         raise ArgumentError(str(error)) from None
 
 
-def _read_frame(frame: pd.DataFrame, scenario: Scenario, label: str) -> ImportedTrajectory:
-    """The frame read through the CSV reader, so that it gets every check a file gets."""
-    with tempfile.TemporaryDirectory(prefix="mbxval-compare-") as directory:
-        path = Path(directory) / f"{label}.csv"
-        frame.to_csv(path, index=False, float_format="%.17g")
-        try:
-            return read_trajectory(os.fspath(path), scenario)
-        except TrajectoryFileError as error:
-            raise ArgumentError(str(error).replace(str(path), "the trajectory DataFrame")) from None
+def _read_frame(frame: pd.DataFrame, scenario: Scenario) -> ImportedTrajectory:
+    """The frame checked as its CSV text, in memory, by the CSV reader: every check a file gets,
+    and nothing written anywhere."""
+    source = "the trajectory DataFrame"
+    try:
+        return parse_trajectory(frame.to_csv(index=False, float_format="%.17g"), source, scenario)
+    except TrajectoryFileError as error:
+        raise ArgumentError(str(error)) from None
 
 
 def read_results(directory: PathLike) -> pd.DataFrame:

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 
+from scenarios.names import MAX_NAME_LENGTH
 from scenarios.scenario import Scenario, ScenarioError
 
 MAX_T_END = 1e6  # seconds
@@ -30,9 +31,9 @@ MAX_TRAJECTORY_BYTES = MAX_RUN_BYTES // COPIES_PER_RUN
 MAX_KEPT_BYTES = 4 * 1024**3
 """What a whole `run` keeps for its report: per scenario the truth's and each engine's default
 trajectory (trajectories.parquet), estimated from the grids before anything runs."""
-MAX_LABEL_LENGTH = 100
-"""The most characters of a label (`compare --label`, the API's `label`): it names an engine's rows
-and can become part of a file name, whose length the file system bounds (255 bytes on most)."""
+MAX_LABEL_LENGTH = MAX_NAME_LENGTH
+"""The most characters of a label (`compare --label`, the API's `label`): a name's
+(scenarios.names, which also bounds it in bytes where it becomes a file name)."""
 
 
 MAX_WORK_SECONDS = 60.0

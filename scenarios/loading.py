@@ -10,6 +10,7 @@ from collections.abc import Mapping
 from scenarios.family import MAX_GRID_STEPS
 from scenarios.files import read_scenario
 from scenarios.limits import check_grid, check_t_end, dense
+from scenarios.names import check_name
 from scenarios.registry import build, family
 from scenarios.scenario import POINT_RESERVED, Scenario, ScenarioError
 
@@ -29,7 +30,8 @@ def split_point(name: str) -> tuple[str, dict[str, str]]:
         key, sep, value = item.partition("=")
         if not sep or not key or not value or any(c in POINT_RESERVED for c in key + value):
             raise ScenarioError(f"'{name}' is not a swept point's name: expected {base}[NAME=VALUE,...]")
-        overrides[key] = value
+        key = check_name(key, "a swept point's parameter")
+        overrides[key] = check_name(value, f"the value of {key}")
     return base, overrides
 
 

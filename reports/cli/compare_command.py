@@ -20,7 +20,7 @@ from reports.harness import scenario_identity, store_files
 from reports.harness.level_error import LEVEL_COLUMNS, characteristic_rate
 from reports.harness.store_lock import WriterLock
 from scenarios import Scenario, limits, load
-from scenarios.loading import is_scenario_file
+from scenarios.names import NameRefused, safe_file_stem
 from scenarios.scenario import LEVELS
 
 if TYPE_CHECKING:  # the store, the scoring and the report's scale are imported when a comparison runs
@@ -41,12 +41,16 @@ def colour_word(error: float) -> str:
     return SCALE_WORDS[min(max(int(share * 3), 0), 2)]
 
 
-def check_label(label: str) -> str:
-    """A label that cannot be mistaken for an engine's rows or the truth's."""
+def check_label(label: object, what: str = "--label") -> str:
+    """A label that cannot be mistaken for an engine's rows or the truth's, and is a name that may
+    become a file name (scenarios.names.safe_file_stem: a path, blank, over-long or control
+    characters are refused)."""
     from reports.harness.results_store import TRUTH
 
-    if not label.strip():
-        raise UsageError("--label must not be empty")
+    try:
+        label = safe_file_stem(label, what)
+    except NameRefused as refused:
+        raise UsageError(str(refused)) from None
     if label in adapters.names() or label == TRUTH:
         raise UsageError(f"--label '{label}' is the name of an engine or of the truth; choose another")
     return label
@@ -89,7 +93,12 @@ def cmd_compare(args: argparse.Namespace) -> int:
     from reports.harness.trajectory_file import TrajectoryFileError, read_trajectory
 
     scenario = load(args.scenario, pairs(args.set, "--set"))
-    label = check_label(args.label if args.label is not None else Path(args.trajectory).stem)
+    if args.label is not None:
+        label = check_label(args.label)
+    else:
+        label = check_label(
+            Path(args.trajectory).stem, "the label (the file's stem unless --label gives one)"
+        )
     limits.check_dense_rows(scenario.name, len(scenario.bodies))  # the truth's forces: before reading
     try:
         imported = read_trajectory(args.trajectory, scenario)
@@ -127,10 +136,11 @@ def beside(store: ResultsStore, name: str) -> list[str]:
 
 
 def _check_store(out: Path, given: str, scenario: Scenario) -> None:
-    """Refuse a store that holds another mechanism under the scenario's name (a file's only)."""
+    """Refuse a store that holds another mechanism under the scenario's name (a family's rows and a
+    file of its name, in either order: reports.harness.scenario_identity)."""
     from reports.harness.results_store import ResultsStore
 
-    if not is_scenario_file(given) or store_files.committed(out) is None:
+    if store_files.committed(out) is None:
         return
     rows = ResultsStore(out).rows.values()
     clash = scenario_identity.stored_clash(rows, given, scenario, str(out))

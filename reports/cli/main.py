@@ -34,7 +34,8 @@ from reports.harness.store_files import StoreDamaged
 from reports.harness.store_lock import StoreBusy
 from scenarios import Scenario, ScenarioError, all_families, catalogue, limits, load
 from scenarios.files import scenario_toml
-from scenarios.scenario import POINT_RESERVED, characteristic_rate
+from scenarios.names import NameRefused, check_scenario_name
+from scenarios.scenario import characteristic_rate
 from scenarios.trajectory import Trajectory
 
 
@@ -188,10 +189,10 @@ def renamed(scenario: Scenario, name: str | None) -> Scenario:
     that the file runs beside the family it came from; unchanged without a name."""
     if name is None:
         return scenario
-    if not name or any(c in POINT_RESERVED + "/" for c in name) or name.endswith(".toml"):
-        raise UsageError(
-            f"--name must be a plain name, without '/', '.toml' or any of {POINT_RESERVED}: '{name}'"
-        )
+    try:
+        check_scenario_name(name, "--name")
+    except NameRefused as refused:
+        raise UsageError(str(refused)) from None
     return dataclasses.replace(scenario, family=name, variant="default", point=())
 
 

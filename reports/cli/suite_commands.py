@@ -18,13 +18,11 @@ import adapters
 import reports.cli.run_overrides as run_overrides
 from reports.cli.usage import UsageError
 from reports.harness import baselines, gate, scenario_identity, stop, store_files, suites, sweep
-from reports.harness.atomic_write import output_target
 from reports.harness.group_runs import RunConfig
 from reports.harness.store_lock import WriterLock
 from reports.harness.suites import Suite
 from scenarios import Scenario, limits
 from scenarios import load as build_scenario
-from scenarios.loading import is_scenario_file
 
 DEFAULT_OUT = "mbxval-report"
 MAX_REPEATS = 1000
@@ -131,24 +129,30 @@ def select(args: argparse.Namespace, out: Path, rerun: bool = False) -> Selectio
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} is a file, not a directory")
     config = _run_config(args, suite, rerun or args.rerun)
-    check_scenario_names(args.scenario, out, config.rerun)
+    check_scenario_names(names, out, config.rerun)
     return Selection(suite, names, engines, config, _backend(args))
 
 
 def check_scenario_names(names: list[str], out: Path, rerun: bool) -> None:
-    """Refuse (UsageError) two different mechanisms under one scenario name: two files of this run,
-    or a file and what the store in `out` holds under its name (unless `rerun` replaces it)."""
-    from reports.harness.results_store import read_results  # pandas: imported when a store is read
-
+    """Refuse (UsageError) two different mechanisms under one scenario name: two of this run, or
+    one of this run (a family, a point or a file) and what the store in `out` holds under its name
+    under another digest, whichever came first (unless `rerun` replaces those rows)."""
     given = {name: build_scenario(name) for name in names}
     clash = scenario_identity.name_clash(given)
     if clash is None and not rerun and store_files.committed(out) is not None:
-        rows = read_results(out)[0].to_dict("records")
-        files = [name for name in names if is_scenario_file(name)]
-        found = (scenario_identity.stored_clash(rows, n, given[n], str(out)) for n in files)
+        rows = stored_identities(out)
+        found = (scenario_identity.stored_clash(rows, n, given[n], str(out)) for n in names)
         clash = next((f"{c}, or add --rerun to replace those results" for c in found if c), None)
     if clash is not None:
         raise UsageError(clash)
+
+
+def stored_identities(results: Path | str) -> list[dict[str, Any]]:
+    """Each scenario name the store holds with each digest its rows record, once."""
+    from reports.harness.results_store import read_results  # pandas: imported when a store is read
+
+    frame = read_results(results)[0].reindex(columns=["scenario", "scenario_digest"]).fillna("")
+    return frame.drop_duplicates().to_dict("records")  # type: ignore[no-any-return]
 
 
 def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = False) -> Counter[str]:
@@ -252,6 +256,9 @@ def cmd_report(args: argparse.Namespace) -> int:
     if args.out is not None and Path(args.out).exists() and not Path(args.out).is_dir():
         raise UsageError(f"--out {args.out} is a file, not a directory")
     try:
+        mixed = scenario_identity.mixed_names(stored_identities(args.results), args.results)
+        if mixed is not None:
+            raise UsageError(mixed)
         page = render_reports(args.results, args.out)
     except FileNotFoundError as error:
         raise UsageError(str(error)) from error
@@ -270,7 +277,7 @@ def cmd_check(args: argparse.Namespace) -> int:
             raise UsageError(f"{option} {target}: not a file in an existing directory")
     args.baseline = str(baselines.resolve(args.baseline))
     if args.update:
-        output_target(args.baseline)  # not a regular file: refused before running
+        gate.updatable_cells(args.baseline)  # not a regular file, or not a baseline: before running
     baseline = None if args.update else gate.read_baseline(args.baseline)  # bad baseline: before running
     if args.results is not None:
         return _check(args, Path(args.results), baseline)

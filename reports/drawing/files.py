@@ -14,6 +14,7 @@ from reports.drawing.drawing import DrawingError, draw_svg
 from reports.harness.atomic_write import atomic_output
 from reports.render.drawings import DRAWINGS, INDEX, read_index
 from scenarios import Scenario
+from scenarios.names import safe_file_stem
 
 MAX_BODIES = 30
 """A scenario with more bodies is not drawn for the report (n_four_bar/spec's 81 take about a
@@ -27,9 +28,11 @@ a cam's twelve redrawn profiles (about 90 to 130 kB) would add more than its fig
 
 def file_name(scenario: str) -> str:
     """A file name for a scenario's drawing: its name's letters, and a digest that keeps names
-    that differ only in other characters apart."""
-    plain = "".join(c if c.isalnum() else "_" for c in scenario)[:60]
-    return f"{plain}-{hashlib.sha256(scenario.encode()).hexdigest()[:10]}.svg"
+    that differ only in other characters apart (a scenario's name holds '/' and brackets: it is
+    encoded, then passes the one check of every name that becomes a file name)."""
+    plain = "".join(c if c.isascii() and c.isalnum() else "_" for c in scenario)[:60]
+    stem = f"{plain}-{hashlib.sha256(scenario.encode()).hexdigest()[:10]}"
+    return f"{safe_file_stem(stem, 'a drawing')}.svg"
 
 
 def write_drawings(out: Path, scenarios: Iterable[Scenario]) -> dict[str, str]:

@@ -231,15 +231,36 @@ def _nan(value: Any) -> bool:
     return value is None or (isinstance(value, float) and math.isnan(value))
 
 
+KEY_FIELDS = ("scenario", "engine", "setting", "is_default")
+
+
+def updatable_cells(path: str | os.PathLike[str]) -> list[dict[str, Any]]:
+    """The cells of the baseline that `check --update` would replace at `path`: none for a new
+    path; GateError for a file that is not a baseline (a JSON object with a schema_version and a
+    list of cells, each naming its scenario, engine and setting), which --update never overwrites,
+    and OutputRefused for a path that is not a regular file."""
+    if not os.path.exists(output_target(path)):  # a FIFO or a device is refused before it is read
+        return []
+    try:
+        document = json.loads(read_bounded_text(path, MAX_BASELINE_BYTES, "baseline"))
+    except (OSError, ValueError, RecursionError):  # FileRefused among them
+        document = None
+    cells = document.get("cells") if isinstance(document, dict) and "schema_version" in document else None
+    if not (isinstance(cells, list) and cells and all(_keyed(c) for c in cells)):
+        raise GateError(
+            f"--baseline {path} is not a baseline (a JSON object with a schema_version and a list of "
+            "cells): --update writes only a baseline or a new file; nothing was written"
+        )
+    return cells
+
+
+def _keyed(cell: object) -> bool:
+    return isinstance(cell, dict) and all(name in cell for name in KEY_FIELDS)
+
+
 def update_baseline(path: str | os.PathLike[str], frame: pd.DataFrame, meta: dict[str, Any]) -> str:
     """Write the baseline from the results and say what it adds, drops and changes."""
-    output_target(path)  # a FIFO or a device is refused before it is read
-    try:
-        before = {
-            _key(c): c for c in json.loads(read_bounded_text(path, MAX_BASELINE_BYTES, "baseline"))["cells"]
-        }
-    except (OSError, ValueError, AttributeError, TypeError, KeyError, RecursionError):
-        before = {}
+    before = {_key(c): c for c in updatable_cells(path)}
     cells = baseline_cells(frame)
     for cell in cells:  # never write a baseline that `check` would refuse
         problem = _unsound(cell)

@@ -12,6 +12,8 @@ import signal
 import sys
 from types import FrameType
 
+from scenarios.names import printable
+
 INTERRUPTED = 130  # 128 + SIGINT, as shells report a Ctrl-C
 TERMINATED = 143  # 128 + SIGTERM
 CLOSED_PIPE = 141  # 128 + SIGPIPE
@@ -101,8 +103,9 @@ can be any size."""
 
 
 def usage_error(message: str) -> int:
-    """The one line of bad input, and exit status 2."""
-    line = " | ".join(part.strip() for part in message.splitlines() if part.strip())
+    """The one line of bad input, and exit status 2: a message of several lines joined, a control
+    character written as its escape (a value quoted from an argument cannot act on the terminal)."""
+    line = printable(" | ".join(part.strip() for part in message.splitlines() if part.strip()))
     if len(line) > MAX_MESSAGE:
         line = line[: MAX_MESSAGE - 30] + f"... ({len(line)} characters)"
     print(f"mbxval: error: {line}", file=sys.stderr)

@@ -7,7 +7,8 @@ writes for the scenario, kept but not scored: a cam's contact angle `<cam>.phi`,
 `<joint>.fx` and `<driver>.force` (reactions and driving forces, named after the scenario's own
 joints, drivers and forces) and `energy.*`. Bodies and levels may be missing: a level is scored when every
 scored body has it, and what is left out is said. Refused, with a TrajectoryFileError naming the
-file: an unreadable file, an unknown column, a body's level with some of its three columns only, a
+file and the line and column, never what the file says (it may be any file a user names): an
+unreadable file, an unknown column, a body's level with some of its three columns only, a
 non-finite or non-numeric value, and a time column that is not the scenario's grid.
 """
 
@@ -77,47 +78,67 @@ def _fail(source: str, message: str) -> TrajectoryFileError:
     return TrajectoryFileError(f"{source}: {message}")
 
 
-def read_table(path: str | Path) -> pd.DataFrame:
-    """The CSV's table, every cell a float; TrajectoryFileError for a file that is not one."""
-    source = str(path)
+def read_text(path: str | Path) -> str:
+    """The file's text, within its size limit; TrajectoryFileError for a file that cannot be read."""
     try:
-        text = read_bounded_text(path, MAX_TRAJECTORY_CSV_BYTES, "trajectory CSV")
-        frame = pd.read_csv(io.StringIO(text), dtype=str, keep_default_na=False)
+        return read_bounded_text(path, MAX_TRAJECTORY_CSV_BYTES, "trajectory CSV")
     except FileRefused as error:
         raise TrajectoryFileError(str(error)) from None
     except OSError as error:
-        raise _fail(source, f"cannot read: {error.strerror or error}") from None
-    except (UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError) as error:
+        raise _fail(str(path), f"cannot read: {error.strerror or error}") from None
+
+
+def parse_table(text: str, source: str) -> pd.DataFrame:
+    """The CSV's cells as text, under its header; TrajectoryFileError for text that is not a table
+    (pandas' tokenizer says where, never what: its messages quote no field)."""
+    try:
+        frame = pd.read_csv(io.StringIO(text), dtype=str, keep_default_na=False)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError) as error:
         raise _fail(source, f"not a CSV table: {str(error).splitlines()[0]}") from None
     if frame.empty:
         raise _fail(source, "has no rows")
-    numbers = {}
-    for column in frame.columns:
-        values = np.empty(len(frame))
-        for row, text in enumerate(frame[column]):
-            values[row] = _number(source, f"column {column}, row {row + 1}", text)
-        numbers[column] = values
-    return pd.DataFrame(numbers)
+    return frame
 
 
-def _number(source: str, where: str, text: str) -> float:
-    """The cell's value; TrajectoryFileError for one that is not a plain finite CSV number within
-    MAX_MAGNITUDE."""
-    shown = text if len(text) <= 40 else text[:40] + "..."
+def _lines(text: str) -> list[int]:
+    """The line numbers (from 1) of the text's lines that are not blank: the header's, then each
+    row's, as the CSV reader skips blank lines."""
+    return [k for k, line in enumerate(re.split(r"\r\n|\r|\n", text), 1) if line.strip(" \t")]
+
+
+def numbers(frame: pd.DataFrame, text: str, source: str) -> pd.DataFrame:
+    """Every cell as a float; TrajectoryFileError naming the line and column of the first that is
+    not a plain finite CSV number within MAX_MAGNITUDE."""
+    values = {}
+    for place, column in enumerate(frame.columns):
+        column_values = np.empty(len(frame))
+        for row, cell in enumerate(frame[column]):
+            problem = _problem(cell)
+            if problem:
+                raise _fail(source, f"{_where(text, row)}, column {place + 1}: {problem}")
+            column_values[row] = float(cell)
+        values[column] = column_values
+    return pd.DataFrame(values)
+
+
+def _where(text: str, row: int) -> str:
+    """Where data row `row` (from 0) is in the text: its line, as the CSV reader skips blank lines."""
+    lines = _lines(text)
+    return f"line {lines[row + 1]}" if row + 1 < len(lines) else f"row {row + 1}"
+
+
+def _problem(text: str) -> str:
+    """What kind of cell `text` is when it is not a plain finite CSV number within MAX_MAGNITUDE
+    (never what it says); '' for a good one."""
     if not NUMBER.fullmatch(text.strip(" \t")):
         try:
-            finite = math.isfinite(float(text))
+            kind = "not a number" if math.isfinite(float(text)) else "not finite"
         except ValueError:
-            finite = True
-        kind = "not a number" if finite else "not finite"
-        raise _fail(source, f"{where}: {kind}: {shown!r} (a CSV number is digits, a point and an exponent)")
-    value = float(text)
-    if not abs(value) <= MAX_MAGNITUDE:
-        raise _fail(
-            source,
-            f"{where}: {shown!r} is beyond the largest magnitude a trajectory may hold, {MAX_MAGNITUDE:g}",
-        )
-    return value
+            kind = "empty" if not text.strip() else "not a number"
+        return f"{kind}; expected a finite number (digits, a point and an exponent)"
+    if not abs(float(text)) <= MAX_MAGNITUDE:
+        return f"beyond the largest magnitude a trajectory may hold, {MAX_MAGNITUDE:g}"
+    return ""
 
 
 def check_columns(source: str, columns: list[str], scenario: Scenario) -> None:
@@ -126,16 +147,17 @@ def check_columns(source: str, columns: list[str], scenario: Scenario) -> None:
     known += [f"{b}.{n}" for b in scenario.body_names for names in COLUMNS.values() for n in names]
     known += [f"{j.name}.{axis}" for j in scenario.joints for axis in ("fx", "fy")]  # for suggestions
     known += [f"{d.name}.force" for d in scenario.drivers]
-    if "t" not in columns:
-        raise _fail(source, "no column 't' (the time)")
-    for column in columns:
+    for place, column in enumerate(columns, 1):
         if column not in known and not is_extra(column, scenario):
             raise _fail(
                 source,
-                f"unknown column '{column}'{suggestion(column, known)}; {scenario.name} has the bodies "
+                f"line 1, column {place}: not a column name of {scenario.name}{suggestion(column, known)}; "
+                f"expected t, then the bodies "
                 f"{', '.join(scenario.body_names)} (columns BODY.x BODY.y BODY.theta BODY.vx ... "
                 "BODY.alpha; extras are named after its joints, drivers, forces or cams, or energy.*)",
             )
+    if "t" not in columns:
+        raise _fail(source, "no column 't' (the time)")
 
 
 def check_grid(source: str, times: np.ndarray, scenario: Scenario) -> None:
@@ -179,10 +201,16 @@ def _levels_of(source: str, columns: set[str], body: str) -> tuple[Level, ...]:
 
 def read_trajectory(path: str | Path, scenario: Scenario) -> ImportedTrajectory:
     """The trajectory in the CSV at `path`, checked against `scenario` (TrajectoryFileError)."""
-    source = str(path)
-    frame = read_table(path)
-    columns = [str(c) for c in frame.columns]
+    return parse_trajectory(read_text(path), str(path), scenario)
+
+
+def parse_trajectory(text: str, source: str, scenario: Scenario) -> ImportedTrajectory:
+    """The trajectory in CSV `text` (named `source` in messages), checked against `scenario`: its
+    header first, so that a message names a column only once it is known to be a column name."""
+    table = parse_table(text, source)
+    columns = [str(c) for c in table.columns]
     check_columns(source, columns, scenario)
+    frame = numbers(table, text, source)
     check_grid(source, frame["t"].to_numpy(), scenario)
     present = set(columns)
     levels = {b: _levels_of(source, present, b) for b in scenario.body_names}

@@ -27,11 +27,15 @@ from scenarios.files.schema import (
     Key,
     Kind,
 )
+from scenarios.names import MAX_NAME_LENGTH
 from scenarios.outputs import AngleOutput
 from scenarios.scenario import LEVELS
 
 Schema = dict[str, Any]
 DRAFT = "https://json-schema.org/draft/2020-12/schema"
+NAME_PATTERN = r"^[^\x00-\x1f\x7f]*\S[^\x00-\x1f\x7f]*$"
+"""A name as an editor can check it: not blank, no ASCII control character (the reader refuses
+more: scenarios.names)."""
 NUMBER_RANGES: dict[str, Schema] = {
     "finite": {},
     "positive": {"exclusiveMinimum": 0},
@@ -62,6 +66,8 @@ def _typed(key: Key) -> Schema:
         return {"type": "integer", **({"minimum": 1} if key.range == "positive" else {})}
     if kind in ("string", "boolean"):
         return {"type": kind}
+    if kind == "name":
+        return {"type": "string", "minLength": 1, "maxLength": MAX_NAME_LENGTH, "pattern": NAME_PATTERN}
     if kind == "choice":
         return {"enum": list(key.choices)}
     if kind == "body":

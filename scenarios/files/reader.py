@@ -39,6 +39,7 @@ from scenarios.files.schema import (
     in_range,
     suggestion,
 )
+from scenarios.names import NameRefused, check_name, check_scenario_name
 from scenarios.outputs import AngleOutput
 from scenarios.scenario import LEVELS, Scenario, ScenarioError
 
@@ -97,15 +98,17 @@ class Reader:
             return self.number(raw, key.range, path)
         if kind == "integer":
             if type(raw) is not int:
-                self.fail(path, f"expected an integer, got {toml_type(raw)} {raw!r}")
+                self.fail(path, f"expected an integer, got {_shown(raw)}")
             if not in_range(raw, key.range):
                 self.fail(path, f"must be {key.range}, got {raw!r}")
             return raw
         if kind in ("string", "choice", "body", "moving_body"):
             return self.text(raw, key, path)
+        if kind == "name":
+            return self.name(raw, path)
         if kind == "boolean":
             if type(raw) is not bool:
-                self.fail(path, f"expected true or false, got {toml_type(raw)} {raw!r}")
+                self.fail(path, f"expected true or false, got {_shown(raw)}")
             return raw
         if kind in ("vec2", "pose", "numbers"):
             return self.numbers(raw, key, path)
@@ -124,7 +127,7 @@ class Reader:
 
     def number(self, raw: object, range_: str, path: str) -> float:
         if type(raw) not in (int, float):
-            self.fail(path, f"expected a number, got {toml_type(raw)} {raw!r}")
+            self.fail(path, f"expected a number, got {_shown(raw)}")
         value = float(raw)  # type: ignore[arg-type]
         if not in_range(value, range_):
             self.fail(
@@ -137,29 +140,42 @@ class Reader:
 
     def text(self, raw: object, key: Key, path: str) -> str:
         if not isinstance(raw, str):
-            self.fail(path, f"expected a string, got {toml_type(raw)} {raw!r}")
+            self.fail(path, f"expected a string, got {_shown(raw)}")
         choices: tuple[str, ...] = key.choices
         if key.type in ("body", "moving_body"):
             choices = self.bodies + ((GROUND,) if key.type == "body" else ())
-            what = "body" if key.type == "body" or raw != GROUND else "moving body (not the ground)"
+            if raw == GROUND and GROUND not in choices:
+                self.fail(path, f"'{GROUND}' is not a moving body; bodies: {', '.join(self.bodies)}")
             if raw not in choices:
                 self.fail(
                     path,
-                    f"unknown {what} '{raw}'{suggestion(raw, list(choices))}; "
-                    f"bodies: {', '.join(self.bodies)}",
+                    f"unknown body{suggestion(raw, list(choices))}; bodies: {', '.join(self.bodies)}",
                 )
         elif choices and raw not in choices:
             self.fail(
                 path,
-                f"unknown value '{raw}'{suggestion(raw, list(choices))}; "
-                f"expected one of {', '.join(choices)}",
+                f"unknown value{suggestion(raw, list(choices))}; expected one of {', '.join(choices)}",
             )
         return raw
+
+    def name(self, raw: object, path: str) -> str:
+        """A name (scenarios.names.check_name): refused without quoting it."""
+        try:
+            return check_name(raw, "a name")
+        except NameRefused as refused:
+            self.fail(path, str(refused))
+
+    def scenario_name(self, raw: str, path: str) -> str:
+        """The scenario's own name or variant: refused as `export --name` refuses it."""
+        try:
+            return check_scenario_name(raw, "the scenario's name")
+        except NameRefused as refused:
+            self.fail(path, str(refused))
 
     def numbers(self, raw: object, key: Key, path: str) -> tuple[float, ...]:
         size = {"vec2": 2, "pose": 3}.get(key.type)
         if not isinstance(raw, list):
-            self.fail(path, f"expected an array of numbers, got {toml_type(raw)} {raw!r}")
+            self.fail(path, f"expected an array of numbers, got {_shown(raw)}")
         if size is not None and len(raw) != size:
             self.fail(path, f"expected {size} numbers, got {len(raw)}")
         if len(raw) < key.minimum_length:
@@ -173,14 +189,14 @@ class Reader:
 
     def strings(self, raw: object, kind: str, path: str) -> tuple[str, ...]:
         if not isinstance(raw, list) or not all(isinstance(v, str) for v in raw):
-            self.fail(path, f"expected an array of strings, got {raw!r}")
+            self.fail(path, f"expected an array of strings, got {_shown(raw)}")
         choices = LEVELS if kind == "levels" else self.bodies
         what = "level" if kind == "levels" else "body"
         for k, name in enumerate(raw):
             if name not in choices:
                 self.fail(
                     f"{path}[{k}]",
-                    f"unknown {what} '{name}'{suggestion(name, list(choices))}; known: {', '.join(choices)}",
+                    f"unknown {what}{suggestion(name, list(choices))}; known: {', '.join(choices)}",
                 )
         if len(set(raw)) != len(raw):
             self.fail(path, "lists a name twice")
@@ -192,6 +208,7 @@ class Reader:
         if not isinstance(raw, dict):
             self.fail(path, f"expected a table, got {toml_type(raw)}")
         for name, value in raw.items():
+            self.name(name, path)
             if type(value) not in (int, float, str):
                 self.fail(join(path, name), f"expected a number or a string, got {toml_type(value)}")
         return tuple(raw.items())
@@ -206,7 +223,7 @@ class Reader:
         if name not in kinds:
             self.fail(
                 join(path, "kind"),
-                f"unknown kind {name!r}{suggestion(str(name), list(kinds))}; known: {', '.join(kinds)}",
+                f"unknown kind{suggestion(str(name), list(kinds))}; known: {', '.join(kinds)}",
             )
         spec = kinds[name]
         body = {k: v for k, v in raw.items() if k != "kind"}
@@ -226,9 +243,17 @@ class Reader:
             file = inside(self.directory, raw)
             return read_radii(read_bounded_text(file, MAX_PROFILE_CSV_BYTES, "profile CSV"), str(file))
         except OSError as error:
-            self.fail(path, f"cannot read {raw[:200]}: {error.strerror or error}")
+            self.fail(path, f"cannot read the file it names: {error.strerror or error}")
         except ValueError as error:  # FileRefused among them
             self.fail(path, str(error))
+
+
+def _shown(raw: object) -> str:
+    """A value's TOML type, and the value itself only when it is a number: a message never quotes
+    a file's text."""
+    if type(raw) in (int, float):
+        return f"{toml_type(raw)} {raw!r}"
+    return toml_type(raw)
 
 
 def join(path: str, key: str) -> str:
@@ -257,7 +282,7 @@ def _bodies(reader: Reader, raw: object) -> tuple[Body, ...]:
     for k, table in enumerate(_named_tables(reader, raw, "bodies")):
         values = reader.keys(table, BODY_KEYS, required_keys(Body), f"bodies[{k}]")
         if values["name"] == GROUND or values["name"] in (b.name for b in bodies):
-            reader.fail(f"bodies[{k}].name", f"'{values['name']}' is already taken")
+            reader.fail(f"bodies[{k}].name", f"already taken, by another body or the {GROUND}")
         bodies.append(Body(**values))
     return tuple(bodies)
 
@@ -267,7 +292,7 @@ def _angle_outputs(reader: Reader, raw: object) -> tuple[AngleOutput, ...]:
     for k, table in enumerate(_named_tables(reader, raw, "angle_outputs")):
         values = reader.keys(table, ANGLE_OUTPUT_KEYS, required_keys(AngleOutput), f"angle_outputs[{k}]")
         if values["name"] in (a.name for a in outputs):
-            reader.fail(f"angle_outputs[{k}].name", f"'{values['name']}' is already taken")
+            reader.fail(f"angle_outputs[{k}].name", "already taken by another angle output")
         outputs.append(AngleOutput(**values))
     return tuple(outputs)
 
@@ -277,7 +302,7 @@ def _constraints(reader: Reader, doc: dict[str, Any], section: str, taken: set[s
     for k, table in enumerate(_named_tables(reader, doc.get(section, []), section)):
         item = reader.kind(table, SECTIONS[section], f"{section}[{k}]")
         if item.name in taken:
-            reader.fail(f"{section}[{k}].name", f"'{item.name}' names another constraint or force already")
+            reader.fail(f"{section}[{k}].name", "names another constraint or force already")
         taken.add(item.name)
         built.append(item)
     return tuple(built)
@@ -306,6 +331,9 @@ def parse_scenario(
     tables = ("bodies", "joints", "drivers", "forces", "angle_outputs", "outputs", "levels")
     structure = {k: v for k, v in doc.items() if k not in tables}
     top = reader.keys(structure, TOP_LEVEL, (), "")
+    for key in ("name", "variant"):  # the loader must not read the name as a variant, file or point
+        if key in top:
+            reader.scenario_name(top[key], key)
     for name in TOP_LEVEL_REQUIRED:
         if name not in doc:
             reader.fail(name, "missing")

@@ -37,7 +37,8 @@ FORMAT = 1
 class Key:
     """One key of a table: its type and, for numbers, its range.
 
-    Types: number, integer, string, boolean, vec2, pose, numbers, strings, choice (one of
+    Types: number, integer, string, name (a string that is a name: scenarios.names), boolean,
+    vec2, pose, numbers, strings, choice (one of
     `choices`), body (a body or the ground), moving_body (a body of the file), point, motion,
     profile, levels, parameters. Ranges: finite, positive, nonnegative, nonzero (a vector).
     """
@@ -53,7 +54,7 @@ class Key:
 NUMBER = Key("number")
 POSITIVE = Key("number", "positive")
 NONNEGATIVE = Key("number", "nonnegative")
-NAME = Key("string")
+NAME = Key("name")
 BODY = Key("body")
 MOVING_BODY = Key("moving_body")
 POINT = Key("point")
@@ -67,7 +68,7 @@ TOP_LEVEL: dict[str, Key] = {
     "format": Key("integer", "positive"),
     "name": NAME,
     "variant": NAME,
-    "description": NAME,
+    "description": Key("string"),
     "t_end": POSITIVE,
     "steps": Key("integer", "positive"),
     "characteristic_length": Key(

@@ -310,6 +310,25 @@ def test_update_says_what_it_adds_drops_and_changes(stored: Path, tmp_path: Path
     assert "  + slider_crank x fake" in text and "  - four_bar x fake" in text and "  ~ slider_crank" in text
 
 
+@pytest.mark.parametrize(
+    "text",
+    ["meeting notes\nnot a baseline\n", '{"cells": [1, 2]}', "[]", '{"schema_version": 99, "cells": []}'],
+)
+def test_update_refuses_to_overwrite_a_file_that_is_not_a_baseline(
+    text: str, stored: Path, tmp_path: Path, capsys
+) -> None:
+    notes = tmp_path / "notes.txt"
+    notes.write_text(text)
+    code = main(["check", "--baseline", str(notes), "--results", str(stored), "--update"])
+    assert code == 2
+    one_line_error(capsys, f"--baseline {notes}", "not a baseline", "--update writes only a baseline")
+    assert notes.read_text() == text
+    fresh = tmp_path / "new.json"  # a new path is written, and then updated as the baseline it is
+    for _ in range(2):
+        assert main(["check", "--baseline", str(fresh), "--results", str(stored), "--update"]) == 0
+    assert gate.read_baseline(fresh)
+
+
 def test_check_runs_what_it_compares_unless_results_is_given(tmp_path: Path) -> None:
     args = suite_commands_parser(
         ["check", "--baseline", "b.json", "--out", str(tmp_path), "--scenario", SCENARIO]

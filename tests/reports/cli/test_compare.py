@@ -112,10 +112,13 @@ def _shift_times(frame: pd.DataFrame) -> pd.DataFrame:
 BAD = {
     "unknown column": (
         lambda f: f.rename(columns={"rod.x": "rd.x"}),
-        "bad.csv: unknown column 'rd.x' (did you mean 'rod.x'?); "
-        "slider_crank has the bodies crank, rod, slider",
+        "bad.csv: line 1, column 11: not a column name of slider_crank (did you mean 'rod.x'?); "
+        "expected t, then the bodies crank, rod, slider",
     ),
-    "column of no body": (lambda f: f.assign(energy=1.0), "bad.csv: unknown column 'energy'"),
+    "column of no body": (
+        lambda f: f.assign(energy=1.0),
+        "bad.csv: line 1, column 29: not a column name of slider_crank",
+    ),
     "no time column": (lambda f: f.drop(columns=["t"]), "bad.csv: no column 't' (the time)"),
     "too few rows": (
         lambda f: f.iloc[:-1],
@@ -126,15 +129,21 @@ BAD = {
         "bad.csv: the times are not the grid of slider_crank (201 times, 200 steps from 0 to "
         "0.12566370614359174 s): 191 of 201 differ, by up to 1e-06 s; the first at row 11",
     ),
-    "nan value": (lambda f: _set(f, "rod.vx", 5, np.nan), "bad.csv: column rod.vx, row 6: not a number: ''"),
-    "nan text": (lambda f: _set(f, "rod.vx", 5, "nan"), "bad.csv: column rod.vx, row 6: not finite: 'nan'"),
+    "nan value": (
+        lambda f: _set(f, "rod.vx", 5, np.nan),
+        "bad.csv: line 7, column 14: empty; expected a finite number",
+    ),
+    "nan text": (
+        lambda f: _set(f, "rod.vx", 5, "nan"),
+        "bad.csv: line 7, column 14: not finite",
+    ),
     "infinite value": (
         lambda f: _set(f, "crank.ay", 7, "-inf"),
-        "bad.csv: column crank.ay, row 8: not finite",
+        "bad.csv: line 9, column 9: not finite",
     ),
     "text value": (
         lambda f: _set(f, "slider.x", 2, "abc"),
-        "bad.csv: column slider.x, row 3: not a number: 'abc'",
+        "bad.csv: line 4, column 20: not a number; expected a finite number",
     ),
     "partial level": (
         lambda f: f.drop(columns=["rod.theta"]),

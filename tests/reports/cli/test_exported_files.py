@@ -51,11 +51,19 @@ def test_export_name_sets_the_files_name(tmp_path: Path, capsys) -> None:
     assert scenario.bodies == family.bodies and scenario.joints == family.joints
 
 
-@pytest.mark.parametrize("name", ["", "a/b", "a[b=1]", "x.toml"])
-def test_a_name_that_is_not_plain_is_one_error_line(tmp_path: Path, capsys, name: str) -> None:
+@pytest.mark.parametrize(
+    ("name", "rule"),
+    [
+        ("", "must not be empty"),
+        ("a/b", "must be a plain name"),
+        ("a[b=1]", "must be a plain name"),
+        ("x.toml", "must be a plain name"),
+    ],
+)
+def test_a_name_that_is_not_plain_is_one_error_line(tmp_path: Path, capsys, name: str, rule: str) -> None:
     target = tmp_path / "out.toml"
     assert main(["export", "four_bar", "--format", "toml", "--name", name, "--out", str(target)]) == 2
-    assert capsys.readouterr().err.startswith("mbxval: error: --name must be a plain name")
+    assert capsys.readouterr().err.startswith(f"mbxval: error: --name {rule}")
     assert not target.exists()
 
 

@@ -97,3 +97,73 @@ def test_compare_refuses_a_store_holding_another_mechanism(
     err = capsys.readouterr().err
     assert f"{out} holds results of another mechanism named 'gears'" in err and "--rerun" not in err
     assert main(["compare", str(file), str(csv), "--out", str(out)]) == 0
+
+
+# --- a family and a file of its name are two mechanisms, in either order -------------------------
+def _lengthened(path: Path) -> Path:
+    """The shipped slider-crank file with its rod lengthened and its name kept: another mechanism."""
+    text = (EXAMPLES / "slider_crank.toml").read_text()
+    old = 'name = "rod"\nguess = [0.3888719440661749, 0.029552020666133955, -0.14830313118757033]\n'
+    assert old in text and "length = 0.4\n" in text
+    path.write_text(text.replace("length = 0.4\n", "length = 0.45\n", 1))
+    return path
+
+
+def _digests(file: Path) -> tuple[str, str]:
+    mine, family = digest(read_scenario(file)), digest(scenarios.build("slider_crank"))
+    assert mine != family
+    return mine, family
+
+
+@pytest.mark.parametrize("order", ["file first", "family first"])
+def test_run_refuses_a_family_and_a_file_of_its_name_in_either_order(
+    order: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out, file = tmp_path / "out", _lengthened(tmp_path / "longer.toml")
+    first, second = (str(file), "slider_crank") if order == "file first" else ("slider_crank", str(file))
+    code, err = _run(capsys, out, first)
+    assert code == 0, err
+    before = read_results(out)[0]
+    code, err = _run(capsys, out, second)
+    assert code == 2 and err.count("\n") == 1, err
+    assert f"{out} holds results of another mechanism named 'slider_crank'" in err
+    assert all(d in err for d in _digests(file)), err
+    assert read_results(out)[0].equals(before)
+
+
+@pytest.mark.parametrize("order", ["file first", "family first"])
+def test_compare_out_refuses_a_family_and_a_file_of_its_name_in_either_order(
+    order: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out, file = tmp_path / "out", _lengthened(tmp_path / "longer.toml")
+    stored, compared = (str(file), "slider_crank") if order == "file first" else ("slider_crank", str(file))
+    assert _run(capsys, out, stored)[0] == 0
+    before = read_results(out)[0]
+    csv = tmp_path / "t.csv"
+    assert main(["solve", compared, "--out", str(csv)]) == 0
+    capsys.readouterr()
+    assert main(["compare", compared, str(csv), "--out", str(out), "--label", "mine"]) == 2
+    err = capsys.readouterr().err
+    assert f"{out} holds results of another mechanism named 'slider_crank'" in err and err.count("\n") == 1
+    assert all(d in err for d in _digests(file)), err
+    assert read_results(out)[0].equals(before)
+
+
+def test_report_refuses_a_store_holding_two_mechanisms_under_one_name(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from tests.support.stores import doctor
+
+    out, file = tmp_path / "out", _lengthened(tmp_path / "longer.toml")
+    assert _run(capsys, out, "slider_crank")[0] == 0
+    mine, family = _digests(file)
+
+    def borrow(frame) -> None:  # type: ignore[no-untyped-def]
+        frame.loc[frame.index[0], "scenario_digest"] = mine  # as a store written before the rule holds
+
+    mixed = doctor(out, tmp_path / "mixed", borrow)
+    assert main(["report", str(mixed), "--out", str(tmp_path / "page")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "more than one mechanism named 'slider_crank'" in err
+    assert mine in err and family in err
+    assert not (tmp_path / "page").exists()

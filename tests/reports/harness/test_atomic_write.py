@@ -44,6 +44,19 @@ def argv(command: str, out: Path, stored: Path) -> list[str]:
     return [a.replace("{stored}", str(stored)) for a in COMMANDS[command]] + [str(out)]
 
 
+def old_text(command: str, stored: Path, folder: Path) -> str:
+    """What an existing output holds before the command replaces it: for `check --update` a
+    baseline (of all but one stored cell: it refuses to overwrite a file that is not one)."""
+    if command != "check --update":
+        return "old\n"
+    made = folder / "made-old-baseline"
+    frame, meta = read_results(stored)
+    gate.write_baseline(made, frame.iloc[1:], meta)
+    text = made.read_text()
+    made.unlink()
+    return text
+
+
 @pytest.fixture(scope="module")
 def stored(tmp_path_factory: pytest.TempPathFactory) -> Path:
     from tests.reports.test_reliability import fake_run
@@ -80,11 +93,12 @@ def test_an_output_that_is_not_a_regular_file_is_refused_untouched(
 @pytest.mark.parametrize("command", COMMANDS)
 def test_a_symlink_is_written_through(tmp_path: Path, stored: Path, command: str, umask: None) -> None:
     real, link = tmp_path / "real", tmp_path / "link"
-    real.write_text("old\n")
+    old = old_text(command, stored, tmp_path)
+    real.write_text(old)
     link.symlink_to(real.name)
     assert main(argv(command, link, stored)) == 0
     assert link.is_symlink() and os.readlink(link) == real.name
-    assert real.read_text() != "old\n" and len(real.read_text()) > 100
+    assert real.read_text() != old and len(real.read_text()) > 100
     assert sorted(p.name for p in tmp_path.iterdir()) == ["link", "real"]
 
 
@@ -94,7 +108,7 @@ def test_modes_follow_the_umask_and_an_existing_file_keeps_its_own(
     tmp_path: Path, stored: Path, command: str, mask: int, umask: None
 ) -> None:
     new, existing = tmp_path / "new", tmp_path / "existing"
-    existing.write_text("old\n")
+    existing.write_text(old_text(command, stored, tmp_path))
     existing.chmod(0o640)
     os.umask(mask)
     assert main(argv(command, new, stored)) == 0
@@ -117,12 +131,12 @@ def full_disk(*args: object) -> None:
 def test_a_full_disk_leaves_the_old_file_and_no_temporary(
     tmp_path: Path, stored: Path, command: str, monkeypatch: pytest.MonkeyPatch, capsys
 ) -> None:
-    old = tmp_path / "old"
-    old.write_text("the old content\n")
+    old, text = tmp_path / "old", old_text(command, stored, tmp_path)
+    old.write_text(text)
     monkeypatch.setattr(os, "fsync", full_disk)
     assert main(argv(command, old, stored)) == 2
     one_line_error(capsys, "No space left on device")
-    assert old.read_text() == "the old content\n"
+    assert old.read_text() == text
     assert [p.name for p in tmp_path.iterdir()] == ["old"]
 
 

@@ -143,5 +143,7 @@ def test_an_engines_extra_columns_are_kept_not_scored(tmp_path: Path) -> None:
     assert score(scenario, imported, "mine").row["error_position"] == 0.0
     frame = truth.to_frame().assign(**{"slott.fx": 1.0})
     frame.to_csv(tmp_path / "bad.csv", index=False)
-    with pytest.raises(TrajectoryFileError, match=r"unknown column 'slott.fx' \(did you mean 'slot.fx'\?\)"):
+    place = len(frame.columns)  # the added column, named by its place: a message quotes no header
+    unknown = rf"line 1, column {place}: not a column name of {scenario.name} \(did you mean 'slot.fx'\?\)"
+    with pytest.raises(TrajectoryFileError, match=unknown):
         read_trajectory(tmp_path / "bad.csv", scenario)
