@@ -170,14 +170,20 @@ DECLARED: tuple[Column, ...] = (
         "runs reporting forces: the larger of driver_force_error and reaction_error (harness.forces)",
     ),
     Column(
+        "force_truth",
+        "",
+        "which force truth the row's forces were measured against (harness.forces.FORCE_TRUTHS); '' "
+        "where none was",
+    ),
+    Column(
         "driver_force_error",
         math.nan,
-        "runs reporting driver forces: error against the native solver's (harness.forces)",
+        "runs reporting driver forces: error against the force truth (harness.forces)",
     ),
     Column(
         "reaction_error",
         math.nan,
-        "runs reporting joint reactions: error against the native solver's (harness.forces)",
+        "runs reporting joint reactions: error against the force truth (harness.forces)",
     ),
     Column("build_time", math.nan, "seconds to build the engine's model (a failed build: up to its failure)"),
     Column("run_time", math.nan, "seconds to simulate, minimum of repeats after a warm-up"),

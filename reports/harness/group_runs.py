@@ -9,6 +9,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import functools
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -150,7 +151,8 @@ def _measure(
     assert adapter is not None
     result, repeats = timed_run(adapter, scenario, setting, np.asarray(scenario.times()), config)
     against = truth.trajectory if isinstance(truth, NamedTruth) else truth
-    compared = measure(scenario, result, against, residual)
+    forces = truth.forces if isinstance(truth, NamedTruth) else ""
+    compared = measure(scenario, result, against, residual, forces)
     if not keep:  # a trajectory not kept is not pickled back (tens of kB a run)
         result = dataclasses.replace(result, trajectory=None)
     return (result, repeats, *compared)
@@ -178,6 +180,8 @@ def _stored(
     row = result_row(scenario, result, is_default, repeats, config.warmup, metrics, levels, note)
     row["engine"] = group.engine  # the name it was asked by, whatever the adapter calls itself
     row["truth"] = truth.name if isinstance(truth, NamedTruth) else ""
+    if not math.isnan(row["error_force"]) and isinstance(truth, NamedTruth):
+        row["force_truth"] = truth.forces
     keep = result.trajectory if is_default and result.status == "ok" else None
     return row, keep.select(scenario.output_bodies) if keep is not None else None
 

@@ -1,0 +1,56 @@
+"""Pinocchio's driving forces and joint reactions (adapters.pinocchio.forces) in every mode, against
+the force truth: Newton-Euler on the closed form for the driven families, the native dynamics'
+multipliers in free dynamics."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from adapters.pinocchio import PinocchioAdapter
+from reports.harness.forces import CLOSED_FORM_FORCES, NATIVE_MULTIPLIERS, force_columns, force_errors
+from reports.harness.truth import independent_truth
+from scenarios.registry import build
+
+ADAPTER = PinocchioAdapter()
+
+
+def _errors(name: str, mode: str | None) -> tuple[dict[str, float], str, int]:
+    scenario = build(name)
+    times = np.asarray(scenario.times())
+    setting = ADAPTER.default_setting(scenario) if mode is None else ADAPTER.free_setting(scenario, mode)
+    run = ADAPTER.simulate(ADAPTER.build(scenario, setting), times)
+    truth = independent_truth(scenario, times)
+    forces = {c: truth.trajectory.extras[c] for c in force_columns(truth.trajectory)}
+    return force_errors(scenario, run, forces), truth.forces, len(force_columns(run))
+
+
+@pytest.mark.parametrize(
+    ("name", "mode", "bound"),
+    [
+        ("slider_crank", None, 1e-13),
+        ("slider_crank/slider_drive", None, 1e-13),
+        ("four_bar", None, 1e-13),
+        ("slider_crank", "dynamic", 1e-9),
+        ("four_bar", "dynamic", 1e-8),
+    ],
+)
+def test_driven_forces_meet_the_newton_euler_truth(name: str, mode: str | None, bound: float) -> None:
+    errors, truth, count = _errors(name, mode)
+    assert truth == CLOSED_FORM_FORCES
+    assert count == 9  # the driver and four joints' (fx, fy)
+    assert errors["driver_force_error"] < bound and errors["reaction_error"] < bound
+
+
+@pytest.mark.parametrize(("name", "count"), [("four_bar_gravity", 8), ("andrews_squeezer", 20)])
+def test_free_dynamics_reactions_meet_the_native_multipliers(name: str, count: int) -> None:
+    """Gravity, and Andrews' spring and motor torque, passed to rnea as the loads they are."""
+    errors, truth, columns = _errors(name, None)
+    assert truth == NATIVE_MULTIPLIERS and columns == count
+    assert errors["reaction_error"] < 1e-7
+
+
+def test_a_force_it_cannot_give_is_named() -> None:
+    scenario = build("spur_gears")
+    with pytest.warns(UserWarning, match="forces not given: a gear as a mimic joint"):
+        ADAPTER.build(scenario, ADAPTER.default_setting(scenario))
