@@ -159,7 +159,9 @@ DECLARED: tuple[Column, ...] = (
     Column(
         "energy_change",
         math.nan,
-        "conservative free dynamics: the run's own change of T + V over its kinetic energy, no truth used",
+        "the run's own energy balance: the change of T + V less the work of its loads and drivers "
+        "(harness.work), over its energy scale, no truth used; NaN where a driven run reports no "
+        "driving force",
     ),
     Column(
         "self_check", "", "'' or what drifted by the run's own figures, no truth used (harness.self_check)"

@@ -53,9 +53,9 @@ def measure(
     if scenario.analysis == "dynamic":
         try:
             metrics["energy_drift"] = energy_drift(scenario, result.trajectory, truth)
-            metrics["energy_change"] = self_check.energy_change(scenario, result.trajectory)
         except (ValueError, KeyError) as error:
             notes.append(f"energy drift not measured: {error}")
+    metrics["energy_change"] = self_check.energy_change(scenario, result.trajectory)  # no truth used
     judged = result.engine != NATIVE or judges_native(force_truth)  # never against its own forces
     if force_columns(result.trajectory) and judged:
         native = {c: truth.extras[c] for c in force_columns(truth)}

@@ -4,11 +4,12 @@ A run can end `ok` and be wrong: an explicit integrator past its stability limit
 torn apart. Two figures any user can compute from the run itself say so:
 - the constraint residual (already on every row, in characteristic lengths and radians): above
   RESIDUAL_LIMIT the mechanism has come apart;
-- in a conservative free-dynamics scene (no drivers, no applied loads, no damping: gravity and
-  springs only), the change of T + V over the run, over its own largest kinetic energy (at least the
-  energy scale of harness.energy_drift): above ENERGY_LIMIT the energy balance is broken. Where
-  loads or drivers do work, the balance needs their work, which a run does not always report, and
-  only the residual is used.
+- its energy balance: the change of T + V over the run less the work done on it since the start
+  (applied loads' power, dampers' dissipation, and the drivers' power from the driving forces the
+  run reports, each integrated over the grid by the trapezoidal rule with the run's own
+  accelerations as end slopes where the power's rate is known), over its own largest kinetic
+  energy or work (at least the energy scale of harness.energy_drift): above ENERGY_LIMIT the
+  balance is broken. A driven run that reports no driving force has no balance (NaN).
 The limits are wide on purpose: every default run of the suites sits orders of magnitude below them
 (tests/reports/harness/test_self_check.py), so a mark means a gross drift, not a setting's accuracy.
 """
@@ -20,6 +21,7 @@ import math
 import numpy as np
 
 from reports.harness.energy_drift import energy_scale, kinetic_energy, mechanical_energy
+from reports.harness.work import work
 from scenarios.forces import AppliedForce, AppliedTorque, RotationalSpringDamper, SpringDamper
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -41,13 +43,21 @@ def conservative(scenario: Scenario) -> bool:
 
 
 def energy_change(scenario: Scenario, trajectory: Trajectory) -> float:
-    """The largest |E(t) - E(t0)| over the run's own energy scale; NaN where T + V need not stay
-    constant or the run gives no velocities."""
-    if not conservative(scenario) or trajectory.velocity is None:
+    """The largest |E(t) - E(t0) - W(t)| over the run's own energy scale, W the work done on the
+    mechanism since t0 (harness.work); NaN where the run gives no velocities, or drives the
+    mechanism without reporting its driving forces."""
+    if trajectory.velocity is None or not any(body.mass or body.inertia for body in scenario.bodies):
+        return math.nan
+    done = work(scenario, trajectory)
+    if done is None:
         return math.nan
     energy = mechanical_energy(scenario, trajectory)
-    scale = max(float(np.max(kinetic_energy(scenario, trajectory))), energy_scale(scenario, trajectory))
-    return float(np.max(np.abs(energy - energy[0]))) / scale
+    scale = max(
+        float(np.max(kinetic_energy(scenario, trajectory))),
+        float(np.max(np.abs(done))),
+        energy_scale(scenario, trajectory),
+    )
+    return float(np.max(np.abs(energy - energy[0] - done))) / scale
 
 
 def verdict(residual: float, energy: float) -> str:
@@ -56,7 +66,10 @@ def verdict(residual: float, energy: float) -> str:
     if math.isfinite(residual) and residual > RESIDUAL_LIMIT:
         found.append(f"constraint residual {residual:.2g} (limit {RESIDUAL_LIMIT:g})")
     if math.isfinite(energy) and energy > ENERGY_LIMIT:
-        found.append(f"energy T + V changed by {energy:.2g} of its kinetic energy (limit {ENERGY_LIMIT:g})")
+        found.append(
+            f"energy T + V changed by {energy:.2g} of its energy scale beyond the work done on it "
+            f"(limit {ENERGY_LIMIT:g})"
+        )
     if math.isinf(residual):
         found.append("constraint residual not finite")
     return "drifted: " + "; ".join(found) if found else ""

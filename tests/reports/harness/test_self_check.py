@@ -16,6 +16,7 @@ from adapters import load as load_engine
 from reference_solver.dynamics import simulate
 from reports.cli.main import main
 from reports.harness import self_check
+from reports.harness.energy_drift import energy_scale, kinetic_energy
 from scenarios.trajectory import Trajectory
 from tests.support.engines import ENGINES
 
@@ -85,3 +86,50 @@ def test_no_alarm_on_a_default_run(engine: str) -> None:
     assert result.status == "ok" and result.trajectory is not None
     assert self_check.of_trajectory(scenario, result.trajectory) == ""
     assert self_check.energy_change(scenario, result.trajectory) < self_check.ENERGY_LIMIT / 1000
+
+
+def _driven_truth() -> tuple[scenarios.Scenario, Trajectory]:
+    """The slider-crank's closed form with its Newton-Euler driving torque: an exact run."""
+    from reports.harness.truth import independent_truth
+
+    scenario = scenarios.build("slider_crank")
+    return scenario, independent_truth(scenario, np.asarray(scenario.times())).trajectory
+
+
+def test_a_driven_run_balances_its_drivers_work_and_a_biased_torque_breaks_it() -> None:
+    """The driver's work from its torque balances T; a constant bias b adds b * omega * t to the work,
+    which the balance shows as b * omega * t_end over the energy scale: pinned just inside and just
+    outside ENERGY_LIMIT."""
+    scenario, truth = _driven_truth()
+    exact = self_check.energy_change(scenario, truth)
+    assert exact < 1e-5  # third-order quadrature on 200 steps a revolution
+    scale = max(float(np.max(kinetic_energy(scenario, truth))), energy_scale(scenario, truth))
+    angle = 50.0 * scenario.t_end
+
+    def biased(fraction: float) -> float:
+        bias = fraction * self_check.ENERGY_LIMIT * scale / angle
+        extras = {**truth.extras, "crank_drive.force": truth.extras["crank_drive.force"] + bias}
+        return self_check.energy_change(scenario, dataclasses.replace(truth, extras=extras))
+
+    assert biased(0.9) < self_check.ENERGY_LIMIT < biased(1.1)
+    assert "T + V changed" in self_check.verdict(0.0, biased(1.1))
+
+
+def test_a_driven_run_without_its_driving_force_has_no_balance() -> None:
+    scenario, truth = _driven_truth()
+    bare = dataclasses.replace(truth, extras={})
+    assert math.isnan(self_check.energy_change(scenario, bare))
+
+
+def test_andrews_motor_work_balances_to_fourth_order_and_a_lost_turn_does_not() -> None:
+    """Andrews' motor torque and spring: the native truth's balance (Hermite quadrature with its
+    accelerations) stays under 1e-3 on the 30-step grid; the same run with the motor's body turned
+    at 0.9 of its rate (a run that lost work) is marked."""
+    scenario = scenarios.build("andrews_squeezer")
+    truth = simulate(scenario, np.asarray(scenario.times()), 1e-12).trajectory()
+    assert self_check.energy_change(scenario, truth) < 1e-3
+    assert truth.velocity is not None
+    slowed = truth.velocity.copy()
+    slowed[:, truth.bodies.index("k1"), 2] *= 0.9
+    lost = self_check.energy_change(scenario, dataclasses.replace(truth, velocity=slowed))
+    assert lost > self_check.ENERGY_LIMIT
