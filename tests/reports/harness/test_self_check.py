@@ -133,3 +133,42 @@ def test_andrews_motor_work_balances_to_fourth_order_and_a_lost_turn_does_not() 
     slowed[:, truth.bodies.index("k1"), 2] *= 0.9
     lost = self_check.energy_change(scenario, dataclasses.replace(truth, velocity=slowed))
     assert lost > self_check.ENERGY_LIMIT
+
+
+def test_the_step_halving_limit_is_pinned_on_each_side() -> None:
+    limit = self_check.STEP_LIMIT
+    assert self_check.verdict(0.0, 0.0, 0.99 * limit) == ""
+    assert self_check.verdict(0.0, 0.0, 1.01 * limit).startswith("drifted: positions moved by")
+    assert self_check.verdict(0.0, 0.0, math.inf).startswith("drifted: positions moved by inf")
+
+
+def _andrews_on_mujoco(stiffness: float) -> float:
+    scenario = scenarios.build("andrews_squeezer", overrides={"spring_stiffness": stiffness})
+    adapter = load_engine("mujoco")
+    setting = adapter.default_setting(scenario).replace(dt=5e-5)
+    times = np.asarray(scenario.times())
+    run = adapter.run(scenario, setting, times)
+    assert run.status == "ok" and run.trajectory is not None
+    return self_check.step_halving(adapter, scenario, setting, times, run.trajectory)
+
+
+def test_step_halving_catches_andrews_past_mujocos_stability_limit() -> None:
+    """At 1e6 N/m and dt = 5e-5 s RK4 is past its limit: the run ends ok about 146 characteristic
+    lengths off its truth, its residual under its limit; at half the step it moves as far (measured
+    146). At the test set's 4530 N/m the same step moves it by 2e-5."""
+    assert _andrews_on_mujoco(1e6) > 100 * self_check.STEP_LIMIT
+    assert _andrews_on_mujoco(4530.0) < self_check.STEP_LIMIT / 100
+
+
+def test_a_setting_without_a_step_is_not_halved() -> None:
+    scenario = scenarios.build("four_bar")
+    adapter = load_engine("pinocchio")
+    setting = adapter.default_setting(scenario)  # kinematic: Newton at each time, no step
+    assert math.isnan(self_check.step_halving(adapter, scenario, setting, np.zeros(1), None))  # type: ignore[arg-type]
+
+
+def test_solve_warns_when_half_the_step_moves_the_run(capsys, tmp_path) -> None:
+    argv = ["solve", "andrews_squeezer", "--set", "spring_stiffness=1e6", "--engine", "mujoco"]
+    assert main([*argv, "--setting", "dt=5e-5", "--out", str(tmp_path / "x.csv")]) == 0
+    err = capsys.readouterr().err
+    assert err.startswith("mbxval: warning: mujoco drifted:") and "at half the step" in err
