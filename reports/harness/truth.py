@@ -118,15 +118,16 @@ def independent_truth(scenario: Scenario, times: np.ndarray) -> NamedTruth:
     if scenario.analysis == "dynamic":
         from reference_solver.dynamics import simulate  # on first use, as above
 
-        found = simulate(scenario, grid, DYNAMIC_RTOL).trajectory()
-        return NamedTruth(found, NATIVE_DYNAMIC, NATIVE_MULTIPLIERS if force_columns(found) else "")
-    found = closed_form(scenario, grid)
-    if found is not None:
-        forces = closed_form_forces(scenario, found)
+        dynamic = simulate(scenario, grid, DYNAMIC_RTOL).trajectory()
+        return NamedTruth(dynamic, NATIVE_DYNAMIC, NATIVE_MULTIPLIERS if force_columns(dynamic) else "")
+    exact_motion = closed_form(scenario, grid)
+    if exact_motion is not None:
+        forces = closed_form_forces(scenario, exact_motion)
         if forces is not None:
-            extras = {**found.extras, **forces}
-            return NamedTruth(dataclasses.replace(found, extras=extras), CLOSED_FORM, CLOSED_FORM_FORCES)
-        return _native_forced(with_native_forces(scenario, grid, found), CLOSED_FORM)
+            extras = {**exact_motion.extras, **forces}
+            forced = dataclasses.replace(exact_motion, extras=extras)
+            return NamedTruth(forced, CLOSED_FORM, CLOSED_FORM_FORCES)
+        return _native_forced(with_native_forces(scenario, grid, exact_motion), CLOSED_FORM)
     return _native_forced(with_native_forces(scenario, grid, native_refined(scenario, grid)), NATIVE_REFINED)
 
 
