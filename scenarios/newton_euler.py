@@ -3,7 +3,8 @@
 Each moving body's free-body diagram, its frame at the centre of mass:
     m a = m g + sum of the forces on it,   J alpha = sum of the moments about its centre of mass,
 with one unknown force (fx, fy) per revolute joint, one force normal to the axis and one couple per
-prismatic joint, three per ground joint, and one force or torque per driven coordinate; applied
+prismatic joint, three per ground joint, one tangential force per gear mesh (acting on the gears'
+angles as the gear law does), and one force or torque per driven coordinate; applied
 loads and spring-dampers are evaluated from the motion itself. The equations of all bodies at one
 time are a square linear system in the unknowns, solved time by time. Nothing here uses a
 constraint Jacobian or a solver: the lever arms are the joints' points on their bodies, so that on
@@ -22,6 +23,7 @@ import numpy as np
 from scenarios.bodies import GROUND, Point
 from scenarios.drivers import AbsoluteDriver, RelativeRotationDriver
 from scenarios.forces import AppliedForce, AppliedTorque, RotationalSpringDamper, SpringDamper
+from scenarios.gears import GearPair
 from scenarios.joints import Ground, Prismatic, Revolute
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -141,6 +143,8 @@ def body_forces(scenario: Scenario, motion: Trajectory) -> dict[str, np.ndarray]
                 d.unknown(d.pair(first, second, unit, zero))
             if isinstance(joint, Prismatic):
                 d.unknown(d.pair(first, second, nowhere, ones))  # the couple it transmits
+        elif isinstance(joint, GearPair):
+            d.unknown(_mesh_column(d, joint))
         elif isinstance(joint, Ground):
             for k in range(3):
                 unit = np.zeros((d.count, 3))
@@ -162,6 +166,8 @@ def body_forces(scenario: Scenario, motion: Trajectory) -> dict[str, np.ndarray]
             magnitude = next(solved)
             out[f"{joint.name}.fx"], out[f"{joint.name}.fy"] = (magnitude[:, None] * normal).T
             next(solved)  # the couple: no canonical column
+        elif isinstance(joint, GearPair):
+            next(solved)  # the mesh's tangential force: no canonical column
         else:
             for _ in range(3):
                 next(solved)
@@ -179,6 +185,19 @@ def _directions(d: _Diagram, joint: Revolute | Prismatic) -> list[np.ndarray]:
     turn = d.angle(joint.p_i.body)
     c, s = np.cos(turn), np.sin(turn)
     return [np.stack([-(s * ax + c * ay), c * ax - s * ay], axis=-1)]
+
+
+def _mesh_column(d: _Diagram, gear: GearPair) -> np.ndarray:
+    """A unit tangential mesh force as the gear law declares it, a pair of torques on the angles
+    alone: r_i on gear i, r_j on gear j (-r_j inside a ring), their sum's opposite on the carrier;
+    the mesh does not push the centres, as no engine's gear coupling does."""
+    zero, ones = np.zeros((d.count, 2)), np.ones(d.count)
+    rj = -gear.radius_j if gear.internal else gear.radius_j
+    return (
+        d.wrench(gear.gear_i, zero, zero, gear.radius_i * ones)
+        + d.wrench(gear.gear_j, zero, zero, rj * ones)
+        + d.wrench(gear.carrier, zero, zero, -(gear.radius_i + rj) * ones)
+    )
 
 
 def _driver_column(d: _Diagram, driver: object) -> np.ndarray:

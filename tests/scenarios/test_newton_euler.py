@@ -25,7 +25,14 @@ def _relative(found: dict[str, np.ndarray], reference: dict[str, np.ndarray]) ->
 
 @pytest.mark.parametrize(
     "name",
-    ["slider_crank", "slider_crank/offset", "slider_crank/slider_drive", "four_bar", "four_bar/crossed"],
+    [
+        "slider_crank",
+        "slider_crank/offset",
+        "slider_crank/slider_drive",
+        "four_bar",
+        "four_bar/crossed",
+        "planetary_gears",
+    ],
 )
 def test_the_closed_form_forces_are_the_native_inverse_dynamics(name: str) -> None:
     scenario = build(name)
@@ -66,6 +73,6 @@ def test_a_crank_alone_needs_the_torque_of_its_angular_acceleration() -> None:
 
 
 def test_an_element_without_a_free_body_model_is_named() -> None:
-    scenario = build("spur_gears")
-    with pytest.raises(NoForceTruth, match="GearPair 'mesh'"):
+    scenario = build("rack_pinion")
+    with pytest.raises(NoForceTruth, match="RackPinion 'mesh'"):
         body_forces(scenario, exact(scenario, scenario.times()))
