@@ -164,6 +164,12 @@ DECLARED: tuple[Column, ...] = (
         "driving force",
     ),
     Column(
+        "step_halving",
+        math.nan,
+        "a run with no truth: the largest position difference from the same setting at half its step "
+        "dt (harness.self_check), characteristic lengths and radians; NaN where not made",
+    ),
+    Column(
         "self_check", "", "'' or what drifted by the run's own figures, no truth used (harness.self_check)"
     ),
     Column(

@@ -22,6 +22,7 @@ from reports.harness.isolation import Outcome, Worker
 from reports.harness.metrics import Residual
 from reports.harness.planning import Group
 from reports.harness.rows import failure_row, result_row
+from reports.harness.self_check import step_halving
 from reports.harness.truth import NamedTruth
 from reports.harness.warm import warm
 from scenarios import Scenario
@@ -153,6 +154,9 @@ def _measure(
     against = truth.trajectory if isinstance(truth, NamedTruth) else truth
     forces = truth.forces if isinstance(truth, NamedTruth) else ""
     compared = measure(scenario, result, against, residual, forces)
+    if isinstance(truth, str) and result.trajectory is not None:  # unjudged: its own step halving
+        grid = np.asarray(scenario.times())
+        compared[0]["step_halving"] = step_halving(adapter, scenario, setting, grid, result.trajectory)
     if not keep:  # a trajectory not kept is not pickled back (tens of kB a run)
         result = dataclasses.replace(result, trajectory=None)
     return (result, repeats, *compared)
