@@ -30,6 +30,7 @@ from scenarios.drivers import (
     RelativeRotationDriver,
 )
 from scenarios.forces import AppliedForce, AppliedTorque, RotationalSpringDamper, SpringDamper
+from scenarios.gears import GearPair
 from scenarios.joints import Prismatic, Revolute
 from scenarios.scenario import Scenario
 
@@ -42,10 +43,10 @@ def unsupported(scenario: Scenario, pm: PinModel, constraint_rows: ConstraintRow
     if pm.tree.mimics:
         return "forces not given: a gear as a mimic joint transmits no force Pinocchio reports"
     for item in constraint_rows.closures:
-        if not isinstance(item, Revolute):
+        if not isinstance(item, Revolute | GearPair):
             return (
                 f"forces not given: the {type(item).__name__} '{getattr(item, 'name', '')}' closes a "
-                "loop as a row whose force has no body-force form here (revolute closures only)"
+                "loop as a row whose force has no body-force form here (revolute and gear rows only)"
             )
     if scenario.cams:
         return "forces not given: a cam contact's force has no body-force form here"
@@ -64,12 +65,14 @@ class ForceReader:
         self.reactions = [
             j for j in scenario.joints if isinstance(j, Revolute | Prismatic) and j.name in self.tree_joints
         ]
-        self.closures = [j for j in constraint_rows.closures if isinstance(j, Revolute)]
+        self.closures = [j for j in constraint_rows.closures if isinstance(j, Revolute | GearPair)]
+        self.loops = [j for j in self.closures if isinstance(j, Revolute)]
+        """The closures with a reaction column: the revolute ones."""
 
     def columns(self) -> list[str]:
         """The columns `read` fills, in its order."""
         names = [label for driver in self.scenario.drivers for label in force_labels(driver)]
-        for joint in (*self.reactions, *self.closures):
+        for joint in (*self.reactions, *self.loops):
             names += [f"{joint.name}.fx", f"{joint.name}.fy"]
         return names
 
@@ -80,7 +83,7 @@ class ForceReader:
         tau = pin.rnea(model, data, q, v, a).copy()
         loads = self.loads.generalized(t, q, v) if self.loads is not None else 0.0
         mu = np.linalg.lstsq(rows.jac[:, : model.nv].T, tau - loads, rcond=None)[0]
-        closing = 2 * len(self.closures)
+        closing = sum(2 if isinstance(j, Revolute) else 1 for j in self.closures)
         wrenches = [*self._closure_wrenches(mu[:closing]), *self._driver_wrenches(mu[closing:])]
         wrenches += self._load_wrenches(t, q, v)
         pin.forwardKinematics(model, data, q, v, a)
@@ -88,10 +91,15 @@ class ForceReader:
         out = list(mu[closing:])
         for joint in self.reactions:
             out += list(self._reaction(joint))
-        for k, joint in enumerate(self.closures):
-            first = 1.0 if joint.p_i.body != GROUND else -1.0
-            out += list(first * mu[2 * k : 2 * k + 2])
+        for closure, force in zip(self.closures, self._split(mu[:closing]), strict=True):
+            if isinstance(closure, Revolute):
+                out += list((1.0 if closure.p_i.body != GROUND else -1.0) * force)
         return np.array(out)
+
+    def _split(self, mu: np.ndarray) -> list[np.ndarray]:
+        """The closures' multipliers, one array each (two for a revolute, one for a gear row)."""
+        ends = np.cumsum([2 if isinstance(j, Revolute) else 1 for j in self.closures])
+        return np.split(mu, ends[:-1]) if self.closures else []
 
     def _reaction(self, joint: Revolute | Prismatic) -> np.ndarray:
         """The force tree joint `joint` applies to its first moving body, world axes."""
@@ -106,10 +114,22 @@ class ForceReader:
         return (1.0 if edge.child == first else -1.0) * force[:2]
 
     def _closure_wrenches(self, mu: np.ndarray) -> list[Wrench]:
+        """A revolute row's mu is the force on p_i (its opposite on p_j); a gear row's acts on the
+        angles as its law: r_i mu on gear i, r_j mu on gear j (-r_j in a ring), their sum's opposite
+        on the carrier."""
         out: list[Wrench] = []
-        for k, joint in enumerate(self.closures):
-            force = mu[2 * k : 2 * k + 2]
-            out += [(joint.p_i, force, 0.0), (joint.p_j, -force, 0.0)]
+        zero = np.zeros(2)
+        for joint, force in zip(self.closures, self._split(mu), strict=True):
+            if isinstance(joint, Revolute):
+                out += [(joint.p_i, force, 0.0), (joint.p_j, -force, 0.0)]
+                continue
+            ri, rj = joint.radius_i, -joint.radius_j if joint.internal else joint.radius_j
+            m = float(force[0])
+            out += [
+                (Point(joint.gear_i), zero, ri * m),
+                (Point(joint.gear_j), zero, rj * m),
+                (Point(joint.carrier), zero, -(ri + rj) * m),
+            ]
         return out
 
     def _driver_wrenches(self, mu: np.ndarray) -> list[Wrench]:
