@@ -79,10 +79,13 @@ class ForceReader:
     def read(self, t: float, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> np.ndarray:
         """Every column at one state."""
         model, data = self.pm.model, self.data
-        rows = self.constraint_rows.evaluate(Snapshot(self.pm, data, (q, v, self.empty, self.empty), 0))
-        tau = pin.rnea(model, data, q, v, a).copy()
-        loads = self.loads.generalized(t, q, v) if self.loads is not None else 0.0
-        mu = np.linalg.lstsq(rows.jac[:, : model.nv].T, tau - loads, rcond=None)[0]
+        mu = self.empty  # a tree with no drivers: no rows, every joint in the tree
+        if self.closures or self.scenario.drivers:
+            snapshot = Snapshot(self.pm, data, (q, v, self.empty, self.empty), 0)
+            rows = self.constraint_rows.evaluate(snapshot)
+            tau = pin.rnea(model, data, q, v, a).copy()
+            loads = self.loads.generalized(t, q, v) if self.loads is not None else 0.0
+            mu = np.linalg.lstsq(rows.jac[:, : model.nv].T, tau - loads, rcond=None)[0]
         closing = sum(2 if isinstance(j, Revolute) else 1 for j in self.closures)
         wrenches = [*self._closure_wrenches(mu[:closing]), *self._driver_wrenches(mu[closing:])]
         wrenches += self._load_wrenches(t, q, v)

@@ -42,9 +42,12 @@ def test_driven_forces_meet_the_newton_euler_truth(name: str, mode: str | None, 
     assert errors["driver_force_error"] < bound and errors["reaction_error"] < bound
 
 
-@pytest.mark.parametrize(("name", "count"), [("four_bar_gravity", 8), ("andrews_squeezer", 20)])
+@pytest.mark.parametrize(
+    ("name", "count"), [("four_bar_gravity", 8), ("andrews_squeezer", 20), ("compound_pendulum", 4)]
+)
 def test_free_dynamics_reactions_meet_the_native_multipliers(name: str, count: int) -> None:
-    """Gravity, and Andrews' spring and motor torque, passed to rnea as the loads they are."""
+    """Gravity, and Andrews' spring and motor torque, passed to rnea as the loads they are; a tree
+    with no rows (the compound pendulum) has its joints' reactions alone."""
     errors, truth, columns = _errors(name, None)
     assert truth == NATIVE_MULTIPLIERS and columns == count
     assert errors["reaction_error"] < 1e-7
