@@ -1,4 +1,4 @@
-"""The force level against the native solver: known errors measured exactly, the scale rule (a
+"""The force level against the force truth: known errors measured exactly, the scale rule (a
 torque counted over the characteristic length), and real engines' forces at measured bounds."""
 
 from __future__ import annotations
