@@ -2,11 +2,13 @@
 
 Kinematic scenarios (mode newton): its one knob is the Newton-Raphson tolerance (on both |dq| and
 |C|, relative to the scenario's characteristic length); its ladder traces the native solver's own
-work-precision curve. `inverse_dynamics=1` adds the drivers' forces, the joints' reactions and the
-energies as extra columns. Dynamic scenarios (modes DOP853 and Radau, coordinate partitioning):
-the knob is the integrator's relative tolerance `rtol`; mode ali3p, the second native method (index-3
-augmented Lagrangian with projections, which passes singular configurations), takes the step `dt`
-instead, so that each native method can check the other.
+work-precision curve. `inverse_dynamics=1` (the default where every body has mass) adds the
+drivers' forces, the joints' reactions and the energies as extra columns, judged against the
+independent force truth where the scenario has one (reports.harness.forces). Dynamic scenarios
+(modes DOP853 and Radau, coordinate partitioning): the knob is the integrator's relative tolerance
+`rtol`; mode ali3p, the second native method (index-3 augmented Lagrangian with projections, which
+passes singular configurations), takes the step `dt` instead, so that each native method can check
+the other.
 """
 
 from __future__ import annotations
@@ -89,6 +91,8 @@ class ReferenceAdapter(Adapter):
     def default_setting(self, scenario: Scenario) -> Setting:
         if scenario.analysis == "dynamic":
             return Setting.of("DOP853", rtol=1e-12)
+        if all(body.mass > 0.0 for body in scenario.bodies):
+            return Setting.of("newton", tolerance=1e-12, inverse_dynamics=1)
         return Setting.of("newton", tolerance=1e-12)
 
     def ladder(self, scenario: Scenario) -> list[Setting]:

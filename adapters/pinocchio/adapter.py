@@ -23,6 +23,7 @@ step (adapters.pinocchio.settings, adapters.lattice).
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -32,8 +33,10 @@ import pinocchio as pin
 from adapters.base import Adapter, EngineFailure, Option, Setting, Unsupported
 from adapters.modes import ADAPTER, ENGINE, Mode
 from adapters.pinocchio.cam_dynamics import CamDynamicSolver
-from adapters.pinocchio.constraint_rows import ConstraintRows, force_labels
+from adapters.pinocchio.constraint_rows import ConstraintRows
 from adapters.pinocchio.dynamics import DynamicSolver, dynamic_support
+from adapters.pinocchio.forces import ForceReader
+from adapters.pinocchio.forces import unsupported as forces_unsupported
 from adapters.pinocchio.free_start import free_start
 from adapters.pinocchio.kinematics import KinematicSolver, body_motion
 from adapters.pinocchio.loads import Loads
@@ -121,6 +124,8 @@ class Built:
     dynamics: DynamicSolver | None
     start: tuple[float, np.ndarray, np.ndarray] | None = None
     """(t0, z0, v0): the consistent start found at build time, outside the timed run."""
+    forces: ForceReader | None = None
+    """Reads the driving forces and reactions at the run's states; None where it cannot."""
 
 
 class PinocchioAdapter(Adapter):
@@ -260,6 +265,11 @@ class PinocchioAdapter(Adapter):
                 solver = DynamicSolver if dynamic_support(scenario, tree) is None else RowDynamicSolver
                 dynamics = solver(pm, constraint_rows, dt, gains, loads, method)
         built = Built(scenario, mode, pm, kinematics, dynamics)
+        missing = forces_unsupported(scenario, pm, constraint_rows)
+        if missing is None:
+            built.forces = ForceReader(scenario, pm, constraint_rows)
+        else:  # named in the row's warnings
+            warnings.warn(missing, stacklevel=2)
         built.start = self._start(built, float(scenario.times()[0]))
         return built
 
@@ -308,8 +318,7 @@ class PinocchioAdapter(Adapter):
         data = pm.model.createData()
         levels = np.stack([body_motion(pm, data, (q[k], v[k], a[k]), bodies) for k in range(len(times))])
         extras = {f"{c.name}.phi": z[:, nq + k].copy() for k, c in enumerate(scenario.cams)}
-        if built.dynamics is not None and scenario.analysis == "kinematic" and not scenario.cams:
-            extras.update(_drive_forces(built, q, v, times))
+        extras.update(_forces(built, q, v, a, times))
         for column in scenario.angle_outputs:  # Andrews' joint angles from Pinocchio's body angles
             body, base = column.body, column.relative_to
             extras[column.name] = np.array([pm.angle(body, qk) - pm.angle(base, qk) for qk in q])
@@ -317,11 +326,12 @@ class PinocchioAdapter(Adapter):
         return Trajectory(grid, bodies, levels[:, 0], levels[:, 1], levels[:, 2], extras)
 
 
-def _drive_forces(built: Built, q: np.ndarray, v: np.ndarray, times: np.ndarray) -> dict[str, np.ndarray]:
-    """Each driver's force or torque at the grid states, from the dynamics' multipliers."""
-    assert built.dynamics is not None
-    labels = [label for driver in built.scenario.drivers for label in force_labels(driver)]
-    if not labels:
+def _forces(
+    built: Built, q: np.ndarray, v: np.ndarray, a: np.ndarray, times: np.ndarray
+) -> dict[str, np.ndarray]:
+    """Every driving force and joint reaction at the grid states (adapters.pinocchio.forces); none
+    where the model's forces cannot be read (the build warns why: `forces_unsupported`)."""
+    if built.forces is None:
         return {}
-    forces = np.array([built.dynamics.drive_forces(float(t), q[k], v[k]) for k, t in enumerate(times)])
-    return {label: forces[:, k].copy() for k, label in enumerate(labels)}
+    found = np.array([built.forces.read(float(t), q[k], v[k], a[k]) for k, t in enumerate(times)])
+    return {label: found[:, k].copy() for k, label in enumerate(built.forces.columns())}

@@ -112,10 +112,6 @@ class DynamicSolver:
         """The constrained acceleration with every driver row held to its prescribed motion."""
         return self._driven(t, q, v)[0]
 
-    def drive_forces(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-        """The generalized force each driver row applies (its multiplier) at this state."""
-        return self._driven(t, q, v)[1]
-
     def _driven(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The acceleration and the drive rows' forces mu: the drives apply tau + J^T mu."""
         tau = self.tau(t, q, v)

@@ -60,11 +60,3 @@ class RowDynamicSolver(DynamicSolver):
             Snapshot(self.pm, self.kin_data, (q, v, self.empty, self.empty), 0)
         )
         return self.forward(t, q, v, rows.jac, self.wanted(rows, t))
-
-    def drive_forces(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-        """The drive rows' multipliers (the last rows: closures first), the forces they apply."""
-        self.acceleration(t, q, v)
-        drives = self.all_constraint_rows.drive_rows(
-            Snapshot(self.pm, self.kin_data, (q, v, self.empty, self.empty), 0)
-        )
-        return np.asarray(self.data.lambda_c)[-drives.val.size :].copy() if drives.val.size else self.empty

@@ -164,7 +164,8 @@ def solve_trajectory(
     if result.status != "ok" or result.trajectory is None:
         when = "" if result.failure_time is None else f" at t={result.failure_time:.6g}"
         raise UsageError(f"{engine} {result.status}{when}: {result.message}")
-    drift = self_check.of_trajectory(scenario, result.trajectory)
+    halving = self_check.step_halving(adapter, scenario, setting, times, result.trajectory)
+    drift = self_check.of_trajectory(scenario, result.trajectory, halving)
     if drift:  # ok by the engine, wrong by its own figures: said, the exit status stays 0
         print(f"mbxval: warning: {engine} {drift}", file=sys.stderr)
     return result.trajectory.select(scenario.output_bodies)

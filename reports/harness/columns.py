@@ -195,7 +195,15 @@ DECLARED: tuple[Column, ...] = (
     Column(
         "energy_change",
         math.nan,
-        "conservative free dynamics: the run's own change of T + V over its kinetic energy, no truth used",
+        "the run's own energy balance: the change of T + V less the work of its loads and drivers "
+        "(harness.work), over its energy scale, no truth used; NaN where a driven run reports no "
+        "driving force",
+    ),
+    Column(
+        "step_halving",
+        math.nan,
+        "a run with no truth: the largest position difference from the same setting at half its step "
+        "dt (harness.self_check), characteristic lengths and radians; NaN where not made",
     ),
     Column(
         "self_check", "", "'' or what drifted by the run's own figures, no truth used (harness.self_check)"
@@ -206,14 +214,20 @@ DECLARED: tuple[Column, ...] = (
         "runs reporting forces: the larger of driver_force_error and reaction_error (harness.forces)",
     ),
     Column(
+        "force_truth",
+        "",
+        "which force truth the row's forces were measured against (harness.forces.FORCE_TRUTHS); '' "
+        "where none was",
+    ),
+    Column(
         "driver_force_error",
         math.nan,
-        "runs reporting driver forces: error against the native solver's (harness.forces)",
+        "runs reporting driver forces: error against the force truth (harness.forces)",
     ),
     Column(
         "reaction_error",
         math.nan,
-        "runs reporting joint reactions: error against the native solver's (harness.forces)",
+        "runs reporting joint reactions: error against the force truth (harness.forces)",
     ),
     Column(
         "build_time",

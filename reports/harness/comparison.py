@@ -10,7 +10,7 @@ from adapters import NATIVE
 from adapters.base import RunResult
 from reports.harness import self_check
 from reports.harness.energy_drift import energy_drift
-from reports.harness.forces import force_columns, force_errors
+from reports.harness.forces import force_columns, force_errors, judges_native
 from reports.harness.level_error import level_errors
 from reports.harness.metrics import Residual, compared_levels, error_metrics, residual_metrics
 from reports.harness.startup import startup
@@ -23,13 +23,18 @@ class ComparisonError(Exception):
 
 
 def measure(
-    scenario: Scenario, result: RunResult, truth: Trajectory | str, residual: Residual | None
+    scenario: Scenario,
+    result: RunResult,
+    truth: Trajectory | str,
+    residual: Residual | None,
+    force_truth: str = "",
 ) -> tuple[dict[str, float], tuple[str, ...], str]:
-    """Error metrics, compared levels and a note (why something is missing) for one run."""
+    """Error metrics, compared levels and a note (why something is missing) for one run; `force_truth`
+    names the truth's forces (a native run's forces are judged only against one not its own)."""
     if result.status != "ok" or result.trajectory is None:
         return {}, (), ""
-    if isinstance(truth, str):
-        return {}, (), truth
+    if isinstance(truth, str):  # no truth: the run's own figures only (harness.self_check)
+        return {"energy_change": self_check.energy_change(scenario, result.trajectory)}, (), truth
     notes = []
     try:
         metrics = error_metrics(scenario, result.trajectory, truth)
@@ -50,10 +55,11 @@ def measure(
     if scenario.analysis == "dynamic":
         try:
             metrics["energy_drift"] = energy_drift(scenario, result.trajectory, truth)
-            metrics["energy_change"] = self_check.energy_change(scenario, result.trajectory)
         except (ValueError, KeyError) as error:
             notes.append(f"energy drift not measured: {error}")
-    if force_columns(result.trajectory) and result.engine != NATIVE:  # the native forces are the truth's
+    metrics["energy_change"] = self_check.energy_change(scenario, result.trajectory)  # no truth used
+    judged = result.engine != NATIVE or judges_native(force_truth)  # never against its own forces
+    if force_columns(result.trajectory) and judged:
         native = {c: truth.extras[c] for c in force_columns(truth)}
         if not native:
             notes.append("forces not compared: the truth carries none (harness.truth.with_native_forces)")

@@ -1,11 +1,14 @@
-"""The force level: a run's driving forces and joint reactions against the native solver's.
+"""The force level: a run's driving forces and joint reactions against the force truth.
 
 A run may carry its drivers' forces (`<driver>.force`; `<driver>.x.force`, `<driver>.y.force` for a
 point's two rows) and its joints' reactions (`<joint>.fx`, `<joint>.fy`: the force the joint
-applies to its first moving body, world axes). They are set against the native solver's: in a
-driven scenario its inverse dynamics on its own kinematic analysis at TRUTH_TOLERANCE, in free
-dynamics the multipliers of its dynamic truth where the truth carries them. FORCE_DEFINITION says
-how the error is made one number.
+applies to its first moving body, world axes). They are set against the force truth, which each row
+names (FORCE_TRUTHS): where the scenario has a closed form and every element a free-body model,
+Newton-Euler body by body on the closed-form motion (scenarios.newton_euler), independent of every
+engine, the native solver included; elsewhere the native solver's own: in a driven scenario its
+inverse dynamics on its kinematic analysis at TRUTH_TOLERANCE, in free dynamics the multipliers of
+its dynamic truth. A native run is judged only against a truth that is not its own.
+FORCE_DEFINITION says how the error is made one number.
 """
 
 from __future__ import annotations
@@ -15,12 +18,18 @@ import math
 import numpy as np
 
 from scenarios.drivers import AbsoluteDriver, RelativeRotationDriver
+from scenarios.newton_euler import NoForceTruth, body_forces
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
 TRUTH_TOLERANCE = 1e-12
 """Newton's tolerance for every native truth: the kinematic one (harness.truth, stress.truth) and the
 force level's inverse dynamics on the native analysis. Defined here, the lowest module that needs it."""
+CLOSED_FORM_FORCES = "Newton-Euler body by body on the closed form"
+NATIVE_INVERSE = f"native inverse dynamics, tolerance {TRUTH_TOLERANCE:g}"
+NATIVE_MULTIPLIERS = "native dynamics' multipliers"
+FORCE_TRUTHS = (CLOSED_FORM_FORCES, NATIVE_INVERSE, NATIVE_MULTIPLIERS)
+"""What a row's `force_truth` may say; only the first is independent of the native solver."""
 DRIVER_SUFFIX = ".force"
 REACTION_SUFFIXES = (".fx", ".fy")
 FORCE_DEFINITION = (
@@ -34,6 +43,22 @@ FORCE_DEFINITION = (
 def force_columns(result: Trajectory) -> list[str]:
     """The driver-force and reaction columns the run carries."""
     return [c for c in result.extras if c.endswith((DRIVER_SUFFIX, *REACTION_SUFFIXES))]
+
+
+def judges_native(force_truth: str) -> bool:
+    """Whether a force truth is independent of the native solver, so that a native run's forces can
+    be judged against it."""
+    return force_truth == CLOSED_FORM_FORCES
+
+
+def closed_form_forces(scenario: Scenario, motion: Trajectory) -> dict[str, np.ndarray] | None:
+    """The Newton-Euler forces on a closed-form motion; None where an element has no free-body model
+    (gears, cams) or the motion has no configuration somewhere (NaN)."""
+    try:
+        found = body_forces(scenario, motion)
+    except NoForceTruth:
+        return None
+    return found if all(np.all(np.isfinite(v)) for v in found.values()) else None
 
 
 def native_forces(scenario: Scenario, times: np.ndarray) -> dict[str, np.ndarray]:

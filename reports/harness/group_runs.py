@@ -9,6 +9,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import functools
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -21,6 +22,7 @@ from reports.harness.isolation import Outcome, Worker
 from reports.harness.metrics import Residual
 from reports.harness.planning import Group
 from reports.harness.rows import failure_row, result_row
+from reports.harness.self_check import step_halving
 from reports.harness.truth import NamedTruth
 from reports.harness.warm import warm
 from scenarios import Scenario
@@ -150,7 +152,11 @@ def _measure(
     assert adapter is not None
     result, repeats = timed_run(adapter, scenario, setting, np.asarray(scenario.times()), config)
     against = truth.trajectory if isinstance(truth, NamedTruth) else truth
-    compared = measure(scenario, result, against, residual)
+    forces = truth.forces if isinstance(truth, NamedTruth) else ""
+    compared = measure(scenario, result, against, residual, forces)
+    if isinstance(truth, str) and result.trajectory is not None:  # unjudged: its own step halving
+        grid = np.asarray(scenario.times())
+        compared[0]["step_halving"] = step_halving(adapter, scenario, setting, grid, result.trajectory)
     if not keep:  # a trajectory not kept is not pickled back (tens of kB a run)
         result = dataclasses.replace(result, trajectory=None)
     return (result, repeats, *compared)
@@ -180,6 +186,8 @@ def _stored(
     row["is_untuned"] = group.is_untuned(setting)
     row["engine"] = group.engine  # the name it was asked by, whatever the adapter calls itself
     row["truth"] = truth.name if isinstance(truth, NamedTruth) else ""
+    if not math.isnan(row["error_force"]) and isinstance(truth, NamedTruth):
+        row["force_truth"] = truth.forces
     keep = result.trajectory if is_default and result.status == "ok" else None
     return row, keep.select(scenario.output_bodies) if keep is not None else None
 

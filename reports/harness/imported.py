@@ -73,10 +73,13 @@ def score(
         trajectory=imported.trajectory,
         measures=measures(imported),
     )
-    metrics, levels, note = measure(scored, result, found.trajectory, residual or reference_residual())
+    metrics, levels, note = measure(
+        scored, result, found.trajectory, residual or reference_residual(), found.forces
+    )
     row = result_row(scenario, result, True, 0, 0, metrics, levels, "; ".join((*imported.notes, note)))
     row.update(
         truth=found.name,
+        force_truth="" if math.isnan(metrics.get("error_force", math.nan)) else found.forces,
         revision=provenance.git_revision(),
         stale=False,
         message=row["message"].strip("; "),

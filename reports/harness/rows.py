@@ -130,5 +130,6 @@ def result_row(
             metrics.get("constraint_residual", math.nan),
             metrics.get("energy_change", math.nan),
         )
-        row["self_check"] = self_check.verdict(residual, energy)
+        halving = metrics.get("step_halving", math.nan)
+        row["self_check"] = self_check.verdict(residual, energy, halving)
     return row

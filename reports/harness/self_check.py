@@ -4,11 +4,17 @@ A run can end `ok` and be wrong: an explicit integrator past its stability limit
 torn apart. Two figures any user can compute from the run itself say so:
 - the constraint residual (already on every row, in characteristic lengths and radians): above
   RESIDUAL_LIMIT the mechanism has come apart;
-- in a conservative free-dynamics scene (no drivers, no applied loads, no damping: gravity and
-  springs only), the change of T + V over the run, over its own largest kinetic energy (at least the
-  energy scale of harness.energy_drift): above ENERGY_LIMIT the energy balance is broken. Where
-  loads or drivers do work, the balance needs their work, which a run does not always report, and
-  only the residual is used.
+- its energy balance: the change of T + V over the run less the work done on it since the start
+  (applied loads' power, dampers' dissipation, and the drivers' power from the driving forces the
+  run reports, each integrated over the grid by the trapezoidal rule with the run's own
+  accelerations as end slopes where the power's rate is known), over its own largest kinetic
+  energy or work (at least the energy scale of harness.energy_drift): above ENERGY_LIMIT the
+  balance is broken. A driven run that reports no driving force has no balance (NaN);
+- step halving (Erez, Tassa and Todorov 2015 compare engines this way): the largest difference in
+  positions (characteristic lengths, radians) between the run and the same setting at half its step
+  `dt`; above STEP_LIMIT the run has not converged in its step. It costs a second run, about twice
+  the first, so it is made only where there is no truth to judge the run: `mbxval solve`, and the
+  runner's rows whose truth could not be made (harness.group_runs).
 The limits are wide on purpose: every default run of the suites sits orders of magnitude below them
 (tests/reports/harness/test_self_check.py), so a mark means a gross drift, not a setting's accuracy.
 """
@@ -19,13 +25,17 @@ import math
 
 import numpy as np
 
+from adapters.base import Adapter, Setting
 from reports.harness.energy_drift import energy_scale, kinetic_energy, mechanical_energy
+from reports.harness.level_error import level_errors
+from reports.harness.work import work
 from scenarios.forces import AppliedForce, AppliedTorque, RotationalSpringDamper, SpringDamper
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
 RESIDUAL_LIMIT = 1e-3
 ENERGY_LIMIT = 1e-2
+STEP_LIMIT = 1e-2
 
 
 def conservative(scenario: Scenario) -> bool:
@@ -41,33 +51,61 @@ def conservative(scenario: Scenario) -> bool:
 
 
 def energy_change(scenario: Scenario, trajectory: Trajectory) -> float:
-    """The largest |E(t) - E(t0)| over the run's own energy scale; NaN where T + V need not stay
-    constant or the run gives no velocities."""
-    if not conservative(scenario) or trajectory.velocity is None:
+    """The largest |E(t) - E(t0) - W(t)| over the run's own energy scale, W the work done on the
+    mechanism since t0 (harness.work); NaN where the run gives no velocities, or drives the
+    mechanism without reporting its driving forces."""
+    if trajectory.velocity is None or not any(body.mass or body.inertia for body in scenario.bodies):
+        return math.nan
+    done = work(scenario, trajectory)
+    if done is None:
         return math.nan
     energy = mechanical_energy(scenario, trajectory)
-    scale = max(float(np.max(kinetic_energy(scenario, trajectory))), energy_scale(scenario, trajectory))
-    return float(np.max(np.abs(energy - energy[0]))) / scale
+    scale = max(
+        float(np.max(kinetic_energy(scenario, trajectory))),
+        float(np.max(np.abs(done))),
+        energy_scale(scenario, trajectory),
+    )
+    return float(np.max(np.abs(energy - energy[0] - done))) / scale
 
 
-def verdict(residual: float, energy: float) -> str:
+def step_halving(
+    adapter: Adapter, scenario: Scenario, setting: Setting, times: np.ndarray, trajectory: Trajectory
+) -> float:
+    """The largest position difference between `trajectory` and the same setting's run at half its
+    step, in characteristic lengths and radians; NaN where the setting has no step `dt`, infinite
+    where the halved run is not ok (a step that only works at that size is no converged one)."""
+    step = setting.get("dt")
+    if step is None:
+        return math.nan
+    half = adapter.run(scenario, setting.replace(dt=float(step) / 2.0), times)
+    if half.status != "ok" or half.trajectory is None:
+        return math.inf
+    return level_errors(scenario, trajectory, half.trajectory, ("position",))["error_position"]
+
+
+def verdict(residual: float, energy: float, halving: float = math.nan) -> str:
     """'' for a run with no sign of drift; else what drifted, with the figure and its limit."""
     found = []
     if math.isfinite(residual) and residual > RESIDUAL_LIMIT:
         found.append(f"constraint residual {residual:.2g} (limit {RESIDUAL_LIMIT:g})")
     if math.isfinite(energy) and energy > ENERGY_LIMIT:
-        found.append(f"energy T + V changed by {energy:.2g} of its kinetic energy (limit {ENERGY_LIMIT:g})")
+        found.append(
+            f"energy T + V changed by {energy:.2g} of its energy scale beyond the work done on it "
+            f"(limit {ENERGY_LIMIT:g})"
+        )
+    if halving > STEP_LIMIT:
+        found.append(f"positions moved by {halving:.2g} at half the step (limit {STEP_LIMIT:g})")
     if math.isinf(residual):
         found.append("constraint residual not finite")
     return "drifted: " + "; ".join(found) if found else ""
 
 
-def of_trajectory(scenario: Scenario, trajectory: Trajectory) -> str:
+def of_trajectory(scenario: Scenario, trajectory: Trajectory, halving: float = math.nan) -> str:
     """The verdict for a trajectory outside the runner (`mbxval solve`): its constraint residual by
-    the native constraint equations, and its own energy change."""
+    the native constraint equations, its own energy balance, and its step halving where made."""
     from reference_solver import constraint_residual  # on first use: the native solver is slow to import
 
     residual = float(
         np.max(np.abs(np.asarray(constraint_residual(scenario, trajectory), dtype=float)), initial=0.0)
     )
-    return verdict(residual, energy_change(scenario, trajectory))
+    return verdict(residual, energy_change(scenario, trajectory), halving)

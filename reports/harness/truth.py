@@ -7,8 +7,9 @@ lobed cam profiles, scenario files that are not a family's own mechanism) the tr
 solver solved on a grid REFINE times finer at TRUTH_TOLERANCE, sampled on the scenario's grid.
 A dynamic scenario (no closed form) takes the native forward dynamics at DYNAMIC_RTOL, tighter
 than any setting the native engine is measured at. Each truth carries its name, stored with every
-row measured against it. The force level's truth is always the native solver's: its inverse
-dynamics added to a kinematic truth, the multipliers a dynamic truth carries (harness.forces).
+row measured against it. The force level's truth is named too (harness.forces): Newton-Euler on the
+closed form where every element has a free-body model, else the native inverse dynamics added to
+a kinematic truth, or the multipliers a dynamic truth carries.
 """
 
 from __future__ import annotations
@@ -19,7 +20,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from reports.harness.columns import CLOSED_FORM
-from reports.harness.forces import TRUTH_TOLERANCE, native_forces
+from reports.harness.forces import (
+    CLOSED_FORM_FORCES,
+    NATIVE_INVERSE,
+    NATIVE_MULTIPLIERS,
+    TRUTH_TOLERANCE,
+    closed_form_forces,
+    force_columns,
+    native_forces,
+)
 from scenarios import Scenario, Trajectory
 from scenarios.closed_form import NoClosedForm, exact
 
@@ -37,6 +46,8 @@ class NamedTruth:
 
     trajectory: Trajectory
     name: str
+    forces: str = ""
+    """The force truth the trajectory's force columns are (harness.forces.FORCE_TRUTHS); '' none."""
 
 
 def closed_form(scenario: Scenario, times: np.ndarray) -> Trajectory | None:
@@ -107,11 +118,22 @@ def independent_truth(scenario: Scenario, times: np.ndarray) -> NamedTruth:
     if scenario.analysis == "dynamic":
         from reference_solver.dynamics import simulate  # on first use, as above
 
-        return NamedTruth(simulate(scenario, grid, DYNAMIC_RTOL).trajectory(), NATIVE_DYNAMIC)
-    found = closed_form(scenario, grid)
-    if found is not None:
-        return NamedTruth(with_native_forces(scenario, grid, found), CLOSED_FORM)
-    return NamedTruth(with_native_forces(scenario, grid, native_refined(scenario, grid)), NATIVE_REFINED)
+        dynamic = simulate(scenario, grid, DYNAMIC_RTOL).trajectory()
+        return NamedTruth(dynamic, NATIVE_DYNAMIC, NATIVE_MULTIPLIERS if force_columns(dynamic) else "")
+    exact_motion = closed_form(scenario, grid)
+    if exact_motion is not None:
+        forces = closed_form_forces(scenario, exact_motion)
+        if forces is not None:
+            extras = {**exact_motion.extras, **forces}
+            forced = dataclasses.replace(exact_motion, extras=extras)
+            return NamedTruth(forced, CLOSED_FORM, CLOSED_FORM_FORCES)
+        return _native_forced(with_native_forces(scenario, grid, exact_motion), CLOSED_FORM)
+    return _native_forced(with_native_forces(scenario, grid, native_refined(scenario, grid)), NATIVE_REFINED)
+
+
+def _native_forced(truth: Trajectory, name: str) -> NamedTruth:
+    """A kinematic truth named, with NATIVE_INVERSE as its force truth where it carries forces."""
+    return NamedTruth(truth, name, NATIVE_INVERSE if force_columns(truth) else "")
 
 
 def with_native_forces(scenario: Scenario, times: np.ndarray, truth: Trajectory) -> Trajectory:
