@@ -35,6 +35,8 @@ TABLE_COLUMNS = (
     "energy_drift",
     "driver_force_error",
     "reaction_error",
+    "startup_excess",
+    "startup_time",
     "build_time",
     "run_time",
     "steps",
@@ -54,6 +56,8 @@ HEADINGS = {
     "energy_drift": "energy drift",
     "driver_force_error": "driver force err",
     "reaction_error": "reaction err",
+    "startup_excess": "start-up excess",
+    "startup_time": "start-up [s]",
     "build_time": "build [s]",
     "run_time": "run [s]",
 }
