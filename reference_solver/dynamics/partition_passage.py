@@ -1,0 +1,65 @@
+"""A singular passage as the partitioned method meets it: C_q itself losing rank (A02's links lining
+up), not merely the chosen dependent block degrading.
+
+The partitioned method repartitions when its dependent block's reciprocal condition number falls
+REPARTITION times below its value at the choice (forward.py). Away from a passage a fresh partition
+restores it. Next to one no partition can: every square block of C_q is singular where C_q loses rank
+(interlacing), so the fresh block is as degraded as the old, and each repartition restarted the
+integrator a tenth nearer the singular instant with a small first step. On A02's two loops over
+10 s the events came at 4e-2, 4e-3, ..., 4e-6 of C_q's smallest singular value, the last 7e-3 s
+after the passage at t = 5.1132, where Newton on the dependent coordinates could no longer converge
+(the dependent block singular to round-off) and the run failed with a bare "did not converge".
+
+So a repartition that regains less than GAIN of what the old block lost marks a passage: the
+integrator then goes on with the fresh partition and no repartitioning until the conditioning has
+risen RECOVERED times above its value at the passage's start, as it crosses the passages it steps
+over in one step; if Newton fails meanwhile, `singular_passage` says so, with the time and how far
+C_q had lost rank, and names the method that crosses (ALI3-P).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from reference_solver.errors import SingularConfigurationError
+from reference_solver.system import ConstraintSystem
+
+GAIN = 0.3
+"""A fresh partition below GAIN times the old one's conditioning at its choice (the old one lost a
+factor REPARTITION = 0.1 when the event fired) regained less than a third of it: C_q is losing rank."""
+RECOVERED = 2.0
+"""The passage is over when the conditioning is RECOVERED times its value at the passage's start."""
+
+
+def is_passage(fresh: float, before: float) -> bool:
+    """Whether a fresh partition's conditioning `fresh` shows a passage, the old partition's having
+    been `before` at its choice."""
+    return fresh < GAIN * before
+
+
+def rank_margin(system: ConstraintSystem, jac: np.ndarray) -> tuple[float, int]:
+    """C_q's smallest structural singular value over its largest (scaled C_q), and how many of its
+    singular values lie within 10 times that smallest: how far, and by how many ranks, it is from
+    losing rank."""
+    s = np.linalg.svd(system.scaled_jacobian(jac), compute_uv=False)
+    s = s[: min(system.size, system.unknowns)]
+    if s.size == 0 or s[0] == 0.0:
+        return 0.0, 0
+    return float(s[-1] / s[0]), int(np.count_nonzero(s <= 10.0 * s[-1]))
+
+
+def singular_passage(
+    system: ConstraintSystem, t: float, crossing: tuple[float, np.ndarray]
+) -> SingularConfigurationError:
+    """The error of a partitioned run that could not cross the singular passage it entered at
+    `crossing` (the time, and C_q there), failing at `t`."""
+    start, jac = crossing
+    margin, ranks = rank_margin(system, jac)
+    return SingularConfigurationError(
+        f"{system.scenario.name}: singular passage at t={t:.6g}: C_q is losing {ranks} rank(s) (its "
+        f"smallest singular value {margin:.2g} of its largest at t={start:.6g}), so no choice of "
+        "independent coordinates stays regular and the partitioned method cannot cross it: use "
+        "--mode ali3p",
+        time=t,
+        rank_deficiency=ranks,
+    )
