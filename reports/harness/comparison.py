@@ -13,7 +13,8 @@ from reports.harness.energy_drift import energy_drift
 from reports.harness.forces import force_columns, force_errors
 from reports.harness.level_error import level_errors
 from reports.harness.metrics import Residual, compared_levels, error_metrics, residual_metrics
-from scenarios import Scenario
+from scenarios import Scenario, all_families
+from scenarios.family import Criterion
 from scenarios.trajectory import Trajectory
 
 
@@ -51,6 +52,12 @@ def measure(
             metrics["energy_change"] = self_check.energy_change(scenario, result.trajectory)
         except (ValueError, KeyError) as error:
             notes.append(f"energy drift not measured: {error}")
+    benchmark = _family_criterion(scenario)
+    if benchmark is not None:
+        try:
+            metrics.update(benchmark(scenario, result.trajectory))
+        except (ValueError, KeyError) as error:
+            notes.append(f"benchmark criterion not measured: {error}")
     if force_columns(result.trajectory) and result.engine != NATIVE:  # the native forces are the truth's
         native = {c: truth.extras[c] for c in force_columns(truth)}
         if not native:
@@ -61,3 +68,9 @@ def measure(
             except (ValueError, KeyError) as error:
                 notes.append(f"forces not compared: {error}")
     return metrics, levels, "; ".join(notes)
+
+
+def _family_criterion(scenario: Scenario) -> Criterion | None:
+    """The published benchmark criterion of the scenario's family (Family.criterion), if any."""
+    found = all_families().get(scenario.family)
+    return found.criterion if found is not None else None

@@ -18,6 +18,7 @@ import math
 from dataclasses import replace
 
 from scenarios.families import four_bar_chain
+from scenarios.families.n_four_bar_reference import criterion
 from scenarios.families.released import released
 from scenarios.family import MAX_GRID_STEPS, Family, Parameter, angle, count, positive
 from scenarios.scenario import ParameterValue, Scenario, require_finite
@@ -62,4 +63,8 @@ FAMILY = Family(
     build=_build,
     variants={"spec": {"loops": 40, "t_end": 20.0}},
     dynamic=True,
+    criterion=criterion,
+    singular_passages=(
+        "every swing passes the horizontal position, where all links line up and C_q loses N ranks"
+    ),
 )
