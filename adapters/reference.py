@@ -34,7 +34,7 @@ TOLERANCES = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
 ALI3P_STEPS_PER_PERIOD = 1000.0
 """ALI3-P's steps per shortest period (adapters.step_rule), its default where the scenario passes
 singular configurations: on IFToMM A02 B0's position and velocity to a few 1e-4 of the
-specification's 1e-3 (docs/dynamics.md)."""
+specification's 1e-3 (docs/a02.md)."""
 RTOLS = (1e-6, 1e-8, 1e-10, 1e-12)
 
 
