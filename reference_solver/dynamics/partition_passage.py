@@ -56,10 +56,10 @@ def singular_passage(
     start, jac = crossing
     margin, ranks = rank_margin(system, jac)
     return SingularConfigurationError(
-        f"{system.scenario.name}: singular passage at t={t:.6g}: C_q is losing {ranks} rank(s) (its "
-        f"smallest singular value {margin:.2g} of its largest at t={start:.6g}), so no choice of "
-        "independent coordinates stays regular and the partitioned method cannot cross it: use "
-        "--mode ali3p",
+        f"{system.scenario.name}: singular passage at t={t:.6g}: C_q is losing rank (at t={start:.6g} "
+        f"its smallest singular value was {margin:.2g} of its largest, {ranks} within 10 times that), "
+        "so no choice of independent coordinates stays regular and the partitioned method cannot "
+        "cross it: use --mode ali3p",
         time=t,
         rank_deficiency=ranks,
     )
