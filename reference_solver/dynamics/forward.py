@@ -21,7 +21,7 @@ from reference_solver.dynamics.compiled_rates import partitioned_ode
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.partition import Partitioned, State, choose_independent
-from reference_solver.dynamics.partition_passage import RECOVERED, is_passage, singular_passage
+from reference_solver.dynamics.partition_passage import is_passage, singular_passage
 from reference_solver.errors import AssemblyError, ConvergenceError, SolverError
 from reference_solver.layout import Layout
 from reference_solver.solution import Analysis
@@ -169,34 +169,32 @@ def _partitioned(
 ) -> tuple[list[State], list[np.ndarray], int, int]:
     """The partitioned method over `grid` from `state`: integrated by `method` at the tolerance of
     `scales` (rtol, the grid's span, the energy scale), partitioned anew wherever the chosen
-    independent coordinates' conditioning degrades REPARTITION times, except across a singular
-    passage (partition_passage), where no partition helps: there it goes on until the conditioning
-    has recovered, or says which passage it could not cross. Returns the states and work at the
-    grid times, the right-hand sides evaluated and the partitions made."""
+    independent coordinates' conditioning degrades REPARTITION times. Next to a singular passage
+    (partition_passage), where no partition helps, a failure says which passage it could not cross.
+    Returns the states and work at the grid times, the right-hand sides evaluated and the
+    partitions made."""
     rtol, span, energy_scale = scales
     states: list[State] = [state]
     works: list[np.ndarray] = [np.zeros(3)]
     evaluations, partitions, work = 0, 0, np.zeros(3)
     t, k = float(grid[0]), 1
     name = system.scenario.name
-    before, recovered = 0.0, False
-    crossing: tuple[float, np.ndarray] | None = None  # a passage's start and C_q there, while crossing
+    before = 0.0
+    passage: tuple[float, np.ndarray] | None = None  # a passage approached: the last repartition, C_q there
     while k < len(grid):
         independent = choose_independent(system, state.jac)
         ode = partitioned_ode(system, mass, loads, state.q, independent)
         partitions += 1
         chosen = ode.conditioning(state.jac)
-        crossing = None if recovered else (t, state.jac) if is_passage(chosen, before) else None
+        passage = (t, state.jac) if is_passage(chosen, before) else None
         before = chosen
         cols = system.column_scales[independent]
         atol = np.concatenate([rtol * cols, rtol * cols / span, rtol * energy_scale * np.ones(3)])
-        level, sign = (RECOVERED, 1.0) if crossing else (REPARTITION, -1.0)
 
-        def watched(t: float, y: np.ndarray, ode: Partitioned = ode, mark: float = level * chosen) -> float:
-            return ode.conditioning(ode.positions(t, y[: ode.size])[1]) - mark
+        def degraded(t: float, y: np.ndarray, ode: Partitioned = ode, chosen: float = chosen) -> float:
+            return ode.conditioning(ode.positions(t, y[: ode.size])[1]) - REPARTITION * chosen
 
-        watched.terminal = True  # type: ignore[attr-defined]
-        watched.direction = sign  # type: ignore[attr-defined]
+        degraded.terminal = True  # type: ignore[attr-defined]
         try:
             sol = solve_ivp(
                 ode.rates,
@@ -205,33 +203,32 @@ def _partitioned(
                 method=anchored(method, ode),
                 rtol=rtol,
                 atol=atol,
-                events=watched,
+                events=degraded,
                 dense_output=True,
             )
+            evaluations += ode.evaluations
+            if sol.status == -1:
+                if passage is not None:
+                    raise singular_passage(system, float(sol.t[-1]), passage)
+                raise SolverError(f"{name}: the integrator failed after t={t:.6g}: {sol.message}")
+            end = float(sol.t_events[0][0]) if sol.status == 1 else float(grid[-1])
+            ode.restart(state.q)
+            outputs = grid[k:][grid[k:] <= end]
+            for time, y, output in _walk(sol, outputs):
+                if output:
+                    states.append(ode.state(time, y))
+                    works.append(y[2 * ode.size :].copy())
+                ode.anchor(time, y)
+            k += len(outputs)
+            if sol.status == 1:
+                t, y = end, sol.y_events[0][0]
+                state, work = ode.state(t, y), y[2 * ode.size :].copy()
         except (ConvergenceError, np.linalg.LinAlgError) as error:
-            if crossing is not None:
-                raise singular_passage(system, getattr(error, "time", None) or t, crossing) from error
+            if passage is not None:
+                raise singular_passage(system, getattr(error, "time", None) or t, passage) from error
             if isinstance(error, ConvergenceError):
                 raise
             raise SolverError(f"{name}: singular augmented matrix after t={t:.6g}: {error}") from error
-        evaluations += ode.evaluations
-        if sol.status == -1:
-            if crossing is not None:
-                raise singular_passage(system, float(sol.t[-1]), crossing)
-            raise SolverError(f"{name}: the integrator failed after t={t:.6g}: {sol.message}")
-        end = float(sol.t_events[0][0]) if sol.status == 1 else float(grid[-1])
-        ode.restart(state.q)
-        outputs = grid[k:][grid[k:] <= end]
-        for time, y, output in _walk(sol, outputs, end):
-            if output:
-                states.append(ode.state(time, y))
-                works.append(y[2 * ode.size :].copy())
-            ode.anchor(time, y)
-        k += len(outputs)
-        recovered = crossing is not None
-        if sol.status == 1:
-            t, y = end, sol.y_events[0][0]
-            state, work = ode.state(t, y), y[2 * ode.size :].copy()
     return states, works, evaluations, partitions
 
 
@@ -254,12 +251,10 @@ def anchored(method: str, ode: Partitioned) -> type[OdeSolver]:
     return Anchored
 
 
-def _walk(sol: object, outputs: np.ndarray, end: float) -> Iterator[tuple[float, np.ndarray, bool]]:
+def _walk(sol: object, outputs: np.ndarray) -> Iterator[tuple[float, np.ndarray, bool]]:
     """The dense solution at each output time (flagged True), with the integrator's own steps in
-    between and after the last output up to `end` (flagged False): walking through them keeps
-    Newton on the dependent coordinates near, up to the state at `end` where the next partition
-    starts (next to a singular passage Newton started a step further back may land on another
-    branch of the motion)."""
+    between (flagged False): walking through them keeps Newton on the dependent coordinates near.
+    Every step before the last output is walked (a step past one output comes before the next)."""
     step_times, step_states = sol.t, sol.y.T  # type: ignore[attr-defined]
     k = 0
     for time in outputs:
@@ -267,9 +262,6 @@ def _walk(sol: object, outputs: np.ndarray, end: float) -> Iterator[tuple[float,
             yield float(step_times[k]), step_states[k], False
             k += 1
         yield float(time), sol.sol(time), True  # type: ignore[attr-defined]
-    while k < len(step_times) and step_times[k] < end:
-        yield float(step_times[k]), step_states[k], False
-        k += 1
 
 
 def angle_columns(scenario: Scenario, layout: Layout, q: np.ndarray) -> dict[str, np.ndarray]:
