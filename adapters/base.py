@@ -10,6 +10,8 @@ A subclass provides exactly:
     version() -> str                           the installed engine's version
     supports(scenario) -> str | None           None, or why the engine cannot represent it faithfully
     default_setting(scenario) -> Setting       the setting used by `mbxval solve` and the status matrix
+                                               (and may say why it departs from the engine's usual
+                                               one: default_reason(scenario) -> str)
     ladder(scenario) -> list[Setting]          the settings ladder: settings for the work-precision
                                                curves (`sweep`, its old name, still works: deprecated);
                                                a mode named UNTUNED in it is the engine's own
@@ -107,6 +109,11 @@ class Adapter:
 
     def default_setting(self, scenario: Scenario) -> Setting:
         raise NotImplementedError
+
+    def default_reason(self, scenario: Scenario) -> str:
+        """Why the default setting for `scenario` is not the engine's usual one ('' where it is):
+        `mbxval list` prints it beside the scenario."""
+        return ""
 
     def ladder(self, scenario: Scenario) -> list[Setting]:
         """The settings ladder: the settings the work-precision curves run over (by default the

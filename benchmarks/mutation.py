@@ -248,7 +248,13 @@ MODULES: dict[str, tuple[str, ...]] = {
     # --- native dynamics (session 8, s8-mut2) ---
     "reference_solver/dynamics/loads.py": (*FORCE_ELEMENT_TESTS, *DRIVEN_DYNAMICS_TESTS),
     "reference_solver/dynamics/mass.py": (f"{DYNAMICS}test_mass.py", *DRIVEN_DYNAMICS_TESTS),
-    "reference_solver/dynamics/inverse.py": (f"{DYNAMICS}test_inverse_dynamics.py",),
+    "reference_solver/dynamics/inverse.py": (
+        f"{DYNAMICS}test_inverse_dynamics.py",
+        f"{DYNAMICS}test_compiled_inverse.py",
+    ),
+    "reference_solver/dynamics/compiled_inverse.py": (f"{DYNAMICS}test_compiled_inverse.py",),
+    "reference_solver/fast/inverse_kernel.py": (f"{DYNAMICS}test_compiled_inverse.py",),
+    "reference_solver/dynamics/partition_passage.py": (f"{DYNAMICS}test_partition_passage.py",),
     "reference_solver/dynamics/augmented.py": (
         f"{DYNAMICS}test_augmented.py",
         *DRIVEN_DYNAMICS_TESTS,

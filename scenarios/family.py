@@ -156,6 +156,10 @@ ClosedForm = Callable[[Scenario, np.ndarray], Trajectory]
 """`closed_form(scenario, times)`: the exact trajectory of a family's own mechanism on `times`."""
 
 
+Criterion = Callable[[Scenario, Trajectory], dict[str, float]]
+"""`criterion(scenario, trajectory)`: a published benchmark's figures of a run of the family."""
+
+
 class NoClosedForm(ValueError):
     """The scenario has no closed form: it is not a family's own mechanism, or its family has none."""
 
@@ -179,6 +183,13 @@ class Family:
     dynamic: bool = False
     """Forward dynamics (gravity, forces) rather than a driven kinematic analysis: left out of the
     kinematic catalogue until the engines are compared on dynamics."""
+    criterion: Criterion | None = None
+    """The figures a published benchmark of the family judges a run by (`criterion(scenario,
+    trajectory)` -> {"benchmark_error", "benchmark_limit", "invariant_error"}); None where none."""
+    singular_passages: str = ""
+    """Why the family's motion passes configurations where C_q loses rank ('' where it does not):
+    a method that needs independent coordinates cannot be relied on through them, so engines
+    choose a default that passes them (the native engine: ALI3-P) and `mbxval list` says why."""
 
     @property
     def defaults(self) -> dict[str, ParameterValue]:

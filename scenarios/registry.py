@@ -68,6 +68,13 @@ def family(name: str) -> Family:
     return known[name]
 
 
+def singular_passages(scenario: Scenario) -> str:
+    """Why `scenario`'s motion passes singular configurations, as its family declares
+    (Family.singular_passages); '' where it does not or its family is not built in."""
+    found = all_families().get(scenario.family)
+    return found.singular_passages if found is not None else ""
+
+
 def build(
     name: str, variant: str = "default", overrides: Mapping[str, ParameterValue] | None = None
 ) -> Scenario:

@@ -38,26 +38,36 @@ def accelerations(
     return solution[:n], solution[n:] / norms
 
 
-def constraint_outputs(system: ConstraintSystem, jac: np.ndarray, lam: np.ndarray) -> dict[str, float]:
-    """Joint reactions `<joint>.fx/.fy` (the force the joint applies to its first moving body, global
-    axes) and driving forces `<driver>.force` (minus the multiplier: the generalized force the driver
-    applies along its coordinate; `<row>.force` for drivers of several rows)."""
-    out: dict[str, float] = {}
+def output_rows(system: ConstraintSystem) -> tuple[list[tuple[str, int]], list[tuple[str, slice, int]]]:
+    """Where each output of `constraint_outputs` comes from: each driver row's force column and row
+    ('<driver>.force', or '<row>.force' for drivers of several rows), and each joint's name, rows
+    and the first column of its first moving body (whose x and y rows give the reaction)."""
+    drivers: list[tuple[str, int]] = []
+    joints: list[tuple[str, slice, int]] = []
     constraints = (*system.scenario.joints, *system.scenario.drivers)
     for constraint, eq, start in zip(constraints, system.equations, system.offsets, strict=False):
-        rows = slice(int(start), int(start) + eq.size)
+        first = int(start)
         if isinstance(constraint, Driver):
-            if eq.size == 1:
-                out[f"{eq.name}.force"] = -float(lam[rows][0])
-            else:
-                for label, value in zip(eq.labels, lam[rows], strict=True):
-                    out[f"{label}.force"] = -float(value)
+            labels = [eq.name] if eq.size == 1 else list(eq.labels)
+            drivers += [(f"{label}.force", first + k) for k, label in enumerate(labels)]
             continue
         if not isinstance(constraint, Revolute | Prismatic | RevoluteRevolute):
             continue
         moving = [p.body for p in (constraint.p_i, constraint.p_j) if p.body != GROUND]
         col = system.layout.body_column(moving[0])
         assert col is not None
+        joints.append((eq.name, slice(first, first + eq.size), col))
+    return drivers, joints
+
+
+def constraint_outputs(system: ConstraintSystem, jac: np.ndarray, lam: np.ndarray) -> dict[str, float]:
+    """Joint reactions `<joint>.fx/.fy` (the force the joint applies to its first moving body, global
+    axes) and driving forces `<driver>.force` (minus the multiplier: the generalized force the driver
+    applies along its coordinate; `<row>.force` for drivers of several rows)."""
+    drivers, joints = output_rows(system)
+    out: dict[str, float] = {}
+    for name, rows, col in joints:  # the joints' rows come before the drivers'
         force = -(jac[rows, col : col + 2].T @ lam[rows])
-        out[f"{eq.name}.fx"], out[f"{eq.name}.fy"] = float(force[0]), float(force[1])
+        out[f"{name}.fx"], out[f"{name}.fy"] = float(force[0]), float(force[1])
+    out.update({name: -float(lam[row]) for name, row in drivers})
     return out

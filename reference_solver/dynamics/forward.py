@@ -21,7 +21,8 @@ from reference_solver.dynamics.compiled_rates import partitioned_ode
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.partition import Partitioned, State, choose_independent
-from reference_solver.errors import AssemblyError, SolverError
+from reference_solver.dynamics.partition_passage import is_passage, singular_passage
+from reference_solver.errors import AssemblyError, ConvergenceError, SolverError
 from reference_solver.layout import Layout
 from reference_solver.solution import Analysis
 from reference_solver.system import ConstraintSystem
@@ -168,19 +169,25 @@ def _partitioned(
 ) -> tuple[list[State], list[np.ndarray], int, int]:
     """The partitioned method over `grid` from `state`: integrated by `method` at the tolerance of
     `scales` (rtol, the grid's span, the energy scale), partitioned anew wherever the chosen
-    independent coordinates' conditioning degrades REPARTITION times. Returns the states and work
-    at the grid times, the right-hand sides evaluated and the partitions made."""
+    independent coordinates' conditioning degrades REPARTITION times. Next to a singular passage
+    (partition_passage), where no partition helps, a failure says which passage it could not cross.
+    Returns the states and work at the grid times, the right-hand sides evaluated and the
+    partitions made."""
     rtol, span, energy_scale = scales
     states: list[State] = [state]
     works: list[np.ndarray] = [np.zeros(3)]
     evaluations, partitions, work = 0, 0, np.zeros(3)
     t, k = float(grid[0]), 1
     name = system.scenario.name
+    before = 0.0
+    passage: tuple[float, np.ndarray] | None = None  # a passage approached: the last repartition, C_q there
     while k < len(grid):
         independent = choose_independent(system, state.jac)
         ode = partitioned_ode(system, mass, loads, state.q, independent)
         partitions += 1
         chosen = ode.conditioning(state.jac)
+        passage = (t, state.jac) if is_passage(chosen, before) else None
+        before = chosen
         cols = system.column_scales[independent]
         atol = np.concatenate([rtol * cols, rtol * cols / span, rtol * energy_scale * np.ones(3)])
 
@@ -199,23 +206,29 @@ def _partitioned(
                 events=degraded,
                 dense_output=True,
             )
-        except np.linalg.LinAlgError as error:
+            evaluations += ode.evaluations
+            if sol.status == -1:
+                if passage is not None:
+                    raise singular_passage(system, float(sol.t[-1]), passage)
+                raise SolverError(f"{name}: the integrator failed after t={t:.6g}: {sol.message}")
+            end = float(sol.t_events[0][0]) if sol.status == 1 else float(grid[-1])
+            ode.restart(state.q)
+            outputs = grid[k:][grid[k:] <= end]
+            for time, y, output in _walk(sol, outputs):
+                if output:
+                    states.append(ode.state(time, y))
+                    works.append(y[2 * ode.size :].copy())
+                ode.anchor(time, y)
+            k += len(outputs)
+            if sol.status == 1:
+                t, y = end, sol.y_events[0][0]
+                state, work = ode.state(t, y), y[2 * ode.size :].copy()
+        except (ConvergenceError, np.linalg.LinAlgError) as error:
+            if passage is not None:
+                raise singular_passage(system, getattr(error, "time", None) or t, passage) from error
+            if isinstance(error, ConvergenceError):
+                raise
             raise SolverError(f"{name}: singular augmented matrix after t={t:.6g}: {error}") from error
-        evaluations += ode.evaluations
-        if sol.status == -1:
-            raise SolverError(f"{name}: the integrator failed after t={t:.6g}: {sol.message}")
-        end = float(sol.t_events[0][0]) if sol.status == 1 else float(grid[-1])
-        ode.restart(state.q)
-        outputs = grid[k:][grid[k:] <= end]
-        for time, y, output in _walk(sol, outputs):
-            if output:
-                states.append(ode.state(time, y))
-                works.append(y[2 * ode.size :].copy())
-            ode.anchor(time, y)
-        k += len(outputs)
-        if sol.status == 1:
-            t, y = end, sol.y_events[0][0]
-            state, work = ode.state(t, y), y[2 * ode.size :].copy()
     return states, works, evaluations, partitions
 
 

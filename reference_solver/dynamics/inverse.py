@@ -9,19 +9,26 @@ from scipy.linalg import lstsq
 
 from reference_solver.compiled_system import constraint_system
 from reference_solver.dynamics.augmented import constraint_outputs
+from reference_solver.dynamics.compiled_inverse import compiled_outputs
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.solution import Analysis
 from scenarios.scenario import Scenario
 
 
-def inverse_dynamics(scenario: Scenario, analysis: Analysis) -> dict[str, np.ndarray]:
-    """Driver forces, joint reactions, kinetic and potential energy on the analysis grid. The
-    Jacobian is the compiled one where the scenario compiles (equal to the plain rows to 1e-13,
-    tests/reference_solver/test_compiled_system.py), about 3 times faster for a truth's forces."""
-    system = constraint_system(scenario)
+def inverse_dynamics(scenario: Scenario, analysis: Analysis, compiled: bool = True) -> dict[str, np.ndarray]:
+    """Driver forces, joint reactions, kinetic and potential energy on the analysis grid. Where the
+    scenario and its loads compile and `compiled`, the whole grid in one numba call
+    (dynamics.compiled_inverse, equal to this loop to 1e-12); otherwise this loop, on the compiled
+    Jacobian where the rows compile and `compiled` (equal to the plain rows to 1e-13,
+    tests/reference_solver/test_compiled_system.py), on the plain rows without `compiled`."""
+    system = constraint_system(scenario, fast=compiled)
     mass = mass_diagonal(scenario, system.layout, massless_contacts=True)
     loads = Loads(scenario, system.layout, mass)
+    if compiled:
+        found = compiled_outputs(system, mass, loads, analysis)
+        if found is not None:
+            return found
     rows: list[dict[str, float]] = []
     for t, q, qd, qdd in zip(analysis.times, analysis.q, analysis.qd, analysis.qdd, strict=True):
         jac = system.jacobian(q, float(t))

@@ -69,7 +69,12 @@ def ali3p_kernels() -> tuple[ModuleType | None, str]:
     return _kernels("ali3p_kernel")
 
 
-@lru_cache(maxsize=4)
+def inverse_kernels() -> tuple[ModuleType | None, str]:
+    """Inverse dynamics' module (dynamics.inverse, fast.inverse_kernel), or None and why."""
+    return _kernels("inverse_kernel")
+
+
+@lru_cache(maxsize=8)
 def _kernels(name: str) -> tuple[ModuleType | None, str]:
     if not AVAILABLE:
         return None, "numba is not installed"

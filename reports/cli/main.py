@@ -122,6 +122,14 @@ def cmd_list(args: argparse.Namespace) -> int:
         print(name.ljust(width) + "".join(c.ljust(12) for c in cells))
     if reasons:
         print("\n" + "\n".join(reasons))
+    chosen = [
+        f"  {engine} on {name}: {why}"
+        for name in names
+        for engine, adapter in engines.items()
+        if (why := _default_reason(adapter, load(name)))
+    ]
+    if chosen:
+        print("\ndefaults chosen for the scene:\n" + "\n".join(chosen))
     if args.scenarios:
         print("\nscales: errors are divided by these (docs/scenario-files.md):")
         for name in names:
@@ -145,6 +153,14 @@ def cmd_list(args: argparse.Namespace) -> int:
         for key, parameter in fam.parameters.items():
             print(f"    {key}={parameter.default}  ({parameter.describe()})")
     return 0
+
+
+def _default_reason(adapter: Adapter, scenario: Scenario) -> str:
+    """The adapter's reason for its default on `scenario`; a broken adapter costs its own line."""
+    try:
+        return adapter.default_reason(scenario)
+    except Exception as error:
+        return f"cannot tell: its default_reason() failed: {type(error).__name__}: {error}"
 
 
 def solve_trajectory(

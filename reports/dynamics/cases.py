@@ -6,7 +6,8 @@
   singular configuration (SINGULAR_PASSAGES), where DOP853 cannot reach that tolerance in reasonable
   time (the dependent coordinates' round-off is amplified there) and the truth is at the looser
   tolerance given; the native engine is then run no tighter than JUDGED_MARGIN times that, so the
-  truth is always far tighter than what it judges;
+  truth is always far tighter than what it judges (a fixed-step setting, ALI3-P's default through
+  singular passages, runs as it is);
 - the map cells run each engine's modes with the cell's output step as their step `dt` (the default
   mode first: the map shows it), the other scenarios each engine's ladder.
 """
@@ -25,8 +26,10 @@ from scenarios.registry import all_families
 from scenarios.scenario import Scenario
 
 TRUTH_RTOL = DYNAMIC_RTOL
-SINGULAR_PASSAGES = {"n_four_bar": 1e-12}
-"""Families whose motion passes a singular configuration, and the truth's tolerance there."""
+PASSAGE_RTOL = 1e-12
+SINGULAR_PASSAGES = {name: PASSAGE_RTOL for name, f in all_families().items() if f.singular_passages}
+"""Families whose motion passes a singular configuration (they declare it: Family.singular_passages),
+and the truth's tolerance there."""
 JUDGED_MARGIN = 10.0
 MAP_FAMILY = "stiff_spring"
 LEFT_OUT = ("n_four_bar/spec",)
@@ -78,8 +81,15 @@ def settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
     if adapter.name == NATIVE and scenario.analysis == "dynamic":
         loosest = truth_rtol(scenario) * JUDGED_MARGIN
         chosen = [adapter.default_setting(scenario), *adapter.ladder(scenario)]
-        return _unique([s.replace(rtol=max(float(s["rtol"]), loosest)) for s in chosen])
+        return _unique([_no_tighter(s, loosest) for s in chosen])
     return None
+
+
+def _no_tighter(setting: Setting, loosest: float) -> Setting:
+    """`setting` with its tolerance `rtol` at least `loosest`; a fixed-step setting as it is."""
+    if setting.get("rtol") is None:
+        return setting
+    return setting.replace(rtol=max(float(setting["rtol"]), loosest))
 
 
 def _at_step(scenario: Scenario, adapter: Adapter) -> list[Setting]:

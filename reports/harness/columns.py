@@ -209,6 +209,19 @@ DECLARED: tuple[Column, ...] = (
         "self_check", "", "'' or what drifted by the run's own figures, no truth used (harness.self_check)"
     ),
     Column(
+        "benchmark_error",
+        math.nan,
+        "scenarios of a published benchmark: its own error figure (IFToMM A02: B0's position and "
+        "velocity, m and m/s, against the one-degree-of-freedom solution), NaN elsewhere",
+    ),
+    Column("benchmark_limit", math.nan, "the benchmark's high-precision limit on benchmark_error"),
+    Column(
+        "invariant_error",
+        math.nan,
+        "published benchmarks: the largest departure from the motion's invariant (A02: a rocker's "
+        "angle to the crank, rad)",
+    ),
+    Column(
         "error_force",
         math.nan,
         "runs reporting forces: the larger of driver_force_error and reaction_error (harness.forces)",

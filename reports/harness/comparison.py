@@ -14,7 +14,8 @@ from reports.harness.forces import force_columns, force_errors, judges_native
 from reports.harness.level_error import level_errors
 from reports.harness.metrics import Residual, compared_levels, error_metrics, residual_metrics
 from reports.harness.startup import startup
-from scenarios import Scenario
+from scenarios import Scenario, all_families
+from scenarios.family import Criterion
 from scenarios.trajectory import Trajectory
 
 
@@ -58,6 +59,12 @@ def measure(
         except (ValueError, KeyError) as error:
             notes.append(f"energy drift not measured: {error}")
     metrics["energy_change"] = self_check.energy_change(scenario, result.trajectory)  # no truth used
+    benchmark = _family_criterion(scenario)
+    if benchmark is not None:
+        try:
+            metrics.update(benchmark(scenario, result.trajectory))
+        except (ValueError, KeyError) as error:
+            notes.append(f"benchmark criterion not measured: {error}")
     judged = result.engine != NATIVE or judges_native(force_truth)  # never against its own forces
     if force_columns(result.trajectory) and judged:
         native = {c: truth.extras[c] for c in force_columns(truth)}
@@ -69,3 +76,9 @@ def measure(
             except (ValueError, KeyError) as error:
                 notes.append(f"forces not compared: {error}")
     return metrics, levels, "; ".join(notes)
+
+
+def _family_criterion(scenario: Scenario) -> Criterion | None:
+    """The published benchmark criterion of the scenario's family (Family.criterion), if any."""
+    found = all_families().get(scenario.family)
+    return found.criterion if found is not None else None
