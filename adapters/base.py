@@ -21,10 +21,11 @@ A subclass provides exactly:
 It may also provide export(scenario, setting, path) in the engine's own file format,
 untuned_setting(scenario) (the engine's own defaults as a new user's model gets them, at the rule's
 step: the report's "untuned" point beside the default and the best; by default the ladder's setting
-in the mode UNTUNED, None where there is none), and call `self.count_steps(n)` inside `simulate` to report the engine steps taken. Its other facts are data
-here too, so that nothing outside its subpackage names it: `colour` (its colour in the report's
-figures), `packages` (the distributions whose versions a run records) and `probe_settings` (its
-settings for a stress case that probes what it has knobs for, adapters.probes).
+in the mode UNTUNED, None where there is none), and call `self.count_steps(n)` inside `simulate`
+to report the engine steps taken. Its other facts are data here too, so that nothing outside its
+subpackage names it: `colour` (its colour in the report's figures), `packages` (the distributions
+whose versions a run records) and `probe_settings` (its settings for a stress case that probes
+what it has knobs for, adapters.probes).
 
 Every setting is checked against `modes` and `options` where it enters (`check_setting`): an unknown
 mode or key, a value of the wrong type or outside its range is a SettingError naming the known ones or
