@@ -18,7 +18,7 @@ import numpy as np
 from adapters.base import Adapter, Option, Setting, Unsupported
 from adapters.drake.model import Diagram, Knobs, assemble, build_diagram
 from adapters.drake.settings import SAP, STEPS_PER_PERIOD, ladder, rule_setting, untuned
-from adapters.drake.simulation import CENTRAL, STATE, run
+from adapters.drake.simulation import CENTRAL, RUN_IN, STATE, run
 from adapters.drake.tree import Plan, PlanError, plan
 from adapters.lattice import outputs_on_steps
 from adapters.modes import ENGINE, Mode
@@ -88,11 +88,16 @@ class DrakeAdapter(Adapter):
         default = rule_setting(scenario)
         knob = {name: float(setting.get(name, default.get(name))) for name in ("dt", "kp", "kd", "lead")}
         knob["dt"] = outputs_on_steps(np.asarray(scenario.times()), knob["dt"])
-        diagram = build_diagram(scenario, planned, Knobs(**knob), scenario.t_end)
-        context = diagram.plant.CreateDefaultContext()
         t0 = float(scenario.times()[0])
-        assemble(diagram, scenario, planned, context, t0)
-        start = (t0, diagram.plant.GetPositions(context).copy(), diagram.plant.GetVelocities(context).copy())
+        t_start = t0 - RUN_IN * knob["dt"]
+        diagram = build_diagram(scenario, planned, Knobs(**knob), (t_start, scenario.t_end))
+        context = diagram.plant.CreateDefaultContext()
+        assemble(diagram, scenario, planned, context, t_start)
+        start = (
+            t_start,
+            diagram.plant.GetPositions(context).copy(),
+            diagram.plant.GetVelocities(context).copy(),
+        )
         velocity = str(setting.get("velocity", CENTRAL))
         return Built(scenario, planned, diagram, velocity, start)
 
@@ -101,8 +106,6 @@ class DrakeAdapter(Adapter):
         scenario = built.scenario
         bodies = scenario.output_bodies
         guesses = np.array([scenario.body(b).guess[2] for b in bodies])
-        if float(times[0]) != built.start[0]:
-            raise Unsupported("the Drake run starts at the scenario's first time")
-        trajectory, steps = run(built.diagram, built.start[1:], times, bodies, built.velocity, guesses)
+        trajectory, steps = run(built.diagram, built.start, times, bodies, built.velocity, guesses)
         self.count_steps(steps)
         return trajectory

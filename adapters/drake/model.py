@@ -70,8 +70,10 @@ def _transform(pose: Pose) -> RigidTransform:
     return RigidTransform(RotationMatrix.MakeZRotation(pose[2]), [pose[0], pose[1], 0.0])
 
 
-def build_diagram(scenario: Scenario, plan: Plan, knobs: Knobs, horizon: float) -> Diagram:
-    """The plant, its constraints and drive, with the drive's target tabulated over [0, horizon]."""
+def build_diagram(scenario: Scenario, plan: Plan, knobs: Knobs, span: tuple[float, float]) -> Diagram:
+    """The plant, its constraints and drive, with the drive's target tabulated over `span` (scenario
+    times) on the simulator's clock, which reads 0 at span[0]: Drake samples a discrete plant at
+    whole multiples of its step from 0, and at none before 0."""
     builder = DiagramBuilder()
     config = MultibodyPlantConfig(time_step=knobs.dt, discrete_contact_approximation="sap")
     plant, _ = AddMultibodyPlant(config, builder)
@@ -120,7 +122,7 @@ def build_diagram(scenario: Scenario, plan: Plan, knobs: Knobs, horizon: float) 
     plant.Finalize()
     built = Diagram(None, plant, bodies, drive_joint, (1.0, 0.0), knobs.dt)
     built.drive_map = _drive_map(built, plan)
-    source = builder.AddSystem(TrajectorySource(_target(built, plan, knobs, horizon)))
+    source = builder.AddSystem(TrajectorySource(_target(built, plan, knobs, span)))
     builder.Connect(
         source.get_output_port(), plant.get_desired_state_input_port(drive_joint.model_instance())
     )
@@ -165,14 +167,14 @@ def _drive_map(built: Diagram, plan: Plan) -> tuple[float, float]:
     return a, values[0]
 
 
-def _target(built: Diagram, plan: Plan, knobs: Knobs, horizon: float) -> PiecewisePolynomial:
+def _target(built: Diagram, plan: Plan, knobs: Knobs, span: tuple[float, float]) -> PiecewisePolynomial:
     """The drive's desired (q, v) at t + lead * dt, tabulated at every step as cubic Hermite pieces
     (exact at the plant's sample times, where the discrete PD reads it)."""
     a, b = built.drive_map
     motion = plan.driver.motion
-    n = int(np.ceil(horizon / knobs.dt)) + 3
-    times = np.arange(n) * knobs.dt
-    ahead = times + knobs.lead * knobs.dt
+    n = int(np.ceil((span[1] - span[0]) / knobs.dt)) + 3
+    times = np.arange(n) * knobs.dt  # the simulator's clock, which starts at 0 at span[0]
+    ahead = span[0] + times + knobs.lead * knobs.dt
     q = np.array([(motion.f(t) - b) / a for t in ahead])
     v = np.array([motion.df(t) / a for t in ahead])
     acc = np.array([motion.ddf(t) / a for t in ahead])

@@ -5,8 +5,8 @@ that step, the derivative at its midpoint. The trajectory's velocity at an outpu
 read (by default) as the mean of the two step velocities around it, the central difference
 (q(t + h) - q(t - h)) / 2h of Drake's own positions, and its acceleration as their difference over h,
 also centred on t; with `velocity = "state"` the plant's state velocity is given as it is (the
-midpoint value of the step before t, what a user reading the state gets). At the first time the
-velocity is the assembled start's, exact. Body rates come from the
+midpoint value of the step before t, what a user reading the state gets). The march starts RUN_IN
+steps before the first output. Body rates come from the
 plant's spatial velocities and accelerations at those generalized values (CalcSpatialAccelerationsFromVdot).
 """
 
@@ -19,10 +19,14 @@ import numpy as np
 from pydrake.all import Simulator
 
 from adapters.drake.model import Diagram
-from adapters.lattice import lattice_point, outputs_on_steps
+from adapters.lattice import check_grid, lattice_point
 from scenarios.trajectory import Trajectory
 
 CENTRAL, STATE = "central", "state"
+RUN_IN = 10
+"""Steps Drake runs before the first output, from a start assembled that much earlier: SAP's
+constraints settle over the first few steps from an assembled state (the acceleration then is off by
+up to 2 L omega^2), so every output is on Drake's settled march."""
 
 
 def _read(
@@ -48,47 +52,40 @@ def _read(
 
 def run(
     built: Diagram,
-    start: tuple[np.ndarray, np.ndarray],
+    start: tuple[float, np.ndarray, np.ndarray],
     times: np.ndarray,
     bodies: tuple[str, ...],
     velocity: str,
     guesses: np.ndarray,
 ) -> tuple[Trajectory, int]:
-    """The trajectory on `times` from the consistent `start` (q, v) at times[0], and the steps taken.
-    The plant steps on a lattice that puts every output time on a step (adapters.lattice)."""
-    h = outputs_on_steps(times, built.dt)
-    if not math.isclose(h, built.dt, rel_tol=1e-12):
-        raise ValueError(f"the output grid is not on Drake's step lattice (step {built.dt:.6g} s)")
-    simulator = Simulator(built.diagram)
+    """The trajectory on `times` from the consistent `start` (t, q, v) RUN_IN steps before times[0],
+    and the steps taken. Every output time must be on the plant's step lattice (adapters.lattice)."""
+    check_grid(times, float(times[0]))
+    h = built.dt
+    t_start = start[0]
+    if not math.isclose(t_start + RUN_IN * h, float(times[0]), rel_tol=1e-12, abs_tol=1e-12 * h):
+        raise ValueError(f"the Drake run starts at t = {t_start + RUN_IN * h:g}, the scenario's first time")
+    if any(lattice_point(t_start, float(t), h)[1] != 0.0 for t in times):
+        raise ValueError(f"the output grid is not on Drake's step lattice (step {h:.6g} s)")
+    simulator = Simulator(built.diagram)  # its clock reads t - t_start (model.build_diagram)
     root = simulator.get_mutable_context()
-    t0 = float(times[0])
-    root.SetTime(t0)
     plant_context = built.plant.GetMyMutableContextFromRoot(root)
-    built.plant.SetPositions(plant_context, start[0])
-    built.plant.SetVelocities(plant_context, start[1])
+    built.plant.SetPositions(plant_context, start[1])
+    built.plant.SetVelocities(plant_context, start[2])
     simulator.Initialize()
     reader = built.plant.CreateDefaultContext()
     levels = np.zeros((len(times), 3, len(bodies), 3))
-    v_before = start[1].copy()
     steps = 0
     for k, t in enumerate(times):
-        n, _ = lattice_point(t0, float(t), h)
-        if n > 0:
-            simulator.AdvanceTo(t0 + n * h)
+        m, _ = lattice_point(t_start, float(t), h)
+        simulator.AdvanceTo(m * h)
         q = built.plant.GetPositions(plant_context).copy()
-        v_now = built.plant.GetVelocities(plant_context).copy()
-        if n > 0:
-            v_before = v_now
-        simulator.AdvanceTo(t0 + (n + 1) * h)
+        v_before = built.plant.GetVelocities(plant_context).copy()
+        simulator.AdvanceTo((m + 1) * h)
         v_after = built.plant.GetVelocities(plant_context).copy()
-        steps = n + 1
-        if n == 0:  # the assembled start's velocity is exact; the first step's mean is at h / 2
-            v, vdot = start[1], 2.0 * (v_after - start[1]) / h
-        elif velocity == STATE:
-            v, vdot = v_before, (v_after - v_before) / h
-        else:
-            v, vdot = (v_before + v_after) / 2.0, (v_after - v_before) / h
-        levels[k] = _read(built, reader, q, v, vdot, bodies)
+        steps = m + 1
+        v = v_before if velocity == STATE else (v_before + v_after) / 2.0
+        levels[k] = _read(built, reader, q, v, (v_after - v_before) / h, bodies)
     theta = np.unwrap(levels[:, 0, :, 2], axis=0)
     theta += 2.0 * math.pi * np.round((guesses - theta[0]) / (2.0 * math.pi))
     levels[:, 0, :, 2] = theta
