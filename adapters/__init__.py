@@ -31,6 +31,7 @@ ENGINES: dict[str, tuple[str, str]] = {
     "mujoco": ("adapters.mujoco", "MujocoAdapter"),
     "exudyn": ("adapters.exudyn", "ExudynAdapter"),
     "pinocchio": ("adapters.pinocchio", "PinocchioAdapter"),
+    "drake": ("adapters.drake", "DrakeAdapter"),
 }
 
 

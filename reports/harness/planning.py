@@ -11,6 +11,9 @@ from adapters.base import Adapter, Setting
 from reports.harness.rows import failure_row
 from scenarios import Scenario
 
+NOT_INSTALLED = "not installed"
+"""What the runner holds for an engine whose package is not installed here: it plans no row for it
+(an optional engine's absence is said once, not as a failure per scenario)."""
 SettingsHook = Callable[[Scenario, Adapter], list[Setting] | None]
 """A suite's own settings for a scenario and engine (the first is the default), or None: the engine's."""
 
@@ -37,6 +40,8 @@ def plan_engine(
 ) -> Group:
     """The group of `engine` on `scenario`; `adapter` is the loaded engine or why it cannot be loaded,
     `ladder` False plans only the default setting, `settings` is the suite's hook."""
+    if adapter == NOT_INSTALLED:
+        return Group(scenario, engine, None, NOT_INSTALLED)
     if isinstance(adapter, str):
         row = failure_row(scenario, engine, "unavailable", None, True, "failed", adapter)
         return Group(scenario, engine, None, "unavailable", reason_row=row)

@@ -41,7 +41,7 @@ from reports.harness.metrics import (
     HEADLINE_DEFINITION,
     Residual,
 )
-from reports.harness.planning import Group, SettingsHook, plan_engine
+from reports.harness.planning import NOT_INSTALLED, Group, SettingsHook, plan_engine
 from reports.harness.results_store import ResultsStore
 from reports.harness.resume import ResumePolicy, StoredRuns
 from reports.harness.truth import NamedTruth, independent_truth, named
@@ -60,6 +60,21 @@ def reference_residual() -> Residual | None:
     import reference_solver
 
     return getattr(reference_solver, "constraint_residual", None)
+
+
+OURS = ("adapters", "scenarios", "reports", "reference_solver", "mbxval", "benchmarks", "tests")
+"""Our own packages: a module of ours that is missing is a broken install, not an absent engine."""
+
+
+def not_installed(error: BaseException) -> str:
+    """The missing third-party module behind a loader's error (an engine whose package is not
+    installed, such as an optional extra), or "" for any other failure."""
+    seen: BaseException | None = error
+    while seen is not None:
+        if isinstance(seen, ModuleNotFoundError) and seen.name and seen.name.split(".")[0] not in OURS:
+            return f"no module named {seen.name}"
+        seen = seen.__cause__
+    return ""
 
 
 class Runner:
@@ -98,7 +113,14 @@ class Runner:
             try:
                 self.adapters[name] = loader(name)
             except Exception as error:  # not installed, or its module is broken
-                self.adapters[name] = f"engine unavailable: {type(error).__name__}: {error}"
+                missing = not_installed(error)
+                if missing:
+                    print(
+                        f"mbxval: engine {name} is not installed ({missing}): no runs of it", file=sys.stderr
+                    )
+                    self.adapters[name] = NOT_INSTALLED
+                else:
+                    self.adapters[name] = f"engine unavailable: {type(error).__name__}: {error}"
 
     workers = 1
     """Runs made at the same time (the `workers` column): one by one here."""

@@ -40,7 +40,10 @@ def test_every_engine_starts_from_the_native_assembly(off_by_a_millimetre: Path,
     assert scenario is not written
     times = np.asarray(scenario.times())
     native = adapters.load("reference").run(scenario, None, times).trajectory
-    run = adapters.load(engine).run(scenario, None, times)
+    adapter = adapters.load(engine)
+    if adapter.supports(scenario) is not None:
+        pytest.skip(f"{engine}: {adapter.supports(scenario)}")
+    run = adapter.run(scenario, None, times)
     assert run.status == "ok" and run.trajectory is not None and native is not None
     gap = np.max(np.abs(run.trajectory.position[0] - native.position[0]))
     assert gap < 1e-10 * scenario.characteristic_length

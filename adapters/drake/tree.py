@@ -1,0 +1,161 @@
+"""What Drake's MultibodyPlant can hold of a scenario, planned in pure Python (no Drake).
+
+The plant's joints are the mechanism's spanning tree (scenarios.topology): revolute joints about z
+and prismatic joints in the plane, each joint frame aligned with its child's body frame so that a
+revolute coordinate is the relative angle theta_child - theta_parent. The joints left over close
+loops: a revolute as a ball constraint (SAP's point coincidence; the out-of-plane rows are satisfied
+by the planar tree), a gear pair on a common carrier as a coupler constraint between two revolute
+coordinates. Anything else has no faithful Drake form here and is refused with the reason.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from scenarios.bodies import GROUND, Pose, Vec2
+from scenarios.drivers import AbsoluteDriver
+from scenarios.gears import GearPair, RackPinion
+from scenarios.geometry import compose, rotate
+from scenarios.joints import Ground, Prismatic, Revolute
+from scenarios.scenario import Scenario
+from scenarios.topology import TopologyError, spanning_tree
+
+
+class PlanError(ValueError):
+    """The scenario has no faithful Drake model here; the message says why."""
+
+
+@dataclass(frozen=True)
+class Edge:
+    """Tree joint `name` hangs body `child` from `parent` (a body or the ground).
+
+    kind is "revolute", "prismatic" or "weld"; `parent_frame` is the joint frame in the parent's body
+    frame, `child_frame` in the child's; `axis` the prismatic direction in the joint frame; `q0` a
+    first guess of the coordinate from the bodies' guessed poses."""
+
+    name: str
+    kind: str
+    parent: str
+    child: str
+    parent_frame: Pose
+    child_frame: Pose
+    axis: Vec2 = (1.0, 0.0)
+    q0: float = 0.0
+
+
+@dataclass(frozen=True)
+class Coupler:
+    """Gear pair `name` as theta_sec = ratio * theta_pri + offset on the two revolute edges' coordinates."""
+
+    name: str
+    primary: str
+    secondary: str
+    ratio: float
+    offset: float
+
+
+@dataclass(frozen=True)
+class Plan:
+    edges: tuple[Edge, ...]
+    balls: tuple[Revolute, ...]
+    couplers: tuple[Coupler, ...]
+    driver: AbsoluteDriver
+
+
+def _guess(scenario: Scenario, body: str) -> Pose:
+    return (0.0, 0.0, 0.0) if body == GROUND else scenario.body(body).guess
+
+
+def _edge(scenario: Scenario, joint: Ground | Prismatic | Revolute, parent: str) -> Edge:
+    if isinstance(joint, Ground):
+        return Edge(joint.name, "weld", GROUND, joint.body, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+    p_parent, p_child = (joint.p_i, joint.p_j) if joint.p_i.body == parent else (joint.p_j, joint.p_i)
+    parent_guess, child_guess = _guess(scenario, parent), _guess(scenario, p_child.body)
+    child_frame = (*p_child.local, 0.0)
+    if isinstance(joint, Revolute):
+        q0 = child_guess[2] - parent_guess[2]
+        return Edge(joint.name, "revolute", parent, p_child.body, (*p_parent.local, 0.0), child_frame, q0=q0)
+    # theta_i - theta_j = angle, the axis given in body i's frame
+    child_is_i = p_child is joint.p_i
+    turn = joint.angle if child_is_i else -joint.angle
+    axis = joint.axis if child_is_i else rotate(joint.angle, joint.axis)
+    norm = math.hypot(*axis)
+    if norm == 0.0:
+        raise PlanError(f"prismatic joint '{joint.name}' has a zero axis")
+    axis = (axis[0] / norm, axis[1] / norm)
+    frame = compose(parent_guess, (*p_parent.local, turn))
+    start = compose(child_guess, child_frame)
+    world_axis = rotate(frame[2], axis)
+    q0 = (start[0] - frame[0]) * world_axis[0] + (start[1] - frame[1]) * world_axis[1]
+    return Edge(joint.name, "prismatic", parent, p_child.body, (*p_parent.local, turn), child_frame, axis, q0)
+
+
+def _relative_angle(gear: GearPair, body: str, edges: tuple[Edge, ...]) -> tuple[str, float]:
+    """(edge, sign) with rho = theta_body - theta_carrier = sign * q[edge]: the gear's own revolute
+    joint on the carrier, or, for a ground gear, minus the carrier's revolute joint on the ground."""
+    by_child = {e.child: e for e in edges}
+    if body == GROUND:
+        edge, sign = by_child.get(gear.carrier), -1.0
+        on = GROUND
+    else:
+        edge, sign = by_child.get(body), 1.0
+        on = gear.carrier
+    if edge is None or edge.kind != "revolute" or edge.parent != on:
+        raise PlanError(
+            f"gear pair '{gear.name}': a coupler ties two revolute coordinates, and gear '{body}' "
+            f"has no revolute joint giving its angle on carrier '{gear.carrier}'"
+        )
+    return edge.name, sign
+
+
+def _coupler(gear: GearPair, edges: tuple[Edge, ...]) -> Coupler:
+    """The gear law r_i rho_i + s r_j rho_j = c (rho = theta - theta_carrier, s = -1 inside) as
+    q_j = ratio q_i + offset on the two joint coordinates that give the rho."""
+    edge_i, sign_i = _relative_angle(gear, gear.gear_i, edges)
+    edge_j, sign_j = _relative_angle(gear, gear.gear_j, edges)
+    s = -1.0 if gear.internal else 1.0
+    c = gear.radius_i * (gear.theta0_i - gear.theta0_carrier) + s * gear.radius_j * (
+        gear.theta0_j - gear.theta0_carrier
+    )
+    k = s * gear.radius_j * sign_j
+    return Coupler(gear.name, edge_i, edge_j, -gear.radius_i * sign_i / k, c / k)
+
+
+def plan(scenario: Scenario) -> Plan:
+    """The plant's tree, constraints and drive; PlanError saying why the scenario has none."""
+    if scenario.analysis == "dynamic":
+        raise PlanError("Drake is compared on driven kinematics only; free dynamics is not modelled yet")
+    if scenario.cams:
+        raise PlanError("Drake has no cam joint, and a cam contact's profile is no constraint SAP offers")
+    if len(scenario.drivers) != 1 or not isinstance(scenario.drivers[0], AbsoluteDriver):
+        raise PlanError("the Drake drive is one PD actuator on a joint: one absolute driver is modelled")
+    try:
+        spanning = spanning_tree(scenario)
+    except TopologyError as error:
+        raise PlanError(f"{error}, so they have no place in Drake's joint tree") from None
+    edges = tuple(_edge(scenario, e.joint, e.parent) for e in spanning.edges)
+    named = {j.name: j for j in scenario.joints}
+    balls: list[Revolute] = []
+    couplers: list[Coupler] = []
+    for name in spanning.closures:
+        joint = named[name]
+        if isinstance(joint, Revolute):
+            balls.append(joint)
+        elif isinstance(joint, GearPair):
+            couplers.append(_coupler(joint, edges))
+        elif isinstance(joint, RackPinion):
+            raise PlanError(
+                f"rack and pinion '{name}': Drake's coupler ties two joint coordinates of one kind"
+            )
+        else:
+            raise PlanError(
+                f"loop-closing joint '{name}' ({type(joint).__name__}) has no SAP constraint here"
+            )
+    driver = scenario.drivers[0]
+    edge = next(e for e in edges if e.child == driver.body)
+    if edge.parent != GROUND or edge.kind == "weld":
+        raise PlanError(f"driver '{driver.name}': the PD drive needs the driven body's joint on the ground")
+    if (edge.kind == "revolute") != (driver.coordinate == "theta"):
+        raise PlanError(f"driver '{driver.name}' drives {driver.coordinate}, not its joint's coordinate")
+    return Plan(edges, tuple(balls), tuple(couplers), driver)
