@@ -108,8 +108,10 @@ def _page(meta: dict[str, Any], whole: ReportData, data: ReportData, listed: Rep
             f'<p class="muted">Runs by status: {markup.escape(_counts(data))}. Colour: log10 error from '
             f"1e{first_screen.BEST:.0f} (green) to 1e{first_screen.WORST:.0f} (red); hover a scenario for "
             f"its truth. {DRIFT_MARK.strip()}: the run ended ok but its own figures say it "
-            "drifted (a constraint residual above 1e-3, or T + V changed by more than 1e-2 of its kinetic "
-            "energy in a conservative scene), found without any truth; hover the cell for the figure.</p>",
+            "drifted (a constraint residual above 1e-3, an energy balance, T + V against the work of its "
+            "loads and drivers, off by more than 1e-2 of its energy scale, or positions moved by more than "
+            "1e-2 at half the step where no truth judges it), found without any truth; hover the cell for "
+            "the figure.</p>",
             "<h2>Each engine out of the box, and at its best</h2>",
             engine_reach.html_table(listed.frame, markup.escape),
             f'<p class="muted">{markup.escape(REACH_NOTE)}</p>',
