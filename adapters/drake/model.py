@@ -12,24 +12,21 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from pydrake.all import (
-    AddMultibodyPlant,
-    DiagramBuilder,
+from pydrake.math import RigidTransform, RotationMatrix
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.tree import (
     FixedOffsetFrame,
     JacobianWrtVariable,
-    MultibodyPlant,
-    MultibodyPlantConfig,
     PdControllerGains,
-    PiecewisePolynomial,
     PrismaticJoint,
     RevoluteJoint,
-    RigidTransform,
     RotationalInertia,
-    RotationMatrix,
     SpatialInertia,
-    TrajectorySource,
     WeldJoint,
 )
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.primitives import TrajectorySource
+from pydrake.trajectories import PiecewisePolynomial
 
 from adapters.base import Singular
 from adapters.drake.tree import Plan

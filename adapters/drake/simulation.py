@@ -16,7 +16,7 @@ import math
 from typing import Any
 
 import numpy as np
-from pydrake.all import Simulator
+from pydrake.systems.analysis import Simulator  # not pydrake.all, which imports matplotlib
 
 from adapters.drake.model import Diagram
 from adapters.lattice import check_grid, lattice_point
