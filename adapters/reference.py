@@ -48,14 +48,19 @@ KNOBS = (
     Knob(
         "tolerance",
         SWEPT,
-        "Newton's tolerance, 1e-4 to 1e-12 (the default): the native curve on driven scenes",
+        f"Newton's tolerance, {TOLERANCES[0]:g} to {TOLERANCES[-1]:g} (the default): the native curve on "
+        "driven scenes",
     ),
-    Knob("rtol", SWEPT, "the integrator's relative tolerance, 1e-6 to 1e-12 (the default), in free dynamics"),
+    Knob(
+        "rtol",
+        SWEPT,
+        f"the integrator's relative tolerance, {RTOLS[0]:g} to {RTOLS[-1]:g} (the default), in free dynamics",
+    ),
     Knob(
         "dt",
         FIXED,
-        f"ALI3-P's step, the rule's at {ALI3P_STEPS_PER_PERIOD:g} steps per shortest period: ALI3-P is "
-        "the default only through singular passages, where one step is checked against the specification",
+        f"ALI3-P's step, the rule's at {ALI3P_STEPS_PER_PERIOD:g} steps per shortest period; ALI3-P is "
+        "the default only through singular passages (docs/a02.md), and its step is not swept",
     ),
     Knob("inverse_dynamics", NOT_APPLICABLE, "adds force and energy columns; the motion is the same"),
     Knob(

@@ -11,7 +11,8 @@ KNOBS = (
         "integrator (mode)",
         SWEPT,
         "GA3, GA3-rho0.5, GA3-modified (Exudyn's modified Newton) and TR2 (index 2, positions drift "
-        "O(dt^2)) are curves of their own; STATIC per output time on kinematic scenes",
+        "O(dt^2)) are curves of their own; STATIC per output time on kinematic scenes; RK44 runs on "
+        "request (scenes without joints only)",
     ),
     Knob(
         "dt",

@@ -28,7 +28,8 @@ KNOBS = (
         "integrator (mode)",
         SWEPT,
         "each integrator is its own curve (RK4 and implicitfast on driven mechanisms, also implicit and "
-        "Euler in free dynamics); only RK4 is above first order",
+        "Euler in free dynamics); only RK4 is above first order; the kinematic mode (Newton on MuJoCo's "
+        "rows) runs on request",
     ),
     Knob(
         "dt",

@@ -322,8 +322,9 @@ def parser() -> argparse.ArgumentParser:
 GUIDE: dict[str, tuple[str, str]] = {
     "list": (
         "Which scenarios exist, which engine can represent each (and why not), and every scenario "
-        "parameter with its default and allowed range.",
-        "mbxval list --stress",
+        "parameter with its default and allowed range; with --engine NAME, that engine's modes, options "
+        "and accuracy knobs (swept, fixed or not applicable, and why).",
+        "mbxval list --stress; mbxval list --engine mujoco",
     ),
     "solve": (
         "Solve one scenario with one engine and write its trajectory as CSV: t, then x, y, theta and "
