@@ -7,6 +7,10 @@ A subclass provides exactly:
                                                `modes`, their names, is derived from it (an engine
                                                without `measured` declares `modes` alone)
     options: tuple[Option, ...]                every option a setting may carry, typed and ranged
+    knobs: tuple[Knob, ...]                    every accuracy knob (each option, and each engine
+                                               setting that changes the error), swept, fixed or not
+                                               applicable, with why (adapters.knobs): what
+                                               `mbxval list --engine NAME` and docs/engine-knobs.md show
     version() -> str                           the installed engine's version
     supports(scenario) -> str | None           None, or why the engine cannot represent it faithfully
     default_setting(scenario) -> Setting       the setting used by `mbxval solve` and the status matrix
@@ -49,6 +53,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from adapters.failures import STATUSES, Diverged, EngineFailure, SettingError, Singular, Status, Unsupported
+from adapters.knobs import Knob
 from adapters.modes import Mode, measures_of
 from adapters.probes import Probe
 from adapters.run_result import RunResult, failure_fields, first_nonfinite_time, warning_texts
@@ -65,6 +70,7 @@ __all__ = [  # the contract a plug-in engine imports from here; failures and set
     "Adapter",
     "Diverged",
     "EngineFailure",
+    "Knob",
     "Option",
     "OptionValue",
     "RunResult",
@@ -86,6 +92,9 @@ class Adapter:
     """The names of `measured` in its order, derived (__init_subclass__); declared only by an engine
     that declares no `measured`."""
     options: ClassVar[tuple[Option, ...]] = ()
+    knobs: ClassVar[tuple[Knob, ...]] = ()
+    """The engine's accuracy knobs (adapters.knobs): every option is one, beside the engine's own
+    settings that change the error."""
     rule: ClassVar[str] = ""
     """How the engine applies the settings rule (adapters.step_rule): its constants, one line."""
     dynamics: ClassVar[bool] = False

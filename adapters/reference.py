@@ -22,6 +22,7 @@ import numpy as np
 
 from adapters import NATIVE
 from adapters.base import Adapter, EngineFailure, Option, Setting, Singular
+from adapters.knobs import FIXED, NOT_APPLICABLE, SWEPT, Knob
 from adapters.modes import ENGINE, Mode
 from adapters.step_rule import rule_step
 from reference_solver import SingularConfigurationError, SolverError, analyse
@@ -37,6 +38,36 @@ ALI3P_STEPS_PER_PERIOD = 1000.0
 singular configurations: on IFToMM A02 B0's position and velocity to a few 1e-4 of the
 specification's 1e-3 (docs/a02.md)."""
 RTOLS = (1e-6, 1e-8, 1e-10, 1e-12)
+KNOBS = (
+    Knob(
+        "mode",
+        FIXED,
+        "newton on driven scenes, DOP853 in free dynamics (ALI3-P through singular passages); Radau and "
+        "ALI3-P are the native checks of DOP853, run on request",
+    ),
+    Knob(
+        "tolerance",
+        SWEPT,
+        f"Newton's tolerance, {TOLERANCES[0]:g} to {TOLERANCES[-1]:g} (the default): the native curve on "
+        "driven scenes",
+    ),
+    Knob(
+        "rtol",
+        SWEPT,
+        f"the integrator's relative tolerance, {RTOLS[0]:g} to {RTOLS[-1]:g} (the default), in free dynamics",
+    ),
+    Knob(
+        "dt",
+        FIXED,
+        f"ALI3-P's step, the rule's at {ALI3P_STEPS_PER_PERIOD:g} steps per shortest period; ALI3-P is "
+        "the default only through singular passages (docs/a02.md), and its step is not swept",
+    ),
+    Knob("inverse_dynamics", NOT_APPLICABLE, "adds force and energy columns; the motion is the same"),
+    Knob(
+        "compiled", NOT_APPLICABLE, "the same right-hand side compiled or plain (a check of the compilation)"
+    ),
+)
+"""The native solver's knobs (adapters.knobs)."""
 
 
 @dataclass(frozen=True)
@@ -88,6 +119,7 @@ class ReferenceAdapter(Adapter):
             help="dynamics: 1 (default) the compiled right-hand side, 0 the plain one, which checks it",
         ),
     )
+    knobs = KNOBS
     dynamics = True
 
     def version(self) -> str:

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from adapters.base import Adapter, Option, Setting, Unsupported
+from adapters.drake.knobs import KNOBS
 from adapters.drake.model import Diagram, Knobs, assemble, build_diagram
 from adapters.drake.settings import SAP, STEPS_PER_PERIOD, ladder, rule_setting, untuned
 from adapters.drake.simulation import CENTRAL, RUN_IN, STATE, run
@@ -53,6 +54,7 @@ class DrakeAdapter(Adapter):
             "Drake's steps; accelerations from the step velocities)",
         ),
     )
+    knobs = KNOBS
     options = (
         Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="the plant's time step"),
         Option("kp", float, 0.0, 1e15, help="PD drive's stiffness"),

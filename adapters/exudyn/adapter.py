@@ -47,6 +47,7 @@ import numpy as np
 from adapters.base import Adapter, Option, Setting, Unsupported
 from adapters.exudyn.assembly import States, assemble
 from adapters.exudyn.initial_state import released_start
+from adapters.exudyn.knobs import KNOBS
 from adapters.exudyn.loads import FORCES
 from adapters.exudyn.model import ExudynModel, ModelError, build_model
 from adapters.exudyn.run_in import MAX_RUN_IN, run_in_start, run_in_steps
@@ -158,6 +159,7 @@ class ExudynAdapter(Adapter):
             ),
         ),
     )
+    knobs = KNOBS
     options = (
         Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
         Option("rho", float, 0.0, 1.0, help="spectral radius of generalized-alpha"),

@@ -42,6 +42,7 @@ from adapters.mujoco.compile import assembled_poses, clock_armatures, compile_mo
 from adapters.mujoco.controls import controls
 from adapters.mujoco.dynamics import DYNAMIC_MODES, angle_columns, closes_loops
 from adapters.mujoco.kinematics import KinematicSolver
+from adapters.mujoco.knobs import KNOBS
 from adapters.mujoco.laws import laws
 from adapters.mujoco.loads import loads_of
 from adapters.mujoco.mjcf import Physics
@@ -143,6 +144,7 @@ class MujocoAdapter(Adapter):
         f"impedance {IMPEDANCE}; cams by contact keep MuJoCo's own regulariser and tc = "
         f"{OWN_TC_STEPS:g} steps; every scenario, whatever its size"
     )
+    knobs = KNOBS
     options = (
         Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
         Option("tc", float, 0.0, 1e3, low_open=True, unit="s", help="solref time constant of the equalities"),

@@ -39,6 +39,7 @@ from adapters.pinocchio.forces import ForceReader
 from adapters.pinocchio.forces import unsupported as forces_unsupported
 from adapters.pinocchio.free_start import free_start
 from adapters.pinocchio.kinematics import KinematicSolver, body_motion
+from adapters.pinocchio.knobs import KNOBS
 from adapters.pinocchio.loads import Loads
 from adapters.pinocchio.model import PinModel, build_model
 from adapters.pinocchio.row_dynamics import RowDynamicSolver
@@ -139,6 +140,7 @@ class PinocchioAdapter(Adapter):
     )
     measured = MEASURED
     dynamics = True
+    knobs = KNOBS
     options = (
         Option("tol", float, 0.0, 1.0, low_open=True, help="Newton residual bound, in the rows' sizes"),
         Option("gears", str, choices=("mimic", "row"), help="gears as mimic joints or coupling rows"),

@@ -25,6 +25,7 @@ import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
 from adapters.step_rule import RULE
 from adapters.threads import one_blas_thread
+from reports.cli.engine_listing import FORMATS, engine_listing
 from reports.cli.usage import Parser, UsageError, Versions, pairs, scenario_argument
 from reports.harness import self_check, stop
 from reports.harness.atomic_write import atomic_output, atomic_path, output_target, write_text
@@ -94,7 +95,18 @@ def engine_setting(adapter: Adapter, scenario: Scenario, mode: str | None, optio
 
 def cmd_list(args: argparse.Namespace) -> int:
     """A scenario x engine table of what each engine supports, the reasons below it, what each
-    engine mode measures, then each family's parameters with their defaults."""
+    engine mode measures, then each family's parameters with their defaults; with --engine, that
+    engine's modes, options and accuracy knobs alone (reports.cli.engine_listing)."""
+    if args.engine is not None:
+        if args.scenarios or args.stress:
+            raise UsageError("--engine lists one engine's knobs: give it without scenarios or --stress")
+        try:
+            print(engine_listing(args.engine, args.format), end="")
+        except adapters.EngineUnavailable as error:
+            raise UsageError(str(error)) from None
+        return 0
+    if args.format != "text":
+        raise UsageError("--format applies to --engine NAME only")
     engines = {}
     for name in adapters.names():
         try:
@@ -271,6 +283,10 @@ def parser() -> argparse.ArgumentParser:
     listing = sub.add_parser("list", help="scenarios, variants, engines and what each supports")
     listing.add_argument("--stress", action="store_true", help="include the stress variants")
     listing.add_argument("scenarios", nargs="*", help="only these scenarios or scenario files (.toml)")
+    listing.add_argument("--engine", help="only this engine: its modes, options and accuracy knobs")
+    listing.add_argument(
+        "--format", choices=FORMATS, default="text", help="with --engine: one line each, or Markdown tables"
+    )
 
     solve = sub.add_parser("solve", help="one trajectory as CSV")
     _scenario_arguments(solve, adapters.NATIVE)
@@ -306,8 +322,9 @@ def parser() -> argparse.ArgumentParser:
 GUIDE: dict[str, tuple[str, str]] = {
     "list": (
         "Which scenarios exist, which engine can represent each (and why not), and every scenario "
-        "parameter with its default and allowed range.",
-        "mbxval list --stress",
+        "parameter with its default and allowed range; with --engine NAME, that engine's modes, options "
+        "and accuracy knobs (swept, fixed or not applicable, and why).",
+        "mbxval list --stress; mbxval list --engine mujoco",
     ),
     "solve": (
         "Solve one scenario with one engine and write its trajectory as CSV: t, then x, y, theta and "
