@@ -55,7 +55,8 @@ for name in adapters.names():
         dists.update(adapters.load(name).packages)
     except adapters.EngineUnavailable:  # not installed: --version loads it no more than this does
         pass
-print(json.dumps(sorted(m for m, of in packages_distributions().items() if dists & set(of) and m.isidentifier())))
+mine = [m for m, of in packages_distributions().items() if dists & set(of) and m.isidentifier()]
+print(json.dumps(sorted(mine)))
 """
 
 OWN = """
