@@ -73,9 +73,13 @@ print(json.dumps(sorted(name for name in json.loads(sys.argv[2]) if name in sys.
 def engines_own() -> set[str]:
     """Which of HEAVY the engines' own libraries import, in a fresh interpreter that imports only
     them (the distributions each adapter declares in `packages`): Drake's pydrake brings matplotlib."""
-    modules = subprocess.run(
-        [sys.executable, "-c", ENGINE_MODULES], capture_output=True, text=True, timeout=300, check=True
-    ).stdout.strip().splitlines()[-1]
+    modules = (
+        subprocess.run(
+            [sys.executable, "-c", ENGINE_MODULES], capture_output=True, text=True, timeout=300, check=True
+        )
+        .stdout.strip()
+        .splitlines()[-1]
+    )
     done = subprocess.run(
         [sys.executable, "-c", OWN, modules, json.dumps(HEAVY)],
         capture_output=True,
