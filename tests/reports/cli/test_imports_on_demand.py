@@ -72,7 +72,7 @@ print(json.dumps(sorted(name for name in json.loads(sys.argv[2]) if name in sys.
 
 def engines_own() -> set[str]:
     """Which of HEAVY the engines' own libraries import, in a fresh interpreter that imports only
-    them (the distributions each adapter declares in `packages`): Drake's pydrake brings matplotlib."""
+    them (the distributions each adapter declares in `packages`): an engine's library may bring some."""
     modules = (
         subprocess.run(
             [sys.executable, "-c", ENGINE_MODULES], capture_output=True, text=True, timeout=300, check=True
