@@ -103,7 +103,9 @@ def _check_frame(scenario: Scenario, root: ET.Element, frame: ET.Element, row: p
     points = np.array(list(expected.values()))
     size = max(scenario.characteristic_length, float(np.max(np.ptp(points, axis=0))))
     for name, point in expected.items():
-        assert math.dist(drawn[name], point) <= 1e-9 * size, (name, drawn[name], point)
+        # 1e-6: the native default through singular passages is ALI3-P at the rule's fixed step
+        # (n_four_bar), whose pose differs from a tightly solved one by about 1e-6 of the size
+        assert math.dist(drawn[name], point) <= 1e-6 * size, (name, drawn[name], point)
     return len(expected)
 
 
