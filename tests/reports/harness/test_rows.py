@@ -20,4 +20,4 @@ def test_ranks_are_the_places_in_the_catalogue_and_the_registry() -> None:
 def test_an_engine_added_to_the_registry_gets_its_place(monkeypatch: pytest.MonkeyPatch) -> None:
     assert ranks("four_bar", "toy")["engine_rank"] == -1
     monkeypatch.setitem(adapters.ENGINES, "toy", ("tests.support.toy_engine", "ToyAdapter"))
-    assert ranks("four_bar", "toy")["engine_rank"] == 4  # after the four built-in engines
+    assert ranks("four_bar", "toy")["engine_rank"] == 5  # after the five built-in engines
