@@ -76,7 +76,7 @@ MEASURED: dict[tuple[str, str], tuple[float, float, float]] = {
     ("four_bar_chain", "STATIC"): (3.1e-14, 3.1e-15, 6.5e-13),
 }
 """(scenario, mode): (position [m, rad], velocity / max|v|, acceleration / max|a|), measured
-(STATIC 2026-11-25, GA3 after its run-in 2026-12-07) and held two-sided (tests.support.bounds;
+(GA3 after its run-in) and held two-sided (tests.support.bounds;
 round-off up to 3e-12 held below 3e-11)."""
 ROUND_OFF = 3e-12
 

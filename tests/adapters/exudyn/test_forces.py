@@ -32,8 +32,8 @@ MEASURED: dict[tuple[str, str], float] = {
     ("four_bar", "TR2"): 2.7e-5,
     ("four_bar", "GA3"): 3.5e-5,  # (2.5e-2 without)
 }
-"""(scenario, mode at the default step): the force error over a whole turn, measured 2026-11-25
-(GA3 after its run-in 2026-12-07), held two-sided (tests.support.bounds)."""
+"""(scenario, mode at the default step): the force error over a whole turn, measured
+(GA3 after its run-in), held two-sided (tests.support.bounds)."""
 
 
 @pytest.mark.parametrize(("name", "mode"), list(MEASURED))
@@ -63,7 +63,7 @@ def test_the_start_s_forces_are_exudyn_s_own_not_zero(run_in: int | None) -> Non
 
 PRISMATIC = {("slider_crank", "slide"): 1.2e-6, ("cam_roller", "guide"): 1.7e-7}
 """(scenario, prismatic joint): the error of its reaction (both components, over the mechanism's
-force scale, harness.forces) at the default, measured 2026-12-07: Exudyn's ForceLocal, in the
+force scale, harness.forces) at the default, measured: Exudyn's ForceLocal, in the
 marker-0 body's axes, turned into world axes. The slider's axis is x, the follower's y, so a
 mapping that took the joint's axial and normal components for x and y would fail the second."""
 

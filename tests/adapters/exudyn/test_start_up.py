@@ -109,7 +109,7 @@ UNTUNED: dict[str, tuple[float, float, float, float]] = {
     "four_bar": (3.0e-13, 8.7e-6, 5.7e-2, 2.5e-2),
     "slider_crank": (1.0e-13, 1.6e-6, 6.1e-3, 3.7e-3),
 }
-"""Exudyn's own defaults at the rule's step, 200 outputs: (P, V, A, force), measured 2026-12-07;
+"""Exudyn's own defaults at the rule's step, 200 outputs: (P, V, A, force), measured;
 positions at Exudyn's default Newton tolerance, accelerations and forces carrying the transient."""
 
 
