@@ -2,7 +2,8 @@
 
 Kinematic scenarios (mode newton): its one knob is the Newton-Raphson tolerance (on both |dq| and
 |C|, relative to the scenario's characteristic length); its ladder traces the native solver's own
-work-precision curve. `inverse_dynamics=1` (the default where every body has mass) adds the
+work-precision curve. `inverse_dynamics=1` (the default where every body has mass and the problem is
+within the dense-solve limit, scenarios.limits.MAX_DENSE_ROWS) adds the
 drivers' forces, the joints' reactions and the energies as extra columns, judged against the
 independent force truth where the scenario has one (reports.harness.forces). Dynamic scenarios
 (modes DOP853 and Radau, coordinate partitioning): the knob is the integrator's relative tolerance
@@ -28,6 +29,7 @@ from adapters.step_rule import rule_step
 from reference_solver import SingularConfigurationError, SolverError, analyse
 from reference_solver.dynamics import inverse_dynamics, simulate
 from reference_solver.dynamics.forward import ALI3P, ALI3P_STEP, METHODS
+from scenarios.limits import check_dense_rows, dense_admitted
 from scenarios.registry import singular_passages
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -133,7 +135,8 @@ class ReferenceAdapter(Adapter):
             if singular_passages(scenario):
                 return Setting.of(ALI3P, dt=rule_step(scenario, ALI3P_STEPS_PER_PERIOD))
             return Setting.of("DOP853", rtol=1e-12)
-        if all(body.mass > 0.0 for body in scenario.bodies):
+        bodies = scenario.bodies
+        if all(body.mass > 0.0 for body in bodies) and dense_admitted(len(bodies)):
             return Setting.of("newton", tolerance=1e-12, inverse_dynamics=1)
         return Setting.of("newton", tolerance=1e-12)
 
@@ -160,6 +163,8 @@ class ReferenceAdapter(Adapter):
         tolerance = float(setting.get("rtol" if dynamic else "tolerance", 1e-12))
         step = float(setting.get("dt", ALI3P_STEP)) if setting.mode == ALI3P else None
         inverse, compiled = bool(setting.get("inverse_dynamics", 0)), bool(setting.get("compiled", 1))
+        if inverse:  # a dense least-squares solve per grid point
+            check_dense_rows(scenario.name, len(scenario.bodies))
         return ReferenceModel(scenario, tolerance, setting.mode, inverse, step, compiled)
 
     def simulate(self, model: ReferenceModel, times: np.ndarray) -> Trajectory:

@@ -76,10 +76,15 @@ def check_work(name: str, points: float, bodies: int, dense: bool) -> None:
         )
 
 
+def dense_admitted(bodies: int) -> bool:
+    """Whether a problem of `bodies` bodies is within MAX_DENSE_ROWS rows for a dense solve."""
+    return 3 * bodies <= MAX_DENSE_ROWS
+
+
 def check_dense_rows(name: str, bodies: int) -> None:
     """Refuse a problem of more than MAX_DENSE_ROWS rows (3 a body) for a dense solve."""
     rows = 3 * bodies
-    if rows > MAX_DENSE_ROWS:
+    if not dense_admitted(bodies):
         raise ScenarioError(
             f"{name}: {bodies} bodies make {rows} constraint rows, above the limit of "
             f"{MAX_DENSE_ROWS} rows ({MAX_DENSE_ROWS // 3} bodies) for dense solves (dynamics, the "

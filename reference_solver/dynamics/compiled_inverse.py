@@ -13,6 +13,7 @@ from reference_solver.dynamics.loads import Loads
 from reference_solver.fast import inverse_kernels
 from reference_solver.fast.constraint_rows import NotCompiled
 from reference_solver.fast.load_program import compile_loads
+from reference_solver.fast.path import CHUNK_ROW_STEPS
 from reference_solver.solution import Analysis
 from reference_solver.system import ConstraintSystem
 
@@ -38,17 +39,20 @@ def compiled_outputs(
     lam, pairs, potential = np.empty((count, m)), np.empty((count, m, 2)), np.empty(count)
     dense = system.kernels
     program = dense.program  # type: ignore[attr-defined]
-    kernels.multipliers(
-        *(program.ints, program.reals, forces.ints, forces.reals, forces.gravity, mass, times),
-        *(np.ascontiguousarray(a, dtype=float) for a in (analysis.q, analysis.qd, analysis.qdd)),
-        *(first, lam, pairs, potential, dense.work.copy(), dense.scratch.copy()),  # type: ignore[attr-defined]
-    )
+    q, qd, qdd = (np.ascontiguousarray(a, dtype=float) for a in (analysis.q, analysis.qd, analysis.qdd))
+    work, scratch = dense.work.copy(), dense.scratch.copy()  # type: ignore[attr-defined]
+    chunk = max(1, CHUNK_ROW_STEPS // (m * m))  # a least-squares solve of m rows a point
+    for start in range(0, count, chunk):  # a signal's handler runs between two chunks
+        part = slice(start, min(start + chunk, count))
+        kernels.multipliers(
+            *(program.ints, program.reals, forces.ints, forces.reals, forces.gravity, mass, times[part]),
+            *(q[part], qd[part], qdd[part], first, lam[part], pairs[part], potential[part], work, scratch),
+        )
     out: dict[str, np.ndarray] = {}
     for name, rows, _ in joints:  # the joints' rows come before the drivers', as constraint_outputs
         force = -pairs[:, rows, :].sum(axis=1)
         out[f"{name}.fx"], out[f"{name}.fy"] = force[:, 0].copy(), force[:, 1].copy()
     out.update({name: -lam[:, row] for name, row in drivers})
-    qd = np.asarray(analysis.qd, dtype=float)
     out["energy.kinetic"] = 0.5 * np.einsum("ij,j,ij->i", qd, mass, qd)
     out["energy.potential"] = potential
     return out

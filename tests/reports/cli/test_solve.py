@@ -16,6 +16,7 @@ import scenarios
 from reports.cli.main import main
 from reports.harness.results_store import read_trajectories
 from scenarios.closed_form import exact
+from scenarios.newton_euler import body_forces
 from tests.support.engines import ENGINES
 
 
@@ -35,10 +36,18 @@ def test_solve_writes_the_canonical_csv(capsys) -> None:  # type: ignore[no-unty
         for b in ("crank", "rod", "slider")
         for c in ("x", "y", "theta", "vx", "vy", "omega", "ax", "ay", "alpha")
     ]
-    assert list(frame.columns) == expected
+    assert list(frame.columns[: len(expected)]) == expected  # the canonical columns first
     scenario = scenarios.build("slider_crank")
-    closed = exact(scenario, frame["t"].to_numpy()).to_frame()
+    motion = exact(scenario, frame["t"].to_numpy())
+    closed = motion.to_frame()
     np.testing.assert_allclose(frame[expected].to_numpy(), closed[expected].to_numpy(), atol=1e-10)
+    # then the inverse dynamics' forces, each the Newton-Euler force on the closed-form motion
+    forces = body_forces(scenario, motion)
+    extras = [c for c in frame.columns[len(expected) :] if not c.startswith("energy.")]
+    assert sorted(extras) == sorted(forces) and forces
+    scale = max(float(np.max(np.abs(v))) for v in forces.values())
+    for name, truth in forces.items():
+        np.testing.assert_allclose(frame[name].to_numpy(), truth, atol=1e-8 * scale, err_msg=name)
 
 
 def test_solve_with_parameters_dt_and_out(tmp_path: Path, capsys) -> None:  # type: ignore[no-untyped-def]
