@@ -28,6 +28,7 @@ from scenarios.drivers import AbsoluteDriver
 from scenarios.forces import AppliedTorque, RotationalSpringDamper, SpringDamper
 from scenarios.joints import Revolute
 from scenarios.motions import ConstantSpeed
+from tests.support.measured import A02_SPEC
 
 SHORT = {
     # scenario: (t_end, steps, step h), and the measured distance to the partitioned method at h/2
@@ -410,17 +411,6 @@ def test_a_chain_with_force_elements_keeps_its_tangent_dense() -> None:
     assert stepper.step(s).t == pytest.approx(1e-3, abs=1e-18)
 
 
-A02_SPEC = (5.36e-09, 1.92e-11, 1.69e-07)
-"""n_four_bar/spec (40 loops, 20 s, 20 singular passages) at h = 2e-5 on 400 output steps and the
-passage times, on the compiled step: energy drift over the largest kinetic energy, the largest
-rocker-to-crank angle (at a passage: 6.4e-12 to 1.9e-11 over the 20; 2.5e-13 at every other output),
-the crank's distance to the reduced equation. Measured 124 s CPU (load 8 on 2 cores), with the steps
-near each passage careful and the step across it placed (dynamics.passage). Before that (equal steps,
-the Schur complement only at a stalled update): 5.5e-9, 2.07e-10 (4e-12 to 2.1e-10 by the instant's
-phase in its step), 1.9e-7 in 112 s CPU at load 11. Before C's rows summed positions apart and the
-round-off floor left the coordinates' size (fast.ali3p_kernel): 6.0e-9, 6.7e-10 (2.5e-10 elsewhere),
-2.1e-7 in 108 s. The plain step, before, at h = 2e-4 (56 s CPU): 4.3e-7, 1.7e-8, 8.1e-6; at h = 1e-4
-(112 s): 1.07e-7, 5.4e-9, 3.0e-6."""
 SPEC_FLOOR = 10.0
 """The spec test's lower bounds are the measured values over this (its upper ones FACTOR times them)."""
 

@@ -1,4 +1,5 @@
-"""The README's layout section names every package directory of the tree, and nothing that is not."""
+"""The layout section of docs/layout.md names every package directory of the tree, and nothing that is
+not."""
 
 from __future__ import annotations
 
@@ -10,7 +11,7 @@ PACKAGES = ("mbxval", "scenarios", "reference_solver", "adapters", "reports")
 
 
 def test_the_layout_section_matches_the_package_tree() -> None:
-    text = (ROOT / "README.md").read_text()
+    text = (ROOT / "docs" / "layout.md").read_text()
     section = text[text.index("## Layout") : text.index("Imports flow one way")]
     named = set(re.findall(r"^    ([a-z_/]+/)\s", section, flags=re.M))
     packages = {
@@ -19,5 +20,5 @@ def test_the_layout_section_matches_the_package_tree() -> None:
         for init in (ROOT / top).rglob("__init__.py")
         if "__pycache__" not in init.parts
     }
-    assert packages - named == set(), "package directories missing from the README's layout"
+    assert packages - named == set(), "package directories missing from the layout in docs/layout.md"
     assert {n for n in named if n.split("/")[0] in PACKAGES} - packages == set(), "named but not in the tree"
