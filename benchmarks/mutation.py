@@ -245,7 +245,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/layout.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_layout.py"),
     "reference_solver/factorization.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_factorization.py"),
     "reference_solver/residual.py": (*PLAIN_PATH_TESTS, *RESIDUAL_TESTS),
-    # --- native dynamics (session 8, s8-mut2) ---
+    # --- native dynamics ---
     "reference_solver/dynamics/loads.py": (*FORCE_ELEMENT_TESTS, *DRIVEN_DYNAMICS_TESTS),
     "reference_solver/dynamics/mass.py": (f"{DYNAMICS}test_mass.py", *DRIVEN_DYNAMICS_TESTS),
     "reference_solver/dynamics/inverse.py": (
@@ -263,7 +263,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/dynamics/projection.py": (f"{DYNAMICS}test_projection.py", *ALI3P_FAST_TESTS),
     "reference_solver/dynamics/tangent.py": (f"{DYNAMICS}test_tangent.py", *ALI3P_FAST_TESTS),
     # --- end of native dynamics ---
-    # ---- the compiled kinematic fast path (session 8, mut3) ----
+    # ---- the compiled kinematic fast path ----
     "reference_solver/fast/constraint_rows.py": FAST_PATH_TESTS,
     "reference_solver/fast/program.py": (
         "tests/reference_solver/test_fast_program_mutants.py",
@@ -310,14 +310,14 @@ MODULES: dict[str, tuple[str, ...]] = {
         "tests/reference_solver/test_mobility.py",
         "tests/reference_solver/test_failures.py",
     ),
-    # --- ALI3-P's plain step and its grid (session 8, s8-mut5) ---
+    # --- ALI3-P's plain step and its grid ---
     "reference_solver/dynamics/ali3p_grid.py": (
         *ALI3P_STEP_TESTS,
         f"{DYNAMICS}test_ali3p_schedule_mutants_s11.py",  # the watch's and the placement's use
     ),
     "reference_solver/dynamics/ali3p.py": ALI3P_STEP_TESTS,
     # --- end of ALI3-P ---
-    # --- the partitioned method (session 8, s8-mut4) ---
+    # --- the partitioned method ---
     "reference_solver/dynamics/partition.py": PARTITIONED_TESTS,
     "reference_solver/dynamics/forward.py": (
         *PARTITIONED_TESTS,
@@ -325,7 +325,7 @@ MODULES: dict[str, tuple[str, ...]] = {
         f"{DYNAMICS}test_forward_mutants_s10.py",
     ),
     # --- end of the partitioned method ---
-    # --- the compiled partitioned right-hand side and its support (session 9, s9-mutdyn) ---
+    # --- the compiled partitioned right-hand side and its support ---
     "reference_solver/dynamics/compiled_rates.py": COMPILED_RATES_TESTS,
     "reference_solver/fast/rates.py": (
         *RATES_KERNEL_TESTS,
@@ -346,7 +346,7 @@ MODULES: dict[str, tuple[str, ...]] = {
         "tests/reference_solver/test_errors.py",
     ),
     # --- end of the compiled partitioned right-hand side ---
-    # --- ALI3-P's compiled step (session 9, s9-mutali3p) ---
+    # --- ALI3-P's compiled step ---
     "reference_solver/fast/ali3p_matrix.py": (
         "tests/reference_solver/test_fast_ali3p_matrix.py",
         f"{DYNAMICS}test_compiled_ali3p.py",
@@ -363,7 +363,7 @@ MODULES: dict[str, tuple[str, ...]] = {
         "tests/reference_solver/test_fast_ali3p_kernel_s11.py",
     ),
     # --- end of ALI3-P's compiled step ---
-    # --- ALI3-P's singular passages (session 11, s11-mutdyn) ---
+    # --- ALI3-P's singular passages ---
     "reference_solver/dynamics/passage.py": (
         f"{DYNAMICS}test_passage.py",
         f"{DYNAMICS}test_passage_mutants_s11.py",

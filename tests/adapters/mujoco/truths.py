@@ -1,4 +1,4 @@
-"""The native truth of dynamic scenarios for MuJoCo's dynamics tests, computed once per session."""
+"""The native truth of dynamic scenarios for MuJoCo's dynamics tests, computed once per test process."""
 
 from __future__ import annotations
 
