@@ -28,7 +28,7 @@ from scenarios.drivers import AbsoluteDriver
 from scenarios.joints import RevoluteRevolute
 from scenarios.motions import Harmonic
 from tests.reference_solver.dynamics.test_compiled_ali3p_run import THETA0, _rod
-from tests.reference_solver.test_fast_ali3p_kernel_mutants import (
+from tests.reference_solver.fast.test_ali3p_kernel_near_singular import (
     H,
     _branch,
     _kernel_problem,
@@ -38,7 +38,7 @@ from tests.reference_solver.test_fast_ali3p_kernel_mutants import (
     _start,
     _trapezoidal_on_the_branch,
 )
-from tests.reference_solver.test_fast_ali3p_matrix import _bandwidth, _dense, _rows
+from tests.reference_solver.fast.test_ali3p_matrix import _bandwidth, _dense, _rows
 
 
 @pytest.mark.parametrize("off", [1e-4, -1e-4])

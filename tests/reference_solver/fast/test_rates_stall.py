@@ -14,7 +14,7 @@ import numpy as np
 
 from reference_solver.dynamics.partition import RESIDUAL, STALLED
 from tests.reference_solver.dynamics.test_partition_stall import SHIFT, four_bar
-from tests.reference_solver.test_fast_rates import compiled_and_plain
+from tests.reference_solver.fast.test_rates import compiled_and_plain
 
 ANGLES = 30
 

@@ -17,7 +17,7 @@ import pytest
 from scipy.linalg.lapack import dgbcon, dgbtrf
 
 from reference_solver.fast import band
-from tests.reference_solver.test_fast_path_kernels import _store
+from tests.reference_solver.fast.test_kernels import _store
 
 MATRICES = 1500
 AGREE = 1e-12

@@ -39,7 +39,7 @@ from scenarios.motions import ConstantSpeed
 from tests.reference_solver.dynamics.test_ali3p import steps_alike_in_metres_and_kilometres
 from tests.reference_solver.dynamics.test_compiled_ali3p_run import THETA0, _rod
 from tests.reference_solver.dynamics.test_compiled_ali3p_run import _start as _start_run
-from tests.reference_solver.test_fast_ali3p_matrix import _bandwidth, _dense, _rows
+from tests.reference_solver.fast.test_ali3p_matrix import _bandwidth, _dense, _rows
 
 H = 1e-3
 G = 9.81

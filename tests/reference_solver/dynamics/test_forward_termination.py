@@ -21,7 +21,7 @@ from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.errors import AssemblyError
 from reference_solver.system import ConstraintSystem
 from scenarios import GROUND, Point, Revolute
-from tests.reference_solver.dynamics.test_forward_mutants import FRACTION, RTOL, rod, swinging_four_bar
+from tests.reference_solver.dynamics.test_forward_repartition import FRACTION, RTOL, rod, swinging_four_bar
 
 
 class TooManyPartitions(RuntimeError):
@@ -59,7 +59,7 @@ def test_a_scene_that_keeps_its_partition_is_integrated_once_to_the_end(
 
 def test_repartitions_end_at_the_end_of_the_grid(monkeypatch: pytest.MonkeyPatch) -> None:
     """The swinging four-bar at REPARTITION = 0.95 is partitioned anew 9 times (measured; see
-    test_forward_mutants.py): at most twice that many, each new one from a new state, and every grid
+    test_forward_repartition.py): at most twice that many, each new one from a new state, and every grid
     time output once."""
     monkeypatch.setattr(forward, "REPARTITION", FRACTION)
     made = _budgeted(monkeypatch, 20)

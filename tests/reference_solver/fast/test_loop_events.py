@@ -165,7 +165,7 @@ def test_a_step_over_a_singularity_changes_the_sign_of_det_c_q(before: float, af
 def test_a_grid_point_on_a_singularity_is_near_singular() -> None:
     """Rod = crank from theta = 0 at 50 rad/s, 8 steps of pi/400 s: the point t = pi/100 (index 2) is
     theta = pi/2, where C_q is singular; the kernel stops there for the conditioning, or for Newton
-    (whichever rounding decides, as in test_fast_path.py), at that index or before."""
+    (whichever rounding decides, as in tests/reference_solver/fast/test_path.py), at that index or before."""
     scenario = scenarios.build("slider_crank", overrides={"rod_length": 0.2, "theta0": 0.0, "steps": 8})
     grid = np.asarray(scenario.times())
     run = path.run(scenario, grid)

@@ -31,7 +31,7 @@ from reference_solver.newton import NewtonSettings, newton
 from reference_solver.system import ConstraintSystem
 from scenarios import AbsoluteDriver, Constant, ConstantSpeed, Harmonic, Point, Prismatic, RollerCam, Scenario
 from tests.reference_solver.test_analysis import A_HALF, AMPLITUDE, MEAN, OMEGA, _by_hand, _crank
-from tests.reference_solver.test_fast_loop_mutants import _completed, _scaled_rcond_1
+from tests.reference_solver.fast.test_loop_events import _completed, _scaled_rcond_1
 
 
 def _held_crank(x: float, theta_guess: float, length: float = 2 * A_HALF) -> Scenario:

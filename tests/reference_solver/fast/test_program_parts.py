@@ -30,7 +30,7 @@ from reference_solver.system import ConstraintSystem
 from scenarios import AbsoluteDriver, Constant
 from scenarios.cam_profiles import EccentricDisc, LobedProfile, SplineProfile
 from tests.reference_solver.test_analysis import _crank
-from tests.reference_solver.test_fast_constraint_rows import NAMES, VOCABULARY
+from tests.reference_solver.fast.test_constraint_rows import NAMES, VOCABULARY
 
 SPLINE_A = SplineProfile.sample(EccentricDisc(0.05, 0.01), 12)
 SPLINE_B = SplineProfile.sample(EccentricDisc(0.08, 0.03), 7)
