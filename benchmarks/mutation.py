@@ -121,10 +121,10 @@ LOOP_TESTS = (
     "tests/reference_solver/test_branch_guard.py::test_the_kernel_hands_a_jump_to_the_plain_path",
 )
 """The kernel loop uncompiled (a kernel module): the hand-worked crank through the kernel and each of
-its events (tests/reference_solver/fast/test_loop_events.py, 3 s of CPU uncompiled), two catalogue scenarios against the plain
+its events (fast/test_loop_events.py, quick uncompiled), two catalogue scenarios against the plain
 path (a spline cam's profile points, a planetary train), a looser tolerance, and a branch jump. Left
-out: the rest of the catalogue (12 s of CPU uncompiled), the singular cases of tests/reference_solver/fast/test_path.py (they
-run the plain path's diagnosis, up to 16 s each) and its iteration-limit test (minutes uncompiled)."""
+out: the rest of the catalogue, the singular cases of fast/test_path.py (they run the plain path's
+diagnosis, seconds each uncompiled) and its iteration-limit test (minutes uncompiled)."""
 
 ALI3P_STEP_TESTS = (
     *ALI3P_FAST_TESTS,
@@ -300,7 +300,10 @@ MODULES: dict[str, tuple[str, ...]] = {
     ),
     "reference_solver/fast/residuals.py": RESIDUAL_TESTS,
     "reference_solver/compiled_system.py": (COMPILED_SYSTEM_TESTS,),
-    "reference_solver/equation.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_equation_ground_rows.py"),
+    "reference_solver/equation.py": (
+        *PLAIN_PATH_TESTS,
+        "tests/reference_solver/test_equation_ground_rows.py",
+    ),
     "reference_solver/solution.py": (
         "tests/reference_solver/test_solution.py",
         "tests/reference_solver/test_analysis.py",

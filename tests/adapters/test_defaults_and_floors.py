@@ -8,30 +8,13 @@ truth (closed forms, the native forward dynamics), as the runner measures them
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 
 import adapters
 import scenarios
-from adapters.base import Setting
-from reports.harness.level_error import level_errors
-from reports.harness.truth import independent_truth
 from tests.support.bounds import held
+from tests.support.default_errors import errors
 from tests.support.measured import DYNAMIC_DEFAULTS, FLOORS, KINEMATIC_DEFAULTS
-
-LEVELS = ("error_position", "error_velocity", "error_acceleration")
-
-
-def errors(name: str, engine: str, setting: Setting | None = None, **overrides: float) -> tuple[float, ...]:
-    scenario = scenarios.build(name, overrides=overrides or None)
-    adapter = adapters.load(engine)
-    setting = setting or adapter.default_setting(scenario)
-    result = adapter.run(scenario, setting)
-    assert result.status == "ok" and result.trajectory is not None, result.message
-    truth = independent_truth(scenario, np.asarray(scenario.times())).trajectory
-    found = level_errors(scenario, result.trajectory, truth)
-    return tuple(float(found[level]) for level in LEVELS)
-
 
 OVERRIDES: dict[str, dict[str, float]] = {"compound_pendulum": {"links": 9}}
 

@@ -1,7 +1,7 @@
 """analysis.assemble's round-off refusal for a mechanism whose coordinates are all below 1 (m and
-rad): the largest coordinate it names is the mechanism's own, not a floor of 1 (`assemble` 61,
-explained in session 10 as reached only by a mechanism too small to pass the mobility check; a
-tolerance below the round-off reaches it directly)."""
+rad): the largest coordinate it names is the mechanism's own, not a floor of 1 (a tolerance below
+the round-off reaches this branch directly, where only a mechanism too small to pass the mobility
+check would otherwise)."""
 
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
-"""analysis.assemble's refusal where Newton meets the constraints but C_q is singular there (added
-after session 8's mutation pass of assemble): the whole message, with the residual it reports read
+"""analysis.assemble's refusal where Newton meets the constraints but C_q is singular there: the
+whole message, with the residual it reports read
 back and held below the tolerance, so that no word of the explanation and no default of the numbers
 in it can change unseen."""
 
@@ -16,7 +16,7 @@ from reference_solver.analysis import analyse
 from reference_solver.errors import AssemblyError
 from reference_solver.system import ConstraintSystem
 from scenarios import AbsoluteDriver, Constant
-from tests.reference_solver.dynamics.test_ali3p_offset import _moved
+from tests.support.a02_chain import moved_along_x
 
 HELD = re.compile(
     r"slider_crank: the mechanism cannot assemble at t=0: the constraints hold \(to (?P<miss>\S+)\) but "
@@ -46,11 +46,11 @@ FLOORED = re.compile(
 
 
 def test_an_assembly_stopped_by_round_off_is_not_called_singular() -> None:
-    """The four-bar (L = 0.05 m) moved 1000 m along x: the plain rows sum coordinates of 1000 m, whose
-    round-off, eps 1000 / L = 4.4e-12 of the length, floors the residual above the tolerance 1e-12
-    and within ten of it (measured 2.3e-12), while C_q is regular. The refusal said "C_q is singular
-    there, rank deficiency 0" (a bug found by the assemble mutants' pass); it names the floor now."""
-    scenario = _moved(scenarios.build("four_bar"), 1000.0)
+    """The four-bar (L = 0.05 m) moved 1000 m along x: the plain rows sum coordinates of 1000 m,
+    whose round-off, eps 1000 / L = 4.4e-12 of the length, floors the residual above the tolerance
+    1e-12 and within ten of it, while C_q is regular: the refusal names the round-off floor, never
+    "C_q is singular there, rank deficiency 0"."""
+    scenario = moved_along_x(scenarios.build("four_bar"), 1000.0)
     with pytest.raises(AssemblyError) as caught:
         analyse(scenario, fast=False)
     match = FLOORED.fullmatch(str(caught.value))

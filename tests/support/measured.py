@@ -37,7 +37,6 @@ FLOORS: dict[tuple[str, str], tuple[float, float, float]] = {
 }
 """(scenario, engine): the errors at the floor of the engine's ladder
 (tests/adapters/test_defaults_and_floors.py says which setting that is), measured."""
-
 MUJOCO_FORCES: dict[str, tuple[float, float]] = {
     "slider_crank": (9.5e-11, 8.0e-5),
     "four_bar": (5.1e-10, 1.7e-4),
@@ -45,7 +44,6 @@ MUJOCO_FORCES: dict[str, tuple[float, float]] = {
 """scenario: the force error over a whole turn at the default setting (the regulariser scaled by
 1e-8, time constant 128 steps, the solver run to no improvement: adapters.mujoco.mjcf.Physics) and
 with MuJoCo's own regulariser at 4 steps, measured, held two-sided (tests.support.bounds)."""
-
 EXUDYN_FORCES: dict[tuple[str, str], float] = {
     ("slider_crank", "TR2"): 2.0e-6,
     ("slider_crank", "GA3"): 2.6e-6,  # after its run-in
@@ -54,7 +52,6 @@ EXUDYN_FORCES: dict[tuple[str, str], float] = {
 }
 """(scenario, mode at the default step): the force error over a whole turn, measured
 (GA3 after its run-in), held two-sided (tests.support.bounds)."""
-
 A02_SPEC = (5.36e-09, 1.92e-11, 1.69e-07)
 """n_four_bar/spec (40 loops, 20 s, 20 singular passages) at h = 2e-5 on 400 output steps and the
 passage times, on the compiled step: energy drift over the largest kinetic energy, the largest

@@ -1,11 +1,10 @@
-"""ALI3-P's steps around a singular passage (dynamics.ali3p_schedule), written for its mutation pass
-(session 11, docs/mutation.md): the steps the compiled stepper is asked for on the 10-loop chain
-through its first passage (test_ali3p._chain), recorded as they are taken, against what the module
-promises: equal steps of h on the grid t0 + k h, except three placed steps from t_j to t_{j+3}, each
-0.5 to 1.5 h long, the middle one across the singular instant (from the chain's
-one-degree-of-freedom solution) and no step ending within half a step of it; careful steps exactly
-where the scaled smallest singular value s of C_q is small (a dense SVD at each step's start), and a
-placement never past the span's end."""
+"""ALI3-P's steps around a singular passage (dynamics.ali3p_schedule): the steps the compiled
+stepper is asked for on the 10-loop chain through its first passage (tests.support.a02_chain),
+recorded as they are taken, against what the module promises: equal steps of h on the grid t0 + k h,
+except three placed steps from t_j to t_{j+3}, each 0.5 to 1.5 h long, the middle one across the
+singular instant (from the chain's one-degree-of-freedom solution) and no step ending within half a
+step of it; careful steps exactly where the scaled smallest singular value s of C_q is small (a
+dense SVD at each step's start), and a placement never past the span's end."""
 
 from __future__ import annotations
 
@@ -22,9 +21,9 @@ from reference_solver.dynamics.forward import initial_state
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.passage import CAREFUL, END_VALUE, FIRST, Watch
-from tests.reference_solver.dynamics.test_ali3p import _chain
-from tests.reference_solver.dynamics.test_compiled_ali3p_run import _rod
-from tests.reference_solver.dynamics.test_passage import compiled_schedule, fail_when_careful
+from tests.support.a02_chain import a02_chain
+from tests.support.ali3p_rod import swinging_rod
+from tests.support.passage_spies import compiled_schedule, fail_when_careful
 
 H = 0.77 / 38500
 """The step of test_passage's chain at the instant's phase 0.41 (t* = 36015.41 h)."""
@@ -40,7 +39,7 @@ def _record(
     """The chain over t_end at the step h from time t0 (no drivers: the same motion, t0 later),
     its stepper's calls recorded; with t* and the span's end. The watch reads s first at t0 and
     then FIRST steps on (passage.FIRST)."""
-    scenario, grid, reduced = _chain(loops, t_end)
+    scenario, grid, reduced = a02_chain(loops, t_end)
     system = constraint_system(scenario)
     mass = mass_diagonal(scenario, system.layout)
     loads = Loads(scenario, system.layout, mass)
@@ -153,7 +152,7 @@ def test_an_output_within_a_step_s_round_off_of_the_start_is_the_start() -> None
     """A grid whose first output is 1e-14 s after the start (within SAME_TIME of a step of 1e-3):
     no step is taken for it, and the output is the start state itself with no work done; the next
     output, a step on, is a step's state."""
-    scenario = _rod()
+    scenario = swinging_rod()
     system = constraint_system(scenario)
     mass = mass_diagonal(scenario, system.layout)
     loads = Loads(scenario, system.layout, mass)
@@ -182,7 +181,7 @@ def test_a_placed_careful_step_that_fails_is_retaken_at_its_length(monkeypatch: 
     """As test_passage's retry, for a placed step (another length than h): the careful step that
     raises is taken again without care at the same length, giving the state the uncareful step of
     that length gives (the time h/2 on, the same q)."""
-    stepper, first, schedule = compiled_schedule(_rod())
+    stepper, first, schedule = compiled_schedule(swinging_rod())
     expected, _, _ = stepper.run_length(first, 5e-4, np.zeros(3), np.zeros(3))
     fail_when_careful(monkeypatch, stepper, 5e-4)
     schedule._take(1, 5e-4)

@@ -28,7 +28,7 @@ from scenarios import GROUND, Body, Point, Revolute, Scenario, load
 from scenarios.forces import AppliedTorque
 from scenarios.motion_laws import Polynomial
 from scenarios.motions import Harmonic, Motion
-from tests.reference_solver.dynamics.test_compiled_rates import both, random_states
+from tests.support.compiled_dynamics import both, random_states
 
 Call = tuple[int, int, float, int, int]
 """(level, chord flag, stalled tolerance, Newton's iteration limit, status returned) of one kernel call."""

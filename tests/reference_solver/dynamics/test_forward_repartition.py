@@ -9,15 +9,12 @@ be the partitions made and the right-hand sides evaluated in all of them."""
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import itertools
-from typing import Any
 
 import numpy as np
 import pytest
 
-import scenarios
 from reference_solver.compiled_system import CompiledSystem
 from reference_solver.dynamics import forward
 from reference_solver.dynamics.forward import DynamicAnalysis, initial_state, simulate
@@ -25,35 +22,13 @@ from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.partition import Partitioned
 from reference_solver.system import ConstraintSystem
-from scenarios import Harmonic, Scenario
-from scenarios.forces import AppliedTorque
-
-RTOL = 1e-9
-FRACTION = 0.95
-
-
-def swinging_four_bar(driven: bool = False) -> Scenario:
-    """The released four-bar; `driven`: a harmonic torque on its crank too (a load that depends on
-    time, so that the state at a repartition must be taken at the event's time)."""
-    scenario = scenarios.build("four_bar_gravity", overrides={"t_end": 0.25, "steps": 5})
-    if not driven:
-        return scenario
-    return dataclasses.replace(
-        scenario, forces=(AppliedTorque("motor", "crank", Harmonic(0.0, 0.05, 20.0, 0.0)),)
-    )
+from tests.support.forward_scenes import FRACTION, RTOL, rod, swinging_four_bar
 
 
 @functools.cache
 def one_partition(driven: bool = False) -> DynamicAnalysis:
     """The four-bar at the module's REPARTITION (0.1): one partition all the way."""
     return simulate(swinging_four_bar(driven), rtol=RTOL)
-
-
-def rod(**changes: Any) -> Scenario:
-    """compound_pendulum's one link pinned at its end, from 0.3 rad."""
-    return dataclasses.replace(
-        scenarios.build("compound_pendulum", overrides={"links": 1, "theta0": 0.3}), **changes
-    )
 
 
 @pytest.mark.parametrize("driven", [False, True], ids=["released", "with a harmonic torque"])

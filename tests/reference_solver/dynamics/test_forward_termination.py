@@ -1,8 +1,8 @@
-"""Forward dynamics (dynamics.forward) where mutants of the partitioned loop never ended: a loop that
-re-integrates with no output left, or repartitions from the same state, or a walk that never
-advances. Each is held here by a count, not a clock: the partitions made are counted (a spy on
-partitioned_ode that refuses more than the scene needs), and the walk through the integrator's steps
-is read through a bound of its length, so such a mutant fails at once instead of running for ever."""
+"""Forward dynamics (dynamics.forward) ends: a partitioned loop must never re-integrate with no
+output left, repartition from the same state, or walk the integrator's steps without advancing. Each
+is held here by a count, not a clock: the partitions made are counted (a spy on partitioned_ode that
+refuses more than the scene needs), and the walk through the integrator's steps is read through a
+bound of its length, so such a defect fails at once instead of running for ever."""
 
 from __future__ import annotations
 
@@ -21,7 +21,7 @@ from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.errors import AssemblyError
 from reference_solver.system import ConstraintSystem
 from scenarios import GROUND, Point, Revolute
-from tests.reference_solver.dynamics.test_forward_repartition import FRACTION, RTOL, rod, swinging_four_bar
+from tests.support.forward_scenes import FRACTION, RTOL, rod, swinging_four_bar
 
 
 class TooManyPartitions(RuntimeError):

@@ -1,6 +1,5 @@
-"""dynamics.passage where test_passage.py does not reach (written for its mutation pass, session 11,
-docs/mutation.md): a C_q with a zero row, readings that do not change (a mechanism whose C_q is
-constant), and what a reading returns and keeps."""
+"""dynamics.passage's readings at their edges: a C_q with a zero row, readings that do not change (a
+mechanism whose C_q is constant), and what a reading returns and keeps."""
 
 from __future__ import annotations
 

@@ -1,9 +1,8 @@
-"""ALI3-P's compiled step (fast.ali3p_kernel) after the careful steps of singular passages were added
-(session 11's mutation pass, docs/mutation.md): a careful step next to A02's singular position
-against the trapezoidal equations solved on the parallelogram branch (test_fast_ali3p_kernel_mutants'
-derivation), and the two failures the kernel used to pass on as results: a Schur complement that is
-exactly singular, and a projection whose moves are not finite (its largest move is a max(), which
-skips NaN, so a NaN move read as settled)."""
+"""ALI3-P's compiled step (fast.ali3p_kernel) in the careful steps of singular passages: a careful
+step next to A02's singular position against the trapezoidal equations solved on the parallelogram
+branch (tests.support.one_loop), and two failures the kernel must not pass on as results: a Schur
+complement that is exactly singular, and a projection whose moves are not finite (its largest move
+is a max(), which skips NaN, so a NaN move would read as settled)."""
 
 from __future__ import annotations
 
@@ -27,18 +26,18 @@ from scenarios import Point
 from scenarios.drivers import AbsoluteDriver
 from scenarios.joints import RevoluteRevolute
 from scenarios.motions import Harmonic
-from tests.reference_solver.dynamics.test_compiled_ali3p_run import THETA0, _rod
-from tests.reference_solver.fast.test_ali3p_kernel_near_singular import (
+from tests.support.ali3p_rod import THETA0, swinging_rod
+from tests.support.one_loop import (
     H,
-    _branch,
-    _kernel_problem,
-    _one_loop,
-    _projected,
-    _rates_are_the_projections,
-    _start,
-    _trapezoidal_on_the_branch,
+    kernel_problem,
+    one_loop_steppers,
+    parallelogram_branch,
+    projected_exactly,
+    rates_are_the_projections,
+    state_before_passage,
+    trapezoidal_on_the_branch,
 )
-from tests.reference_solver.fast.test_ali3p_matrix import _bandwidth, _dense, _rows
+from tests.support.row_stores import dense_jacobian, random_row_store, store_bandwidth
 
 
 @pytest.mark.parametrize("off", [1e-4, -1e-4])
@@ -52,16 +51,16 @@ def test_a_careful_step_next_to_the_singular_position_factors_s_once(off: float)
     (measured 8.1e-13 and 5.8e-12 rad), q' at the exact M-orthogonal projection of the trapezoidal
     rates (1.8e-16 and 3.5e-16 of them), q'' at that of the trapezoidal accelerations onto
     C_q q'' = Q_d (5.4e-12 and 2.8e-12 of them)."""
-    compiled, _, plain, mass, loads = _one_loop()
-    start, qhat = _start(off)
+    compiled, _, plain, mass, loads = one_loop_steppers()
+    start, qhat = state_before_passage(off)
     uncareful = compiled.run(start, 1, np.zeros(3), np.zeros(3))[0].iterations
     compiled.careful = True
     end, _, _ = compiled.run(start, 1, np.zeros(3), np.zeros(3))
     assert compiled.slow_steps == 2  # one for each step: the uncareful one's at its stall
     assert end.iterations < uncareful
-    exact, _, _ = _branch(_trapezoidal_on_the_branch(qhat, mass, loads.gravity))
+    exact, _, _ = parallelogram_branch(trapezoidal_on_the_branch(qhat, mass, loads.gravity))
     assert np.max(np.abs(end.q - exact)) < 1.5e-11
-    _rates_are_the_projections(plain, mass, start, qhat, end)
+    rates_are_the_projections(plain, mass, start, qhat, end)
 
 
 def _schur_problem(zero_row: int | None) -> tuple[dict[str, Any], np.ndarray]:
@@ -69,11 +68,11 @@ def _schur_problem(zero_row: int | None) -> tuple[dict[str, Any], np.ndarray]:
     used slot, unit penalties; W factored. Returns the kernel's arguments and C_q densely."""
     n, m, weight = 12, 7, 0.25e-6
     rng = np.random.default_rng(0)
-    ints, store = _rows(rng, m, n, 4)
+    ints, store = random_row_store(rng, m, n, 4)
     if zero_row is not None:
         ints[zero_row, K_SLOT_COL : K_SLOT_COL + WIDTH] = -1
-    jac = _dense(ints, store, m, n)
-    w = _bandwidth(ints, m)
+    jac = dense_jacobian(ints, store, m, n)
+    w = store_bandwidth(ints, m)
     vec = np.zeros((kernel.VECTORS, n))
     vec[kernel.MASS], vec[kernel.ALPHA, :m] = rng.uniform(0.5, 2.0, n), 1.0
     sizes = np.zeros(8, np.int64)
@@ -143,7 +142,7 @@ def test_a_projection_whose_moves_are_not_finite_says_so(slow: bool, bad: float)
     largest move (a max(), skipping NaN) cannot tell from a settled projection; _project returns
     False. With every entry finite it returns True and the exact projection (through the Schur
     complement, checked densely)."""
-    p = _kernel_problem(0, 12, 7, 1.0)
+    p = kernel_problem(0, 12, 7, 1.0)
     kernel._schur(
         p["ints"], p["store"], p["vec"], p["sizes"], p["band"], p["weight"], p["schur"], p["pivots"]
     )
@@ -152,7 +151,7 @@ def test_a_projection_whose_moves_are_not_finite_says_so(slow: bool, bad: float)
     common = (p["ints"], p["store"], p["vec"], p["sizes"], p["band"], p["weight"], p["schur"], p["pivots"])
     x = rates.copy()
     assert kernel._project(*common, x, target.copy(), True) is True
-    np.testing.assert_allclose(x, _projected(p, rates, target), rtol=0, atol=1.5e-11 * np.abs(x).max())
+    np.testing.assert_allclose(x, projected_exactly(p, rates, target), rtol=0, atol=1.5e-11 * np.abs(x).max())
     broken = target.copy()
     broken[3] = bad
     x = rates.copy()
@@ -165,7 +164,7 @@ def test_a_driver_whose_acceleration_overflows_is_refused_not_stepped() -> None:
     of the q'' projection is infinite. The step is refused at its end (t = h), not returned as done
     with NaN accelerations."""
     turn = AbsoluteDriver("turn", "rod", "theta", Harmonic(THETA0, 1e-300, 1e300))
-    scenario = replace(_rod(), drivers=(turn,))
+    scenario = replace(swinging_rod(), drivers=(turn,))
     system = constraint_system(scenario)
     mass = mass_diagonal(scenario, system.layout)
     stepper = ali3p_stepper(system, mass, Loads(scenario, system.layout, mass), H)

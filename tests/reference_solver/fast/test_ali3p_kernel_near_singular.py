@@ -1,14 +1,15 @@
-"""ALI3-P's compiled step (fast.ali3p_kernel) where its tests did not reach (written for its mutation
-pass, docs/mutation.md, session 10): a step that ends next to A02's singular position, where Newton
+"""ALI3-P's compiled step (fast.ali3p_kernel) next to a singular position: a step that ends next to
+A02's singular position, where Newton
 continues through the Schur complement, against the trapezoidal equations solved independently on
 the parallelogram branch and the exact M-orthogonal projections of the rates at the step's q.
 
-A02 with one loop (crank, coupler, rocker, links of 1 m and 1 kg): on the parallelogram branch the
+A02 with one loop (tests.support.one_loop: crank, coupler, rocker, links of 1 m and 1 kg): on the
+parallelogram branch the
 crank and the rocker turn together, theta, and the coupler translates. At theta = 0 every link lies
 on the x axis and C_q loses a rank: the rocker may turn apart from the crank. A step ending next to
 it, from rates that put the rocker 1e-7 rad off the crank's turn, is slow for the augmented
 Lagrangian (it contracts by 1/(1 + PENALTY s^2) per iteration along the rocker's own turn, s about
-1e-5 here): the plain step stops at its stalled update, 1.6e-8 rad off the branch (measured)."""
+1e-5 here): the plain step stops at its stalled update, off the branch."""
 
 from __future__ import annotations
 
@@ -18,7 +19,6 @@ from typing import Any
 
 import numpy as np
 import pytest
-from scipy.optimize import brentq
 
 import scenarios
 from reference_solver.compiled_system import constraint_system
@@ -28,110 +28,26 @@ from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.errors import ConvergenceError
 from reference_solver.fast import ali3p_kernel as kernel
-from reference_solver.fast.ali3p_matrix import factor
 from reference_solver.fast.dense_lu import lu_solve
 from reference_solver.fast.program import K_SLOT_COL, WIDTH
-from reference_solver.system import ConstraintSystem
 from scenarios import Point
 from scenarios.drivers import AbsoluteDriver
 from scenarios.joints import RevoluteRevolute
 from scenarios.motions import ConstantSpeed
-from tests.reference_solver.dynamics.test_ali3p import steps_alike_in_metres_and_kilometres
-from tests.reference_solver.dynamics.test_compiled_ali3p_run import THETA0, _rod
-from tests.reference_solver.dynamics.test_compiled_ali3p_run import _start as _start_run
-from tests.reference_solver.fast.test_ali3p_matrix import _bandwidth, _dense, _rows
-
-H = 1e-3
-G = 9.81
-INERTIA = 2 / 3 + 1
-"""Of the one-loop chain about the crank's angle: crank and rocker (1/3 each about their pivots),
-the coupler translating at their tips' speed (1)."""
-WEIGHT = G * (1 / 2 + 1 / 2 + 1)
-"""The chain's potential energy per unit of sin(theta): crank and rocker centres at 1/2, coupler at 1."""
-ENERGY = 0.5 * INERTIA + WEIGHT
-"""Released at theta = pi/2 with the crank turning at -1 rad/s (n_four_bar's start)."""
-
-
-def _branch(theta: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The parallelogram branch at crank angle theta, the coordinates in the layout's order (crank,
-    coupler_1, rocker_1): q, dq/dtheta and d2q/dtheta2. Crank centre 0.5 e(theta), coupler centre
-    (1/2, 0) + e(theta) at angle 0, rocker centre (1, 0) + 0.5 e(theta)."""
-    e = np.array([math.cos(theta), math.sin(theta)])
-    n = np.array([-e[1], e[0]])
-
-    def link(base: float, reach: float, turns: float) -> tuple[list[float], list[float], list[float]]:
-        return (
-            [base + reach * e[0], reach * e[1], turns * theta],
-            [reach * n[0], reach * n[1], turns],
-            [-reach * e[0], -reach * e[1], 0.0],
-        )
-
-    parts = [link(0.0, 0.5, 1.0), link(0.5, 1.0, 0.0), link(1.0, 0.5, 1.0)]
-    q, dq, d2q = (np.concatenate([p[k] for p in parts]) for k in range(3))
-    return q, dq, d2q
-
-
-def _m_projection(jac: np.ndarray, mass: np.ndarray, rates: np.ndarray, target: np.ndarray) -> np.ndarray:
-    """The M-orthogonal projection of rates onto jac x = target, by the SVD of jac M^-1/2 (jac has
-    full row rank here, its smallest singular value about 1e-5 of its largest)."""
-    root = np.sqrt(mass)
-    scaled = jac / root
-    y = root * rates
-    y -= np.linalg.pinv(scaled, rcond=1e-14) @ (scaled @ y - target)
-    return y / root
-
-
-def _start(loops_rate: float) -> tuple[StepState, np.ndarray]:
-    """A state on the branch a step before theta = 0 (crank turning down, its energy ENERGY), its
-    rocker's rate off by `loops_rate`; and the trapezoidal rule's qhat = q + h q' + h^2/4 q''."""
-    rate0 = -math.sqrt(2 * ENERGY / INERTIA)  # at theta = 0
-    theta = -rate0 * H + WEIGHT / INERTIA * H * H / 2
-    rate = -math.sqrt(2 * (ENERGY - WEIGHT * math.sin(theta)) / INERTIA)
-    accel = -WEIGHT / INERTIA * math.cos(theta)
-    q, dq, d2q = _branch(theta)
-    qd, qdd = dq * rate, dq * accel + d2q * rate * rate
-    qd[-1] += loops_rate
-    state = StepState(0.0, q, qd, qdd, np.zeros(8), np.zeros((8, 9)))
-    return state, q + H * qd + H * H / 4 * qdd
-
-
-def _trapezoidal_on_the_branch(qhat: np.ndarray, mass: np.ndarray, gravity: np.ndarray) -> float:
-    """The crank angle at which the trapezoidal equations M 4/h^2 (q - qhat) + C_q^T mu = Q_e hold on
-    the parallelogram branch: their component along its tangent, dq/dtheta . (M 4/h^2 (q - qhat) -
-    Q_e) = 0 (C_q dq/dtheta = 0 there), solved by bracketing."""
-
-    def along(theta: float) -> float:
-        q, dq, _ = _branch(theta)
-        return float(dq @ (4 / (H * H) * mass * (q - qhat) - gravity))
-
-    guess = float(qhat[2])
-    return float(brentq(along, guess - 1e-3, guess + 1e-3, xtol=1e-20, rtol=8.9e-16))
-
-
-def _one_loop() -> tuple[CompiledAli3p, Ali3p, ConstraintSystem, np.ndarray, Loads]:
-    scenario = scenarios.build("n_four_bar", overrides={"loops": 1})
-    fast, plain = constraint_system(scenario), constraint_system(scenario, fast=False)
-    mass = mass_diagonal(scenario, plain.layout)
-    compiled = ali3p_stepper(fast, mass, Loads(scenario, fast.layout, mass), H)
-    assert isinstance(compiled, CompiledAli3p)
-    loads = Loads(scenario, plain.layout, mass)
-    return compiled, Ali3p(plain, mass, loads, H), plain, mass, loads
-
-
-def _rates_are_the_projections(
-    plain: ConstraintSystem, mass: np.ndarray, start: StepState, qhat: np.ndarray, end: StepState
-) -> tuple[np.ndarray, np.ndarray]:
-    """Asserts a step's q' and q'' are the exact M-orthogonal projections at its q of the
-    trapezoidal rate onto C_q q' = 0 (to 1e-15 of the largest) and of the trapezoidal acceleration
-    onto C_q q'' = Q_d (to 1.2e-11); returns C_q and that acceleration."""
-    jac = plain.jacobian(end.q, end.t)
-    trapezoidal = 2 / H * (end.q - start.q) - start.qd
-    rates = _m_projection(jac, mass, trapezoidal, np.zeros(8))
-    assert np.max(np.abs(end.qd - rates)) < 1e-15 * np.max(np.abs(trapezoidal))
-    accel = 4 / (H * H) * (end.q - qhat)
-    projected = _m_projection(jac, mass, accel, plain.q_d(end.q, end.qd, end.t))
-    assert np.max(np.abs(end.qdd - projected)) < 1.2e-11 * np.max(np.abs(accel))
-    return jac, accel
+from tests.support.a02_chain import steps_alike_in_metres_and_kilometres
+from tests.support.ali3p_rod import THETA0, rod_stepper, swinging_rod
+from tests.support.one_loop import (
+    G,
+    H,
+    kernel_problem,
+    one_loop_steppers,
+    parallelogram_branch,
+    projected_exactly,
+    rates_are_the_projections,
+    state_before_passage,
+    trapezoidal_on_the_branch,
+)
+from tests.support.row_stores import dense_jacobian, random_row_store
 
 
 @pytest.mark.parametrize("off", [1e-4, -1e-4])
@@ -142,56 +58,18 @@ def test_a_step_ending_next_to_the_singular_position_goes_through_the_schur_comp
     trapezoidal rate, 5 rad/s) and q'' onto C_q q'' = Q_d (3.6e-12 and 4.6e-12 of the largest
     trapezoidal acceleration); the multipliers (1.4e3 here): C_q^T (alpha C + lambda*) = Q_e -
     M q''_trapezoidal to 0.067 and 0.089 N, alpha C being alpha (4e14) times C's round-off (0.044 N)."""
-    compiled, plain_step, plain, mass, loads = _one_loop()
-    start, qhat = _start(off)
+    compiled, plain_step, plain, mass, loads = one_loop_steppers()
+    start, qhat = state_before_passage(off)
     end, power, work = compiled.run(start, 1, np.zeros(3), np.zeros(3))
     assert compiled.slow_steps >= 1
     assert power.tolist() == [0.0, 0.0, 0.0] and work.tolist() == [0.0, 0.0, 0.0]  # no driver
-    exact, _, _ = _branch(_trapezoidal_on_the_branch(qhat, mass, loads.gravity))
+    exact, _, _ = parallelogram_branch(trapezoidal_on_the_branch(qhat, mass, loads.gravity))
     assert np.max(np.abs(end.q - exact)) < 1.5e-11
     assert np.max(np.abs(plain_step.step(start).q - exact)) > 1e-9  # the stall the Schur path ends
-    jac, accel = _rates_are_the_projections(plain, mass, start, qhat, end)
+    jac, accel = rates_are_the_projections(plain, mass, start, qhat, end)
     c = plain.residual(end.q, end.t)
     balance = jac.T @ (compiled.alpha * c + end.multipliers) - (loads.gravity - mass * accel)
     assert np.max(np.abs(balance)) < 0.25
-
-
-def _kernel_problem(seed: int, n: int, m: int, gain: float) -> dict[str, Any]:
-    """A random row store of full row rank (m < n, from test_fast_ali3p_matrix), masses, penalties
-    alpha_r = gain / (C_q M^-1 C_q^T)_rr, W = M + weight C_q^T diag(alpha) C_q factored by
-    ali3p_matrix.factor, and the kernel's arrays around them (the slow count at 5)."""
-    rng = np.random.default_rng(seed)
-    ints, store = _rows(rng, m, n, 4)
-    jac = _dense(ints, store, m, n)
-    assert np.linalg.matrix_rank(jac) == m
-    w, weight = _bandwidth(ints, m), 0.25e-6
-    mass = rng.uniform(0.5, 2.0, n)
-    alpha = gain / weight / np.einsum("ij,j,ij->i", jac, 1 / mass, jac)
-    vec = np.full((kernel.VECTORS, n), np.nan)  # scratch rows start as garbage
-    vec[kernel.MASS], vec[kernel.ALPHA, :m] = mass, alpha
-    sizes = np.zeros(8, np.int64)
-    sizes[[kernel.S_N, kernel.S_M, kernel.S_W, kernel.S_SLOW]] = n, m, w, 5
-    band = np.zeros((n, w + 1))
-    assert factor(ints, store, mass, vec[kernel.ALPHA], n, m, w, band, weight)
-    big = np.diag(mass) + weight * jac.T @ (alpha[:, None] * jac)
-    schur, pivots = np.full((m, m), np.nan), np.zeros(m, np.int64)
-    return dict(
-        ints=ints,
-        store=store,
-        jac=jac,
-        vec=vec,
-        sizes=sizes,
-        band=band,
-        weight=weight,
-        mass=mass,
-        alpha=alpha,
-        w_dense=big,
-        schur=schur,
-        pivots=pivots,
-        rng=rng,
-        n=n,
-        m=m,
-    )
 
 
 def _schur_of(p: dict[str, Any]) -> None:
@@ -204,7 +82,7 @@ def _schur_of(p: dict[str, Any]) -> None:
 def test_schur_factors_the_dense_schur_complement(seed: int, n: int, m: int) -> None:
     """S = weight C_q W^-1 C_q^T (W and C_q dense), by its solves: S x = b for random b; the slow
     count goes up by one."""
-    p = _kernel_problem(seed, n, m, 1.0)
+    p = kernel_problem(seed, n, m, 1.0)
     _schur_of(p)
     jac = p["jac"]
     dense = p["weight"] * jac @ np.linalg.solve(p["w_dense"], jac.T)
@@ -220,7 +98,7 @@ def test_schur_factors_the_dense_schur_complement(seed: int, n: int, m: int) -> 
 def test_the_kkt_correction_solves_the_dense_kkt_system(seed: int, n: int, m: int) -> None:
     """With move = W^-1 f: [W, weight C_q^T; C_q, 0] [dx; dmu] = -[f; gap] solved densely; the kernel
     leaves -dx in move and adds dmu to the multipliers."""
-    p = _kernel_problem(seed, n, m, 1.0)
+    p = kernel_problem(seed, n, m, 1.0)
     _schur_of(p)
     rng, jac, weight = p["rng"], p["jac"], p["weight"]
     f, gap, start = rng.standard_normal(n), rng.standard_normal(m), rng.standard_normal(m)
@@ -242,13 +120,6 @@ def test_the_kkt_correction_solves_the_dense_kkt_system(seed: int, n: int, m: in
     )
     np.testing.assert_allclose(move, -exact[:n], rtol=0, atol=1e-10 * np.abs(exact[:n]).max())
     np.testing.assert_allclose(multiplier, start + exact[n:], rtol=0, atol=1e-10 * np.abs(exact[n:]).max())
-
-
-def _projected(p: dict[str, Any], rates: np.ndarray, target: np.ndarray) -> np.ndarray:
-    """The M-orthogonal projection onto C_q x = target, densely."""
-    jac, inverse = p["jac"], 1 / p["mass"]
-    gram = jac @ (inverse[:, None] * jac.T)
-    return rates - inverse * (jac.T @ np.linalg.solve(gram, jac @ rates - target))
 
 
 def _project_with_the_kernel(
@@ -277,11 +148,11 @@ def test_a_projection_through_the_schur_complement_is_exact(seed: int, n: int, m
     """With penalties that leave the augmented Lagrangian slow (alpha at 1 times the rows' inertia,
     C_q M^-1 C_q^T conditioned up to 1e6), the projection through the Schur complement is the exact
     M-orthogonal projection (measured to 4.6e-12 of the largest rate on the worst conditioned)."""
-    p = _kernel_problem(seed, n, m, 1.0)
+    p = kernel_problem(seed, n, m, 1.0)
     _schur_of(p)
     rng = p["rng"]
     rates, target = size * rng.standard_normal(n), size * rng.standard_normal(m)
-    exact = _projected(p, rates, target)
+    exact = projected_exactly(p, rates, target)
     got = _project_with_the_kernel(p, rates, target, True)
     np.testing.assert_allclose(got, exact, rtol=0, atol=1.5e-11 * np.abs(exact).max())
 
@@ -330,7 +201,7 @@ def test_a_projection_stops_at_the_iterate_its_rule_picks(
     means them to (see _project); a fast one (penalties 1e5 times the rows' inertia) reaches the
     exact projection and stalls at its round-off. Rates of size 1 to 1e3 and 1e-17: the rule is
     relative to the rates' largest."""
-    p = _kernel_problem(seed, n, m, gain)
+    p = kernel_problem(seed, n, m, gain)
     rng = p["rng"]
     rates, target = size * rng.standard_normal(n), size * rng.standard_normal(m)
     iterates = _augmented_lagrangian(p, rates, target)
@@ -340,7 +211,7 @@ def test_a_projection_stops_at_the_iterate_its_rule_picks(
         expected = iterates[stop]
         np.testing.assert_allclose(got, expected, rtol=0, atol=1e-12 * np.abs(expected).max())
     else:  # converged: where round-off stalls it is round-off's choice
-        exact = _projected(p, rates, target)
+        exact = projected_exactly(p, rates, target)
         np.testing.assert_allclose(got, exact, rtol=0, atol=1e-13 * np.abs(exact).max())
 
 
@@ -354,7 +225,7 @@ def test_the_penalties_are_dynamics_ali3p_s(seed: int, scale: float, zero_rows: 
     those of distinct bodies), so the random stores here hold none either."""
     n, m, h = 12, 7, 2e-3
     rng = np.random.default_rng(seed)
-    ints, store = _rows(rng, m, n, 4)
+    ints, store = random_row_store(rng, m, n, 4)
     store *= scale
     for r in range(m):  # no column twice in a row, as in every program (Equation's columns are unique)
         cols = ints[r, K_SLOT_COL : K_SLOT_COL + WIDTH]
@@ -363,7 +234,7 @@ def test_the_penalties_are_dynamics_ali3p_s(seed: int, scale: float, zero_rows: 
                 cols[k] = -1
     for r in zero_rows:
         ints[r, K_SLOT_COL : K_SLOT_COL + WIDTH] = -1
-    jac = _dense(ints, store, m, n)
+    jac = dense_jacobian(ints, store, m, n)
     mass = rng.uniform(0.5, 2.0, n)
     inertia = np.einsum("ij,j,ij->i", jac, 1 / mass, jac)
     typical = float(np.max(inertia)) or 1.0
@@ -382,7 +253,7 @@ def test_a_step_newton_cannot_finish_takes_every_allowed_iteration() -> None:
     """The rod of test_compiled_ali3p_run held at a fixed angle while its centre is driven along x:
     no position meets both, so Newton runs its NEWTON_STEPS iterations (one constraint evaluation
     each) and stops, no more and no fewer."""
-    rod = _rod()
+    rod = swinging_rod()
     slide = AbsoluteDriver("slide", "rod", "x", ConstantSpeed(0.5 * np.cos(THETA0), 5.0))
     turn = AbsoluteDriver("turn", "rod", "theta", ConstantSpeed(THETA0, 0.0))
     scenario = replace(rod, drivers=(turn, slide))
@@ -434,7 +305,7 @@ def test_the_compiled_step_is_the_same_in_any_unit_of_length() -> None:
     scales and C over the row scales)."""
 
     def compiled(scenario: scenarios.Scenario, h: float) -> tuple[Ali3p, StepState]:
-        stepper, _, start = _start_run(scenario, True, h)
+        stepper, _, start = rod_stepper(scenario, True, h)
         assert isinstance(stepper, CompiledAli3p)
         return stepper, start
 
@@ -447,9 +318,9 @@ def test_a_newton_iteration_that_overflows_is_refused_as_the_plain_step_refuses_
     plain step). The plain step refuses it; so must the compiled one, whose largest update and
     residual were maxima that skip NaN (max(0.0, nan) is 0.0), so it returned NaN positions as a
     converged step."""
-    compiled, plain_step, plain, _, _ = _one_loop()
-    start, _ = _start(0.0)
-    q, dq, _ = _branch(start.q[2] + 3e-3)
+    compiled, plain_step, plain, _, _ = one_loop_steppers()
+    start, _ = state_before_passage(0.0)
+    q, dq, _ = parallelogram_branch(start.q[2] + 3e-3)
     first = compiled.step(replace(start, q=q, qd=dq * start.qd[2]))
     smallest = np.linalg.svd(plain.jacobian(first.q, first.t))[0][:, -1]
     off = replace(first, multipliers=first.multipliers + 1e8 * smallest)
@@ -472,14 +343,14 @@ def test_a_stall_at_newton_s_second_update_goes_through_the_schur_complement(
     update on: Newton goes through the Schur complement there and ends in 4 and 5 iterations
     (measured; checking from the third update on, it takes 6 without the Schur complement), at the
     trapezoidal equations' solution on the branch (measured 4.6e-15 and 3.5e-14 rad)."""
-    compiled, _, plain, mass, loads = _one_loop()
-    start, _ = _start(0.0)
-    q, dq, _ = _branch(start.q[2] + angle)
+    compiled, _, plain, mass, loads = one_loop_steppers()
+    start, _ = state_before_passage(0.0)
+    q, dq, _ = parallelogram_branch(start.q[2] + angle)
     first = compiled.step(replace(start, q=q, qd=dq * start.qd[2]))
     smallest = np.linalg.svd(plain.jacobian(first.q, first.t))[0][:, -1]
     end = compiled.step(replace(first, multipliers=first.multipliers + off * smallest))
     assert compiled.slow_steps == 1
     assert end.iterations <= (4 if off < 1e5 else 5)
     qhat = first.q + H * first.qd + H * H / 4 * first.qdd
-    exact, _, _ = _branch(_trapezoidal_on_the_branch(qhat, mass, loads.gravity))
+    exact, _, _ = parallelogram_branch(trapezoidal_on_the_branch(qhat, mass, loads.gravity))
     assert np.max(np.abs(end.q - exact)) < 1e-13

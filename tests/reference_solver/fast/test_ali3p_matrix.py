@@ -10,42 +10,7 @@ import pytest
 
 from reference_solver.fast.ali3p_matrix import factor, jac_t_times, jac_times, solve
 from reference_solver.fast.program import INT_COLUMNS, K_SLOT_COL, K_WIDTH, WIDTH
-
-
-def _rows(rng: np.random.Generator, m: int, n: int, spread: int) -> tuple[np.ndarray, np.ndarray]:
-    """A random row store: each row touches up to WIDTH slots within `spread` columns of a start,
-    some slots unused (-1), a column sometimes twice in a row (the store sums them)."""
-    ints = np.full((m, INT_COLUMNS), -7, np.int64)
-    store = rng.standard_normal(m * WIDTH)
-    for r in range(m):
-        width = int(rng.integers(1, WIDTH + 1))
-        start = int(rng.integers(0, n - spread))
-        cols = rng.integers(start, start + spread + 1, size=width)
-        cols[rng.random(width) < 0.2] = -1
-        ints[r, K_WIDTH] = width
-        ints[r, K_SLOT_COL : K_SLOT_COL + WIDTH] = -1
-        ints[r, K_SLOT_COL : K_SLOT_COL + width] = cols
-    return ints, store
-
-
-def _dense(ints: np.ndarray, store: np.ndarray, m: int, n: int) -> np.ndarray:
-    jac = np.zeros((m, n))
-    for r in range(m):
-        for k in range(ints[r, K_WIDTH]):
-            col = ints[r, K_SLOT_COL + k]
-            if col >= 0:
-                jac[r, col] += store[r * WIDTH + k]
-    return jac
-
-
-def _bandwidth(ints: np.ndarray, m: int) -> int:
-    width = 0
-    for r in range(m):
-        cols = ints[r, K_SLOT_COL : K_SLOT_COL + ints[r, K_WIDTH]]
-        cols = cols[cols >= 0]
-        if cols.size:
-            width = max(width, int(cols.max() - cols.min()))
-    return width
+from tests.support.row_stores import dense_jacobian, random_row_store, store_bandwidth
 
 
 def _to_band(lower: np.ndarray, w: int) -> np.ndarray:
@@ -65,8 +30,8 @@ CASES = [(12, 7, 3, 0), (15, 12, 5, 1), (9, 4, 8, 2), (20, 30, 2, 3)]
 def test_products_with_the_jacobian_are_the_dense_products(n: int, m: int, spread: int, seed: int) -> None:
     rng = np.random.default_rng(seed)
     spread = min(spread, n - 1)
-    ints, store = _rows(rng, m, n, spread)
-    jac = _dense(ints, store, m, n)
+    ints, store = random_row_store(rng, m, n, spread)
+    jac = dense_jacobian(ints, store, m, n)
     x, y = rng.standard_normal(n), rng.standard_normal(m)
     out = np.full(m + 3, 99.0)
     jac_times(ints, store, m, x, out)
@@ -85,13 +50,13 @@ def test_factor_is_the_cholesky_factor_of_w_and_solve_inverts_it(
 ) -> None:
     rng = np.random.default_rng(seed)
     spread = min(spread, n - 1)
-    ints, store = _rows(rng, m, n, spread)
-    jac = _dense(ints, store, m, n)
+    ints, store = random_row_store(rng, m, n, spread)
+    jac = dense_jacobian(ints, store, m, n)
     mass = rng.uniform(0.5, 2.0, n)
     alpha = rng.uniform(0.5, 3.0, m)
     weight = 0.37
     w_dense = np.diag(mass) + weight * jac.T @ (alpha[:, None] * jac)
-    w = min(_bandwidth(ints, m) + extra, n - 1)
+    w = min(store_bandwidth(ints, m) + extra, n - 1)
     band = rng.standard_normal((n, w + 1))  # garbage: factor must overwrite every entry
     assert factor(ints, store, mass, alpha, n, m, w, band, weight)
     np.testing.assert_allclose(band, _to_band(np.linalg.cholesky(w_dense), w), rtol=1e-12, atol=1e-12)

@@ -17,7 +17,7 @@ import pytest
 from scipy.linalg.lapack import dgbcon, dgbtrf
 
 from reference_solver.fast import band
-from tests.reference_solver.fast.test_kernels import _store
+from tests.support.band_store import band_store
 
 MATRICES = 1500
 AGREE = 1e-12
@@ -38,7 +38,7 @@ def _lapack_band(a: np.ndarray, kl: int, ku: int) -> np.ndarray:
 def _estimates(a: np.ndarray, kl: int, ku: int, transposed: bool) -> tuple[float, float, float]:
     """(this kernel's rcond, dgbcon's, ||A||) in the 1-norm, or the infinity norm if transposed."""
     n, w = a.shape[0], 2 * kl + ku + 1
-    store, piv = _store(a, kl, ku), np.zeros(n, np.int64)
+    store, piv = band_store(a, kl, ku), np.zeros(n, np.int64)
     assert band.factor(store, piv, n, kl, ku, w) != 0.0
     anorm = float(np.linalg.norm(a, np.inf if transposed else 1))
     mine = band.rcond(store, piv, n, kl, ku, w, anorm, np.zeros(n), np.zeros(n), transposed)

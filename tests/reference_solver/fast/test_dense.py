@@ -13,14 +13,14 @@ import pytest
 import scenarios
 from reference_solver.compiled_system import CompiledSystem, constraint_system
 from reference_solver.system import ConstraintSystem
-from tests.reference_solver.test_analysis import AMPLITUDE, OMEGA, _by_hand, _crank
+from tests.support.hand_crank import AMPLITUDE, OMEGA, crank_by_hand, crank_scenario
 
 
 @pytest.mark.parametrize("t", [0.0, 0.3, 1.7])
 def test_a_harmonic_driver_s_c_t_is_minus_its_rate(t: float) -> None:
     """The crank of test_analysis.py: C = (pin x, pin y, theta - m - A cos(w t)), so C_t = (0, 0,
     -f'(t)) = (0, 0, A w sin(w t))."""
-    system = constraint_system(_crank())
+    system = constraint_system(crank_scenario())
     assert isinstance(system, CompiledSystem)
     expected = [0.0, 0.0, AMPLITUDE * OMEGA * math.sin(OMEGA * t)]
     np.testing.assert_allclose(system.c_t(t), expected, rtol=0, atol=1e-15)
@@ -45,8 +45,8 @@ def test_a_driver_at_constant_speed_has_a_constant_c_t() -> None:
 def test_the_hand_worked_motion_satisfies_the_compiled_equations_at_its_time(t: float) -> None:
     """At the crank's hand-worked q, q', q'' of time t: C = 0, C_q q' = -C_t and C_q q'' = Q_d, with C,
     C_q and Q_d from the compiled evaluation at (q, q', t), whose driver row reads the time."""
-    system = constraint_system(_crank())
-    q, qd, qdd = (level[0] for level in _by_hand(np.array([t])))
+    system = constraint_system(crank_scenario())
+    q, qd, qdd = (level[0] for level in crank_by_hand(np.array([t])))
     c, c_q, q_d = system.evaluate(q, t, qd)
     np.testing.assert_allclose(c, 0.0, rtol=0, atol=1e-15)
     np.testing.assert_allclose(c_q @ qd, -system.c_t(t), rtol=0, atol=1e-14)

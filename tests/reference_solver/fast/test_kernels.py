@@ -19,6 +19,7 @@ from reference_solver.fast.evaluate import profile_points
 from reference_solver.fast.program import profile_tables
 from reference_solver.fast.structure import band_of
 from scenarios import EccentricDisc, SplineProfile
+from tests.support.band_store import band_store
 
 
 def _banded(rng: np.random.Generator, n: int, kl: int, ku: int) -> np.ndarray:
@@ -26,16 +27,6 @@ def _banded(rng: np.random.Generator, n: int, kl: int, ku: int) -> np.ndarray:
     rows, cols = np.indices((n, n))
     a[(cols - rows > ku) | (rows - cols > kl)] = 0.0
     return a
-
-
-def _store(a: np.ndarray, kl: int, ku: int) -> np.ndarray:
-    """The band store of `a`; NaN in the slots of columns outside the matrix, which nothing may read."""
-    n, w = a.shape[0], 2 * kl + ku + 1
-    store = np.full(n * w, np.nan)
-    for i in range(n):
-        for j in range(max(0, i - kl), min(n, i + kl + ku + 1)):
-            store[i * w + j - i + kl] = a[i, j]
-    return store
 
 
 @pytest.mark.parametrize(
@@ -46,7 +37,7 @@ def test_band_lu_solves_like_dense_algebra(n: int, kl: int, ku: int) -> None:
     rng = np.random.default_rng(n + kl + ku)
     for scale in (1.0, 1e3, 1e-3, 10.0, 1.0):  # rcond does not depend on the scale; its iterates do
         a = scale * _banded(rng, n, kl, ku)
-        store, piv, w = _store(a, kl, ku), np.zeros(n, np.int64), 2 * kl + ku + 1
+        store, piv, w = band_store(a, kl, ku), np.zeros(n, np.int64), 2 * kl + ku + 1
         anorm = band.norm1(store, n, kl, ku, w, np.zeros(n))
         assert anorm == pytest.approx(np.linalg.norm(a, 1)) and band.norm_inf(
             store, n, kl, ku, w
@@ -76,7 +67,7 @@ def test_band_lu_solves_like_dense_algebra(n: int, kl: int, ku: int) -> None:
 def test_condition_estimate_of_the_identity_and_of_no_norm() -> None:
     """The identity's rcond is exactly 1 (its 1-norm 1 too); as dgecon, 0 for a zero norm or no rows."""
     n, kl, ku = 4, 1, 1
-    store, piv, w = _store(np.eye(n), kl, ku), np.zeros(n, np.int64), 2 * kl + ku + 1
+    store, piv, w = band_store(np.eye(n), kl, ku), np.zeros(n, np.int64), 2 * kl + ku + 1
     assert band.factor(store, piv, n, kl, ku, w) == 1.0
     x, signs = np.zeros(n), np.zeros(n)
     for transposed in (False, True):
@@ -89,13 +80,13 @@ def test_band_pivoting_keeps_the_first_of_equal_magnitudes_and_overflow_is_singu
     """[[2, 1], [2, 3]]: |2| = |2|, row 0 stays (as LAPACK), the multiplier is exactly 1, det 4 > 0, and
     x = (1, 1) solves it for b = (3, 5). A regular matrix whose inverse overflows (entry -1e320 of
     [[1e-160, 1], [0, 1e-160]]^-1): its condition estimate is 0."""
-    store, piv = _store(np.array([[2.0, 1.0], [2.0, 3.0]]), 1, 1), np.zeros(2, np.int64)
+    store, piv = band_store(np.array([[2.0, 1.0], [2.0, 3.0]]), 1, 1), np.zeros(2, np.int64)
     assert band.factor(store, piv, 2, 1, 1, 4) == 1.0
     np.testing.assert_array_equal(piv, [0, 1])
     b = np.array([3.0, 5.0])
     band.solve(store, piv, 2, 1, 1, 4, b)
     np.testing.assert_allclose(b, [1.0, 1.0], rtol=0, atol=1e-15)
-    store = _store(np.array([[1e-160, 1.0], [0.0, 1e-160]]), 1, 1)
+    store = band_store(np.array([[1e-160, 1.0], [0.0, 1e-160]]), 1, 1)
     assert band.factor(store, piv, 2, 1, 1, 4) == 1.0
     with np.errstate(over="ignore", invalid="ignore"):
         assert band.rcond(store, piv, 2, 1, 1, 4, 1.0, np.zeros(2), np.zeros(2), False) == 0.0
@@ -103,7 +94,7 @@ def test_band_pivoting_keeps_the_first_of_equal_magnitudes_and_overflow_is_singu
 
 def test_a_zero_pivot_reports_a_singular_matrix() -> None:
     a = np.array([[1.0, 2.0], [2.0, 4.0]])
-    assert band.factor(_store(a, 1, 1), np.zeros(2, np.int64), 2, 1, 1, 4) == 0.0
+    assert band.factor(band_store(a, 1, 1), np.zeros(2, np.int64), 2, 1, 1, 4) == 0.0
 
 
 DENSE = {

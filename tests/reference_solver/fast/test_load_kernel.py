@@ -9,7 +9,7 @@ import pytest
 
 from reference_solver.fast.load_kernel import loads as load_kernel
 from reference_solver.fast.load_program import compile_loads
-from tests.reference_solver.dynamics.test_force_elements import CASES, STATES, loads
+from tests.support.force_elements import CASES, STATES, loads
 
 
 @pytest.mark.parametrize("case", [*CASES, "all"])

@@ -17,7 +17,7 @@ from reference_solver.fast.load_program import FORCE, ROTATIONAL, SPRING, TORQUE
 from reference_solver.layout import Layout
 from scenarios import GROUND, Constant, Harmonic, Point
 from scenarios.forces import AppliedForce, AppliedTorque, Force, RotationalSpringDamper, SpringDamper
-from tests.reference_solver.dynamics.test_force_elements import CASES, STATES, loads
+from tests.support.force_elements import CASES, STATES, loads
 
 ELEMENTS: tuple[tuple[Force, tuple[int, int, int]], ...] = (
     (AppliedTorque("t", "b", Constant(1.0)), (TORQUE, 3, -1)),

@@ -25,44 +25,32 @@ from reference_solver.fast.loop import (
 )
 from reference_solver.system import ConstraintSystem
 from scenarios import AbsoluteDriver, Constant, Harmonic
-from tests.reference_solver.test_analysis import A_HALF, OMEGA, _by_hand, _crank, _unassembled
-
-
-def _completed(scenario, grid, tolerance=1e-12, max_iterations=25):  # type: ignore[no-untyped-def]
-    run = path.run(scenario, np.asarray(grid, dtype=float), tolerance, max_iterations)
-    assert run.event == "ok" and run.index == len(grid), run.event
-    assert run.analysis is not None
-    return run.analysis
-
-
-def _scaled_rcond_1(system: ConstraintSystem, q: np.ndarray, t: float) -> float:
-    """1 / (|A|_1 |A^-1|_1) of the scaled C_q, by dense inversion."""
-    a = system.scaled_jacobian(system.jacobian(q, t))
-    return float(1.0 / (np.linalg.norm(a, 1) * np.linalg.norm(np.linalg.inv(a), 1)))
+from tests.support.hand_crank import A_HALF, OMEGA, crank_by_hand, crank_scenario, unassembled_pair
+from tests.support.loop_checks import completed_run, dense_scaled_rcond_1
 
 
 def test_the_crank_s_motion_residual_and_conditioning_are_the_hand_worked_ones() -> None:
     """q, q', q'' to 1e-12; the residual reported at each point is max |C| / L^power at the reported
     q (computed with the plain rows); the conditioning is the 1-norm estimate, which can only
     overstate the reciprocal condition number, and on a 3 x 3 matrix stays within a factor 3 of it."""
-    scenario = _crank()
+    scenario = crank_scenario()
     system = ConstraintSystem(scenario)
     grid = np.asarray(scenario.times())
-    result = _completed(scenario, grid)
-    for level, expected in zip(("q", "qd", "qdd"), _by_hand(grid), strict=True):
+    result = completed_run(scenario, grid)
+    for level, expected in zip(("q", "qd", "qdd"), crank_by_hand(grid), strict=True):
         np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-12, err_msg=level)
     assert result.iterations[0] == 0 and np.all(result.iterations[1:] >= 1)
     assert np.all(result.iterations[1:] <= 3)  # the predictor is second order: no step is retaken
     for k, t in enumerate(grid):
         miss = np.max(np.abs(system.residual(result.q[k], t) / system.row_scales))
         assert result.residual[k] == pytest.approx(miss, abs=1e-16)
-        exact = _scaled_rcond_1(system, result.q[k], t)
+        exact = dense_scaled_rcond_1(system, result.q[k], t)
         assert exact * (1 - 1e-12) <= result.rcond[k] <= 3 * exact, k
 
 
 def test_a_grid_of_one_time_is_the_assembled_configuration_and_its_rates() -> None:
-    result = _completed(_crank(), [0.3])
-    for level, expected in zip(("q", "qd", "qdd"), _by_hand(np.array([0.3])), strict=True):
+    result = completed_run(crank_scenario(), [0.3])
+    for level, expected in zip(("q", "qd", "qdd"), crank_by_hand(np.array([0.3])), strict=True):
         np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-12, err_msg=level)
     assert list(result.iterations) == [0]
 
@@ -79,8 +67,8 @@ def test_steps_newton_cannot_take_at_once_are_retaken_in_halves(grid: np.ndarray
     """Two Newton iterations allowed: some whole steps fail and are retaken in halved steps (the
     kernel's analysis._approach), forwards and backwards in time; the motion is still the hand-worked
     one, and no point reports more than the two iterations."""
-    result = _completed(_crank(), grid, max_iterations=2)
-    for level, expected in zip(("q", "qd", "qdd"), _by_hand(grid), strict=True):
+    result = completed_run(crank_scenario(), grid, max_iterations=2)
+    for level, expected in zip(("q", "qd", "qdd"), crank_by_hand(grid), strict=True):
         np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-12, err_msg=level)
     assert np.all(result.iterations <= 2)
 
@@ -88,7 +76,7 @@ def test_steps_newton_cannot_take_at_once_are_retaken_in_halves(grid: np.ndarray
 def test_a_guess_where_c_q_is_singular_is_not_verified() -> None:
     """test_analysis._unassembled: at the guess C_q has two zero rows, so the kernel cannot verify the
     mobility and hands the run over at index 0."""
-    system, _ = _unassembled()
+    system, _ = unassembled_pair()
     run = path.run(system.scenario, np.array([0.0, 1.0]))
     assert (run.event, run.index, run.analysis) == (EVENTS[UNVERIFIED], 0, None)
 
@@ -96,7 +84,7 @@ def test_a_guess_where_c_q_is_singular_is_not_verified() -> None:
 def _x_driven(motion: Harmonic | Constant):  # type: ignore[no-untyped-def]
     """The crank with its centre's x driven instead of its angle: its band has no subdiagonal (kl = 0),
     so the band store's first entry is a diagonal entry (the y row's y column)."""
-    return dataclasses.replace(_crank(), drivers=(AbsoluteDriver("drive", "crank", "x", motion),))
+    return dataclasses.replace(crank_scenario(), drivers=(AbsoluteDriver("drive", "crank", "x", motion),))
 
 
 def test_a_crank_driven_at_its_centre_s_x_runs_in_the_kernel_and_moves_as_worked_by_hand() -> None:
@@ -109,7 +97,7 @@ def test_a_crank_driven_at_its_centre_s_x_runs_in_the_kernel_and_moves_as_worked
     was singular at the guess and every run was handed to the plain path.)"""
     scenario = _x_driven(Harmonic(0.0, 0.05, OMEGA))
     grid = np.asarray(scenario.times())
-    result = _completed(scenario, grid)
+    result = completed_run(scenario, grid)
     f, df, ddf = (
         0.05 * np.cos(OMEGA * grid),
         -0.05 * OMEGA * np.sin(OMEGA * grid),
@@ -179,9 +167,9 @@ def test_a_mechanism_near_a_singularity_keeps_its_conditioning_above_the_handove
     scenario = scenarios.build("slider_crank", overrides={"rod_length": 0.2, "theta0": 0.0, "steps": 8})
     system = ConstraintSystem(scenario)
     grid = np.asarray(scenario.times())[:2]
-    result = _completed(scenario, grid)
+    result = completed_run(scenario, grid)
     for k, t in enumerate(grid):
-        exact = _scaled_rcond_1(system, result.q[k], t)
+        exact = dense_scaled_rcond_1(system, result.q[k], t)
         assert exact * (1 - 1e-12) <= result.rcond[k] <= 3 * exact and exact > path.HANDOVER
 
 
@@ -192,7 +180,7 @@ def test_a_loose_tolerance_reports_the_residual_newton_stopped_at() -> None:
     scenario = scenarios.build("four_bar")
     system = ConstraintSystem(scenario)
     grid = np.asarray(scenario.times(steps=20))
-    result = _completed(scenario, grid, tolerance=1e-3)
+    result = completed_run(scenario, grid, tolerance=1e-3)
     expected = [
         np.max(np.abs(system.residual(result.q[k], t) / system.row_scales)) for k, t in enumerate(grid)
     ]

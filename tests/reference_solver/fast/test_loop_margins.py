@@ -1,10 +1,11 @@
-"""The compiled time loop (fast.loop.run, through fast.path.run) where its session-9 mutation pass
-left survivors: the mobility decision at its margin, an assembly that lands near a singularity, grid
+"""The compiled time loop (fast.loop.run, through fast.path.run) at its margins: the mobility
+decision at its margin, an assembly that lands near a singularity, grid
 points that t_{k-1} + (t_k - t_{k-1}) does not reach in floating point, an iteration limit of zero,
 a residual that overflows, two cam contacts in one program, and a residual whose largest row has
 another scale than its column.
 
-Expected values come from the hand-worked crank of test_analysis.py (length 2 a pinned at its end),
+Expected values come from the hand-worked crank (tests.support.hand_crank: length 2 a pinned at its
+end),
 from dense algebra on the plain constraint system, and from the plain path."""
 
 from __future__ import annotations
@@ -30,8 +31,8 @@ from reference_solver.fast.loop import (
 from reference_solver.newton import NewtonSettings, newton
 from reference_solver.system import ConstraintSystem
 from scenarios import AbsoluteDriver, Constant, ConstantSpeed, Harmonic, Point, Prismatic, RollerCam, Scenario
-from tests.reference_solver.test_analysis import A_HALF, AMPLITUDE, MEAN, OMEGA, _by_hand, _crank
-from tests.reference_solver.fast.test_loop_events import _completed, _scaled_rcond_1
+from tests.support.hand_crank import A_HALF, AMPLITUDE, MEAN, OMEGA, crank_by_hand, crank_scenario
+from tests.support.loop_checks import completed_run, dense_scaled_rcond_1
 
 
 def _held_crank(x: float, theta_guess: float, length: float = 2 * A_HALF) -> Scenario:
@@ -39,7 +40,7 @@ def _held_crank(x: float, theta_guess: float, length: float = 2 * A_HALF) -> Sce
     guessed on the pin's circle at `theta_guess`, with characteristic length `length`."""
     guess = (A_HALF * math.cos(theta_guess), A_HALF * math.sin(theta_guess), theta_guess)
     return dataclasses.replace(
-        _crank(guess),
+        crank_scenario(guess),
         drivers=(AbsoluteDriver("drive", "crank", "x", Constant(x)),),
         characteristic_length=length,
     )
@@ -99,7 +100,7 @@ def test_an_assembly_that_lands_near_a_singularity_stops_at_the_first_grid_point
     scenario = _held_crank(A_HALF * math.cos(theta), 0.5)
     system = ConstraintSystem(scenario)
     assembled = np.array([A_HALF * math.cos(theta), A_HALF * math.sin(theta), theta])
-    assert _scaled_rcond_1(system, assembled, 0.0) < path.HANDOVER / 3  # the estimate overstates by < 3
+    assert dense_scaled_rcond_1(system, assembled, 0.0) < path.HANDOVER / 3  # the estimate overstates by < 3
     run = path.run(scenario, np.asarray(scenario.times()))
     assert (run.event, run.index, run.analysis) == (EVENTS[NEAR_SINGULAR], 0, None)
 
@@ -114,8 +115,8 @@ def test_a_grid_point_the_step_s_sum_misses_is_reached_by_one_newton_solve(grid:
     times = np.asarray(grid)
     missed = [k for k in range(1, times.size) if times[k - 1] + (times[k] - times[k - 1]) != times[k]]
     assert missed
-    result = _completed(_crank(), times)
-    for level, expected in zip(("q", "qd", "qdd"), _by_hand(times), strict=True):
+    result = completed_run(crank_scenario(), times)
+    for level, expected in zip(("q", "qd", "qdd"), crank_by_hand(times), strict=True):
         np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-12, err_msg=level)
     assert result.iterations[0] == 0 and np.all(result.iterations[1:] >= 2)
 
@@ -123,7 +124,7 @@ def test_a_grid_point_the_step_s_sum_misses_is_reached_by_one_newton_solve(grid:
 def test_no_newton_iteration_allowed_fails_at_the_first_grid_point() -> None:
     """max_iterations 0: Newton may not take the step that confirms the assembled configuration at
     grid point 0 (the assembly's own limit and damping are for the assembly only)."""
-    scenario = _crank()
+    scenario = crank_scenario()
     run = path.run(scenario, np.asarray(scenario.times()), 1e-12, 0)
     assert (run.event, run.index, run.analysis) == (EVENTS[NOT_CONVERGED], 0, None)
 
@@ -133,7 +134,7 @@ def test_a_residual_that_overflows_is_a_newton_failure() -> None:
     predictor of the next point is infinite, and so is the residual there: Newton fails at index 1,
     not a configuration accepted or a crash."""
     scenario = dataclasses.replace(
-        _crank(), drivers=(AbsoluteDriver("drive", "crank", "theta", ConstantSpeed(0.5, 1e200)),)
+        crank_scenario(), drivers=(AbsoluteDriver("drive", "crank", "theta", ConstantSpeed(0.5, 1e200)),)
     )
     with np.errstate(all="ignore"):  # uncompiled, numpy warns of the overflow
         run = path.run(scenario, np.array([0.0, 0.5, 1.0]))
@@ -159,7 +160,7 @@ def _two_followers() -> Scenario:
 def test_two_cam_contacts_in_the_kernel_give_the_plain_answer() -> None:
     scenario = _two_followers()
     grid = np.asarray(scenario.times())
-    result = _completed(scenario, grid)
+    result = completed_run(scenario, grid)
     plain = analyse(scenario, fast=False)
     for level in ("q", "qd", "qdd"):
         np.testing.assert_allclose(
@@ -177,7 +178,7 @@ def test_a_loose_tolerance_s_residual_is_in_row_units_where_rows_and_columns_dif
     system = ConstraintSystem(scenario)
     assert np.any(system.row_scales != system.column_scales)
     grid = np.asarray(scenario.times(steps=20))
-    result = _completed(scenario, grid, tolerance=1e-3)
+    result = completed_run(scenario, grid, tolerance=1e-3)
     expected = [
         np.max(np.abs(system.residual(result.q[k], t) / system.row_scales)) for k, t in enumerate(grid)
     ]
@@ -192,7 +193,7 @@ def test_time_steps_take_newton_s_full_step_even_where_it_raises_the_residual() 
     damps (halves) a step; the time steps take the full step, as the plain path's Newton does: the
     same iteration counts as the plain path (measured [0, 5, 4, 8, 5, 5]) and the hand-worked motion."""
     scenario = dataclasses.replace(
-        _crank(),
+        crank_scenario(),
         drivers=(AbsoluteDriver("drive", "crank", "x", Harmonic(0.0, 0.09, 3.0)),),
         t_end=2.0,
         steps=5,
@@ -216,7 +217,7 @@ def test_time_steps_take_newton_s_full_step_even_where_it_raises_the_residual() 
     full = predicted - np.linalg.solve(system.jacobian(predicted, t), system.residual(predicted, t))
     assert scaled(full, t) > scaled(predicted, t)
 
-    result = _completed(scenario, grid)
+    result = completed_run(scenario, grid)
     plain = analyse(scenario, fast=False)
     np.testing.assert_array_equal(result.iterations, plain.iterations)
     for level, expected in zip(("q", "qd", "qdd"), (q, qd, qdd), strict=True):
@@ -272,7 +273,7 @@ def test_the_kernel_s_first_step_leaves_its_branch_where_the_plain_rule_says(len
         (0.09, 0.099), (0.0, 0.3), (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0)
     ):
         scenario = dataclasses.replace(
-            _crank(),
+            crank_scenario(),
             drivers=(AbsoluteDriver("drive", "crank", "x", Harmonic(0.0, amplitude, 3.0)),),
             characteristic_length=length,
         )
@@ -286,7 +287,7 @@ def test_a_coarse_step_of_a_small_swing_counts_as_leaving_its_branch_too() -> No
     h = 0.7 and 0.9 the correction (0.06, 0.11, below 0.5 in any unit) exceeds half the reach
     (0.105, 0.135; measured), and the kernel hands the step over; at 0.3 and 0.5 it does not."""
     scenario = dataclasses.replace(
-        _crank(), drivers=(AbsoluteDriver("drive", "crank", "theta", Harmonic(0.5, 0.05, 3.0)),)
+        crank_scenario(), drivers=(AbsoluteDriver("drive", "crank", "theta", Harmonic(0.5, 0.05, 3.0)),)
     )
     t0 = math.pi / 6
     f, df, ddf = 0.5 + 0.05 * math.cos(3 * t0), -0.15 * math.sin(3 * t0), -0.45 * math.cos(3 * t0)
@@ -306,7 +307,7 @@ def test_halved_steps_of_a_spline_cam_give_the_plain_answer() -> None:
     is the plain path's under the same settings."""
     scenario = scenarios.build("cam_roller/spline")
     grid = np.asarray(scenario.times(steps=2))
-    result = _completed(scenario, grid, max_iterations=2)
+    result = completed_run(scenario, grid, max_iterations=2)
     plain = analyse(scenario, grid, max_iterations=2, fast=False)
     for level in ("q", "qd", "qdd"):
         np.testing.assert_allclose(
@@ -322,11 +323,12 @@ def test_halved_steps_on_a_microsecond_grid_follow_the_motion() -> None:
     they still reach every point; the positions are the hand-worked ones at t * 1e6, the rates those
     times 1e6 and 1e12."""
     scenario = dataclasses.replace(
-        _crank(), drivers=(AbsoluteDriver("drive", "crank", "theta", Harmonic(MEAN, AMPLITUDE, OMEGA * 1e6)),)
+        crank_scenario(),
+        drivers=(AbsoluteDriver("drive", "crank", "theta", Harmonic(MEAN, AMPLITUDE, OMEGA * 1e6)),),
     )
     grid = np.linspace(0.0, 1.0, 6)
-    result = _completed(scenario, grid * 1e-6, max_iterations=2)
-    q, qd, qdd = _by_hand(grid)
+    result = completed_run(scenario, grid * 1e-6, max_iterations=2)
+    q, qd, qdd = crank_by_hand(grid)
     np.testing.assert_allclose(result.q, q, rtol=0, atol=1e-12)
     np.testing.assert_allclose(result.qd, qd * 1e6, rtol=0, atol=1e-12 * 1e6)
     np.testing.assert_allclose(result.qdd, qdd * 1e12, rtol=0, atol=1e-12 * 1e12)
@@ -338,7 +340,7 @@ def test_a_first_step_onto_the_other_branch_changes_the_sign_of_det_c_q() -> Non
     sign, by less than the rule's half reach (measured 2.2 against 6.7), so the step does not count
     as leaving its branch: the kernel reports the sign change at index 1."""
     scenario = dataclasses.replace(
-        _crank(), drivers=(AbsoluteDriver("drive", "crank", "x", Harmonic(0.0, 0.09, 3.0)),)
+        crank_scenario(), drivers=(AbsoluteDriver("drive", "crank", "x", Harmonic(0.0, 0.09, 3.0)),)
     )
     system = ConstraintSystem(scenario)
     q, qd, qdd = _x_crank_state(0.09, 0.0)

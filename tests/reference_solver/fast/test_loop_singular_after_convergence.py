@@ -1,6 +1,6 @@
 """The compiled time loop (fast.loop.run) where a Newton that converged leaves C_q exactly singular,
-and where a halved step ends within a factor of the handover: the survivors session 10 explained as
-reached by no scene (`run` 416, 419, 523).
+and where a halved step ends within a factor of the handover: branches of `run` that no catalogue
+scene reaches.
 
 The scene: a rod pinned at the ground origin (its frame origin) with a slider on the rod's x axis,
 the slider's x driven by f(t) = A (cos(w t) - 1) - floor and its y held at 0. Worked by hand: the

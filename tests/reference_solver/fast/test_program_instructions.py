@@ -31,7 +31,7 @@ from reference_solver.system import ConstraintSystem
 from scenarios import GROUND, AbsoluteDriver, Constant, GearPair, Point, Revolute
 from scenarios.bodies import Body
 from scenarios.scenario import Scenario
-from tests.reference_solver.fast.test_constraint_rows import VOCABULARY
+from tests.support.vocabulary import VOCABULARY
 
 
 def _scenario(bodies: tuple[Body, ...], joints: tuple[Any, ...], drivers: tuple[Any, ...]) -> Scenario:

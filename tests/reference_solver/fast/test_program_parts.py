@@ -29,8 +29,8 @@ from reference_solver.fast.program import (
 from reference_solver.system import ConstraintSystem
 from scenarios import AbsoluteDriver, Constant
 from scenarios.cam_profiles import EccentricDisc, LobedProfile, SplineProfile
-from tests.reference_solver.test_analysis import _crank
-from tests.reference_solver.fast.test_constraint_rows import NAMES, VOCABULARY
+from tests.support.hand_crank import crank_scenario
+from tests.support.vocabulary import NAMES, VOCABULARY
 
 SPLINE_A = SplineProfile.sample(EccentricDisc(0.05, 0.01), 12)
 SPLINE_B = SplineProfile.sample(EccentricDisc(0.08, 0.03), 7)
@@ -112,7 +112,9 @@ def test_a_band_without_subdiagonal_holds_the_scaled_jacobian() -> None:
     entry is a diagonal entry. Read back at the program's permuted positions the store is the plain
     scaled Jacobian (a bug this found: the slots off a row's pattern had store position 0, and the
     kernel wrote zeros there)."""
-    scenario = dataclasses.replace(_crank(), drivers=(AbsoluteDriver("drive", "crank", "x", Constant(0.05)),))
+    scenario = dataclasses.replace(
+        crank_scenario(), drivers=(AbsoluteDriver("drive", "crank", "x", Constant(0.05)),)
+    )
     system = ConstraintSystem(scenario)
     p = compile_program(system)
     n, kl, w = p.n, int(p.sizes[S_KL]), int(p.sizes[S_WIDTH])

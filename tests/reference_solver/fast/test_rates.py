@@ -22,10 +22,9 @@ from reference_solver.dynamics.compiled_rates import CompiledPartitioned, partit
 from reference_solver.dynamics.forward import initial_state
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
-from reference_solver.dynamics.partition import Partitioned, State, choose_independent
 from scenarios import Scenario
-from tests.reference_solver.dynamics.test_compiled_rates import both
-from tests.reference_solver.dynamics.test_partition import driven_chain, rocked_chain
+from tests.support.compiled_dynamics import both, compiled_and_plain
+from tests.support.partitioned_scenes import driven_chain, rocked_chain
 
 
 def fewest_iterations(name: str, move: float, chord: int, predictor: int) -> int:
@@ -54,21 +53,6 @@ def test_the_predictor_leaves_newton_one_step_and_the_chord_two(name: str) -> No
     assert fewest_iterations(name, 1e-4, chord=0, predictor=1) == 2
     assert fewest_iterations(name, 1e-4, chord=1, predictor=1) == 3
     assert fewest_iterations(name, 1e-4, chord=0, predictor=0) == 3
-
-
-def compiled_and_plain(scenario: Scenario) -> tuple[CompiledPartitioned, Partitioned, State]:
-    """As test_compiled_rates.both, for a scenario built here."""
-    fast, plain = constraint_system(scenario), constraint_system(scenario, fast=False)
-    mass = mass_diagonal(scenario, plain.layout)
-    start = initial_state(plain, mass, Loads(scenario, plain.layout, mass), 0.0)
-    independent = choose_independent(plain, start.jac)
-    compiled = partitioned_ode(fast, mass, Loads(scenario, fast.layout, mass), start.q, independent)
-    assert isinstance(compiled, CompiledPartitioned)
-    return (
-        compiled,
-        Partitioned(plain, mass, Loads(scenario, plain.layout, mass), start.q, independent),
-        start,
-    )
 
 
 @pytest.mark.parametrize("build", [driven_chain, rocked_chain])

@@ -13,8 +13,8 @@ from __future__ import annotations
 import numpy as np
 
 from reference_solver.dynamics.partition import RESIDUAL, STALLED
-from tests.reference_solver.dynamics.test_partition_stall import SHIFT, four_bar
-from tests.reference_solver.fast.test_rates import compiled_and_plain
+from tests.support.compiled_dynamics import compiled_and_plain
+from tests.support.partitioned_scenes import SHIFT, four_bar
 
 ANGLES = 30
 

@@ -12,7 +12,7 @@ from reference_solver import solve
 from scenarios import Scenario, Trajectory
 from scenarios.files import read_scenario
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
 LEVELS = ("position", "velocity", "acceleration")
 
 

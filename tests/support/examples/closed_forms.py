@@ -2,7 +2,7 @@
 acceleration) arrays of shape (len(t), 3), derived independently of every engine (tests/examples/
 dyads.py for the linkages; the Whitworth's and the oscillators' in their own test modules; the
 slider-crank's is the family's, scenarios.closed_form; the polynomial slider-crank's by hand below;
-the spline cam's on its pitch curve, tests/examples/spline_cam.py)."""
+the spline cam's on its pitch curve, tests/support/examples/spline_cam.py)."""
 
 from __future__ import annotations
 
@@ -13,8 +13,8 @@ import numpy as np
 
 import scenarios
 from scenarios.closed_form import exact
-from tests.examples.dyads import Angle, Motion2, direction, dyad, fixed, frame, on_body
-from tests.examples.spline_cam import cam_roller_spline
+from tests.support.examples.dyads import Angle, Motion2, direction, dyad, fixed, frame, on_body
+from tests.support.examples.spline_cam import cam_roller_spline
 
 Expected = dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]]
 

@@ -9,7 +9,7 @@ import adapters
 from adapters.base import RunResult
 from reports.harness.level_error import LEVEL_COLUMNS, level_errors
 from scenarios import Scenario, Trajectory
-from tests.examples.closed_forms import CLOSED_FORMS
+from tests.support.examples.closed_forms import CLOSED_FORMS
 
 
 def closed_form_trajectory(name: str, scenario: Scenario) -> Trajectory:
