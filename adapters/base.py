@@ -311,7 +311,7 @@ class Adapter:
         return ("unsupported", reason) if reason is not None else None
 
     def _safe_version(self) -> str:
-        """The engine's version, asked once per adapter (importlib.metadata costs about 0.5 ms)."""
+        """The engine's version, asked once per adapter (importlib.metadata reads files each time)."""
         known: str | None = self.__dict__.get("_known_version")
         if known is None:
             try:

@@ -73,7 +73,7 @@ imports or runs them without the compiled kernel (not yet run under mutation).""
 DYNAMICS = "tests/reference_solver/dynamics/"
 FORCE_ELEMENT_TESTS = (
     f"{DYNAMICS}test_force_elements.py",
-    "tests/reference_solver/test_fast_load_kernel.py",
+    "tests/reference_solver/fast/test_load_kernel.py",
 )
 DRIVEN_DYNAMICS_TESTS = (
     f"{DYNAMICS}test_inverse_dynamics.py",
@@ -89,11 +89,11 @@ ALI3P_FAST_TESTS = (
 )
 """ALI3-P's cheaper tests (a few seconds each): two without force elements (P = M), one with a
 spring and damper (P dense, with K and D)."""
-KERNEL_TESTS = "tests/reference_solver/test_fast_path_kernels.py"
-WHOLE_PATH_TESTS = "tests/reference_solver/test_fast_path.py"
+KERNEL_TESTS = "tests/reference_solver/fast/test_kernels.py"
+WHOLE_PATH_TESTS = "tests/reference_solver/fast/test_path.py"
 COMPILED_SYSTEM_TESTS = "tests/reference_solver/test_compiled_system.py"
-ROWS_TESTS = "tests/reference_solver/test_fast_constraint_rows.py"
-STRUCTURE_TESTS = "tests/reference_solver/test_fast_structure.py"
+ROWS_TESTS = "tests/reference_solver/fast/test_constraint_rows.py"
+STRUCTURE_TESTS = "tests/reference_solver/fast/test_structure.py"
 FAST_PATH_TESTS = (KERNEL_TESTS, WHOLE_PATH_TESTS, COMPILED_SYSTEM_TESTS, ROWS_TESTS)
 """The fast path's tests: its kernels against dense algebra and LAPACK, the whole path against the
 plain path to 1e-12 on every scenario, the compiled rows against the plain rows on random states.
@@ -106,7 +106,7 @@ RESIDUAL_TESTS = tuple(
 """The constraint residual's tests: compiled against plain rows on random states and solutions, cam
 contacts with and without their parameter, NaN coordinates, two contacts and an 81-body chain."""
 
-LOOP_MUTANT_TESTS = "tests/reference_solver/test_fast_loop_mutants.py"
+LOOP_MUTANT_TESTS = "tests/reference_solver/fast/test_loop_events.py"
 LOOP_TESTS = (
     LOOP_MUTANT_TESTS,
     KERNEL_TESTS,
@@ -121,10 +121,10 @@ LOOP_TESTS = (
     "tests/reference_solver/test_branch_guard.py::test_the_kernel_hands_a_jump_to_the_plain_path",
 )
 """The kernel loop uncompiled (a kernel module): the hand-worked crank through the kernel and each of
-its events (test_fast_loop_mutants.py, 3 s of CPU uncompiled), two catalogue scenarios against the plain
+its events (fast/test_loop_events.py, quick uncompiled), two catalogue scenarios against the plain
 path (a spline cam's profile points, a planetary train), a looser tolerance, and a branch jump. Left
-out: the rest of the catalogue (12 s of CPU uncompiled), the singular cases of test_fast_path.py (they
-run the plain path's diagnosis, up to 16 s each) and its iteration-limit test (minutes uncompiled)."""
+out: the rest of the catalogue, the singular cases of fast/test_path.py (they run the plain path's
+diagnosis, seconds each uncompiled) and its iteration-limit test (minutes uncompiled)."""
 
 ALI3P_STEP_TESTS = (
     *ALI3P_FAST_TESTS,
@@ -174,7 +174,7 @@ moved 10 m off the origin)."""
 COMPILED_RATES_TESTS = (
     f"{DYNAMICS}test_compiled_rates.py",
     f"{DYNAMICS}test_anchor.py",
-    f"{DYNAMICS}test_compiled_rates_mutants.py",
+    f"{DYNAMICS}test_compiled_rates_fallbacks.py",
 )
 """The compiled partitioned right-hand side (dynamics.compiled_rates over fast.rates): against the
 plain one and finite differences on random states, the anchor, and its own value tests."""
@@ -183,14 +183,14 @@ RATES_KERNEL_TESTS = (
     f"{DYNAMICS}test_compiled_rates.py::test_compiled_rates_are_the_derivatives_of_the_compiled_positions",
     f"{DYNAMICS}test_compiled_rates.py::test_compiled_conditioning_is_the_plain_one",
     f"{DYNAMICS}test_anchor.py::test_a_far_trial_stage_leaves_the_next_right_hand_side_unchanged",
-    f"{DYNAMICS}test_compiled_rates_mutants.py",
-    "tests/reference_solver/test_fast_rates.py",
+    f"{DYNAMICS}test_compiled_rates_fallbacks.py",
+    "tests/reference_solver/fast/test_rates.py",
 )
 """fast.rates' kernels uncompiled: the compiled right-hand side, state and conditioning against the
 plain path's on random states, its rates against finite differences of its positions, the anchor,
 and the value tests; about 15 s as Python. No integration: Radau's comparison alone takes 21 s
 uncompiled, the energy balance at rtol 1e-6 longer."""
-LOAD_KERNEL_TESTS = (*FORCE_ELEMENT_TESTS, "tests/reference_solver/test_fast_load_kernel_mutants.py")
+LOAD_KERNEL_TESTS = (*FORCE_ELEMENT_TESTS, "tests/reference_solver/fast/test_load_program.py")
 """The compiled force elements against the plain ones (themselves against finite differences)."""
 
 MODULES: dict[str, tuple[str, ...]] = {
@@ -233,10 +233,10 @@ MODULES: dict[str, tuple[str, ...]] = {
     ),
     "reference_solver/analysis.py": (
         "tests/reference_solver/test_analysis.py",
-        "tests/reference_solver/test_analysis_assemble_s10.py",
-        "tests/reference_solver/test_analysis_assemble_s11.py",
+        "tests/reference_solver/test_assemble_singular_refusal.py",
+        "tests/reference_solver/test_assemble_round_off_refusal.py",
         "tests/reference_solver/test_branch_guard.py",
-        "tests/reference_solver/test_fast_path.py",
+        "tests/reference_solver/fast/test_path.py",
         "tests/reference_solver/test_failures.py",
         "tests/reference_solver/test_closed_forms.py",
     ),
@@ -245,7 +245,7 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/layout.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_layout.py"),
     "reference_solver/factorization.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_factorization.py"),
     "reference_solver/residual.py": (*PLAIN_PATH_TESTS, *RESIDUAL_TESTS),
-    # --- native dynamics (session 8, s8-mut2) ---
+    # --- native dynamics ---
     "reference_solver/dynamics/loads.py": (*FORCE_ELEMENT_TESTS, *DRIVEN_DYNAMICS_TESTS),
     "reference_solver/dynamics/mass.py": (f"{DYNAMICS}test_mass.py", *DRIVEN_DYNAMICS_TESTS),
     "reference_solver/dynamics/inverse.py": (
@@ -263,16 +263,16 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/dynamics/projection.py": (f"{DYNAMICS}test_projection.py", *ALI3P_FAST_TESTS),
     "reference_solver/dynamics/tangent.py": (f"{DYNAMICS}test_tangent.py", *ALI3P_FAST_TESTS),
     # --- end of native dynamics ---
-    # ---- the compiled kinematic fast path (session 8, mut3) ----
+    # ---- the compiled kinematic fast path ----
     "reference_solver/fast/constraint_rows.py": FAST_PATH_TESTS,
     "reference_solver/fast/program.py": (
-        "tests/reference_solver/test_fast_program_mutants.py",
-        "tests/reference_solver/test_fast_program_instructions.py",
+        "tests/reference_solver/fast/test_program_parts.py",
+        "tests/reference_solver/fast/test_program_instructions.py",
         *FAST_PATH_TESTS,
     ),
     "reference_solver/fast/structure.py": (
         STRUCTURE_TESTS,
-        "tests/reference_solver/test_fast_structure_mutants.py",
+        "tests/reference_solver/fast/test_structure_edges.py",
         KERNEL_TESTS,
         ROWS_TESTS,
     ),
@@ -285,22 +285,25 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/fast/band.py": (
         KERNEL_TESTS,
         STRUCTURE_TESTS,
-        "tests/reference_solver/test_fast_band_rcond.py",
+        "tests/reference_solver/fast/test_band_rcond.py",
     ),
     "reference_solver/fast/dense_lu.py": (KERNEL_TESTS,),
     "reference_solver/fast/loop.py": (
         *LOOP_TESTS,
-        "tests/reference_solver/test_fast_loop_mutants_s10.py",
-        "tests/reference_solver/test_fast_loop_mutants_s11.py",
+        "tests/reference_solver/fast/test_loop_margins.py",
+        "tests/reference_solver/fast/test_loop_singular_after_convergence.py",
     ),
     "reference_solver/fast/path.py": (LOOP_MUTANT_TESTS, KERNEL_TESTS, WHOLE_PATH_TESTS),
     "reference_solver/fast/dense.py": (
-        "tests/reference_solver/test_fast_dense_mutants.py",
+        "tests/reference_solver/fast/test_dense.py",
         COMPILED_SYSTEM_TESTS,
     ),
     "reference_solver/fast/residuals.py": RESIDUAL_TESTS,
     "reference_solver/compiled_system.py": (COMPILED_SYSTEM_TESTS,),
-    "reference_solver/equation.py": (*PLAIN_PATH_TESTS, "tests/reference_solver/test_equation_mutants.py"),
+    "reference_solver/equation.py": (
+        *PLAIN_PATH_TESTS,
+        "tests/reference_solver/test_equation_ground_rows.py",
+    ),
     "reference_solver/solution.py": (
         "tests/reference_solver/test_solution.py",
         "tests/reference_solver/test_analysis.py",
@@ -310,26 +313,26 @@ MODULES: dict[str, tuple[str, ...]] = {
         "tests/reference_solver/test_mobility.py",
         "tests/reference_solver/test_failures.py",
     ),
-    # --- ALI3-P's plain step and its grid (session 8, s8-mut5) ---
+    # --- ALI3-P's plain step and its grid ---
     "reference_solver/dynamics/ali3p_grid.py": (
         *ALI3P_STEP_TESTS,
-        f"{DYNAMICS}test_ali3p_schedule_mutants_s11.py",  # the watch's and the placement's use
+        f"{DYNAMICS}test_ali3p_schedule.py",  # the watch's and the placement's use
     ),
     "reference_solver/dynamics/ali3p.py": ALI3P_STEP_TESTS,
     # --- end of ALI3-P ---
-    # --- the partitioned method (session 8, s8-mut4) ---
+    # --- the partitioned method ---
     "reference_solver/dynamics/partition.py": PARTITIONED_TESTS,
     "reference_solver/dynamics/forward.py": (
         *PARTITIONED_TESTS,
-        f"{DYNAMICS}test_forward_mutants.py",
-        f"{DYNAMICS}test_forward_mutants_s10.py",
+        f"{DYNAMICS}test_forward_repartition.py",
+        f"{DYNAMICS}test_forward_termination.py",
     ),
     # --- end of the partitioned method ---
-    # --- the compiled partitioned right-hand side and its support (session 9, s9-mutdyn) ---
+    # --- the compiled partitioned right-hand side and its support ---
     "reference_solver/dynamics/compiled_rates.py": COMPILED_RATES_TESTS,
     "reference_solver/fast/rates.py": (
         *RATES_KERNEL_TESTS,
-        "tests/reference_solver/test_fast_rates_stall.py",
+        "tests/reference_solver/fast/test_rates_stall.py",
     ),
     "reference_solver/fast/load_kernel.py": LOAD_KERNEL_TESTS,
     "reference_solver/fast/load_program.py": LOAD_KERNEL_TESTS,
@@ -339,16 +342,16 @@ MODULES: dict[str, tuple[str, ...]] = {
     ),
     "reference_solver/fast/cache_guard.py": (
         f"{KERNEL_TESTS}::test_cache_guard_drops_machine_code_of_changed_sources",
-        "tests/reference_solver/test_cache_guard.py",
+        "tests/reference_solver/fast/test_cache_guard.py",
     ),
     "reference_solver/errors.py": (
         "tests/reference_solver/test_failures.py",
         "tests/reference_solver/test_errors.py",
     ),
     # --- end of the compiled partitioned right-hand side ---
-    # --- ALI3-P's compiled step (session 9, s9-mutali3p) ---
+    # --- ALI3-P's compiled step ---
     "reference_solver/fast/ali3p_matrix.py": (
-        "tests/reference_solver/test_fast_ali3p_matrix.py",
+        "tests/reference_solver/fast/test_ali3p_matrix.py",
         f"{DYNAMICS}test_compiled_ali3p.py",
     ),
     "reference_solver/dynamics/compiled_ali3p.py": (
@@ -359,19 +362,19 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/fast/ali3p_kernel.py": (
         f"{DYNAMICS}test_compiled_ali3p_run.py",
         f"{DYNAMICS}test_compiled_ali3p.py",
-        "tests/reference_solver/test_fast_ali3p_kernel_mutants.py",
-        "tests/reference_solver/test_fast_ali3p_kernel_s11.py",
+        "tests/reference_solver/fast/test_ali3p_kernel_near_singular.py",
+        "tests/reference_solver/fast/test_ali3p_kernel_careful_steps.py",
     ),
     # --- end of ALI3-P's compiled step ---
-    # --- ALI3-P's singular passages (session 11, s11-mutdyn) ---
+    # --- ALI3-P's singular passages ---
     "reference_solver/dynamics/passage.py": (
         f"{DYNAMICS}test_passage.py",
-        f"{DYNAMICS}test_passage_mutants_s11.py",
+        f"{DYNAMICS}test_passage_readings.py",
     ),
     "reference_solver/dynamics/ali3p_schedule.py": (
         f"{DYNAMICS}test_passage.py",
         f"{DYNAMICS}test_ali3p_grid.py",
-        f"{DYNAMICS}test_ali3p_schedule_mutants_s11.py",
+        f"{DYNAMICS}test_ali3p_schedule.py",
     ),
     # --- end of ALI3-P's singular passages ---
 }

@@ -11,8 +11,8 @@ milliseconds per row):
 - truths (one per scenario), warming a scenario before a fork, forks;
 - hand-over: a worker's call less the child's time in it (pipes, pickling, waiting for a core);
 - in the child: the adapter's run beyond the work it measured, the constraint residual (cam
-  scenarios apart, each part with its milliseconds per run of its own: the cams' took the native
-  solver's plain rows until session 11) and the rest of the comparison (errors per level, forces);
+  scenarios apart, each part with its milliseconds per run of its own) and the rest of the
+  comparison (errors per level, forces);
 - in this process: the rows made, the store's add, the progress bar, the saves;
 - unaccounted: what is left (the loop itself, resume bookkeeping).
 On a shared machine the wall time of a step mostly measures the other processes: the CPU seconds

@@ -1,6 +1,6 @@
 """What a save of the results store costs: appending a batch of rows to stores of 1k, 10k and 100k
-rows, the old way (the whole table rewritten at every save) beside the new (the batch written as a
-new part), measured side by side in one run.
+rows, the whole table rewritten at every save beside the store's way (the batch written as a new
+part), measured side by side in one run.
 
     python -m benchmarks.store_append [--sizes 1000,10000,100000] [--batch 100] [--appends 8]
         [--grow 10000]
@@ -10,8 +10,8 @@ Rows are the store's declared columns (reports.harness.columns) with values of a
 For each size the store is first saved whole once; then `appends` batches of `batch` new rows are
 saved one after another, each timed from the call to `save` to its return (the new part written,
 synced, checksummed; the sidecar; the generation switched), compaction included: best, median and
-worst. The old way is the save of the mbxval before parts, kept here only to compare: the table
-built from every row, written whole as one file, checksummed, committed. Beside them, the cost of
+worst. The whole rewrite (`old_save`, kept here only to compare) is a store of one file per table: the
+table built from every row, written whole as one file, checksummed, committed. Beside them, the cost of
 a load (read_results: every part read and its SHA-256 verified) and of the verification alone.
 `--grow N` then builds a store of N rows by batches of `batch`, as a sweep does, both ways: the
 total and the slowest save (the new way's slowest is a save that merges parts).
@@ -100,7 +100,7 @@ def realistic_rows(count: int, start: int = 0, seed: int = 0) -> list[dict[str, 
 
 
 def old_save(directory: Path, rows: dict[Any, dict[str, Any]]) -> None:
-    """The save of the mbxval before parts (for comparison only): every row into one table,
+    """A save that rewrites the whole table (for comparison only): every row into one table,
     written whole as results.parquet in a new generation (no trajectories here)."""
     frame = rows_frame(rows.values())
     writers: dict[str, Callable[[Path], object]] = {

@@ -1,5 +1,5 @@
-"""Adding an engine touches its subpackage, one registry line and its tests (README, "Adding an
-engine"): a toy engine (tests/support/toy_engine.py), registered by that one line and nothing else,
+"""Adding an engine touches its subpackage, one registry line and its tests (docs/adding-an-engine.md):
+a toy engine (tests/support/toy_engine.py), registered by that one line and nothing else,
 appears in `mbxval list`, runs in `mbxval run`, has its package recorded in the results' provenance
 and printed by `--version`, is drawn in its own colour (stored with the run) and gets its own
 settings in the stress cases that probe its knobs."""

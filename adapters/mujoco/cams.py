@@ -18,9 +18,8 @@ the follower cannot follow are named: cam_facets.lobed_reason): spline profiles 
 A flat face on facets collides through a contype/conaffinity bit of its own instead of one explicit
 pair per facet (CamPair.mask): MuJoCo filters an explicit pair by bounding spheres alone, and the
 face's box, four cam radii long, has a sphere that holds the whole cam, so the box-capsule collider
-ran on every facet at every collision. Measured side by side on cam_flat_face/spline (two cores at
-load 10): a collision 311 us with explicit pairs against 40 us by bits, an RK4 step 1334 against
-270 us, an implicitfast step 328 against 63 us, the same trajectories to the bit.
+ran on every facet at every collision; by bits a collision costs a fraction of that, and the
+trajectories are the same to the bit.
 Colliding by bits, the pairs go through MuJoCo's mid-phase, which prunes on the oriented boxes of the
 cam body's bounding-volume tree and of each geom, boxes that contain their geoms: the facets it
 drops cannot touch the face, so the contacts are the same ones, from the same collider on the same

@@ -6,7 +6,7 @@ contact pairs, or, for a flat face on facets, pairs MuJoCo finds itself by the c
 conaffinity bit. The assembly (adapters.mujoco.assembly) and the contact check at every output time
 (adapters.mujoco.cam_load) look these up at each call. They are read from MuJoCo's arrays as plain
 lists (pair_geom1/2, the name table, geom_contype/conaffinity, d.contact's columns) rather than
-through one MjContact or geom view per item, which cost about 2 ms per call on 512 facets; the
+through one MjContact or geom view per item, which costs far more per call on hundreds of facets; the
 closest contacts of more than MANY contacts (the assembly's margin reaches hundreds of facets) on
 arrays, with the same answers.
 """

@@ -2,12 +2,8 @@
 the compiled constraint rows, for scenarios without force elements, so W = M + h^2/4 C_q^T alpha C_q
 is symmetric positive definite and banded Cholesky factors it. `ali3p_stepper` gives it where the
 constraints compile, Ali3p otherwise; Ali3p stays the plain reference each is checked against.
-
-Measured on A02 as specified (243 coordinates, h = 2e-5), side by side in one process: 94 us a step
-against 470 us for Ali3p on the same compiled rows (5.0 times). The whole 20 s (1e6 steps, with the
-grid's careful steps and placed step at each passage, dynamics.ali3p_schedule) in 124 s CPU, its
-energy held to 5.4e-9 of the kinetic energy, the rockers to the crank to 1.9e-11 at a passage and
-2.5e-13 elsewhere (112 s, 5.5e-9, 2.1e-10 and 2.2e-13 with equal steps)."""
+Compiled, so that A02 as specified (1e6 steps of 243 coordinates) runs in minutes; its figures are
+held by tests/reference_solver/dynamics/test_ali3p.py."""
 
 from __future__ import annotations
 

@@ -1,22 +1,19 @@
 """Where ALI3-P's fixed steps meet a singular passage (C_q losing rank, as every rocker of A02 does
 at each horizontal crossing): the smallest singular value s of C_q, scaled as the penalties are
 (D^-1/2 C_q M^-1/2, D the rows' inertias, dynamics.ali3p.PENALTY), watched between steps and its
-zero predicted by linear extrapolation (s is proportional to |t - t*| next to a simple passage:
-measured on A02, 1.28e-4 at 39.3 steps before the instant and 9.74e-7 at 0.3, one slope to 0.3 %).
+zero predicted by linear extrapolation (s is proportional to |t - t*| next to a simple passage,
+so two readings give the instant).
 
 Why: along the direction s measures the augmented Lagrangian contracts by 1/(1 + PENALTY s^2) per
 iteration, so near a passage its small updates are taken for convergence while the rockers are
-still up to 1e-10 off the crank (measured at step ends within 5 steps of A02's first passage, h =
-2e-5); the exact (Schur complement) solution holds them to C's round-off over s, which grows
-without bound as a step end nears the instant (1e-9 at 0.01 of a step after it; a minimum-norm
-SVD projection of the positions alone does the same, 2e-11 to 3e-11 at 0.01 and 0.3 of a step,
-and leaves the rates). The grid (dynamics.ali3p_schedule) therefore takes the steps where
-PENALTY s^2 < CAREFUL through the Schur complement from their first iteration, and places three
-steps so that the predicted instant falls in the middle of one, as an ODE solver locates an
-event: no step ends within END_VALUE / slope (at least half a step) of it. Measured on A02's first
-passage, the rockers at the instant for phases 0.01 to 0.99 of it in its step: 1.1e-10 to 1.3e-10
-before (1.5e-11 at 0.5 to 0.7) and 6.7e-12 to 1.8e-11 after at h = 2e-5; 1.2e-10 to 1.9e-10 before
-and 9e-12 to 1.6e-11 after at h = 1e-5.
+still off the crank; the exact (Schur complement) solution holds them to C's round-off over s,
+which grows without bound as a step end nears the instant (a minimum-norm SVD projection of the
+positions alone does the same, and leaves the rates). The grid (dynamics.ali3p_schedule)
+therefore takes the steps where PENALTY s^2 < CAREFUL through the Schur complement from their
+first iteration, and places three steps so that the predicted instant falls in the middle of one,
+as an ODE solver locates an event: no step ends within END_VALUE / slope (at least half a step) of
+it, so that the rockers stay on the crank wherever the instant falls in its step
+(tests/reference_solver/dynamics/test_passage.py).
 """
 
 from __future__ import annotations

@@ -31,8 +31,8 @@ from scenarios.trajectory import Trajectory
 LONG_RUN = 0.25  # seconds: a simulation this long is timed once after the warm-up (adapters.base)
 AGREE = 0.02
 """Repeats stop once one agrees with the best before it to this fraction (adapters.timing.timed):
-on a quiet machine two repeats of the same run are a median 0.44 % apart (351 runs of the default
-suite at load 1.2 to 1.9), so a third adds little; on a busy one they disagree and the third runs."""
+on a quiet machine two repeats of the same run agree far closer than that (`mbxval bench repeats`
+measures it), so a third adds little; on a busy one they disagree and the third runs."""
 
 
 @dataclass(frozen=True)

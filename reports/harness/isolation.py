@@ -1,7 +1,7 @@
 """Run a function in a child process with a time limit, so that a crash or a hang costs one run.
 
-The child is forked (about 10 ms here with every engine imported, against about 1 s for a spawned
-interpreter that has to import them again), runs the function, and sends its result back through a
+The child is forked (cheap with every engine imported, where a spawned interpreter would have to
+import them again), runs the function, and sends its result back through a
 pipe. A `Worker` keeps its child for many calls (a group of runs: one fork, not one per run) and
 forks a new one only after a call that crashed it or ran out of time. The child's stdout and stderr
 go to a temporary file, emptied before each call: engine chatter stays out of the progress bar, and
@@ -56,8 +56,8 @@ def run_isolated(function: Callable[[], T], timeout: float) -> Outcome[T]:
 
 class Worker(Generic[A, T]):
     """A forked child that calls `function(argument)` for each argument sent to it, one call at a
-    time, each with its own time limit: forked once for many calls (a fork of a process with every
-    engine loaded costs about 10 ms), forked again after a call that crashed it or ran out of time,
+    time, each with its own time limit: forked once for many calls (a fork of a process with every engine
+    loaded is cheap), forked again after a call that crashed it or ran out of time,
     so that a crash or a hang still costs only its own call. `function` is the parent's, as it was
     when the child was forked; only the arguments and the results cross the pipe. Use it as a
     context manager: leaving it ends the child."""

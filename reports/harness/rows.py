@@ -51,8 +51,8 @@ def base_row(
 
 @kept(maxsize=64)
 def scenario_digest(scenario: Scenario) -> str:
-    """scenarios.identity.digest, once per scenario (every row of a scenario states it: about 0.3
-    to 0.8 ms each, a file's text hashed; equal scenarios have the same digest)."""
+    """scenarios.identity.digest, once per scenario (every row of a scenario states
+    it, and a file's text is hashed each time; equal scenarios have the same digest)."""
     return digest(scenario)
 
 

@@ -1,6 +1,6 @@
-"""An engine from another package: the README's minimal engine, built as a throwaway package,
-installed with pip into a folder of its own, found through the `mbxval.engines` entry-point group,
-and run on the default suite by the command line."""
+"""An engine from another package: the minimal engine of docs/adding-an-engine.md, built as a
+throwaway package, installed with pip into a folder of its own, found through the `mbxval.engines`
+entry-point group, and run on the default suite by the command line."""
 
 from __future__ import annotations
 
@@ -29,20 +29,20 @@ packages = ["my_engine"]
 """
 
 
-def readme_blocks() -> tuple[str, str]:
-    text = (ROOT / "README.md").read_text()
-    section = text[text.index("### Your own solver as an engine") :]
+def documented_blocks() -> tuple[str, str]:
+    text = (ROOT / "docs" / "adding-an-engine.md").read_text()
+    section = text[text.index("## Your own solver as an engine") :]
     code = re.search(r"```python\n(# my_engine/__init__\.py\n.*?)```", section, flags=re.S)
     toml = re.search(
         r"```toml\n(\[project\.entry-points\.\"mbxval\.engines\"\]\n.*?)```", section, flags=re.S
     )
-    assert code and toml, "the README's minimal engine and its entry point"
+    assert code and toml, "the documented minimal engine and its entry point"
     return code.group(1), toml.group(1)
 
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    code, entry = readme_blocks()
+    code, entry = documented_blocks()
     assert len(code.splitlines()) < 60
     package = tmp_path_factory.mktemp("my-engine")
     (package / "my_engine").mkdir()

@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from tests.examples.closed_forms import BLOCK, DISC, oscillator
-from tests.examples.closed_forms import damped_oscillators as expected
-from tests.examples.support import example, max_errors
+from tests.support.examples.closed_forms import BLOCK, DISC, oscillator
+from tests.support.examples.closed_forms import damped_oscillators as expected
+from tests.support.examples.files import example, max_errors
 
 
 def test_damped_oscillators_against_closed_form() -> None:

@@ -25,11 +25,11 @@ import math
 import pytest
 
 import adapters
-from tests.examples.closed_forms import CLOSED_FORMS
-from tests.examples.engine_errors import default_run, errors
-from tests.examples.support import example
 from tests.support.bounds import held
 from tests.support.engines import ENGINES
+from tests.support.examples.closed_forms import CLOSED_FORMS
+from tests.support.examples.engine_errors import default_run, errors
+from tests.support.examples.files import example
 
 MEASURED: dict[tuple[str, str], tuple[float, float, float]] = {
     ("whitworth_quick_return", "reference"): (8.9e-16, 1.1e-15, 4.9e-15),
@@ -105,7 +105,7 @@ def _cases() -> list[object]:
 
 
 def test_every_example_has_a_closed_form() -> None:
-    from tests.examples.support import EXAMPLES
+    from tests.support.examples.files import EXAMPLES
 
     assert {p.stem for p in EXAMPLES.glob("*.toml")} == set(CLOSED_FORMS)
 

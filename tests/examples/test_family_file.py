@@ -8,7 +8,7 @@ import scenarios
 from reference_solver import solve
 from scenarios.closed_form import exact
 from scenarios.identity import digest
-from tests.examples.support import LEVELS, example
+from tests.support.examples.files import LEVELS, example
 
 
 def test_slider_crank_file_is_the_family() -> None:

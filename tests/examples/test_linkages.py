@@ -1,18 +1,19 @@
-"""The linkage examples on the native solver against their closed forms (tests/examples/closed_forms.py)."""
+"""The linkage examples on the native solver against their closed forms
+(tests/support/examples/closed_forms.py)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from reference_solver import solve
-from tests.examples.closed_forms import (
+from tests.support.examples.closed_forms import (
     crank_rocker_from_rocker,
     peaucellier_lipkin,
     watt_linkage,
     watt_six_bar,
     watt_straight_line,
 )
-from tests.examples.support import example, max_errors
+from tests.support.examples.files import example, max_errors
 
 # Closed form and solver agree to rounding (measured: 1e-15 m, 1e-14 m/s, 1e-13 m/s^2 at most).
 TOLERANCE = {"position": 1e-13, "velocity": 1e-12, "acceleration": 1e-11}

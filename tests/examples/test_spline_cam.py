@@ -22,8 +22,8 @@ import numpy as np
 import pytest
 
 from adapters.mujoco import MujocoAdapter
-from tests.examples.spline_cam import cam_roller_spline
-from tests.examples.support import example, max_errors
+from tests.support.examples.files import example, max_errors
+from tests.support.examples.spline_cam import cam_roller_spline
 
 # Closed form and solver agree to rounding (measured 2.8e-17 m, 3.7e-15 m/s, 7.3e-15 m/s^2).
 TOLERANCE = {"position": 1e-13, "velocity": 1e-12, "acceleration": 1e-11}

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from tests.examples.closed_forms import OMEGA, D, R, whitworth
-from tests.examples.support import example, max_errors
+from tests.support.examples.closed_forms import OMEGA, D, R, whitworth
+from tests.support.examples.files import example, max_errors
 
 
 def test_whitworth_against_closed_form() -> None:

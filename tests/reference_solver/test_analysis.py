@@ -29,49 +29,29 @@ from scenarios import (
     AbsoluteDriver,
     Body,
     Constant,
-    ConstantSpeed,
     Harmonic,
     Point,
     Prismatic,
-    Revolute,
-    RevoluteRevolute,
 )
 from scenarios.closed_form import exact
 from scenarios.scenario import Scenario
-
-A_HALF, MEAN, AMPLITUDE, OMEGA = 0.1, 0.4, 0.7, 3.0
-
-
-def _crank(guess: tuple[float, float, float] = (0.09, 0.05, 0.5)) -> Scenario:
-    return Scenario(
-        family="hand_crank",
-        variant="default",
-        bodies=(Body("crank", guess, length=2 * A_HALF),),
-        joints=(Revolute("O", Point(GROUND, (0.0, 0.0)), Point("crank", (-A_HALF, 0.0))),),
-        drivers=(AbsoluteDriver("drive", "crank", "theta", Harmonic(MEAN, AMPLITUDE, OMEGA)),),
-        t_end=1.0,
-        steps=20,
-        characteristic_length=2 * A_HALF,
-    )
-
-
-def _by_hand(t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    th = MEAN + AMPLITUDE * np.cos(OMEGA * t)
-    thd = -AMPLITUDE * OMEGA * np.sin(OMEGA * t)
-    thdd = -AMPLITUDE * OMEGA**2 * np.cos(OMEGA * t)
-    c, s, a = np.cos(th), np.sin(th), A_HALF
-    q = np.stack([a * c, a * s, th], axis=1)
-    qd = np.stack([-a * s * thd, a * c * thd, thd], axis=1)
-    qdd = np.stack([-a * (c * thd**2 + s * thdd), a * (c * thdd - s * thd**2), thdd], axis=1)
-    return q, qd, qdd
+from tests.support.hand_crank import (
+    A_HALF,
+    AMPLITUDE,
+    MEAN,
+    OMEGA,
+    crank_by_hand,
+    crank_scenario,
+    unassembled_pair,
+)
 
 
 def test_positions_rates_and_accelerations_are_the_hand_worked_ones() -> None:
-    scenario = _crank()
+    scenario = crank_scenario()
     result = analyse(scenario, fast=False)
     grid = np.asarray(scenario.times())
     np.testing.assert_array_equal(result.times, grid)
-    for level, expected in zip(("q", "qd", "qdd"), _by_hand(grid), strict=True):
+    for level, expected in zip(("q", "qd", "qdd"), crank_by_hand(grid), strict=True):
         np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-12, err_msg=level)
     assert np.all(result.residual < 1e-12)
     assert result.iterations[0] == 0 and np.all(result.iterations[1:] >= 1)
@@ -82,8 +62,8 @@ def test_the_rates_solve_the_scaled_velocity_and_acceleration_equations() -> Non
     """_rates on the crank at the hand-worked q of t = 0.3 (theta' and theta'' both nonzero): the
     hand-worked q' and q''. The rows (pin, in L = 0.2; driver, an angle) and columns (x, y in L;
     theta) are scaled differently, so each scale used the wrong way round shows."""
-    system = ConstraintSystem(_crank())
-    q, qd, qdd = (level[0] for level in _by_hand(np.array([0.3])))
+    system = ConstraintSystem(crank_scenario())
+    q, qd, qdd = (level[0] for level in crank_by_hand(np.array([0.3])))
     factors = factorize(system.scaled_jacobian(system.jacobian(q, 0.3)))
     rates = analysis._rates(system, factors, q, 0.3)
     np.testing.assert_allclose(rates[0], qd, rtol=0, atol=1e-12)
@@ -123,7 +103,7 @@ def test_a_step_has_jumped_when_its_correction_exceeds_half_the_predictors_reach
     reaches 0.1 in theta; at theta'' = 10 (theta' = 0) it reaches h^2 |theta''| = 0.1 too. Half of
     that, 0.05, is the largest correction on the branch: 0.04 in theta stays, 0.06 jumps, and so
     does 0.011 in x (0.055 in units of L), while 0.009 in x (0.045) stays."""
-    system = ConstraintSystem(_crank())
+    system = ConstraintSystem(crank_scenario())
     assert JUMP_FRACTION == 0.5
     start = np.array([0.1, 0.0, 0.0])
     for qd, qdd in (([0.0, 0.0, 1.0], [0.0, 0.0, 0.0]), ([0.0, 0.0, 0.0], [0.0, 0.0, 10.0])):
@@ -139,7 +119,7 @@ def test_a_step_has_jumped_when_its_correction_exceeds_half_the_predictors_reach
 def test_the_reach_of_a_length_coordinate_is_measured_in_units_of_l() -> None:
     """x' = 1 m/s over h = 0.1 reaches 0.1 m, 0.5 in units of L = 0.2: half of it, 0.25, is the
     largest correction on the branch. 0.2 rad in theta stays; 0.3 jumps."""
-    system = ConstraintSystem(_crank())
+    system = ConstraintSystem(crank_scenario())
     start, qd, still = np.array([0.1, 0.0, 0.0]), np.array([1.0, 0.0, 0.0]), np.zeros(3)
     assert not analysis.jumped(system, qd, still, 0.1, start, start + np.array([0, 0, 0.2]))
     assert analysis.jumped(system, qd, still, 0.1, start, start + np.array([0, 0, 0.3]))
@@ -147,7 +127,7 @@ def test_the_reach_of_a_length_coordinate_is_measured_in_units_of_l() -> None:
 
 def test_a_step_that_reaches_nothing_has_jumped_beyond_the_floor() -> None:
     """With zero rates the reach is 0 and the floor JUMP_FLOOR = 1e-6 (scaled units) decides."""
-    system = ConstraintSystem(_crank())
+    system = ConstraintSystem(crank_scenario())
     still, start = np.zeros(3), np.array([0.1, 0.0, 0.0])
     assert not analysis.jumped(system, still, still, 0.1, start, start + np.array([0, 0, 0.9 * JUMP_FLOOR]))
     assert analysis.jumped(system, still, still, 0.1, start, start + np.array([0, 0, 1.1 * JUMP_FLOOR]))
@@ -179,9 +159,9 @@ def test_steps_newton_cannot_take_at_once_are_retaken_in_halves(
     """With two Newton iterations allowed, some whole steps fail and are retaken in halved steps
     (analysis._approach), forwards and backwards in time alike: the answer is still the hand-worked one."""
     calls = _counting_approach(monkeypatch)
-    result = analyse(_crank(), grid, max_iterations=2, fast=False)
+    result = analyse(crank_scenario(), grid, max_iterations=2, fast=False)
     assert calls, "no step was retaken: the test does not reach analysis._approach"
-    for level, expected in zip(("q", "qd", "qdd"), _by_hand(grid), strict=True):
+    for level, expected in zip(("q", "qd", "qdd"), crank_by_hand(grid), strict=True):
         np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-12, err_msg=level)
 
 
@@ -210,10 +190,12 @@ def test_a_dead_centre_loses_exactly_one_rank_and_the_message_names_the_rows() -
 
 def test_solve_runs_on_the_times_it_is_given() -> None:
     times = [0.0, 0.25, 0.5]
-    trajectory = solve(_crank(), times)
+    trajectory = solve(crank_scenario(), times)
     np.testing.assert_array_equal(trajectory.times, times)
     assert trajectory.position is not None
-    np.testing.assert_allclose(trajectory.position[:, 0], _by_hand(np.asarray(times))[0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(
+        trajectory.position[:, 0], crank_by_hand(np.asarray(times))[0], rtol=0, atol=1e-12
+    )
 
 
 def test_solve_takes_the_fast_path_by_default(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -225,9 +207,9 @@ def test_solve_takes_the_fast_path_by_default(monkeypatch: pytest.MonkeyPatch) -
         return real(scenario, *args, **kwargs)
 
     monkeypatch.setattr(analysis.fast_path, "analyse", counted)
-    solve(_crank(), [0.0, 0.1])
+    solve(crank_scenario(), [0.0, 0.1])
     assert calls == ["hand_crank"]
-    solve(_crank(), [0.0, 0.1], fast=False)
+    solve(crank_scenario(), [0.0, 0.1], fast=False)
     assert calls == ["hand_crank"]
 
 
@@ -265,11 +247,11 @@ def test_a_newton_failure_at_a_regular_configuration_is_a_convergence_error(
     last successful Newton's (a few)."""
     _newton_failing_after(monkeypatch, limit)
     with pytest.raises(ConvergenceError) as caught:
-        analyse(_crank(), fast=False)
+        analyse(crank_scenario(), fast=False)
     error = caught.value
     assert error.time == pytest.approx(limit, abs=1e-12)
     assert error.q is not None
-    np.testing.assert_allclose(error.q, _by_hand(np.array([error.time]))[0][0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(error.q, crank_by_hand(np.array([error.time]))[0][0], rtol=0, atol=1e-12)
     message = re.fullmatch(
         r"hand_crank: Newton-Raphson did not converge at t=0\.55 \(stuck at t=(\S+) after (\d+) "
         r"iterations\) at a regular configuration",
@@ -327,40 +309,12 @@ def test_two_mechanisms_at_their_stroke_ends_lose_two_ranks() -> None:
     assert {"slider_drive.x", "slider_drive_2.x"} <= set(caught.value.dependent_rows)
 
 
-def _unassembled() -> tuple[ConstraintSystem, np.ndarray]:
-    """Bodies a and b, L = 0.5, guessed at (0, 0, 0) and (1, 0, 0). Joints: a's origin 0.3 from the
-    ground origin, b's 0.2 from the ground point (1, 0) (distance rows |d|^2 - l^2, whose gradient
-    2 d vanishes where the points coincide, as at the guess); drivers y_a = 0.1, theta_a = 1.08e-11,
-    y_b = 0, theta_b = 1.03e-11 at t = 0 (each moving at 1/s, so the time is read). At the guess
-    C_q has two zero rows: Newton stops before its first step."""
-    move = 1.0
-    scenario = Scenario(
-        family="unassembled",
-        variant="default",
-        bodies=(Body("a", (0.0, 0.0, 0.0)), Body("b", (1.0, 0.0, 0.0))),
-        joints=(
-            RevoluteRevolute("da", Point(GROUND, (0.0, 0.0)), Point("a"), 0.3),
-            RevoluteRevolute("db", Point(GROUND, (1.0, 0.0)), Point("b"), 0.2),
-        ),
-        drivers=(
-            AbsoluteDriver("ya", "a", "y", ConstantSpeed(0.1, move)),
-            AbsoluteDriver("ta", "a", "theta", ConstantSpeed(1.08e-11, move)),
-            AbsoluteDriver("yb", "b", "y", ConstantSpeed(0.0, move)),
-            AbsoluteDriver("tb", "b", "theta", ConstantSpeed(1.03e-11, move)),
-        ),
-        t_end=1.0,
-        steps=1,
-        characteristic_length=0.5,
-    )
-    return ConstraintSystem(scenario), np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0])
-
-
 def test_a_failed_assembly_names_the_four_worst_rows_beyond_ten_tolerances() -> None:
     """The scaled misses at the guess: da -0.09 / L^2 = -0.36, ya -0.1 / L = -0.2, db -0.04 / L^2 =
     -0.16, ta -1.08e-11, tb -1.03e-11, yb 0. The four worst are named, worst first, when they miss
     by more than 10 tolerances (1e-11: ta is, by 8 %); tb, fifth, is not. The two zero rows make
     C_q lose two ranks, and they are the dependent rows."""
-    system, guess = _unassembled()
+    system, guess = unassembled_pair()
     with pytest.raises(AssemblyError) as caught:
         analysis.assemble(system, guess, 0.0, 1e-12)
     error = caught.value
@@ -431,20 +385,20 @@ def test_every_step_of_a_smooth_motion_is_taken_at_once(monkeypatch: pytest.Monk
     1e-4) of the answer: no step is retaken and each Newton ends in 3 iterations (measured), a
     predictor that left out a term, or a step believed longer than it is, would be retaken."""
     calls = _counting_approach(monkeypatch)
-    result = analyse(_crank(), fast=False)
+    result = analyse(crank_scenario(), fast=False)
     assert calls == []
     assert np.all(result.iterations[1:] <= 3)
 
 
 def test_a_grid_of_one_time_is_the_assembled_configuration_and_its_rates() -> None:
-    result = analyse(_crank(), [0.3], fast=False)
-    for level, expected in zip(("q", "qd", "qdd"), _by_hand(np.array([0.3])), strict=True):
+    result = analyse(crank_scenario(), [0.3], fast=False)
+    for level, expected in zip(("q", "qd", "qdd"), crank_by_hand(np.array([0.3])), strict=True):
         np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-12, err_msg=level)
 
 
 def test_integer_times_give_a_float_grid_and_the_iterations_are_counts() -> None:
     for fast in (True, False):
-        result = analyse(_crank(), [0, 1], fast=fast)
+        result = analyse(crank_scenario(), [0, 1], fast=fast)
         assert result.times.dtype == np.float64
         assert result.iterations.dtype.kind == "i", fast
 
@@ -458,7 +412,7 @@ def test_analyse_takes_the_fast_path_by_default(monkeypatch: pytest.MonkeyPatch)
         return real(scenario, grid, tolerance, max_iterations)
 
     monkeypatch.setattr(analysis.fast_path, "analyse", counted)
-    analyse(_crank(), [0.0, 0.1])
+    analyse(crank_scenario(), [0.0, 0.1])
     assert calls == [1e-12]
 
 

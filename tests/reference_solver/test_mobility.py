@@ -1,6 +1,7 @@
 """The mobility check's refusals, each on a hand-built mechanism whose ranks are known: one
 redundant joint row (deficiency exactly 1), two (a duplicated pin), and a driver that acts on a
-coordinate the joints already fix. Survivors of mutation testing (docs/mutation.md) asked for each."""
+coordinate the joints already fix. Each pins a part of the check
+that no other test reaches."""
 
 from __future__ import annotations
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from reference_solver.limits import ROUND_OFF_ULPS
 from reference_solver.newton import NewtonSettings, _round_off, _step_tolerance, newton
-from tests.reference_solver.test_newton import OneUnknown
+from tests.support.newton_systems import OneUnknown
 
 EPS = float(np.finfo(float).eps)
 

@@ -22,40 +22,11 @@ from reports.cli import suite_commands
 from reports.cli.main import main
 from reports.harness import gate, store_files
 from reports.harness.results_store import RESULTS, TRAJECTORIES, ResultsStore, read_results, read_trajectories
-from reports.harness.runner import RunConfig, Runner
 from reports.harness.store_files import StoreDamaged
 from reports.harness.store_lock import StoreBusy, WriterLock
-from tests.support.fake_engine import GOOD, FakeAdapter, fake_truth
+from tests.support.fake_engine import FakeAdapter
+from tests.support.store_runs import CONFIG, ROOT, SCENARIO, copy, fake_run, one_line_error, rows
 from tests.support.stores import table_files, write_schema_1
-
-ROOT = Path(__file__).resolve().parents[2]
-SCENARIO = "slider_crank"
-CONFIG = RunConfig(repeats=1, warmup=0, timeout=10.0)
-
-
-class QuickFake(FakeAdapter):
-    """The fake engine with two good settings and one that raises (no slow modes)."""
-
-    def ladder(self, scenario):  # type: ignore[no-untyped-def]
-        from adapters.base import Setting
-
-        return [*GOOD, Setting.of("raise")]
-
-
-def fake_run(directory: Path, config: RunConfig = CONFIG, loader=None, version: str | None = None) -> Runner:  # type: ignore[no-untyped-def]
-    log = directory.parent / "calls.log"
-
-    def load(name: str) -> FakeAdapter:
-        adapter = QuickFake(log)
-        if version is not None:
-            adapter.version = lambda: version  # type: ignore[method-assign]
-        return adapter
-
-    runner = Runner(
-        ResultsStore(directory), ["fake"], config, loader=loader or load, truth=fake_truth, progress=False
-    )
-    runner.run([SCENARIO])
-    return runner
 
 
 @pytest.fixture(scope="module")
@@ -63,25 +34,6 @@ def stored(tmp_path_factory: pytest.TempPathFactory) -> Path:
     directory = tmp_path_factory.mktemp("stored") / "out"
     fake_run(directory)
     return directory
-
-
-def copy(source: Path, target: Path) -> Path:
-    import shutil
-
-    shutil.copytree(source, target, symlinks=True)
-    return target
-
-
-def one_line_error(capsys: pytest.CaptureFixture[str], *words: str) -> str:
-    err = capsys.readouterr().err
-    assert err.startswith("mbxval: error: ") and err.count("\n") == 1, err
-    for word in words:
-        assert word in err, err
-    return err
-
-
-def rows(directory: Path) -> pd.DataFrame:
-    return read_results(directory)[0].set_index(["scenario", "engine", "setting"]).sort_index()
 
 
 # --- one writer per store ------------------------------------------------------------------------

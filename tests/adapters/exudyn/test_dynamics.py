@@ -15,7 +15,7 @@ from adapters.base import Setting
 from scenarios.bodies import GROUND, Point
 from scenarios.forces import AppliedForce, AppliedTorque, RotationalSpringDamper, SpringDamper
 from scenarios.motions import Constant, Harmonic
-from tests.adapters.exudyn.dynamics_support import ADAPTER, position_error, run, scenario, truth
+from tests.support.exudyn.dynamics import ADAPTER, position_error, run, scenario, truth
 
 # (scenario, shortened horizon, bound); measured position errors at the default setting:
 # 9.5e-7, 3.5e-6, 4.5e-10, 4.7e-5, 5.3e-5, 3.2e-5, 4.9e-9, 4.9e-9, 1.7e-6

@@ -10,7 +10,7 @@ import pytest
 
 from adapters.base import Setting
 from scenarios.families.andrews_squeezer import ANGLES, REFERENCE
-from tests.adapters.exudyn.dynamics_support import (
+from tests.support.exudyn.dynamics import (
     energy,
     position_error,
     potential_range,

@@ -14,6 +14,7 @@ from reports.harness.forces import native_forces
 from reports.harness.truth import independent_truth
 from scenarios import load
 from tests.support.bounds import held
+from tests.support.measured import EXUDYN_FORCES
 
 EXUDYN = adapters.load("exudyn")
 
@@ -26,22 +27,12 @@ def _run(name: str, setting: Setting | None, overrides: dict[str, object]):
     return scenario, times, run
 
 
-MEASURED: dict[tuple[str, str], float] = {
-    ("slider_crank", "TR2"): 2.0e-6,
-    ("slider_crank", "GA3"): 2.6e-6,  # after its run-in (3.7e-3 without: the start-up transient)
-    ("four_bar", "TR2"): 2.7e-5,
-    ("four_bar", "GA3"): 3.5e-5,  # (2.5e-2 without)
-}
-"""(scenario, mode at the default step): the force error over a whole turn, measured
-(GA3 after its run-in), held two-sided (tests.support.bounds)."""
-
-
-@pytest.mark.parametrize(("name", "mode"), list(MEASURED))
+@pytest.mark.parametrize(("name", "mode"), list(EXUDYN_FORCES))
 def test_forces_match_the_native_inverse_dynamics(name: str, mode: str) -> None:
     setting = EXUDYN.default_setting(load(name))
     scenario, times, run = _run(name, Setting.of(mode, **dict(setting.options)), {})
     metrics, _, _ = measure(scenario, run, independent_truth(scenario, times).trajectory, None)
-    held([metrics["error_force"]], [MEASURED[(name, mode)]], ("force",))
+    held([metrics["error_force"]], [EXUDYN_FORCES[(name, mode)]], ("force",))
     assert np.isfinite(metrics["driver_force_error"]) and np.isfinite(metrics["reaction_error"])
 
 

@@ -18,7 +18,6 @@ import pytest
 
 import scenarios
 from adapters.base import Setting
-from adapters.mujoco import MujocoAdapter
 from scenarios import (
     AbsoluteDriver,
     ConstantSpeed,
@@ -30,8 +29,7 @@ from scenarios import (
 from scenarios.closed_form import exact
 from tests.support.bounds import held
 from tests.support.mechanisms import differential_train
-
-ADAPTER = MujocoAdapter()
+from tests.support.mujoco.kinematic_errors import ADAPTER, errors
 
 MEASURED: dict[str, tuple[float, float, float, float]] = {
     "slider_crank": (2.7e-12, 4.7e-12, 1.9e-11, 7.0e-11),
@@ -52,31 +50,6 @@ MEASURED: dict[str, tuple[float, float, float, float]] = {
 """scenario: (position length [m], position angle [rad], velocity / max|v|, acceleration / max|a|)
 at the default setting, measured with MuJoCo 4.0.1, held two-sided (tests.support.bounds)."""
 DISC_SCENARIOS = [n for n in scenarios.catalogue() if not n.endswith("/spline")]
-
-
-def errors(name: str, setting: Setting | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Position errors (lengths, angles) and relative velocity and acceleration errors."""
-    scenario = scenarios.build(name)
-    result = ADAPTER.run(scenario, setting)
-    assert result.status == "ok", result.message
-    trajectory = result.trajectory
-    assert trajectory is not None
-    truth = exact(scenario, trajectory.times).select(trajectory.bodies)
-    out = []
-    omega = abs(float(scenario.parameter("omega")))
-    for level in ("position", "velocity", "acceleration"):
-        got, want = trajectory.level(level), truth.level(level)
-        assert got is not None and want is not None
-        error = np.abs(got - want)
-        if level == "position":
-            out += [error[..., :2].max(), error[..., 2].max()]
-            continue
-        # Relative to the level's size; accelerations at least omega |v| (zero at constant speed).
-        size = np.abs(want).max()
-        if level == "acceleration":
-            size = max(size, omega * np.abs(truth.velocity).max())
-        out.append(error.max() / size)
-    return np.array(out[:2]), np.array(out[2:])
 
 
 @pytest.mark.parametrize("name", DISC_SCENARIOS)

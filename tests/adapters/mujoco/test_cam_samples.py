@@ -21,7 +21,7 @@ from adapters.mujoco.cam_tip import CHECKS, SAMPLES, curvature_radii, tip_radius
 from adapters.mujoco.equalities import num
 from scenarios.cam_profiles import EccentricDisc, Profile, SplineProfile
 from scenarios.cams import CamContact
-from tests.adapters.mujoco.offset_curve import offset_point
+from tests.support.mujoco.offset_curve import offset_point
 
 SPLINE_SCENES = ("cam_roller/spline", "cam_flat_face/spline", "cam_knife_edge/spline")
 ADAPTER = MujocoAdapter()

@@ -46,9 +46,9 @@ from adapters.mujoco.cam_tip import curvature_radii, tip_radius, tip_reason
 from scenarios.bodies import Point
 from scenarios.cam_profiles import EccentricDisc, SplineProfile
 from scenarios.cams import KnifeEdgeCam
-from tests.adapters.mujoco.offset_curve import offset_point
-from tests.adapters.mujoco.test_cam_facets import follower_errors
 from tests.support.bounds import held
+from tests.support.mujoco.cam_follower import follower_errors
+from tests.support.mujoco.offset_curve import offset_point
 
 ADAPTER = MujocoAdapter()
 DISC = SplineProfile.sample(EccentricDisc(0.05, 0.01), 72)

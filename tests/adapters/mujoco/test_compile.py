@@ -31,7 +31,7 @@ from adapters.mujoco import MujocoAdapter
 from adapters.mujoco.laws import laws
 from adapters.mujoco.tree import plan_tree
 from scenarios.motions import ConstantSpeed, Harmonic
-from tests.adapters.mujoco.test_adapter import errors
+from tests.support.mujoco.kinematic_errors import errors
 
 ADAPTER = MujocoAdapter()
 EQUALITY = int(mujoco.mjtConstraint.mjCNSTR_EQUALITY)

@@ -22,7 +22,7 @@ from adapters.mujoco.settings import INVWEIGHT, STEPS_PER_PERIOD, TC_STEPS, UNTU
 from adapters.step_rule import shortest_period
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
-from tests.adapters.mujoco.truths import ADAPTER, errors
+from tests.support.mujoco.truths import ADAPTER, errors
 
 SHORT = {"t_end": 0.25, "steps": 25}
 """A quarter second of the free four-bar and slider-crank: the default suite's horizon."""

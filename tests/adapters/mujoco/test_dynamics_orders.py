@@ -19,7 +19,7 @@ import pytest
 import scenarios
 from adapters.base import Setting
 from scenarios.families.andrews_squeezer import ANGLES, REFERENCE, REFERENCE_T
-from tests.adapters.mujoco.truths import ADAPTER, errors
+from tests.support.mujoco.truths import ADAPTER, errors
 
 FOUR_BAR = {"t_end": 0.25, "steps": 25}
 PENDULUM = {"t_end": 1.0, "steps": 25}

@@ -15,8 +15,8 @@ import pytest
 import scenarios
 from adapters.mujoco import MujocoAdapter
 from adapters.mujoco.settings import DIRECT_FORM, INVWEIGHT, TC_STEPS, UNTUNED, by_contact, untuned
-from tests.adapters.test_defaults_and_floors import errors
 from tests.support.bounds import held
+from tests.support.default_errors import errors
 
 ADAPTER = MujocoAdapter()
 CLOSED_LOOPS = (

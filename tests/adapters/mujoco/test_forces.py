@@ -12,13 +12,9 @@ from reports.harness.comparison import measure
 from reports.harness.truth import independent_truth
 from scenarios import load
 from tests.support.bounds import held
+from tests.support.measured import MUJOCO_FORCES
 
 MUJOCO = adapters.load("mujoco")
-
-MEASURED: dict[str, tuple[float, float]] = {"slider_crank": (9.5e-11, 8.0e-5), "four_bar": (5.1e-10, 1.7e-4)}
-"""scenario: the force error over a whole turn at the default setting (the regulariser scaled by
-1e-8, time constant 128 steps, the solver run to no improvement: adapters.mujoco.mjcf.Physics) and
-with MuJoCo's own regulariser at 4 steps, measured, held two-sided (tests.support.bounds)."""
 
 
 def _force_metrics(name: str, own: bool) -> dict[str, float]:
@@ -35,12 +31,12 @@ def _force_metrics(name: str, own: bool) -> dict[str, float]:
     return metrics
 
 
-@pytest.mark.parametrize("name", list(MEASURED))
+@pytest.mark.parametrize("name", list(MUJOCO_FORCES))
 def test_driver_forces_and_reactions_match_the_native_inverse_dynamics(name: str) -> None:
     metrics = _force_metrics(name, own=False)
     assert np.isfinite(metrics["driver_force_error"]) and np.isfinite(metrics["reaction_error"])
     own = _force_metrics(name, own=True)["error_force"]  # the regulariser's sag and the mode's error
-    held([metrics["error_force"], own], MEASURED[name], ("default", "MuJoCo's own regulariser"))
+    held([metrics["error_force"], own], MUJOCO_FORCES[name], ("default", "MuJoCo's own regulariser"))
 
 
 def test_reactions_in_free_dynamics_match_the_native_multipliers() -> None:

@@ -19,7 +19,7 @@ from scenarios.bodies import Point
 from scenarios.forces import AppliedForce, AppliedTorque, RotationalSpringDamper, SpringDamper
 from scenarios.geometry import world_point
 from scenarios.motions import Constant, Harmonic
-from tests.adapters.mujoco.truths import ADAPTER
+from tests.support.mujoco.truths import ADAPTER
 
 LOADS = (
     RotationalSpringDamper("knee", "link_1", "link_2", stiffness=2.0, damping=0.05, free_angle=0.3),

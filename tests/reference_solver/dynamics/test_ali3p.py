@@ -8,12 +8,10 @@ of 1 m and 1 kg), which also gives the passage times (theta a multiple of pi).""
 from __future__ import annotations
 
 import re
-from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
 
 import scenarios
 from reference_solver.compiled_system import constraint_system
@@ -28,6 +26,8 @@ from scenarios.drivers import AbsoluteDriver
 from scenarios.forces import AppliedTorque, RotationalSpringDamper, SpringDamper
 from scenarios.joints import Revolute
 from scenarios.motions import ConstantSpeed
+from tests.support.a02_chain import FACTOR, a02_chain, a02_errors, steps_alike_in_metres_and_kilometres
+from tests.support.measured import A02_SPEC
 
 SHORT = {
     # scenario: (t_end, steps, step h), and the measured distance to the partitioned method at h/2
@@ -44,7 +44,6 @@ RICHARDSON = {
     "slider_crank_spring": (8.21e-09, 1.22e-07, 4.87e-06, 2.40e-09),
     "andrews_squeezer": (4.38e-13, 1.16e-10, 3.84e-06, 1.15e-12),
 }
-FACTOR = 3.0
 ORDER_WINDOW = np.array([0.1, 0.1, 0.1, 0.15])
 """How far the observed order may be from 2 per level. The output multipliers carry the projection's
 round-off, alpha times that of C_q x (dynamics.projection: PENALTY EPSILON, about 4e-9 of their
@@ -97,42 +96,11 @@ def test_constraints_hold_to_round_off_and_the_energy_balance_closes_to_second_o
     assert 3.6 < balances[0] / balances[1] < 4.4, balances
 
 
-def _chain(loops: int, t_end: float) -> tuple[scenarios.Scenario, np.ndarray, object]:
-    """n_four_bar with `loops` loops over t_end, its grid with the passage times added, and the
-    one-degree-of-freedom solution (dense, theta and theta')."""
-    scenario = scenarios.build("n_four_bar", overrides={"loops": loops, "t_end": t_end, "steps": 20})
-    inertia, weight = (loops + 1) / 3 + loops, 9.81 * ((loops + 1) / 2 + loops)
-    reduced = solve_ivp(
-        lambda t, y: [y[1], -weight / inertia * np.cos(y[0])],
-        (0.0, t_end),
-        [np.pi / 2, -1.0],
-        method="DOP853",
-        rtol=1e-13,
-        atol=1e-13,
-        events=lambda t, y: np.sin(y[0]),
-        dense_output=True,
-    )
-    return scenario, np.union1d(scenario.times(), reduced.t_events[0]), reduced
-
-
-def _a02_errors(analysis: DynamicAnalysis, reduced: object) -> tuple[float, float, float]:
-    """Energy drift over the largest kinetic energy, the largest angle of any rocker to the crank,
-    and the crank's distance to the one-degree-of-freedom solution."""
-    extras = analysis.extras
-    energy = extras["energy.kinetic"] + extras["energy.potential"]
-    drift = float(np.max(np.abs(energy - energy[0])) / np.max(extras["energy.kinetic"]))
-    theta = analysis.q[:, 2::3]
-    rockers = [k for k, body in enumerate(analysis.layout.bodies) if body.startswith("rocker")]
-    parallel = float(np.max(np.abs(theta[:, rockers] - theta[:, :1])))
-    crank = float(np.max(np.abs(theta[:, 0] - reduced.sol(analysis.times)[0])))  # type: ignore[attr-defined]
-    return drift, parallel, crank
-
-
 def test_a_reduced_a02_passes_its_singular_position_at_second_order() -> None:
-    scenario, grid, reduced = _chain(2, 0.8)
+    scenario, grid, reduced = a02_chain(2, 0.8)
     assert len(reduced.t_events[0]) == 1  # type: ignore[attr-defined]
-    coarse = _a02_errors(simulate(scenario, grid, method="ali3p", step=2e-4, fast=True), reduced)
-    fine = _a02_errors(simulate(scenario, grid, method="ali3p", step=1e-4, fast=True), reduced)
+    coarse = a02_errors(simulate(scenario, grid, method="ali3p", step=2e-4, fast=True), reduced)
+    fine = a02_errors(simulate(scenario, grid, method="ali3p", step=1e-4, fast=True), reduced)
     order = np.log2(np.array(coarse[::2]) / np.array(fine[::2]))  # energy drift and crank angle
     assert np.all((order > 1.8) & (order < 2.3)), order
     measured = np.array(A02_REDUCED)
@@ -152,13 +120,13 @@ def test_the_rockers_leave_the_crank_by_what_the_step_s_phase_at_the_passage_all
     6.0e-13 and 3.6e-9 (before C's rows summed positions apart, 1.4e-12 and 3.6e-9). The compiled
     step continues through the Schur complement (fast.ali3p_kernel): measured 5.4e-13 and 7.2e-12
     (2.2e-12 and 1.0e-10 before)."""
-    scenario, grid, reduced = _chain(2, 0.8)
+    scenario, grid, reduced = a02_chain(2, 0.8)
     step = 0.8 / count * (1 + 1e-9)
     analysis = simulate(scenario, grid, method="ali3p", step=step, fast=True)
-    assert compiled / FACTOR < _a02_errors(analysis, reduced)[1] < FACTOR * compiled
+    assert compiled / FACTOR < a02_errors(analysis, reduced)[1] < FACTOR * compiled
     monkeypatch.setattr(ali3p_grid, "ali3p_stepper", Ali3p)  # the plain step on the same rows
     analysis = simulate(scenario, grid, method="ali3p", step=step, fast=True)
-    assert plain / FACTOR < _a02_errors(analysis, reduced)[1] < FACTOR * plain
+    assert plain / FACTOR < a02_errors(analysis, reduced)[1] < FACTOR * plain
 
 
 def test_unknown_method_and_bad_step_are_refused() -> None:
@@ -340,28 +308,6 @@ def test_the_step_is_the_same_in_any_unit_of_length() -> None:
     steps_alike_in_metres_and_kilometres(_stepper)
 
 
-def steps_alike_in_metres_and_kilometres(
-    stepper_of: Callable[[scenarios.Scenario, float], tuple[Ali3p, StepState]],
-) -> None:
-    """Asserts that 5 steps of h = 1e-3 by `stepper_of`'s stepper (of a scenario and h, with its
-    start) take as many Newton iterations on the compound pendulum with links of 1 m under g = 9.81
-    as with links of 1 km under g = 9.81e3, to the same angles and a thousand times the lengths."""
-    runs = []
-    for length in (1.0, 1e3):
-        overrides = {"link_length": length, "gravity": 9.81 * length, "t_end": 0.01, "steps": 2}
-        stepper, s = stepper_of(scenarios.build("compound_pendulum", overrides=overrides), 1e-3)
-        states = []
-        for _ in range(5):
-            s = stepper.step(s)
-            states.append(s)
-        runs.append(states)
-    for metre, kilometre in zip(*runs, strict=True):
-        assert metre.iterations == kilometre.iterations
-        np.testing.assert_allclose(kilometre.q[2::3], metre.q[2::3], rtol=0, atol=1e-12)
-        np.testing.assert_allclose(kilometre.q[0::3] / 1e3, metre.q[0::3], rtol=0, atol=1e-12)
-        np.testing.assert_allclose(kilometre.q[1::3] / 1e3, metre.q[1::3], rtol=0, atol=1e-12)
-
-
 def test_a_chain_long_enough_for_the_banded_tangent_steps_as_with_the_dense_one(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
@@ -410,17 +356,6 @@ def test_a_chain_with_force_elements_keeps_its_tangent_dense() -> None:
     assert stepper.step(s).t == pytest.approx(1e-3, abs=1e-18)
 
 
-A02_SPEC = (5.36e-09, 1.92e-11, 1.69e-07)
-"""n_four_bar/spec (40 loops, 20 s, 20 singular passages) at h = 2e-5 on 400 output steps and the
-passage times, on the compiled step: energy drift over the largest kinetic energy, the largest
-rocker-to-crank angle (at a passage: 6.4e-12 to 1.9e-11 over the 20; 2.5e-13 at every other output),
-the crank's distance to the reduced equation. Measured 124 s CPU (load 8 on 2 cores), with the steps
-near each passage careful and the step across it placed (dynamics.passage). Before that (equal steps,
-the Schur complement only at a stalled update): 5.5e-9, 2.07e-10 (4e-12 to 2.1e-10 by the instant's
-phase in its step), 1.9e-7 in 112 s CPU at load 11. Before C's rows summed positions apart and the
-round-off floor left the coordinates' size (fast.ali3p_kernel): 6.0e-9, 6.7e-10 (2.5e-10 elsewhere),
-2.1e-7 in 108 s. The plain step, before, at h = 2e-4 (56 s CPU): 4.3e-7, 1.7e-8, 8.1e-6; at h = 1e-4
-(112 s): 1.07e-7, 5.4e-9, 3.0e-6."""
 SPEC_FLOOR = 10.0
 """The spec test's lower bounds are the measured values over this (its upper ones FACTOR times them)."""
 
@@ -428,13 +363,13 @@ SPEC_FLOOR = 10.0
 @pytest.mark.slow
 def test_a02_as_specified_passes_every_singular_position() -> None:
     scenario = scenarios.build("n_four_bar/spec", overrides={"steps": 400})
-    _, _, reduced = _chain(40, scenario.t_end)
+    _, _, reduced = a02_chain(40, scenario.t_end)
     passages = reduced.t_events[0]  # type: ignore[attr-defined]
     assert len(passages) == 20
     analysis = simulate(
         scenario, np.union1d(scenario.times(), passages), method="ali3p", step=2e-5, fast=True
     )
-    errors = np.array(_a02_errors(analysis, reduced))
+    errors = np.array(a02_errors(analysis, reduced))
     measured = np.array(A02_SPEC)
     assert np.all((errors < FACTOR * measured) & (errors > measured / SPEC_FLOOR)), errors
     assert errors[0] < 1e-8 and errors[1] < 1e-10  # the issue's bounds on the energy and the rockers

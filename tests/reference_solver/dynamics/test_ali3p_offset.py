@@ -8,7 +8,6 @@ reduced A02 moved 38 m along x stayed 3.4e-9 rad off the crank (7e-12 at the ori
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 from fractions import Fraction
 
 import numpy as np
@@ -17,7 +16,7 @@ import scenarios
 from reference_solver.compiled_system import CompiledSystem, constraint_system
 from reference_solver.dynamics import simulate
 from scenarios.bodies import GROUND, Point
-from tests.reference_solver.dynamics.test_ali3p import FACTOR, _a02_errors, _chain
+from tests.support.a02_chain import FACTOR, a02_chain, a02_errors, moved_along_x
 
 OFFSET = 38.0
 """Metres along x, as far as A02's 40-loop chain reaches."""
@@ -31,23 +30,12 @@ sin), the chain moved OFFSET along x, at 50 random states (measured; 6.5e-15 whe
 rotated vectors were summed together)."""
 
 
-def _moved(scenario: scenarios.Scenario, dx: float) -> scenarios.Scenario:
-    """The scenario moved dx along x: every body and every ground point."""
-    bodies = tuple(replace(b, guess=(b.guess[0] + dx, *b.guess[1:])) for b in scenario.bodies)
-
-    def point(p: Point) -> Point:
-        return Point(GROUND, (p.local[0] + dx, p.local[1])) if p.body == GROUND else p
-
-    joints = tuple(replace(j, p_i=point(j.p_i), p_j=point(j.p_j)) for j in scenario.joints)
-    return replace(scenario, bodies=bodies, joints=joints)
-
-
 def test_a_chain_far_from_the_origin_keeps_its_rockers_on_the_crank() -> None:
-    scenario, grid, reduced = _chain(2, 0.8)
+    scenario, grid, reduced = a02_chain(2, 0.8)
     analysis = simulate(
-        _moved(scenario, OFFSET), grid, method="ali3p", step=0.8 / 8005 * (1 + 1e-9), fast=True
+        moved_along_x(scenario, OFFSET), grid, method="ali3p", step=0.8 / 8005 * (1 + 1e-9), fast=True
     )
-    assert MOVED_CHAIN / FACTOR < _a02_errors(analysis, reduced)[1] < FACTOR * MOVED_CHAIN
+    assert MOVED_CHAIN / FACTOR < a02_errors(analysis, reduced)[1] < FACTOR * MOVED_CHAIN
 
 
 def _exact(scenario: scenarios.Scenario, system: CompiledSystem, q: np.ndarray) -> np.ndarray:
@@ -70,7 +58,7 @@ def _exact(scenario: scenarios.Scenario, system: CompiledSystem, q: np.ndarray) 
 
 
 def test_the_compiled_rows_lose_nothing_to_the_coordinates_size() -> None:
-    scenario = _moved(scenarios.build("n_four_bar", overrides={"loops": 2}), OFFSET)
+    scenario = moved_along_x(scenarios.build("n_four_bar", overrides={"loops": 2}), OFFSET)
     system = constraint_system(scenario)
     assert isinstance(system, CompiledSystem)
     rng = np.random.default_rng(27)

@@ -15,7 +15,7 @@ import pytest
 
 from reference_solver.dynamics import simulate
 from scenarios import load
-from tests.reference_solver.dynamics.test_compiled_rates import both
+from tests.support.compiled_dynamics import both
 
 SLIDER = 6
 """The slider's x in q (the crank's pin is at the origin; the slider sits on +x)."""

@@ -18,7 +18,7 @@ from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.fast.evaluate import evaluate
 from reference_solver.fast.program import K_SLOT_COL, K_WIDTH, WIDTH
 from scenarios import load
-from tests.reference_solver.dynamics.test_compiled_rates import both, random_states
+from tests.support.compiled_dynamics import both, random_states
 
 NO_FORCES = ["compound_pendulum", "four_bar_gravity", "n_four_bar"]
 H = 1e-3

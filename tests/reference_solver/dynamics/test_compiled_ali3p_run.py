@@ -12,41 +12,15 @@ import scenarios
 from reference_solver.compiled_system import CompiledSystem, constraint_system
 from reference_solver.dynamics.ali3p import Ali3p, StepState
 from reference_solver.dynamics.compiled_ali3p import CompiledAli3p, ali3p_stepper
-from reference_solver.dynamics.forward import initial_state
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.partition import State, driver_power
 from reference_solver.errors import ConvergenceError
 from reference_solver.fast.constraint_rows import NotCompiled
-from scenarios import Point
 from scenarios.drivers import AbsoluteDriver
 from scenarios.forces import RotationalSpringDamper
-from scenarios.joints import Revolute
 from scenarios.motions import ConstantSpeed
-
-MASS, INERTIA, G, SPEED = 2.0, 0.2, 9.81, 2.0
-THETA0 = -np.pi / 2 + 0.3
-
-
-def _rod() -> scenarios.Scenario:
-    """A rod of 1 m pinned at its end, turned at theta = THETA0 + SPEED t under gravity."""
-    rod = scenarios.Body(
-        "rod", (0.5 * np.cos(THETA0), 0.5 * np.sin(THETA0), THETA0), mass=MASS, inertia=INERTIA, length=1.0
-    )
-    pin = Revolute("pin", Point("ground", (0.0, 0.0)), Point("rod", (-0.5, 0.0)))
-    turn = AbsoluteDriver("turn", "rod", "theta", ConstantSpeed(THETA0, SPEED))
-    return scenarios.Scenario(
-        "rod", "default", (rod,), (pin,), (turn,), 1.0, 10, 1.0, gravity=(0.0, -G), analysis="dynamic"
-    )
-
-
-def _start(scenario: scenarios.Scenario, fast: bool, h: float) -> tuple[Ali3p, Loads, StepState]:
-    system = constraint_system(scenario, fast=fast)
-    mass = mass_diagonal(scenario, system.layout)
-    loads = Loads(scenario, system.layout, mass)
-    start = initial_state(system, mass, loads, 0.0)
-    stepper = ali3p_stepper(system, mass, loads, h)
-    return stepper, loads, StepState(start.t, start.q, start.qd, start.qdd, start.lam.copy(), start.jac)
+from tests.support.ali3p_rod import MASS, SPEED, THETA0, G, rod_stepper, swinging_rod
 
 
 def _power(stepper: Ali3p, loads: Loads, s: StepState) -> float:
@@ -61,7 +35,7 @@ def test_run_gives_the_rod_s_motion_and_the_driver_s_power_and_work() -> None:
     steps of 1e-3: power 2.5e-3 of 12.6 W, work 5.7e-4 of 1.87 J); the plain step, with the
     trapezoidal rule on its own powers, gives the same to round-off (measured: identical)."""
     h, count = 1e-3, 200
-    stepper, loads, s = _start(_rod(), True, h)
+    stepper, loads, s = rod_stepper(swinging_rod(), True, h)
     assert isinstance(stepper, CompiledAli3p)
     power0 = np.array([0.0, 0.0, _power(stepper, loads, s)])
     assert power0[2] == pytest.approx(MASS * G * 0.5 * np.cos(THETA0) * SPEED, rel=1e-9)
@@ -76,7 +50,7 @@ def test_run_gives_the_rod_s_motion_and_the_driver_s_power_and_work() -> None:
     assert power[2] == pytest.approx(MASS * G * 0.5 * np.cos(theta) * SPEED, abs=6e-3)
     exact = MASS * G * 0.5 * (np.sin(theta) - np.sin(THETA0))
     assert work[2] - 0.25 == pytest.approx(exact, abs=1.5e-3)
-    plain, plain_loads, s_plain = _start(_rod(), False, h)
+    plain, plain_loads, s_plain = rod_stepper(swinging_rod(), False, h)
     plain_power, plain_work = power0[2], 0.25
     for _ in range(count):
         s_plain = plain.step(s_plain)
@@ -95,8 +69,8 @@ def test_run_is_the_plain_step_repeated_with_the_trapezoidal_work() -> None:
     its driver power at each and their trapezoidal integral (none here: n_four_bar is free)."""
     h, count = 1e-3, 30
     scenario = scenarios.build("n_four_bar", overrides={"loops": 3, "t_end": 0.1, "steps": 2})
-    compiled, _, s = _start(scenario, True, h)
-    plain, _, s_plain = _start(scenario, False, h)
+    compiled, _, s = rod_stepper(scenario, True, h)
+    plain, _, s_plain = rod_stepper(scenario, False, h)
     assert isinstance(compiled, CompiledAli3p) and not isinstance(plain, CompiledAli3p)
     end, _, _ = compiled.run(s, count, np.zeros(3), np.zeros(3))
     for _ in range(count):
@@ -110,9 +84,9 @@ def test_run_is_the_plain_step_repeated_with_the_trapezoidal_work() -> None:
 
 
 def test_the_stepper_is_compiled_only_for_compiled_systems_without_force_elements() -> None:
-    scenario = _rod()
+    scenario = swinging_rod()
     h = 1e-3
-    assert type(_start(scenario, False, h)[0]) is Ali3p
+    assert type(rod_stepper(scenario, False, h)[0]) is Ali3p
     sprung = scenarios.Scenario(
         "rod",
         "default",
@@ -126,7 +100,7 @@ def test_the_stepper_is_compiled_only_for_compiled_systems_without_force_element
         analysis="dynamic",
         forces=(RotationalSpringDamper("t", "ground", "rod", 1.0, 0.1),),
     )
-    assert type(_start(sprung, True, h)[0]) is Ali3p
+    assert type(rod_stepper(sprung, True, h)[0]) is Ali3p
     system = constraint_system(sprung)
     assert isinstance(system, CompiledSystem)
     mass = mass_diagonal(sprung, system.layout)
@@ -139,7 +113,7 @@ def test_the_stepper_is_compiled_only_for_compiled_systems_without_force_element
 def test_a_w_that_is_not_positive_definite_is_refused() -> None:
     """Masses far below zero, once the penalties are fixed by a first step, make W negative
     definite: the kernel's refusal is a LinAlgError, not a state."""
-    stepper, _, s = _start(_rod(), True, 1e-3)
+    stepper, _, s = rod_stepper(swinging_rod(), True, 1e-3)
     assert isinstance(stepper, CompiledAli3p)
     s = stepper.step(s)
     stepper.vec[stepper.kernels.MASS, : stepper.n] = -1e9
@@ -150,7 +124,7 @@ def test_a_w_that_is_not_positive_definite_is_refused() -> None:
 def test_the_evaluations_add_up_over_runs_and_solve_takes_integers() -> None:
     """Two runs count every constraint evaluation of both (the kernel's own counter, which only
     grows); solve reads an integer right-hand side as its values (W x = b to round-off)."""
-    stepper, _, s = _start(_rod(), True, 1e-3)
+    stepper, _, s = rod_stepper(swinging_rod(), True, 1e-3)
     assert isinstance(stepper, CompiledAli3p)
     s, _, _ = stepper.run(s, 3, np.zeros(3), np.zeros(3))
     first = stepper.evaluations
@@ -166,7 +140,7 @@ def test_the_half_bandwidth_covers_every_row_of_the_jacobian() -> None:
     """W's half-bandwidth is at least the widest row of C_q (columns of its nonzeros, from the plain
     Jacobian at a state), so the banded factor holds every coupling."""
     scenario = scenarios.build("n_four_bar", overrides={"loops": 3, "t_end": 0.1, "steps": 2})
-    stepper, _, s = _start(scenario, True, 1e-3)
+    stepper, _, s = rod_stepper(scenario, True, 1e-3)
     assert isinstance(stepper, CompiledAli3p)
     jac = constraint_system(scenario, fast=False).jacobian(s.q, s.t)
     widest = max(int(np.ptp(np.flatnonzero(row))) for row in jac if np.any(row))
@@ -181,7 +155,7 @@ def test_a_step_newton_cannot_finish_is_refused_with_where() -> None:
     finish the first step; the refusal names the scenario, the step's end time, and gives it and
     the last positions."""
     h = 1e-3
-    rod = _rod()
+    rod = swinging_rod()
     slide = AbsoluteDriver("slide", "rod", "x", ConstantSpeed(0.5 * np.cos(THETA0), 5.0))
     turn = AbsoluteDriver("turn", "rod", "theta", ConstantSpeed(THETA0, 0.0))
     scenario = scenarios.Scenario(

@@ -8,7 +8,6 @@ equations of motion give at any state as q'^T (M q'' - Q_e) (the joints' rows do
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Callable
 
@@ -16,14 +15,10 @@ import numpy as np
 import pytest
 
 import scenarios
-from reference_solver.dynamics.forward import initial_state
-from reference_solver.dynamics.loads import Loads
-from reference_solver.dynamics.mass import mass_diagonal
-from reference_solver.dynamics.partition import Partitioned, choose_independent, driver_power
+from reference_solver.dynamics.partition import driver_power
 from reference_solver.errors import ConvergenceError
-from reference_solver.system import ConstraintSystem
-from scenarios import AbsoluteDriver, ConstantSpeed, Harmonic, Scenario
-from scenarios.forces import AppliedTorque
+from scenarios import Scenario
+from tests.support.partitioned_scenes import counted, driven_chain, ode_of, rocked_chain
 
 G, L = 9.81, 0.5
 THETA = 2
@@ -32,44 +27,6 @@ THETA = 2
 
 def rod() -> Scenario:
     return scenarios.build("compound_pendulum", overrides={"links": 1, "theta0": 0.3})
-
-
-def driven_chain() -> Scenario:
-    """Two links, the first turned at 2 rad/s from its start angle by a driver."""
-    chain = scenarios.build("compound_pendulum", overrides={"links": 2, "theta0": 0.3})
-    spin = AbsoluteDriver("spin", "link_1", "theta", ConstantSpeed(0.3 - math.pi / 2, 2.0))
-    return dataclasses.replace(chain, drivers=(spin,))
-
-
-def rocked_chain() -> Scenario:
-    """Two links, the first rocked harmonically by a driver, the second under a harmonic torque
-    (so that C_t and Q_e change with time)."""
-    chain = scenarios.build("compound_pendulum", overrides={"links": 2, "theta0": 0.3})
-    rock = AbsoluteDriver("rock", "link_1", "theta", Harmonic(0.3 - math.pi / 2, 0.2, 5.0, 0.4))
-    motor = AppliedTorque("motor", "link_2", Harmonic(0.0, 1.5, 7.0, 0.1), reaction="link_1")
-    return dataclasses.replace(chain, drivers=(rock,), forces=(motor,))
-
-
-def ode_of(scenario: Scenario, independent: list[int] | None = None) -> tuple[Partitioned, ConstraintSystem]:
-    system = ConstraintSystem(scenario)
-    mass = mass_diagonal(scenario, system.layout)
-    loads = Loads(scenario, system.layout, mass)
-    start = initial_state(system, mass, loads, 0.0)
-    columns = choose_independent(system, start.jac) if independent is None else np.array(independent)
-    return Partitioned(system, mass, loads, start.q, columns), system
-
-
-def counted(system: ConstraintSystem) -> list[float]:
-    """The times at which `system` is evaluated from now on (each one Newton iteration)."""
-    calls: list[float] = []
-    evaluate: Callable = system.evaluate  # type: ignore[type-arg]
-
-    def counting(q: np.ndarray, t: float):  # type: ignore[no-untyped-def]
-        calls.append(t)
-        return evaluate(q, t)
-
-    system.evaluate = counting  # type: ignore[method-assign, assignment]
-    return calls
 
 
 def rod_centre(theta: float) -> np.ndarray:

@@ -8,30 +8,10 @@ below); without the stall rule it runs out of iterations at every one of them (m
 
 from __future__ import annotations
 
-import dataclasses
-
 import numpy as np
 
-import scenarios
 from reference_solver.dynamics.partition import RESIDUAL, STALLED
-from scenarios import GROUND, Point, Revolute, Scenario
-from tests.reference_solver.dynamics.test_partition import counted, ode_of
-
-SHIFT = 10.0
-
-
-def four_bar(shift: float) -> Scenario:
-    """four_bar_gravity with every ground point and body moved by `shift` along x."""
-    scenario = scenarios.build("four_bar_gravity")
-
-    def moved(p: Point) -> Point:
-        return Point(p.body, (p.local[0] + shift, p.local[1])) if p.body == GROUND else p
-
-    joints = [j for j in scenario.joints if isinstance(j, Revolute)]
-    assert len(joints) == len(scenario.joints)  # four pins
-    pins = tuple(dataclasses.replace(j, p_i=moved(j.p_i), p_j=moved(j.p_j)) for j in joints)
-    bodies = tuple(dataclasses.replace(b, guess=(b.guess[0] + shift, *b.guess[1:])) for b in scenario.bodies)
-    return dataclasses.replace(scenario, joints=pins, bodies=bodies)
+from tests.support.partitioned_scenes import SHIFT, counted, four_bar, ode_of
 
 
 def test_newton_stops_where_round_off_floors_the_residual() -> None:

@@ -14,14 +14,12 @@ import pytest
 import scenarios
 from reference_solver.compiled_system import constraint_system
 from reference_solver.dynamics import ali3p_grid, ali3p_schedule, simulate
-from reference_solver.dynamics.ali3p import PENALTY, StepState
-from reference_solver.dynamics.compiled_ali3p import CompiledAli3p, ali3p_stepper
-from reference_solver.dynamics.forward import initial_state
-from reference_solver.dynamics.loads import Loads
+from reference_solver.dynamics.ali3p import PENALTY
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.passage import CAREFUL, FAR, FIRST, NEAR, Watch, smallest_singular_value
 from reference_solver.errors import ConvergenceError
-from tests.reference_solver.dynamics.test_ali3p import FACTOR, _a02_errors, _chain
+from tests.support.a02_chain import FACTOR, a02_chain, a02_errors
+from tests.support.passage_spies import compiled_schedule, fail_when_careful
 
 
 def _dense(jac: np.ndarray, mass: np.ndarray) -> np.ndarray:
@@ -92,7 +90,7 @@ def test_a_chain_s_rockers_stay_on_the_crank_through_a_placed_passage(
     with equal steps they are 1.1e-10 off at each phase. The energy and the crank are the same to
     their own accuracy either way (drift 3.7e-9 to 4.4e-9 of the kinetic energy, crank 1.2e-9)."""
     phase, watched, equal = CHAIN[count]
-    scenario, grid, reduced = _chain(10, 0.77)
+    scenario, grid, reduced = a02_chain(10, 0.77)
     h = 0.77 / count
     assert reduced.t_events[0][0] / h % 1 == pytest.approx(phase, abs=1e-3)  # type: ignore[attr-defined]
     placed: list[float] = []
@@ -103,43 +101,14 @@ def test_a_chain_s_rockers_stay_on_the_crank_through_a_placed_passage(
         place(self)
 
     monkeypatch.setattr(ali3p_schedule.Schedule, "_place", spied)
-    errors = _a02_errors(simulate(scenario, grid, method="ali3p", step=h * (1 + 1e-9), fast=True), reduced)
+    errors = a02_errors(simulate(scenario, grid, method="ali3p", step=h * (1 + 1e-9), fast=True), reduced)
     assert placed == [pytest.approx(reduced.t_events[0][0], abs=0.01 * h)]  # type: ignore[attr-defined]
     assert watched / FACTOR < errors[1] < FACTOR * watched
     assert errors[0] < 5e-9 and errors[2] < 1.5e-9
     monkeypatch.setattr(ali3p_grid, "Watch", lambda mass, rank: None)
-    plain = _a02_errors(simulate(scenario, grid, method="ali3p", step=h * (1 + 1e-9), fast=True), reduced)
+    plain = a02_errors(simulate(scenario, grid, method="ali3p", step=h * (1 + 1e-9), fast=True), reduced)
     assert equal / FACTOR < plain[1] < FACTOR * equal
     assert plain[0] == pytest.approx(errors[0], rel=0.15) and plain[2] == pytest.approx(errors[2], rel=0.02)
-
-
-def compiled_schedule(
-    scenario: scenarios.Scenario,
-) -> tuple[CompiledAli3p, StepState, ali3p_schedule.Schedule]:
-    """The compiled ALI3-P stepper of `scenario` at h = 1e-3, its assembled start and a schedule of
-    10 steps over 0.01 s from it, without a watch."""
-    system = constraint_system(scenario)
-    mass = mass_diagonal(scenario, system.layout)
-    loads = Loads(scenario, system.layout, mass)
-    start = initial_state(system, mass, loads, 0.0)
-    first = StepState(start.t, start.q, start.qd, start.qdd, start.lam.copy(), start.jac)
-    stepper = ali3p_stepper(system, mass, loads, 1e-3)
-    assert isinstance(stepper, CompiledAli3p)
-    return stepper, first, ali3p_schedule.Schedule(stepper, loads, first, 10, 0.01, None)
-
-
-def fail_when_careful(monkeypatch: pytest.MonkeyPatch, stepper: CompiledAli3p, time: float) -> None:
-    """From now on, the stepper's careful steps raise (as a Schur complement next to an instant the
-    watch did not predict may); it is careful now."""
-    run = stepper.run
-
-    def failing(*args: object) -> object:
-        if stepper.careful:
-            raise ConvergenceError("careful step failed", time=time)
-        return run(*args)  # type: ignore[arg-type]
-
-    monkeypatch.setattr(stepper, "run", failing)
-    stepper.careful = True
 
 
 def test_a_careful_step_that_fails_is_taken_again_without_care(monkeypatch: pytest.MonkeyPatch) -> None:

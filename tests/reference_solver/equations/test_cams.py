@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from scenarios import EccentricDisc, FlatFaceCam, KnifeEdgeCam, Point, RollerCam
-from tests.reference_solver.equations.systems import residual, system_of
+from tests.support.constraint_systems import residual, system_of
 
 DISC = EccentricDisc(5.0, 3.0)
 CONTACT = (math.pi / 2,)  # phi

@@ -20,7 +20,7 @@ from scenarios import (
     RelativeDisplacementDriver,
     RelativeRotationDriver,
 )
-from tests.reference_solver.equations.systems import coordinates, system_of
+from tests.support.constraint_systems import coordinates, system_of
 
 T = 0.25
 OMEGA = 2.0

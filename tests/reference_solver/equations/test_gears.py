@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from scenarios import GROUND, GearPair, Point, RackPinion
-from tests.reference_solver.equations.systems import residual, system_of
+from tests.support.constraint_systems import residual, system_of
 
 # a, b and the carrier c turned from their references (0.1, 0.3, 0.2) to (0.5, -1.0, 0.7)
 POSES = {"a": (0.0, 0.0, 0.5), "b": (0.0, 0.0, -1.0), "c": (0.0, 0.0, 0.7)}

@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from scenarios import GROUND, Ground, Point, Prismatic, Revolute, RevoluteRevolute
-from tests.reference_solver.equations.systems import residual, system_of
+from tests.support.constraint_systems import residual, system_of
 
 
 def test_a_ground_joint_is_the_offset_of_each_coordinate_from_its_pose() -> None:

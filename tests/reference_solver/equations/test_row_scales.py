@@ -29,7 +29,7 @@ from scenarios import (
     RollerCam,
 )
 from scenarios.scenario import Constraint
-from tests.reference_solver.equations.systems import Pose, coordinates, system_of
+from tests.support.constraint_systems import Pose, coordinates, system_of
 
 Case = Callable[[float], tuple[Constraint, dict[str, Pose]]]
 

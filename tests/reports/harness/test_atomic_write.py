@@ -23,7 +23,7 @@ from reports.harness import gate
 from reports.harness.atomic_write import write_text
 from reports.harness.results_store import read_results
 from reports.render.report import render_reports
-from tests.reports.test_reliability import ROOT, SCENARIO, one_line_error
+from tests.support.store_runs import ROOT, SCENARIO, one_line_error
 
 COMMANDS = {
     "solve": ["solve", SCENARIO, "--steps", "10", "--out"],
@@ -59,7 +59,7 @@ def old_text(command: str, stored: Path, folder: Path) -> str:
 
 @pytest.fixture(scope="module")
 def stored(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    from tests.reports.test_reliability import fake_run
+    from tests.support.store_runs import fake_run
 
     directory = tmp_path_factory.mktemp("stored") / "out"
     fake_run(directory)

@@ -14,23 +14,13 @@ from distributed import Client
 
 from adapters.threads import blas_threads
 from reports.cli.main import main
-from reports.harness.columns import WALL_COLUMNS
 from reports.harness.dask_backend import DaskRunner, local_cluster, warm_plugin
 from reports.harness.results_store import KEY, ResultsStore, read_results
 from reports.harness.runner import RunConfig, Runner
 from tests.support.fake_engine import fake_loader, fake_truth
+from tests.support.run_columns import VARIES_BETWEEN_RUNS
 
 QUICK = RunConfig(ladder=False, repeats=1, warmup=0, timeout=120.0)
-TIMING = [
-    "build_time",
-    "run_time",
-    "warmup_time",
-    "repeats_time",
-    *(column.name for column in WALL_COLUMNS),
-    "recorded_at",
-    "host",
-    "workers",
-]
 SCENARIOS = ["slider_crank", "four_bar[crank_length=0.08]"]  # the second meets a dead point
 ENGINES = ["reference", "mujoco"]
 
@@ -51,7 +41,7 @@ def same_rows(serial: pd.DataFrame, parallel: pd.DataFrame) -> None:
     assert list(serial[list(KEY)].itertuples(index=False)) == list(
         parallel[list(KEY)].itertuples(index=False)
     )
-    for column in serial.columns.difference(TIMING):
+    for column in serial.columns.difference(VARIES_BETWEEN_RUNS):
         for a, b in zip(serial[column], parallel[column], strict=True):
             both_nan = isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b)
             assert both_nan or a == b, (column, a, b)

@@ -15,7 +15,6 @@ import pytest
 
 import adapters
 from reports.harness import kept_workers
-from reports.harness.columns import WALL_COLUMNS
 from reports.harness.common_start import common_start
 from reports.harness.dask_backend import group_task, truth_task
 from reports.harness.group_runs import RunConfig, run_group
@@ -23,17 +22,10 @@ from reports.harness.planning import Group, plan_engine
 from reports.harness.runner import reference_residual, solve_truth
 from reports.harness.truth import NamedTruth, independent_truth
 from scenarios import load as build_scenario
+from tests.support.run_columns import VARIES_BETWEEN_RUNS
 
 CONFIG = RunConfig(repeats=1, warmup=0, timeout=60.0)
 SCENARIOS = ("slider_crank", "four_bar", "cam_roller")  # the cam's residual takes the plain rows
-TIMING = (
-    "build_time",
-    "run_time",
-    "warmup_time",
-    "repeats_time",
-    *(c.name for c in WALL_COLUMNS),
-    "recorded_at",
-)
 T = TypeVar("T")
 
 
@@ -70,7 +62,7 @@ def shipped(name: str) -> Group:
 
 
 def same(a: dict[str, Any], b: dict[str, Any]) -> bool:
-    for column in set(a) - set(TIMING):
+    for column in set(a) - set(VARIES_BETWEEN_RUNS):
         x, y = a[column], b[column]
         if not (
             x == y or (isinstance(x, float) and isinstance(y, float) and math.isnan(x) and math.isnan(y))

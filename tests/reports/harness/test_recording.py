@@ -76,8 +76,8 @@ def test_a_row_stored_without_ranks_gets_them(tmp_path: Path) -> None:
 def test_rows_of_a_part_written_before_the_ranks_get_them(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """A store whose older part lacks the rank columns, beside a newer part that has them (seen on
-    `compare --out` into a store of the session before): its rows read the ranks as missing (-1,
+    """A store whose older part lacks the rank columns, beside a newer part that has them (as
+    `compare --out` into a store written by an earlier version makes): its rows read the ranks as missing (-1,
     the declared empty) and are recorded, not a crash."""
     from reports.harness import results_store
 

@@ -29,7 +29,7 @@ from reports.harness.store_files import GENERATIONS, StoreDamaged
 from reports.harness.store_lock import StoreBusy, WriterLock
 from reports.harness.store_repair import Repair
 from scenarios.trajectory import Trajectory
-from tests.reports.test_reliability import one_line_error, rows
+from tests.support.store_runs import one_line_error, rows
 from tests.support.stores import table_files, write_schema_1
 
 META = {"suite": "test"}

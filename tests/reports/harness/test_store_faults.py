@@ -22,7 +22,7 @@ import pytest
 from reports.harness.results_store import ResultsStore
 from reports.harness.store_files import GENERATIONS, StoreDamaged
 from reports.harness.store_repair import Repair
-from tests.reports.test_reliability import fake_run, rows
+from tests.support.store_runs import fake_run, rows
 
 POINTS: list[tuple[object, str]] = [
     (os, "fsync"),

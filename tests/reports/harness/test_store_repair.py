@@ -16,7 +16,7 @@ from reports.cli.main import main
 from reports.harness import store_files
 from reports.harness.results_store import RESULTS, ResultsStore
 from reports.harness.store_files import GENERATIONS, KEEP, StoreDamaged
-from tests.reports.test_reliability import copy, fake_run, one_line_error, rows
+from tests.support.store_runs import copy, fake_run, one_line_error, rows
 from tests.support.stores import copy_entry, table_files
 
 

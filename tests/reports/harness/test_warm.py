@@ -14,26 +14,15 @@ import pandas as pd
 
 from adapters.base import Adapter, Setting
 from reports.harness import warm
-from reports.harness.columns import WALL_COLUMNS
 from reports.harness.isolation import run_isolated
 from reports.harness.results_store import KEY, ResultsStore, read_results
 from reports.harness.runner import RunConfig, Runner
 from scenarios import Scenario
 from scenarios import load as build_scenario
 from tests.support.fake_engine import GOOD, fake_loader, fake_truth
+from tests.support.run_columns import VARIES_BETWEEN_RUNS
 
 CONFIG = RunConfig(ladder=True, repeats=1, warmup=0, timeout=3.0)
-TIMING = [
-    "build_time",
-    "run_time",
-    "warmup_time",
-    "repeats_time",
-    *(column.name for column in WALL_COLUMNS),
-    "recorded_at",
-    "host",
-    "workers",
-    "revision",
-]
 
 
 def test_a_forked_run_inherits_the_warmed_kernels_and_program() -> None:
@@ -117,7 +106,7 @@ def test_warm_runs_give_the_cold_path_s_rows(tmp_path: Path) -> None:
     assert "'scenarios': 1" in warm_counts and "scenarios" not in cold_counts
     # 12: the ladders with MuJoCo's and Exudyn's untuned points
     assert len(cold) == 12 and set(cold["status"]) == {"ok"}
-    for column in cold.columns.difference(TIMING):
+    for column in cold.columns.difference(VARIES_BETWEEN_RUNS):
         for a, b in zip(cold[column], warm_rows[column], strict=True):
             both_nan = isinstance(a, float) and isinstance(b, float) and np.isnan(a) and np.isnan(b)
             assert both_nan or json.dumps(a, default=str) == json.dumps(b, default=str), (column, a, b)

@@ -59,9 +59,8 @@ NATIVE_AGAINST_CLOSED_FORM = {
     # dimensionless position, velocity, acceleration error (level_errors), measured 2026-11-25.
     # Near a singular time (dead centre, equal links, change point, toggle) the acceleration error
     # grows as 1 / det C_q amplifies round-off; a 1e-3 link ratio costs positions 1e-3 of their digits.
-    # The four singular cases re-measured after the compiled rows began summing positions apart from
-    # rotated vectors (session 9, for A02's 40 m chain): their round-off moved by 0.7x to 13x (change
-    # point velocity 3.4e-14 -> 4.4e-13, dead centre acceleration 4.3e-12 -> 1.3e-11); the rest within 3x.
+    # The singular cases' figures are round-off amplified there, so they follow the order in which
+    # the compiled rows sum (positions apart from rotated vectors).
     "slider_crank": (5.6e-16, 9.5e-16, 7.6e-16),
     "four_bar": (5.7e-16, 2.0e-15, 4.1e-15),
     "slider_crank/stress_dead_centre": (6.4e-15, 2.0e-13, 1.3e-11),
