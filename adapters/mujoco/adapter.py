@@ -50,6 +50,7 @@ from adapters.mujoco.model import Model
 from adapters.mujoco.pairs import collides
 from adapters.mujoco.scale import dof_sizes, scale_of
 from adapters.mujoco.settings import (
+    DYNAMIC_TC_STEPS,
     IMPEDANCE,
     INVWEIGHT,
     KINEMATIC_MODES,
@@ -81,6 +82,10 @@ RUN_IN = 50
 """Steps run before t = 0 from the assembled start, so soft constraints begin in steady state."""
 DYNAMIC_CAM_REASON = (
     "a cam contact in MuJoCo needs a preload spring on the follower, a force the scenario does not have"
+)
+CAM_FORCES_REASON = (
+    "forces not given: a cam's MuJoCo model adds what the scenario lacks (its equivalent linkage a "
+    "link, its contact a preload spring), so its forces are the model's, not the scenario's"
 )
 POLYCOEF, STEERED = "polycoef", "steered"
 """A polynomial drive of degree 2 to 4: MuJoCo's quartic equality on a unit-rate clock, or a clock
@@ -140,7 +145,8 @@ class MujocoAdapter(Adapter):
     dynamics = True
     rule = (
         f"RK4 at 1/{STEPS_PER_PERIOD} of the shortest period, the equalities' time constant tc = "
-        f"{TC_STEPS:g} steps (in seconds) with the regulariser's invweight0 scaled by {INVWEIGHT:g}, "
+        f"{TC_STEPS:g} steps (in seconds; {DYNAMIC_TC_STEPS:g} in free dynamics) with the regulariser's "
+        f"invweight0 scaled by {INVWEIGHT:g}, "
         f"impedance {IMPEDANCE}; cams by contact keep MuJoCo's own regulariser and tc = "
         f"{OWN_TC_STEPS:g} steps; every scenario, whatever its size"
     )
@@ -239,8 +245,10 @@ class MujocoAdapter(Adapter):
         if dynamic and setting.mode not in (*DYNAMIC_MODES, UNTUNED):
             raise Unsupported(f"mode {setting.mode} is not a MuJoCo integrator of free dynamics")
         # A cam's model adds what the scenario lacks (a link of LINK_MASS, or a preload spring):
-        # its forces would be the model's, so none are reported.
+        # its forces would be the model's, so none are reported, and the row says why.
         own = set() if scenario.cams else {c.name for c in (*scenario.joints, *scenario.drivers)}
+        if scenario.cams:
+            warnings.warn(CAM_FORCES_REASON, stacklevel=2)
         try:
             scenario = cam_model_scenario(
                 scenario, str(setting.get("cam_model", default_cam_model(scenario)))
