@@ -85,6 +85,7 @@ def test_scaled_masses_report_no_forces() -> None:
     _, _, run = _run("slider_crank", Setting.of("GA3", mass_scale=2.0), {"steps": 4})
     assert run.trajectory is not None
     assert "crank_drive.force" not in run.trajectory.extras
+    assert any("forces not given: masses scaled" in w for w in run.warnings), run.warnings
 
 
 def test_exudyn_s_prismatic_force_local_is_in_the_marker_0_body_s_axes() -> None:
