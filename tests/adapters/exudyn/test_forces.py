@@ -146,3 +146,9 @@ def test_a_driver_built_without_one_force_object_is_named() -> None:
     mbs = container.AddSystem()
     with pytest.warns(UserWarning, match=rf"forces not given: '{driver.name}' \(built as 2 Exudyn objects\)"):
         assert add_force_sensors(mbs, {driver.name: (driver, [0, 1])}) == []
+
+
+def test_the_static_solve_names_why_it_gives_no_forces() -> None:
+    _, _, run = _run("slider_crank", Setting.of("STATIC"), {"steps": 4})
+    assert run.trajectory is not None and "crank_drive.force" not in run.trajectory.extras
+    assert any("forces not given: the static solve" in w for w in run.warnings), run.warnings
