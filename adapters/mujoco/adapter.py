@@ -72,6 +72,7 @@ from adapters.mujoco.untuned import untuned
 from adapters.mujoco.weights import MUJOCO_S_OWN
 from adapters.probes import Probe
 from scenarios.cam_linkage import CAM_MODELS, cam_model_scenario, default_cam_model
+from scenarios.registry import singular_passages
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -82,6 +83,12 @@ RUN_IN = 50
 """Steps run before t = 0 from the assembled start, so soft constraints begin in steady state."""
 DYNAMIC_CAM_REASON = (
     "a cam contact in MuJoCo needs a preload spring on the follower, a force the scenario does not have"
+)
+SINGULAR_REASON = (
+    "accelerations above 1e-8 by the rule: where the loops pass singular positions the regulariser, "
+    "scaled by invweight from the compiled pose, is no longer small beside the loop's own inverse "
+    "inertia and the loop sags (a shorter tc sags less); the smaller scale that would take it away "
+    "makes other free loops unstable (docs/settings-rule.md)"
 )
 CAM_FORCES_REASON = (
     "forces not given: a cam's MuJoCo model adds what the scenario lacks (its equivalent linkage a "
@@ -213,6 +220,9 @@ class MujocoAdapter(Adapter):
             setting = setting.replace(polynomial=STEERED)
         return setting
 
+    def default_reason(self, scenario: Scenario) -> str:
+        return SINGULAR_REASON if scenario.analysis == "dynamic" and singular_passages(scenario) else ""
+
     def probe_settings(self, probe: Probe, scenario: Scenario) -> list[Setting] | None:
         return probe_settings(probe, scenario, self.default_setting(scenario))
 
@@ -272,6 +282,8 @@ class MujocoAdapter(Adapter):
             contact_solref=(time_constant(setting, dt), 1.0),
             invweight=float(setting.get("invweight", MUJOCO_S_OWN)),
         )
+        if dynamic and singular_passages(scenario) and float(setting.get("invweight", 1.0)) < 1.0:
+            warnings.warn(SINGULAR_REASON, stacklevel=2)
         if setting.mode == UNTUNED:
             physics = untuned(physics)
         run_in = 0 if kinematic or dynamic else RUN_IN

@@ -64,6 +64,7 @@ against the native forward dynamics (the compound pendulum with 9 links)."""
 OVERRIDES: dict[str, dict[str, float]] = {"compound_pendulum": {"links": 9}}
 FLOORS: dict[tuple[str, str], tuple[float, float, float]] = {
     ("slider_crank", "mujoco"): (5.5e-12, 5.5e-12, 2.3e-11),
+    ("four_bar_gravity", "mujoco"): (4.2e-12, 1.6e-11, 1.8e-10),
     ("andrews_squeezer", "pinocchio"): (1.3e-12, 2.3e-12, 2.0e-11),
     ("slider_crank", "exudyn"): (1.8e-15, 1.6e-8, 5.0e-6),
 }
@@ -91,6 +92,18 @@ def test_mujoco_s_floor_on_the_slider_crank() -> None:
     floor = default.replace(tc=256 * float(default["dt"]))
     assert floor in adapter.ladder(scenarios.load("slider_crank"))
     held(errors("slider_crank", "mujoco", floor), FLOORS[("slider_crank", "mujoco")])
+
+
+@pytest.mark.slow
+def test_mujoco_s_floor_on_the_free_four_bar() -> None:
+    """The direct solref form at 1e4 steps (next to no stiffness and damping, the loop held by its
+    exact accelerations), the regulariser scaled: below the default's 1024 steps in free dynamics."""
+    adapter = adapters.load("mujoco")
+    scenario = scenarios.load("four_bar_gravity")
+    default = adapter.default_setting(scenario)
+    floor = default.replace(tc=1e4 * float(default["dt"]), solref="direct")
+    assert floor in adapter.ladder(scenario)
+    held(errors("four_bar_gravity", "mujoco", floor), FLOORS[("four_bar_gravity", "mujoco")])
 
 
 @pytest.mark.slow
