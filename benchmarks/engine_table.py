@@ -47,7 +47,7 @@ LEVELS = (*LEVEL_COLUMNS.values(), "error_force")
 MOTION = list(LEVEL_COLUMNS.values())
 BEGIN, END = "<!-- BEGIN engine_table -->", "<!-- END engine_table -->"
 PAGE = Path("docs/engine-accuracy.md")
-FORCE_REASON = re.compile(r"forces? not given[^|]*|no forces[^|]*|reports no forces[^|]*")
+FORCE_REASON = re.compile(r"forces not given[^|]*|forces not compared[^;|]*")
 
 
 def run_cells(out: Path, names: list[str], ladder: bool) -> pd.DataFrame:
@@ -66,7 +66,7 @@ def _e(value: float) -> str:
 
 
 def _force_reason(row: pd.Series) -> str:
-    found = FORCE_REASON.search(str(row.get("warnings", "")))
+    found = FORCE_REASON.search(f"{row.get('warnings', '')} | {row.get('message', '')}")
     return found.group(0).strip().rstrip(".") if found else "none named"
 
 
