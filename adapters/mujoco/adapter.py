@@ -87,8 +87,8 @@ DYNAMIC_CAM_REASON = (
 SINGULAR_REASON = (
     "accelerations above 1e-8 by the rule: where the loops pass singular positions the regulariser, "
     "scaled by invweight from the compiled pose, is no longer small beside the loop's own inverse "
-    "inertia and the loop sags (a shorter tc sags less); the smaller scale that would take it away "
-    "makes other free loops unstable (docs/settings-rule.md)"
+    "inertia and the loop sags (tc is short there, 32 steps, to pull it back); the smaller scale that "
+    "would take it away makes other free loops unstable (docs/settings-rule.md)"
 )
 CAM_FORCES_REASON = (
     "forces not given: a cam's MuJoCo model adds what the scenario lacks (its equivalent linkage a "

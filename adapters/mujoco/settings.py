@@ -27,6 +27,7 @@ from adapters.base import UNTUNED, Setting
 from adapters.probes import MASS, STIFFNESS, Probe
 from adapters.step_rule import at_step, rule_step
 from scenarios.cam_linkage import default_cam_model
+from scenarios.registry import singular_passages
 from scenarios.scenario import Scenario
 
 STEPS_PER_PERIOD = 2000
@@ -42,6 +43,11 @@ loads: at TC_STEPS RK4's error on the mode (dt / tc)^4 sets the accelerations (f
 1.8e-8, andrews_squeezer 3.0e-8); at 1024 steps 4.3e-10 and 4.4e-9, where past about 2000 steps the
 loop's drift, no longer pulled back, raises them again (andrews_squeezer 7.9e-9 at 2048, 2.3e-8 at
 1e4). On driven scenes a polynomial drive would lag by P'' tc^2, so they keep TC_STEPS."""
+SINGULAR_TC_STEPS = 32.0
+"""The time constant in rule steps in free dynamics through singular passages (a family's
+`singular_passages`): near a singular position the scaled regulariser is no longer small beside the
+loop's own inverse inertia and the loop sags by it, which a shorter time constant pulls back
+(n_four_bar's first second: accelerations 3.9e-8 at 32 steps, 6.0e-7 at 128, 1.3e-6 at 1024)."""
 INVWEIGHT = 1e-8
 """The factor on the compiled model's invweight0 by default (adapters.mujoco.weights): the
 regulariser's sag below RK4's error on the constraint mode at TC_STEPS (at 1e-6 a loop passing
@@ -87,8 +93,10 @@ def by_contact(scenario: Scenario) -> bool:
 
 def scaled_tc_steps(scenario: Scenario) -> float:
     """The default time constant in steps with the regulariser scaled: DYNAMIC_TC_STEPS in free
-    dynamics, TC_STEPS on driven scenes."""
-    return DYNAMIC_TC_STEPS if scenario.analysis == "dynamic" else TC_STEPS
+    dynamics, SINGULAR_TC_STEPS where the loops pass singular positions, TC_STEPS on driven scenes."""
+    if scenario.analysis != "dynamic":
+        return TC_STEPS
+    return SINGULAR_TC_STEPS if singular_passages(scenario) else DYNAMIC_TC_STEPS
 
 
 def rule_default(scenario: Scenario) -> Setting:
