@@ -55,6 +55,7 @@ from adapters.mujoco.settings import (
     INVWEIGHT,
     KINEMATIC_MODES,
     OWN_TC_STEPS,
+    SINGULAR_TC_STEPS,
     SOLREF_FORMS,
     STEPS_PER_PERIOD,
     TC_STEPS,
@@ -152,7 +153,8 @@ class MujocoAdapter(Adapter):
     dynamics = True
     rule = (
         f"RK4 at 1/{STEPS_PER_PERIOD} of the shortest period, the equalities' time constant tc = "
-        f"{TC_STEPS:g} steps (in seconds; {DYNAMIC_TC_STEPS:g} in free dynamics) with the regulariser's "
+        f"{TC_STEPS:g} steps (in seconds; {DYNAMIC_TC_STEPS:g} in free dynamics, "
+        f"{SINGULAR_TC_STEPS:g} through singular passages) with the regulariser's "
         f"invweight0 scaled by {INVWEIGHT:g}, "
         f"impedance {IMPEDANCE}; cams by contact keep MuJoCo's own regulariser and tc = "
         f"{OWN_TC_STEPS:g} steps; every scenario, whatever its size"
