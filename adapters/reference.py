@@ -15,6 +15,7 @@ cannot be relied on, ALI3-P is the default, at the settings rule's step.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from importlib.metadata import PackageNotFoundError
 from importlib.metadata import version as package_version
@@ -165,6 +166,8 @@ class ReferenceAdapter(Adapter):
         inverse, compiled = bool(setting.get("inverse_dynamics", 0)), bool(setting.get("compiled", 1))
         if inverse:  # a dense least-squares solve per grid point
             check_dense_rows(scenario.name, len(scenario.bodies))
+        elif not dynamic:
+            warnings.warn(_forceless_reason(scenario), stacklevel=2)
         return ReferenceModel(scenario, tolerance, setting.mode, inverse, step, compiled)
 
     def simulate(self, model: ReferenceModel, times: np.ndarray) -> Trajectory:
@@ -184,3 +187,12 @@ class ReferenceAdapter(Adapter):
             raise EngineFailure(str(error), error.time) from error
         self.count_steps(int(analysis.iterations.sum()))
         return trajectory
+
+
+def _forceless_reason(scenario: Scenario) -> str:
+    """Why a kinematic run without inverse dynamics gives no forces."""
+    if not all(body.mass > 0.0 for body in scenario.bodies):
+        return "forces not given: a body without mass has no inverse dynamics"
+    if not dense_admitted(len(scenario.bodies)):
+        return f"forces not given: {len(scenario.bodies)} bodies are past the dense solve's limit"
+    return "forces not given: inverse_dynamics=0 (1 adds the drivers' forces and the joints' reactions)"

@@ -12,6 +12,7 @@ The signs were measured against the native inverse dynamics (tests/adapters/exud
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -21,11 +22,25 @@ from exudyn.itemInterface import SensorObject
 
 from adapters.lattice import lattice_point
 from scenarios.bodies import GROUND
-from scenarios.drivers import AbsoluteDriver
+from scenarios.drivers import (
+    AbsoluteDriver,
+    PointPathDriver,
+    RelativeDisplacementDriver,
+    RelativeRotationDriver,
+)
 from scenarios.joints import Prismatic, Revolute
 
 DRIVER_SIGN = -1.0
 """Exudyn's coordinate multiplier is the force on the marker-1 coordinate with the opposite sign."""
+FORCE_ITEMS = (
+    AbsoluteDriver,
+    RelativeRotationDriver,
+    RelativeDisplacementDriver,
+    PointPathDriver,
+    Revolute,
+    Prismatic,
+)
+"""The items whose force the native solver reports (a driving force, a joint's reaction)."""
 JOINT_SIGN = 1.0
 """A 2D joint's force is the force on its marker-0 body."""
 
@@ -42,10 +57,14 @@ class ForceSensor:
 
 def add_force_sensors(mbs: Any, items: dict[str, tuple[object, list[int]]]) -> list[ForceSensor]:
     """A Force sensor on every driver and joint built as one Exudyn object that reports its force;
-    `items` maps each scenario name to the item and the objects built for it."""
+    `items` maps each scenario name to the item and the objects built for it. A driver or joint
+    left without one is named in a warning (the row's) with why."""
     sensors = []
+    unsensed: list[str] = []
     for name, (item, objects) in items.items():
         if len(objects) != 1:
+            if isinstance(item, FORCE_ITEMS):
+                unsensed.append(f"'{name}' (built as {len(objects)} Exudyn objects)")
             continue
         kind = mbs.GetObject(objects[0])["objectType"]
         output, frame = exu.OutputVariableType.Force, GROUND
@@ -57,6 +76,8 @@ def add_force_sensors(mbs: Any, items: dict[str, tuple[object, list[int]]]) -> l
             if kind == "JointPrismatic2D":
                 output, frame = exu.OutputVariableType.ForceLocal, item.p_i.body
         else:
+            if isinstance(item, FORCE_ITEMS):
+                unsensed.append(f"'{name}' (an Exudyn {kind}, whose sensor gives no force of ours)")
             continue
         handle = mbs.AddSensor(
             SensorObject(
@@ -64,6 +85,8 @@ def add_force_sensors(mbs: Any, items: dict[str, tuple[object, list[int]]]) -> l
             )
         )
         sensors.append(ForceSensor(handle, columns, frame))
+    if unsensed:
+        warnings.warn(f"forces not given: {', '.join(unsensed)}", stacklevel=2)
     return sensors
 
 

@@ -15,6 +15,7 @@ a cam's contact parameter phi being one more ODE2 coordinate on its own node.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -100,6 +101,11 @@ def build_model(scenario: Scenario, mass_scale: float = 1.0, native_cams: bool =
     add_loads(mbs, scenario, builder.objects, builder.nodes, builder.at, builder.ground_coordinate)
     if mass_scale == 1.0:  # other masses give other forces than the scenario's
         model.force_sensors = add_force_sensors(mbs, built)
+    else:
+        warnings.warn(
+            f"forces not given: masses scaled by {mass_scale:g}, so the forces are not the scenario's",
+            stacklevel=2,
+        )
     recorded = [(node, 3) for node in builder.nodes.values()] + [(n, 1) for n in builder.phi_nodes.values()]
     sensors = [(node, width, _state_sensors(mbs, node)) for node, width in recorded]
     mbs.Assemble()

@@ -126,6 +126,8 @@ def march(
     if len(times) == 1:
         return start, 0
     if plan.solver == "STATIC":
+        if model.force_sensors:
+            warnings.warn(STATIC_FORCES_REASON, stacklevel=2)
         return _static_load_steps(model, times, settings, plan.tolerance), len(times) - 1
     return _integrate(model, plan, times, settings, start)
 
@@ -258,6 +260,12 @@ def _on_grid(lattice: States, times: np.ndarray, h: float, scale: np.ndarray) ->
     if between:
         warnings.warn(INTERPOLATED.format(count=between, total=len(times), cost=cost), stacklevel=2)
     return out
+
+
+STATIC_FORCES_REASON = (
+    "forces not given: the static solve per output time has no inertia, so its multipliers are not "
+    "the driving forces and reactions of the moving mechanism"
+)
 
 
 def _static_load_steps(model: ExudynModel, times: np.ndarray, settings: Any, tolerance: float) -> States:

@@ -50,10 +50,12 @@ from adapters.mujoco.model import Model
 from adapters.mujoco.pairs import collides
 from adapters.mujoco.scale import dof_sizes, scale_of
 from adapters.mujoco.settings import (
+    DYNAMIC_TC_STEPS,
     IMPEDANCE,
     INVWEIGHT,
     KINEMATIC_MODES,
     OWN_TC_STEPS,
+    SINGULAR_TC_STEPS,
     SOLREF_FORMS,
     STEPS_PER_PERIOD,
     TC_STEPS,
@@ -71,6 +73,7 @@ from adapters.mujoco.untuned import untuned
 from adapters.mujoco.weights import MUJOCO_S_OWN
 from adapters.probes import Probe
 from scenarios.cam_linkage import CAM_MODELS, cam_model_scenario, default_cam_model
+from scenarios.registry import singular_passages
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
@@ -81,6 +84,16 @@ RUN_IN = 50
 """Steps run before t = 0 from the assembled start, so soft constraints begin in steady state."""
 DYNAMIC_CAM_REASON = (
     "a cam contact in MuJoCo needs a preload spring on the follower, a force the scenario does not have"
+)
+SINGULAR_REASON = (
+    "accelerations above 1e-8 by the rule: where the loops pass singular positions the regulariser, "
+    "scaled by invweight from the compiled pose, is no longer small beside the loop's own inverse "
+    "inertia and the loop sags (tc is short there, 32 steps, to pull it back); the smaller scale that "
+    "would take it away makes other free loops unstable (docs/settings-rule.md)"
+)
+CAM_FORCES_REASON = (
+    "forces not given: a cam's MuJoCo model adds what the scenario lacks (its equivalent linkage a "
+    "link, its contact a preload spring), so its forces are the model's, not the scenario's"
 )
 POLYCOEF, STEERED = "polycoef", "steered"
 """A polynomial drive of degree 2 to 4: MuJoCo's quartic equality on a unit-rate clock, or a clock
@@ -140,7 +153,9 @@ class MujocoAdapter(Adapter):
     dynamics = True
     rule = (
         f"RK4 at 1/{STEPS_PER_PERIOD} of the shortest period, the equalities' time constant tc = "
-        f"{TC_STEPS:g} steps (in seconds) with the regulariser's invweight0 scaled by {INVWEIGHT:g}, "
+        f"{TC_STEPS:g} steps (in seconds; {DYNAMIC_TC_STEPS:g} in free dynamics, "
+        f"{SINGULAR_TC_STEPS:g} through singular passages) with the regulariser's "
+        f"invweight0 scaled by {INVWEIGHT:g}, "
         f"impedance {IMPEDANCE}; cams by contact keep MuJoCo's own regulariser and tc = "
         f"{OWN_TC_STEPS:g} steps; every scenario, whatever its size"
     )
@@ -207,6 +222,9 @@ class MujocoAdapter(Adapter):
             setting = setting.replace(polynomial=STEERED)
         return setting
 
+    def default_reason(self, scenario: Scenario) -> str:
+        return SINGULAR_REASON if scenario.analysis == "dynamic" and singular_passages(scenario) else ""
+
     def probe_settings(self, probe: Probe, scenario: Scenario) -> list[Setting] | None:
         return probe_settings(probe, scenario, self.default_setting(scenario))
 
@@ -239,8 +257,10 @@ class MujocoAdapter(Adapter):
         if dynamic and setting.mode not in (*DYNAMIC_MODES, UNTUNED):
             raise Unsupported(f"mode {setting.mode} is not a MuJoCo integrator of free dynamics")
         # A cam's model adds what the scenario lacks (a link of LINK_MASS, or a preload spring):
-        # its forces would be the model's, so none are reported.
+        # its forces would be the model's, so none are reported, and the row says why.
         own = set() if scenario.cams else {c.name for c in (*scenario.joints, *scenario.drivers)}
+        if scenario.cams:
+            warnings.warn(CAM_FORCES_REASON, stacklevel=2)
         try:
             scenario = cam_model_scenario(
                 scenario, str(setting.get("cam_model", default_cam_model(scenario)))
@@ -264,6 +284,8 @@ class MujocoAdapter(Adapter):
             contact_solref=(time_constant(setting, dt), 1.0),
             invweight=float(setting.get("invweight", MUJOCO_S_OWN)),
         )
+        if dynamic and singular_passages(scenario) and float(setting.get("invweight", 1.0)) < 1.0:
+            warnings.warn(SINGULAR_REASON, stacklevel=2)
         if setting.mode == UNTUNED:
             physics = untuned(physics)
         run_in = 0 if kinematic or dynamic else RUN_IN

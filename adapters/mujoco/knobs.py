@@ -8,6 +8,8 @@ from adapters.mujoco.cam_facets import DEFAULT_PIECES
 from adapters.mujoco.mjcf import SCALED_ITERATIONS, SCALED_TOLERANCE
 from adapters.mujoco.settings import (
     DIRECT_TC_STEPS,
+    DYNAMIC_TC_LADDER,
+    DYNAMIC_TC_STEPS,
     IMPEDANCE,
     IMPEDANCES,
     INVWEIGHT,
@@ -40,7 +42,8 @@ KNOBS = (
         "tc",
         SWEPT,
         f"RK4's error on the constraint mode falls as (dt/tc)^4: {_steps(TC_LADDER)} steps with the "
-        f"regulariser scaled (default {TC_STEPS:g}), {_steps(OWN_TC_LADDER)} with MuJoCo's own",
+        f"regulariser scaled (default {TC_STEPS:g}; in free dynamics {_steps(DYNAMIC_TC_LADDER)}, default "
+        f"{DYNAMIC_TC_STEPS:g}), {_steps(OWN_TC_LADDER)} with MuJoCo's own",
     ),
     Knob("tc_steps", NOT_APPLICABLE, "the older spelling of tc, in steps: swept as tc"),
     Knob(
@@ -52,7 +55,8 @@ KNOBS = (
     Knob(
         "solref",
         SWEPT,
-        f"the direct form (-1/tc^2, -2/tc) at {_steps(DIRECT_TC_STEPS)} steps beside the time-constant form",
+        f"the direct form (-1/tc^2, -2/tc) at the default's tc and {DIRECT_TC_STEPS:g} steps beside the "
+        "time-constant form (at the same tc both give the same errors)",
     ),
     Knob(
         "impedance",
@@ -70,7 +74,7 @@ KNOBS = (
     Knob(
         "mjENBL_DIAGEXACT",
         NOT_APPLICABLE,
-        "ignores invweight0, so it cannot lower the regulariser that sets the closed loops' floor",
+        "ignores invweight0, so it cannot scale away the regulariser that holds a long time constant back",
     ),
     Knob(
         "run-in",

@@ -5,7 +5,8 @@ steps, for every scenario whatever its size and its output grid.
 A closed loop's accuracy floor (adapters.mujoco.weights) is RK4's error on the constraint mode the
 time constant creates, which falls as (dt / tc)^4, and the regulariser's violation, which grows as
 tc^2. With the regulariser scaled away (INVWEIGHT) the time constant can be long: TC_STEPS steps
-bring the loops' accelerations from 1e-4 to 1e-10 at the same cost. A cam by contact keeps
+bring the loops' accelerations from 1e-4 to 1e-10 at the same cost on driven scenes, and
+DYNAMIC_TC_STEPS from 1e-8 to 1e-9 or 1e-10 in free dynamics. A cam by contact keeps
 MuJoCo's own regulariser and OWN_TC_STEPS: a hard contact loses its follower or rings at every
 facet's vertex.
 
@@ -26,13 +27,27 @@ from adapters.base import UNTUNED, Setting
 from adapters.probes import MASS, STIFFNESS, Probe
 from adapters.step_rule import at_step, rule_step
 from scenarios.cam_linkage import default_cam_model
+from scenarios.registry import singular_passages
 from scenarios.scenario import Scenario
 
 STEPS_PER_PERIOD = 2000
 """MuJoCo's constant of the rule (at 1000 the soft closures' positions are twice as far off, the
 cam contacts' penetration four times)."""
 TC_STEPS = 128.0
-"""The equalities' time constant in rule steps, with the regulariser scaled by INVWEIGHT."""
+"""The equalities' time constant in rule steps on driven scenes, with the regulariser scaled by
+INVWEIGHT."""
+DYNAMIC_TC_STEPS = 1024.0
+"""The time constant in rule steps in free dynamics. With the regulariser scaled the constraint mode
+is what is left of a loop's error, and in free dynamics nothing steers the loop but gravity and the
+loads: at TC_STEPS RK4's error on the mode (dt / tc)^4 sets the accelerations (four_bar_gravity
+1.8e-8, andrews_squeezer 3.0e-8); at 1024 steps 4.3e-10 and 4.4e-9, where past about 2000 steps the
+loop's drift, no longer pulled back, raises them again (andrews_squeezer 7.9e-9 at 2048, 2.3e-8 at
+1e4). On driven scenes a polynomial drive would lag by P'' tc^2, so they keep TC_STEPS."""
+SINGULAR_TC_STEPS = 32.0
+"""The time constant in rule steps in free dynamics through singular passages (a family's
+`singular_passages`): near a singular position the scaled regulariser is no longer small beside the
+loop's own inverse inertia and the loop sags by it, which a shorter time constant pulls back
+(n_four_bar's first second: accelerations 3.9e-8 at 32 steps, 6.0e-7 at 128, 1.3e-6 at 1024)."""
 INVWEIGHT = 1e-8
 """The factor on the compiled model's invweight0 by default (adapters.mujoco.weights): the
 regulariser's sag below RK4's error on the constraint mode at TC_STEPS (at 1e-6 a loop passing
@@ -57,9 +72,12 @@ KINEMATIC_MODES = ("RK4", "implicitfast")
 beneath implicitfast)."""
 TC_LADDER = (16.0, 64.0, 256.0)
 """RK4's time constant in steps with the regulariser scaled, swept at the default step."""
-DIRECT_TC_STEPS = (TC_STEPS, 1.0e4)
-"""The time constants (in steps) of the direct solref form's rungs (1e4: next to no stiffness and
-damping, the loop held by its exact acceleration alone)."""
+DYNAMIC_TC_LADDER = (128.0, 256.0, 4096.0)
+"""The same in free dynamics, around DYNAMIC_TC_STEPS."""
+DIRECT_TC_STEPS = 1.0e4
+"""The direct solref form's rungs are at the default's time constant and at this many steps (next
+to no stiffness and damping, the loop held by its exact acceleration alone). At the same tc the
+direct form gives what the time-constant form gives (impedance 0.9999: b and k differ by 1e-4)."""
 OWN_TC_LADDER = (2.0, 4.0, 16.0)
 """RK4's time constant in steps with MuJoCo's own regulariser, swept at the default step."""
 IMPEDANCES = (0.99,)
@@ -73,13 +91,22 @@ def by_contact(scenario: Scenario) -> bool:
     return bool(scenario.cams) and default_cam_model(scenario) == "contact"
 
 
+def scaled_tc_steps(scenario: Scenario) -> float:
+    """The default time constant in steps with the regulariser scaled: DYNAMIC_TC_STEPS in free
+    dynamics, SINGULAR_TC_STEPS where the loops pass singular positions, TC_STEPS on driven scenes."""
+    if scenario.analysis != "dynamic":
+        return TC_STEPS
+    return SINGULAR_TC_STEPS if singular_passages(scenario) else DYNAMIC_TC_STEPS
+
+
 def rule_default(scenario: Scenario) -> Setting:
-    """RK4 at the rule's step, the stiffest impedance, tc = TC_STEPS steps with the regulariser
-    scaled by INVWEIGHT; OWN_TC_STEPS with MuJoCo's own on cams by contact."""
+    """RK4 at the rule's step, the stiffest impedance, the time constant scaled_tc_steps with the
+    regulariser scaled by INVWEIGHT; OWN_TC_STEPS with MuJoCo's own on cams by contact."""
     dt = rule_step(scenario, STEPS_PER_PERIOD)
     if by_contact(scenario):
         return own_regulariser(Setting.of("RK4", dt=dt, impedance=IMPEDANCE))
-    return Setting.of("RK4", dt=dt, tc=TC_STEPS * dt, impedance=IMPEDANCE, invweight=INVWEIGHT)
+    tc = scaled_tc_steps(scenario) * dt
+    return Setting.of("RK4", dt=dt, tc=tc, impedance=IMPEDANCE, invweight=INVWEIGHT)
 
 
 def own_regulariser(setting: Setting, tc_steps: float = OWN_TC_STEPS) -> Setting:
@@ -108,8 +135,10 @@ def rule_ladder(scenario: Scenario, modes: tuple[str, ...], closes_loops: bool) 
     if closes_loops or by_contact(scenario):
         dt = float(default["dt"])
         if default["invweight"] < 1.0:
-            settings += [default.replace(tc=k * dt) for k in TC_LADDER]
-            settings += [default.replace(tc=k * dt, solref=DIRECT_FORM) for k in DIRECT_TC_STEPS]
+            tcs = DYNAMIC_TC_LADDER if scenario.analysis == "dynamic" else TC_LADDER
+            settings += [default.replace(tc=k * dt) for k in tcs]
+            direct = (float(default["tc"]) / dt, DIRECT_TC_STEPS)
+            settings += [default.replace(tc=k * dt, solref=DIRECT_FORM) for k in direct]
             settings += [default.replace(invweight=w, tc=k * dt) for w, k in SCALED_RUNGS]
         settings += [own_regulariser(default, k) for k in OWN_TC_LADDER]
         settings += [default.replace(impedance=imp) for imp in IMPEDANCES]

@@ -1,4 +1,5 @@
-"""How hard MuJoCo's soft constraints are: the regulariser behind a closed loop's accuracy floor.
+"""How hard MuJoCo's soft constraints are: the regulariser that holds a closed loop's time constant
+short, and so sets how low RK4's error on the constraint mode can be brought.
 
 MuJoCo drives each constraint row's acceleration towards the reference -b (J v) - k r (solref:
 b = 2 / (d tc), k = 1 / (d tc)^2 in the time-constant form, b and k themselves in the direct form,
@@ -12,7 +13,9 @@ closed loop integrated with RK4:
 - the regulariser's violation, which grows as tc^2: it holds a longer time constant back while d
   is at its largest.
 Scaling the invweight0 of the compiled model by a small factor makes R negligible (a row's R is
-what it is scaled by), so tc can be long and the first error goes with it. The factor must be set
+what it is scaled by), so tc can be long and the first error goes with it: what is left is the
+first error at the longest time constant the loop tolerates (on driven scenes the drive's lag,
+in free dynamics the loop's drift, which a long tc no longer pulls back). The factor must be set
 right after compiling, before the start is assembled and run in: set later, the start carries the
 old model's offset into the run.
 """

@@ -75,6 +75,9 @@ def measure(
                 metrics.update(force_errors(scenario, result.trajectory, native))
             except (ValueError, KeyError) as error:
                 notes.append(f"forces not compared: {error}")
+    elif force_columns(result.trajectory):
+        own = f" ({force_truth})" if force_truth else ""
+        notes.append(f"forces not compared: the force truth is the native solver's own{own}")
     return metrics, levels, "; ".join(notes)
 
 

@@ -42,6 +42,18 @@ def test_mujoco_s_floor_on_the_slider_crank() -> None:
 
 
 @pytest.mark.slow
+def test_mujoco_s_floor_on_the_free_four_bar() -> None:
+    """The direct solref form at 1e4 steps (next to no stiffness and damping, the loop held by its
+    exact accelerations), the regulariser scaled: below the default's 1024 steps in free dynamics."""
+    adapter = adapters.load("mujoco")
+    scenario = scenarios.load("four_bar_gravity")
+    default = adapter.default_setting(scenario)
+    floor = default.replace(tc=1e4 * float(default["dt"]), solref="direct")
+    assert floor in adapter.ladder(scenario)
+    held(errors("four_bar_gravity", "mujoco", floor), FLOORS[("four_bar_gravity", "mujoco")])
+
+
+@pytest.mark.slow
 def test_pinocchio_s_floor_on_andrews_squeezer() -> None:
     """The ladder's finest RK4 without gains (10000 steps per period): the native truth's level."""
     adapter = adapters.load("pinocchio")
@@ -60,3 +72,15 @@ def test_exudyn_s_floor_on_the_slider_crank() -> None:
     finest = adapter.ladder(scenario)[4]
     assert finest.mode == "GA3"
     held(errors("slider_crank", "exudyn", finest), FLOORS[("slider_crank", "exudyn")])
+
+
+@pytest.mark.slow
+def test_mujoco_s_floor_on_the_free_four_bar() -> None:
+    """The direct solref form at 1e4 steps (next to no stiffness and damping, the loop held by its
+    exact accelerations), the regulariser scaled: below the default's 1024 steps in free dynamics."""
+    adapter = adapters.load("mujoco")
+    scenario = scenarios.load("four_bar_gravity")
+    default = adapter.default_setting(scenario)
+    floor = default.replace(tc=1e4 * float(default["dt"]), solref="direct")
+    assert floor in adapter.ladder(scenario)
+    held(errors("four_bar_gravity", "mujoco", floor), FLOORS[("four_bar_gravity", "mujoco")])

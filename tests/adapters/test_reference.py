@@ -78,3 +78,13 @@ def test_the_compiled_and_the_plain_right_hand_side_give_one_motion_through_the_
         a, b = getattr(compiled, level), getattr(plain, level)
         scale = scenario.characteristic_length if level == "position" else float(np.abs(b).max())
         assert 0 < float(np.abs(a - b).max()) / scale < 1e-9, level  # 0: the same path twice
+
+
+def test_a_kinematic_run_without_inverse_dynamics_names_why_it_gives_no_forces() -> None:
+    native = adapters.load("reference")
+    scenario = scenarios.build("slider_crank", overrides={"steps": 4})
+    run = native.run(scenario, Setting.of("newton", tolerance=1e-10))
+    assert run.status == "ok" and run.trajectory is not None
+    assert not [c for c in run.trajectory.extras if c.endswith((".force", ".fx", ".fy"))]
+    assert any("forces not given: inverse_dynamics=0" in w for w in run.warnings), run.warnings
+    assert not any("forces not given" in w for w in native.run(scenario).warnings)

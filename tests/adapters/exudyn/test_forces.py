@@ -4,11 +4,13 @@ measured bounds, t = 0 included."""
 
 from __future__ import annotations
 
+import exudyn as exu
 import numpy as np
 import pytest
 
 import adapters
 from adapters.base import Setting
+from adapters.exudyn.force_sensors import add_force_sensors
 from reports.harness.comparison import measure
 from reports.harness.forces import native_forces
 from reports.harness.truth import independent_truth
@@ -76,6 +78,7 @@ def test_scaled_masses_report_no_forces() -> None:
     _, _, run = _run("slider_crank", Setting.of("GA3", mass_scale=2.0), {"steps": 4})
     assert run.trajectory is not None
     assert "crank_drive.force" not in run.trajectory.extras
+    assert any("forces not given: masses scaled" in w for w in run.warnings), run.warnings
 
 
 def test_exudyn_s_prismatic_force_local_is_in_the_marker_0_body_s_axes() -> None:
@@ -124,3 +127,19 @@ def test_exudyn_s_prismatic_force_local_is_in_the_marker_0_body_s_axes() -> None
         mbs.SolveDynamic(settings)
     local = np.asarray(mbs.GetObjectOutput(joint, exu.OutputVariableType.ForceLocal))[:2]
     np.testing.assert_allclose(local, mass * g * np.array([np.sin(angle), np.cos(angle)]), rtol=1e-9)
+
+
+def test_a_driver_built_without_one_force_object_is_named() -> None:
+    """A driver whose Exudyn build is not one object with a force output gets no sensor, and the
+    warning (the row's) names it and why."""
+    driver = load("slider_crank").drivers[0]
+    container = exu.SystemContainer()
+    mbs = container.AddSystem()
+    with pytest.warns(UserWarning, match=rf"forces not given: '{driver.name}' \(built as 2 Exudyn objects\)"):
+        assert add_force_sensors(mbs, {driver.name: (driver, [0, 1])}) == []
+
+
+def test_the_static_solve_names_why_it_gives_no_forces() -> None:
+    _, _, run = _run("slider_crank", Setting.of("STATIC"), {"steps": 4})
+    assert run.trajectory is not None and "crank_drive.force" not in run.trajectory.extras
+    assert any("forces not given: the static solve" in w for w in run.warnings), run.warnings

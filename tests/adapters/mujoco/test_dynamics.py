@@ -18,7 +18,7 @@ import pytest
 
 import scenarios
 from adapters.base import Setting
-from adapters.mujoco.settings import INVWEIGHT, STEPS_PER_PERIOD, TC_STEPS, UNTUNED
+from adapters.mujoco.settings import DYNAMIC_TC_STEPS, INVWEIGHT, STEPS_PER_PERIOD, UNTUNED
 from adapters.step_rule import shortest_period
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
@@ -34,7 +34,7 @@ def test_the_adapter_runs_dynamics_with_mujocos_integrators() -> None:
     modes = {s.mode for s in ADAPTER.ladder(scenario)}
     assert modes == {"RK4", "implicit", "implicitfast", "Euler", UNTUNED}
     dt = shortest_period(scenario) / STEPS_PER_PERIOD
-    expected = Setting.of("RK4", dt=dt, tc=TC_STEPS * dt, impedance=0.9999, invweight=INVWEIGHT)
+    expected = Setting.of("RK4", dt=dt, tc=DYNAMIC_TC_STEPS * dt, impedance=0.9999, invweight=INVWEIGHT)
     assert ADAPTER.default_setting(scenario) == expected
 
 

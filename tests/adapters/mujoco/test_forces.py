@@ -50,8 +50,10 @@ def test_reactions_in_free_dynamics_match_the_native_multipliers() -> None:
 
 
 def test_a_cam_model_reports_no_forces() -> None:
-    """The linkage adds a link of mass, the contact a preload spring: their forces are the model's."""
+    """The linkage adds a link of mass, the contact a preload spring: their forces are the model's,
+    and the row's warnings say so."""
     scenario = load("cam_roller", {"steps": 8})
     run = MUJOCO.run(scenario, None, np.asarray(scenario.times()))
     assert run.status == "ok" and run.trajectory is not None
     assert not [c for c in run.trajectory.extras if c.endswith((".force", ".fx", ".fy"))]
+    assert any("forces not given: a cam's MuJoCo model" in w for w in run.warnings), run.warnings
