@@ -101,7 +101,7 @@ class Adapter:
     """Whether the engine runs forward dynamics (scenarios whose `analysis` is "dynamic")."""
     colour: ClassVar[str] = ""
     """The engine's colour in the report's figures, `#rrggbb` or `#rgb`, stored with its runs ('' for
-    one from a shared palette; anything else is warned about and given one: reports.harness.engine_facts)."""
+    one from a shared palette; anything else is warned about and given one: reports.run.engine_facts)."""
     packages: ClassVar[tuple[str, ...]] = ()
     """The distributions (as pip names them) whose installed versions a run records beside ours."""
     _ladder_is_sweep: ClassVar[bool] = False

@@ -13,7 +13,7 @@ Bad input raises ArgumentError or ScenarioError (both ValueError) with the comma
 """
 
 from mbxval.api import ArgumentError, compare, load_scenario, read_results, run, solve
-from reports.harness.provenance import version as _version
+from reports.store.provenance import version as _version
 from scenarios import Scenario, ScenarioError
 
 __version__ = _version()

@@ -25,16 +25,16 @@ from adapters.base import OptionValue
 from mbxval.arguments import ArgumentError
 from reports.cli.main import parser, solve_trajectory
 from reports.cli.usage import UsageError
-from reports.harness import results_store
-from reports.harness.imported import score
-from reports.harness.store_layout import StoreDamaged
-from reports.harness.store_lock import StoreBusy
-from reports.harness.trajectory_file import (
+from reports.run.imported import score
+from reports.run.trajectory_file import (
     ImportedTrajectory,
     TrajectoryFileError,
     parse_trajectory,
     read_trajectory,
 )
+from reports.store import results_store
+from reports.store.layout import StoreDamaged
+from reports.store.lock import StoreBusy
 from scenarios import Scenario
 from scenarios import load as load_by_name
 from scenarios.limits import MAX_LABEL_LENGTH

@@ -9,7 +9,7 @@ level or inside a function, found with `ast`; nothing is imported):
 - `reference_solver` reads scenarios and nothing above them;
 - `reports/render` reads a results store: everything a report shows (verdicts, branch checks,
   truths, labels) is decided when the run is made and stored, so no module of it imports the
-  solver, an engine, the stress or dynamics cases, or rebuilds a scenario; of `reports.harness` it
+  solver, an engine, the stress or dynamics cases, or rebuilds a scenario; of the store it
   names only the column declarations and the store's reader and writer (RENDER_READS).
 """
 
@@ -71,14 +71,18 @@ RENDER_FORBIDDEN = (
     "adapters",
     "reports.stress",
     "reports.dynamics",
-    "reports.harness",
+    "reports.scoring",
+    "reports.run",
+    "reports.gate",
+    "reports.store",
+    "reports.suites",
     "scenarios",
 )
 """What a module of reports/render never names (a dotted prefix), but RENDER_READS."""
 RENDER_READS = {
-    "reports.harness.columns": "the column declarations, with what the measured columns mean",
-    "reports.harness.results_store": "the store's reader",
-    "reports.harness.atomic_write": "the page written whole or not at all",
+    "reports.store.columns": "the column declarations, with what the measured columns mean",
+    "reports.store.results_store": "the store's reader",
+    "reports.store.atomic_write": "the page written whole or not at all",
     "scenarios.trajectory": "the stored trajectories' type",
 }
 
@@ -128,7 +132,7 @@ def test_render_reads_stored_results_only() -> None:
     [
         ("from reports.stress.cases import CASES\n", {"reports.stress.cases", "reports.stress.cases.CASES"}),
         ("def f():\n    import adapters\n", {"adapters"}),
-        ("from ..harness import truth\n", {"reports.harness", "reports.harness.truth"}),
+        ("from ..scoring import truth\n", {"reports.scoring", "reports.scoring.truth"}),
         ("from . import markup\n", {"reports.render", "reports.render.markup"}),
     ],
 )
@@ -143,13 +147,13 @@ def test_the_render_rule_is_not_vacuous() -> None:
     for name in ("reference_solver.residual", "adapters", "reports.stress.branch_check", "reports.dynamics"):
         assert forbidden_in_render(name), name
     for name in (
-        "reports.harness.truth",
-        "reports.harness.level_error",
-        "reports.harness.agreement",
+        "reports.scoring.truth",
+        "reports.scoring.level_error",
+        "reports.scoring.agreement",
         "scenarios",
     ):
         assert forbidden_in_render(name), name
-    for name in ("reports.harness.columns.LOST", "scenarios.trajectory.Trajectory", "reports.render.markup"):
+    for name in ("reports.store.columns.LOST", "scenarios.trajectory.Trajectory", "reports.render.markup"):
         assert not forbidden_in_render(name), name
 
 
@@ -157,7 +161,7 @@ def test_the_render_rule_is_not_vacuous() -> None:
     ("source", "expected"),
     [
         ("def f():\n    from reference_solver.dynamics import simulate\n", {"reference_solver"}),
-        ("import reports.harness.truth as truth\n", {"reports"}),
+        ("import reports.scoring.truth as truth\n", {"reports"}),
         ("from . import geometry\n", {"adapters"}),
         ("import numpy\nfrom scipy import linalg\n", set()),
     ],

@@ -16,11 +16,15 @@ from typing import Any
 
 import adapters
 import reports.cli.run_overrides as run_overrides
+from reports import suites
 from reports.cli.usage import UsageError
-from reports.harness import baselines, gate, scenario_identity, stop, store_files, suites, sweep
-from reports.harness.group_runs import RunConfig
-from reports.harness.store_lock import WriterLock
-from reports.harness.suites import Suite
+from reports.gate import baselines, gate
+from reports.run import stop, sweep
+from reports.run.group_runs import RunConfig
+from reports.store import files as store_files
+from reports.store import scenario_identity
+from reports.store.lock import WriterLock
+from reports.suites import Suite
 from scenarios import Scenario, limits
 from scenarios import load as build_scenario
 
@@ -149,7 +153,7 @@ def check_scenario_names(names: list[str], out: Path, rerun: bool) -> None:
 
 def stored_identities(results: Path | str) -> list[dict[str, Any]]:
     """Each scenario name the store holds with each digest its rows record, once."""
-    from reports.harness.results_store import read_results  # pandas: imported when a store is read
+    from reports.store.results_store import read_results  # pandas: imported when a store is read
 
     frame = read_results(results)[0].reindex(columns=["scenario", "scenario_digest"]).fillna("")
     return frame.drop_duplicates().to_dict("records")  # type: ignore[no-any-return]
@@ -159,8 +163,8 @@ def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = 
     """Run a checked selection into `out` (the caller holds its writer lock), and with `draw` draw
     its mechanisms beside the results for a report; returns the rows this run made, by status (the
     store may hold more: rows kept from earlier runs)."""
-    from reports.harness.results_store import ResultsStore
-    from reports.harness.runner import Runner
+    from reports.run.runner import Runner
+    from reports.store.results_store import ResultsStore
 
     suite, backend = selection.suite, selection.backend
     arguments: dict[str, Any] = {
@@ -172,7 +176,7 @@ def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = 
     if backend == Backend():
         runner = Runner(ResultsStore(out), selection.engines, selection.config, **arguments)
     else:  # Dask is imported only here
-        from reports.harness.dask_backend import DaskRunner
+        from reports.run.dask_backend import DaskRunner
 
         runner = DaskRunner(
             ResultsStore(out), selection.engines, selection.config, **arguments, **vars(backend)
@@ -186,12 +190,12 @@ def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = 
 
 def record_verdicts(out: Path, suite: str) -> None:
     """Decide, now the suite's runs are stored, what the report shows of them and store it with
-    them (reports.stress.recording, reports.dynamics.recording, reports.harness.recording): the
+    them (reports.stress.recording, reports.dynamics.recording, reports.run.recording): the
     stored results read back as a report reads them, so that a verdict is the one the stored
     trajectories give. The caller holds the store's writer lock."""
     from reports.dynamics import recording as dynamics_recording  # the native solver: imported when needed
-    from reports.harness import recording as harness_recording
-    from reports.harness.results_store import ResultsStore
+    from reports.run import recording as harness_recording
+    from reports.store.results_store import ResultsStore
     from reports.stress import recording as stress_recording
 
     store = ResultsStore(out)
@@ -210,7 +214,7 @@ def _draw(out: Path, planned: Iterable[Scenario]) -> None:
 
 def run_summary(made: Counter[str], out: Path, page: Path | None) -> str:
     """The last line of a run: this run's rows by status, then the store's total apart."""
-    from reports.harness.results_store import read_results
+    from reports.store.results_store import read_results
 
     counts = ", ".join(f"{status} {n}" for status, n in made.most_common())
     frame = read_results(out)[0]
@@ -294,8 +298,8 @@ def cmd_check(args: argparse.Namespace) -> int:
 
 def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, Any]] | None) -> int:
     """Compare the results in `directory` with the baseline, or write the baseline (--update)."""
-    from reports.harness import gate_files
-    from reports.harness.results_store import read_results
+    from reports.gate import files as gate_files
+    from reports.store.results_store import read_results
 
     frame, meta = read_results(directory)
     if baseline is None:

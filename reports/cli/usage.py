@@ -7,8 +7,8 @@ import argparse
 from collections.abc import Sequence
 from typing import NoReturn
 
-from reports.harness.engine_facts import engine_packages
-from reports.harness.provenance import version_text
+from reports.run.engine_facts import engine_packages
+from reports.store.provenance import version_text
 
 
 class UsageError(Exception):

@@ -4,7 +4,7 @@ a change in the rule, an adapter or an engine shows. Round-off values are held f
 
 Measured on the 2-core machine with mujoco 4.0.0, exudyn 1.13.6 and pin 4.1.0 against the harness
 truth (closed forms, the native forward dynamics), as the runner measures them
-(reports.harness.level_error)."""
+(reports.scoring.level_error)."""
 
 from __future__ import annotations
 
@@ -14,8 +14,8 @@ import pytest
 import adapters
 import scenarios
 from adapters.base import Setting
-from reports.harness.level_error import level_errors
-from reports.harness.truth import independent_truth
+from reports.scoring.level_error import level_errors
+from reports.scoring.truth import independent_truth
 from tests.support.bounds import held
 
 LEVELS = ("error_position", "error_velocity", "error_acceleration")

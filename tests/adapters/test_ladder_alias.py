@@ -12,7 +12,7 @@ import pytest
 import scenarios
 from adapters.base import Adapter, Setting
 from adapters.reference import ReferenceAdapter
-from reports.harness.planning import plan_engine
+from reports.run.planning import plan_engine
 
 OLD_LADDER = [Setting.of("newton", tolerance=1e-3), Setting.of("newton", tolerance=1e-9)]
 """An old-style plug-in's settings, none of them in the reference's own ladder."""

@@ -20,11 +20,12 @@ import pytest
 
 from reports.cli import suite_commands
 from reports.cli.main import main
-from reports.harness import gate, store_files
-from reports.harness.results_store import RESULTS, TRAJECTORIES, ResultsStore, read_results, read_trajectories
-from reports.harness.runner import RunConfig, Runner
-from reports.harness.store_files import StoreDamaged
-from reports.harness.store_lock import StoreBusy, WriterLock
+from reports.gate import gate
+from reports.run.runner import RunConfig, Runner
+from reports.store import files as store_files
+from reports.store.files import StoreDamaged
+from reports.store.lock import StoreBusy, WriterLock
+from reports.store.results_store import RESULTS, TRAJECTORIES, ResultsStore, read_results, read_trajectories
 from tests.support.fake_engine import GOOD, FakeAdapter, fake_truth
 from tests.support.stores import table_files, write_schema_1
 

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from reports.harness.results_store import ResultsStore, key_of, read_results
+from reports.store.results_store import ResultsStore, key_of, read_results
 
 
 def doctor(source: Path, target: Path, edit: Callable[[pd.DataFrame], None]) -> Path:
@@ -45,8 +45,8 @@ def write_schema_1(directory: Path, source: Path, generations: bool = True) -> P
     trajectories.parquet; in a generation with the checksums in its sidecar, `current` and the
     public links (`generations`), or as plain files in DIR with a sidecar without checksums (the
     store from before generations)."""
-    from reports.harness.results_store import _trajectory_frame, read_trajectories, rows_frame
-    from reports.harness.store_layout import checksum
+    from reports.store.layout import checksum
+    from reports.store.results_store import _trajectory_frame, read_trajectories, rows_frame
 
     frame, meta = read_results(source)
     meta = {k: v for k, v in meta.items() if k not in ("files", "parts")} | {"schema_version": 1}

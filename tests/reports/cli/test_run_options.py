@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from reports.cli.main import main
-from reports.harness.results_store import read_results, read_trajectories
+from reports.store.results_store import read_results, read_trajectories
 from scenarios import all_families
 
 NARROW = ["--suite", "quick", "--engine", "reference", "--repeats", "1", "--warmup", "0"]

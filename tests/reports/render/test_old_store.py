@@ -14,10 +14,10 @@ import pandas as pd
 import pytest
 
 from reports.cli.main import main
-from reports.harness.columns import NOT_RECORDED, RECORDED_COLUMNS, WALL_COLUMNS
-from reports.harness.results_store import read_results
 from reports.render.clock import CPU, OLD_WALL
 from reports.render.report import render_reports
+from reports.store.columns import NOT_RECORDED, RECORDED_COLUMNS, WALL_COLUMNS
+from reports.store.results_store import read_results
 from tests.support.stores import write_schema_1
 
 CASES = ("slider_crank/stress_dead_centre", "slider_crank")

@@ -14,7 +14,7 @@ import pandas as pd
 import pytest
 
 from reports.cli.main import main
-from reports.harness.results_store import read_results
+from reports.store.results_store import read_results
 from tests.support.stores import copy_entry
 
 SCENARIOS = ("slider_crank", "cam_roller/stress_undercut")
