@@ -15,7 +15,7 @@ from scenarios import catalogue
 
 if TYPE_CHECKING:
     from adapters.base import Adapter, Setting
-    from reports.scoring.truth import NamedTruth
+    from reports.scoring import NamedTruth
     from scenarios.scenario import Scenario
     from scenarios.trajectory import Trajectory
 
@@ -86,20 +86,20 @@ register(
 def stress_scenarios() -> list[str]:
     """The stress cases (reports.stress.cases): every stress variant the catalogue has, declared,
     and the nominal scenarios they are compared with."""
-    from reports.stress.cases import scenario_names
+    from reports.stress import scenario_names
 
     return scenario_names()
 
 
 def _stress_truth(scenario: Scenario, times: Any) -> NamedTruth:
-    from reports.scoring.truth import NamedTruth
-    from reports.stress.truth import stress_truth, stress_truth_name
+    from reports.scoring import NamedTruth
+    from reports.stress import stress_truth, stress_truth_name
 
     return NamedTruth(stress_truth(scenario, times), stress_truth_name(scenario))
 
 
 def _stress_settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
-    from reports.stress.cases import stress_settings
+    from reports.stress import stress_settings
 
     return stress_settings(scenario, adapter)
 

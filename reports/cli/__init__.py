@@ -1,5 +1,18 @@
-"""The command line: list, solve and export in main; run, report, check and bench in suite_commands."""
+"""The command line: list, solve and export in main; run, report, check and bench in suite_commands;
+compare in compare_command. The Python API (mbxval) drives the same functions."""
 
-from reports.cli.main import main
+from typing import TYPE_CHECKING
 
-__all__ = ["main"]
+from reports.face import load
+
+if TYPE_CHECKING:
+    from reports.cli.compare_command import check_label
+    from reports.cli.main import main, parser, solve_trajectory
+    from reports.cli.suite_commands import run_and_render, select
+    from reports.cli.usage import UsageError
+
+__all__ = ["UsageError", "check_label", "main", "parser", "run_and_render", "select", "solve_trajectory"]
+
+
+def __getattr__(name: str) -> object:
+    return load(__name__, name)

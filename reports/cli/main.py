@@ -27,13 +27,10 @@ from adapters.step_rule import RULE
 from adapters.threads import one_blas_thread
 from reports.cli.engine_listing import FORMATS, engine_listing
 from reports.cli.usage import Parser, UsageError, Versions, pairs, scenario_argument
-from reports.gate.gate import GateError
+from reports.gate import GateError
 from reports.run import stop
-from reports.scoring import self_check
-from reports.scoring.common_start import common_start
-from reports.store.atomic_write import atomic_output, atomic_path, output_target, write_text
-from reports.store.files import StoreDamaged
-from reports.store.lock import StoreBusy
+from reports.scoring import common_start, self_check
+from reports.store import StoreBusy, StoreDamaged, atomic_output, atomic_path, output_target, write_text
 from scenarios import Scenario, ScenarioError, all_families, catalogue, limits, load
 from scenarios.files import scenario_toml
 from scenarios.names import NameRefused, check_scenario_name

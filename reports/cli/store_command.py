@@ -8,11 +8,11 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from reports.store.lock import WriterLock
+from reports.store import WriterLock
 
 
 def cmd_store(args: argparse.Namespace) -> int:
-    from reports.store.repair import Repair, holds_a_store  # pandas: imported when it runs
+    from reports.store import Repair, holds_a_store  # pandas: imported when it runs
 
     directory = Path(args.directory)
     if not holds_a_store(directory):  # before the lock, which would leave its file there

@@ -31,7 +31,7 @@ from reports.drawing.svg import (
     scoped_style,
     unique_ids,
 )
-from reports.scoring.common_start import common_start
+from reports.scoring import common_start
 from scenarios import Scenario
 from scenarios.drivers import AbsoluteDriver, RelativeRotationDriver
 from scenarios.motions import ConstantSpeed, Harmonic

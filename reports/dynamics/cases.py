@@ -19,7 +19,7 @@ from typing import Any
 from adapters import NATIVE
 from adapters.base import Adapter, Setting
 from adapters.step_rule import at_step
-from reports.scoring.truth import DYNAMIC_RTOL, NamedTruth
+from reports.scoring import DYNAMIC_RTOL, NamedTruth
 from scenarios import catalogue
 from scenarios.families.stiff_spring import MAP_VARIANTS
 from scenarios.registry import all_families

@@ -18,10 +18,8 @@ import numpy as np
 from reference_solver import constraint_residual
 from reports.dynamics.cases import is_dynamic, map_cells
 from reports.dynamics.stability import DRIFTED, verdict
-from reports.scoring.energy_drift import drift_series
-from reports.store.columns import DRIFT_SERIES
-from reports.store.results_store import TRUTH, ResultsStore, stored_truths
-from reports.store.scenario_identity import stored_scenario
+from reports.scoring import drift_series
+from reports.store import DRIFT_SERIES, TRUTH, ResultsStore, stored_scenario, stored_truths
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 

@@ -10,7 +10,7 @@ import xml.etree.ElementTree as ET
 from typing import Any
 
 from reports.gate.gate import ERROR_FLOOR, Cell, GateResult
-from reports.store.atomic_write import atomic_output
+from reports.store import atomic_output
 
 SUITE = "mbxval check"
 

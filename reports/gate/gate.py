@@ -24,8 +24,7 @@ import os
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from reports.store.atomic_write import atomic_output, output_target
-from reports.store.layout import SCHEMA_VERSION
+from reports.store import SCHEMA_VERSION, atomic_output, output_target
 from scenarios.files.bounded_read import MAX_BASELINE_BYTES, read_bounded_text
 
 if TYPE_CHECKING:  # frames are handed in; the command line imports the gate without pandas

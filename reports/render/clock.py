@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from reports.store.columns import WALL_COLUMNS
+from reports.store import WALL_COLUMNS
 
 CPU = "CPU"
 OLD_WALL = "wall (recorded before CPU time)"

@@ -17,7 +17,7 @@ from reports.render import markup
 from reports.render.first_screen import truth_names
 from reports.render.plots import FLOOR, colour, legend_entries
 from reports.render.report_data import ReportData, drift_mark, map_cell_rows, number
-from reports.store.columns import DRIFT_DEFINITION, DRIFT_SERIES, NOT_RECORDED
+from reports.store import DRIFT_DEFINITION, DRIFT_SERIES, NOT_RECORDED
 
 SHADES = {
     "stable": "#e6f4e6",

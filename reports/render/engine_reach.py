@@ -22,7 +22,7 @@ import numpy as np
 import pandas as pd
 
 from reports.render.clock import CPU, clock_label
-from reports.store.columns import LEVEL_COLUMNS
+from reports.store import LEVEL_COLUMNS
 
 TARGET = 1e-6
 LEVELS = list(LEVEL_COLUMNS.values())

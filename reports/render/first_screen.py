@@ -11,7 +11,7 @@ import pandas as pd
 
 from reports.render import markup
 from reports.render.report_data import ReportData, drift_mark, number
-from reports.store.columns import CLOSED_FORM, LEVEL_COLUMNS, NOT_RECORDED
+from reports.store import CLOSED_FORM, LEVEL_COLUMNS, NOT_RECORDED
 
 BEST, WORST = -14.0, -1.0  # log10 error drawn fully green, fully red
 LEVEL_LETTERS = {"position": "pos", "velocity": "vel", "acceleration": "acc", "force": "force"}

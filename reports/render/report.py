@@ -8,8 +8,7 @@ from pathlib import Path
 from reports.render import html as html_report
 from reports.render import markdown as markdown_report
 from reports.render.report_data import ReportData
-from reports.store.atomic_write import atomic_output
-from reports.store.results_store import results_directory
+from reports.store import atomic_output, results_directory
 
 HTML, MARKDOWN = "index.html", "summary.md"
 

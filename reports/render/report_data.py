@@ -15,7 +15,7 @@ import pandas as pd
 from reports.render import plots
 from reports.render.clock import OLD_WALL, clock_label
 from reports.render.drawings import read_drawings
-from reports.store.results_store import TRUTH, Key, read_results, read_trajectories
+from reports.store import TRUTH, Key, read_results, read_trajectories
 from scenarios.trajectory import Trajectory
 
 TABLE_COLUMNS = (

@@ -9,7 +9,7 @@ import math
 import pandas as pd
 
 from reports.render.report_data import is_swept
-from reports.store.columns import LOST, NOT_RECORDED, Judgement
+from reports.store import LOST, NOT_RECORDED, Judgement
 
 STRESS_SUITE = "stress"
 """The suite whose rows the stability map shows."""

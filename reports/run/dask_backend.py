@@ -32,8 +32,7 @@ from reports.run import kept_workers
 from reports.run.group_runs import RunConfig, Stored, failure, run_group
 from reports.run.planning import Group
 from reports.run.runner import Loader, Runner, Truth, progress_bar, truth_named
-from reports.scoring.metrics import Residual
-from reports.scoring.truth import NamedTruth
+from reports.scoring import NamedTruth, Residual
 from scenarios import Scenario
 
 LOCAL_CONFIG = {

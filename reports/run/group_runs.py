@@ -21,10 +21,7 @@ from reports.run.isolation import Outcome, Worker
 from reports.run.planning import Group
 from reports.run.rows import failure_row, result_row
 from reports.run.warm import warm
-from reports.scoring.comparison import measure
-from reports.scoring.metrics import Residual
-from reports.scoring.self_check import step_halving
-from reports.scoring.truth import NamedTruth
+from reports.scoring import NamedTruth, Residual, measure, step_halving
 from scenarios import Scenario
 from scenarios.trajectory import Trajectory
 

@@ -20,12 +20,16 @@ from reports.run.engine_facts import colours, engine_packages
 from reports.run.rows import result_row
 from reports.run.runner import reference_residual
 from reports.run.trajectory_file import ImportedTrajectory
-from reports.scoring.comparison import measure
-from reports.scoring.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
-from reports.scoring.metrics import HEADLINE_DEFINITION, Residual
-from reports.scoring.truth import NamedTruth, independent_truth
-from reports.store import provenance
-from reports.store.results_store import ResultsStore
+from reports.scoring import (
+    HEADLINE_DEFINITION,
+    LEVEL_COLUMNS,
+    SCALE_DEFINITION,
+    NamedTruth,
+    Residual,
+    independent_truth,
+    measure,
+)
+from reports.store import ResultsStore, provenance
 from scenarios.scenario import Level, Scenario
 
 IMPORTED = Setting.of("imported")

@@ -27,7 +27,7 @@ import numpy as np
 from adapters.base import Adapter
 from reports.run.group_runs import RunConfig, Workers
 from reports.run.isolation import Worker
-from reports.scoring.metrics import Residual
+from reports.scoring import Residual
 from scenarios import Scenario
 
 TruthWorker = Worker[Scenario, Any]

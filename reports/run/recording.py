@@ -19,10 +19,8 @@ from typing import Any
 import numpy as np
 
 from reports.run.rows import ranks
-from reports.scoring.agreement import pair_differences, widest
-from reports.scoring.level_error import level_series
-from reports.store.columns import ERROR_SERIES
-from reports.store.results_store import TRUTH, Key, ResultsStore, stored_truths
+from reports.scoring import level_series, pair_differences, widest
+from reports.store import ERROR_SERIES, TRUTH, Key, ResultsStore, stored_truths
 from scenarios.scenario import LEVELS
 from scenarios.trajectory import Trajectory
 

@@ -14,10 +14,10 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from reports.store.columns import NOT_RUN
+from reports.store import NOT_RUN
 
 if TYPE_CHECKING:
-    from reports.store.results_store import Key, ResultsStore
+    from reports.store import Key, ResultsStore
 
 RETRIED = ("failed", "timeout")
 RETRY, STALE, NO_TRAJECTORY, RERUN = "retry", "stale", "trajectory missing", "rerun"

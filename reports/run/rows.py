@@ -10,12 +10,8 @@ from typing import Any
 
 import adapters
 from adapters.base import RunResult, Setting, Status
-from reports.scoring import self_check
-from reports.scoring.level_error import characteristic_rate
-from reports.scoring.lost import lost
-from reports.store.columns import NOT_RUN, empty_row
-from reports.store.provenance import now
-from reports.store.scenario_identity import digest
+from reports.scoring import characteristic_rate, lost, self_check
+from reports.store import NOT_RUN, empty_row, provenance, scenario_identity
 from scenarios import catalogue
 from scenarios.kept import kept
 from scenarios.scenario import Scenario
@@ -43,7 +39,7 @@ def base_row(
         characteristic_length=scenario.characteristic_length,
         characteristic_rate=characteristic_rate(scenario),
         host=socket.gethostname(),
-        recorded_at=now(),
+        recorded_at=provenance.now(),
         **ranks(scenario.name, engine),
     )
     return row
@@ -53,7 +49,7 @@ def base_row(
 def scenario_digest(scenario: Scenario) -> str:
     """scenarios.identity.digest, once per scenario (every row of a scenario states it: about 0.3
     to 0.8 ms each, a file's text hashed; equal scenarios have the same digest)."""
-    return digest(scenario)
+    return scenario_identity.digest(scenario)
 
 
 def ranks(scenario: str, engine: str) -> dict[str, int]:

@@ -36,16 +36,17 @@ from reports.run.group_runs import RunConfig, Workers, run_group
 from reports.run.isolation import Outcome, run_here, run_isolated
 from reports.run.planning import NOT_INSTALLED, Group, SettingsHook, plan_engine
 from reports.run.resume import ResumePolicy, StoredRuns
-from reports.scoring.common_start import common_start
-from reports.scoring.forces import TRUTH_TOLERANCE
-from reports.scoring.level_error import SCALE_DEFINITION
-from reports.scoring.metrics import (
+from reports.scoring import (
     HEADLINE_DEFINITION,
+    SCALE_DEFINITION,
+    TRUTH_TOLERANCE,
+    NamedTruth,
     Residual,
+    common_start,
+    independent_truth,
+    named,
 )
-from reports.scoring.truth import NamedTruth, independent_truth, named
-from reports.store import provenance
-from reports.store.results_store import ResultsStore
+from reports.store import ResultsStore, provenance
 from scenarios import Scenario, ScenarioError
 from scenarios import load as build_scenario
 from scenarios.trajectory import Trajectory

@@ -7,12 +7,15 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from reports.scoring.energy_drift import DRIFT_DEFINITION
-from reports.scoring.forces import FORCE_DEFINITION
-from reports.scoring.level_error import LEVEL_COLUMNS, SCALE_DEFINITION
-from reports.scoring.metrics import METRIC_COLUMNS
-from reports.scoring.startup import STARTUP_DEFINITION
-from reports.scoring.truth import CLOSED_FORM
+from reports.scoring import (
+    CLOSED_FORM,
+    DRIFT_DEFINITION,
+    FORCE_DEFINITION,
+    LEVEL_COLUMNS,
+    METRIC_COLUMNS,
+    SCALE_DEFINITION,
+    STARTUP_DEFINITION,
+)
 
 __all__ = [
     "CLOSED_FORM",

@@ -20,9 +20,8 @@ from typing import Any
 import numpy as np
 
 from reference_solver import constraint_residual
-from reports.scoring.metrics import headline_series
-from reports.store.results_store import ResultsStore, stored_truths
-from reports.store.scenario_identity import stored_scenario
+from reports.scoring import headline_series
+from reports.store import ResultsStore, stored_scenario, stored_truths
 from reports.stress.cases import CASES, StressCase
 from reports.stress.stability_map import columns, judge
 from scenarios.scenario import Scenario

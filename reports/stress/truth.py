@@ -20,8 +20,7 @@ import dataclasses
 
 import numpy as np
 
-from reports.scoring.forces import TRUTH_TOLERANCE
-from reports.scoring.truth import CLOSED_FORM, closed_form, partial_truth
+from reports.scoring import CLOSED_FORM, TRUTH_TOLERANCE, closed_form, partial_truth
 from reports.stress.cases import StressCase, case
 from scenarios.identity import family_twin
 from scenarios.scenario import Scenario
