@@ -27,7 +27,7 @@ from adapters.timing import enough
 from reports import suites
 from reports.run.group_runs import AGREE, LONG_RUN
 from reports.run.planning import plan_engine
-from reports.scoring.common_start import common_start
+from reports.scoring.assembly import consistent_start
 from scenarios import load as build_scenario
 
 
@@ -36,7 +36,7 @@ def repeat_times(engines: list[str], low: float, high: float, repeats: int) -> l
     found = []
     loaded = {engine: adapters.load(engine) for engine in engines}
     for name in suites.main_scenarios():
-        scenario = common_start(build_scenario(name))
+        scenario = consistent_start(build_scenario(name))
         grid = np.asarray(scenario.times(), dtype=float)
         for engine, adapter in loaded.items():
             for setting, _ in plan_engine(scenario, engine, adapter, True, None).jobs:

@@ -42,7 +42,6 @@ KNOBS = (
         f"RK4's error on the constraint mode falls as (dt/tc)^4: {_steps(TC_LADDER)} steps with the "
         f"regulariser scaled (default {TC_STEPS:g}), {_steps(OWN_TC_LADDER)} with MuJoCo's own",
     ),
-    Knob("tc_steps", NOT_APPLICABLE, "the older spelling of tc, in steps: swept as tc"),
     Knob(
         "invweight",
         SWEPT,

@@ -7,11 +7,20 @@ from reports.face import load
 
 if TYPE_CHECKING:
     from reports.cli.compare_command import check_label
-    from reports.cli.main import main, parser, solve_trajectory
+    from reports.cli.main import main as command_line
+    from reports.cli.main import parser, solve_trajectory
     from reports.cli.suite_commands import run_and_render, select
     from reports.cli.usage import UsageError
 
-__all__ = ["UsageError", "check_label", "main", "parser", "run_and_render", "select", "solve_trajectory"]
+__all__ = [
+    "UsageError",
+    "check_label",
+    "command_line",
+    "parser",
+    "run_and_render",
+    "select",
+    "solve_trajectory",
+]
 
 
 def __getattr__(name: str) -> object:

@@ -42,7 +42,7 @@ from reports.scoring import (
     TRUTH_TOLERANCE,
     NamedTruth,
     Residual,
-    common_start,
+    consistent_start,
     independent_truth,
     named,
 )
@@ -174,7 +174,7 @@ class Runner:
     # --- planning ---------------------------------------------------------------------------
     def _plan(self, name: str) -> list[Group]:
         try:
-            scenario = common_start(build_scenario(name))
+            scenario = consistent_start(build_scenario(name))
         except ScenarioError as error:
             raise ScenarioError(f"suite scenario {name} cannot be built: {error}") from error
         return [

@@ -8,12 +8,12 @@ from reports.face import load
 if TYPE_CHECKING:
     from reports.scoring import self_check
     from reports.scoring.agreement import pair_differences, widest
-    from reports.scoring.common_start import common_start
+    from reports.scoring.assembly import consistent_start
     from reports.scoring.comparison import measure
+    from reports.scoring.divergence import lost
     from reports.scoring.energy_drift import DRIFT_DEFINITION, drift_series
     from reports.scoring.forces import FORCE_DEFINITION, TRUTH_TOLERANCE
     from reports.scoring.level_error import LEVEL_COLUMNS, SCALE_DEFINITION, characteristic_rate, level_series
-    from reports.scoring.lost import lost
     from reports.scoring.metrics import HEADLINE_DEFINITION, METRIC_COLUMNS, Residual, headline_series
     from reports.scoring.self_check import step_halving
     from reports.scoring.startup import STARTUP_DEFINITION
@@ -42,7 +42,7 @@ __all__ = [
     "Residual",
     "characteristic_rate",
     "closed_form",
-    "common_start",
+    "consistent_start",
     "drift_series",
     "headline_series",
     "independent_truth",

@@ -13,8 +13,7 @@ A save starts only on a store whose state is understood (layout.inspect): a miss
 `current`, or a generation whose sidecar does not account for its files, is refused with the
 command that repairs it, and nothing is written or collected. After its switch a save keeps the
 newest KEEP generations (the new one and the ones before it, each accounted for) and collects the
-older ones; leftovers of interrupted saves (tmp-*) are removed. A store written before generations
-(plain files in DIR) is read without checksums and converted by its next save.
+older ones; leftovers of interrupted saves (tmp-*) are removed.
 """
 
 from __future__ import annotations
@@ -51,8 +50,8 @@ Writer = Callable[[Path], object]
 
 
 def committed(directory: str | os.PathLike[str]) -> Path | None:
-    """The directory holding the committed files: the current generation, DIR itself for a store
-    from before generations, or None for no store. StoreDamaged for a state not understood."""
+    """The directory holding the committed files (the current generation), or None for no store.
+    StoreDamaged for a state not understood."""
     return inspect(directory).committed()
 
 
@@ -154,7 +153,7 @@ def switch(root: Path, generation: Path) -> None:
 
 
 def link_public(root: Path, names: Iterable[str]) -> None:
-    """DIR/name -> current/name for each file (replacing a pre-generation plain file by rename)."""
+    """DIR/name -> current/name for each file (replacing by rename a plain file a repair adopted)."""
     for name in names:
         path, target = root / name, Path(CURRENT) / name
         if path.is_symlink() and Path(os.readlink(path)) == target:

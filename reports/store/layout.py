@@ -26,7 +26,7 @@ from scenarios.files.bounded_read import MiB, read_bounded_text
 SCHEMA_VERSION = 1
 """The rows' schema (the gate's baselines share it)."""
 GENERATIONS, CURRENT, SIDECAR = ".generations", "current", "results.json"
-LEGACY = "results.parquet"  # what a store from before generations (or a plain copy) holds in DIR
+PLAIN = "results.parquet"  # a plain rows table in DIR that no generation holds: a layout not read
 GENERATION = re.compile(r"g\d{6,}")
 TEMPORARY = "tmp-"  # an unfinished save, or a generation being collected: never read
 QUARANTINE = "quarantine-"  # what repair moved aside: never read, never collected
@@ -63,23 +63,20 @@ def number(name: str) -> int:
 
 @dataclass(frozen=True)
 class StoreState:
-    """What a store directory holds: its generations (oldest first), the one `current` names,
-    whether it is a store from before generations, and what is not understood (None: all is)."""
+    """What a store directory holds: its generations (oldest first), the one `current` names, and
+    what is not understood (None: all is)."""
 
     root: Path
     generations: tuple[str, ...]
     current: str | None
-    legacy: bool
     problem: str | None
 
     def committed(self) -> Path | None:
-        """The folder of the committed files (DIR itself for a legacy store), None for no store;
-        StoreDamaged when the state is not understood."""
+        """The folder of the committed files, None for no store; StoreDamaged when the state is not
+        understood."""
         if self.problem is not None:
             raise not_understood(self.root, self.problem)
-        if self.current is not None:
-            return self.root / GENERATIONS / self.current
-        return self.root if self.legacy else None
+        return None if self.current is None else self.root / GENERATIONS / self.current
 
 
 def generation_names(home: Path) -> list[str]:
@@ -96,8 +93,9 @@ def inspect(directory: str | os.PathLike[str]) -> StoreState:
     current, problem = _current(root, generations)
     if problem is None:
         problem = next(filter(None, (_unaccounted(root, name) for name in generations)), None)
-    legacy = current is None and problem is None and (root / LEGACY).exists()
-    return StoreState(root, tuple(generations), current, legacy, problem)
+    if current is None and problem is None and (root / PLAIN).exists() and not (root / PLAIN).is_symlink():
+        problem = f"{PLAIN} is a plain file that no generation holds"
+    return StoreState(root, tuple(generations), current, problem)
 
 
 def _current(root: Path, generations: list[str]) -> tuple[str | None, str | None]:
@@ -156,12 +154,10 @@ MAX_SIDECAR_BYTES = 64 * MiB
 
 
 def read_sidecar(generation: Path, root: Path) -> dict[str, Any]:
-    """The sidecar of a generation ({} when a pre-generation store has none)."""
+    """The sidecar of a generation."""
     path = generation / SIDECAR
     if not path.is_file():
-        if generation != root:
-            raise damaged(root, f"{SIDECAR} is missing")
-        return {}
+        raise damaged(root, f"{SIDECAR} is missing")
     try:
         meta = json.loads(read_bounded_text(path, MAX_SIDECAR_BYTES, "results sidecar"))
     except (OSError, ValueError) as error:  # FileRefused among them
@@ -178,9 +174,7 @@ def verify(generation: Path, root: Path, meta: Mapping[str, Any]) -> set[str]:
     that are absent (the caller decides which may be rebuilt). Raises StoreDamaged on a mismatch."""
     files = meta.get("files")
     if files is None:
-        if generation != root:
-            raise damaged(root, f"{SIDECAR} lists no checksums")
-        return set()  # a store from before checksums
+        raise damaged(root, f"{SIDECAR} lists no checksums")
     if not isinstance(files, dict):
         raise damaged(root, f"{SIDECAR} has a malformed file list")
     absent = set()

@@ -38,7 +38,6 @@ from reports.store.layout import (
 from reports.store.results_store import RESULTS, TRAJECTORIES, missing_rows, read_results
 
 PUBLIC = (RESULTS, SIDECAR, TRAJECTORIES)
-LEGACY = "legacy"
 
 
 class Repair:
@@ -60,8 +59,7 @@ class Repair:
         for name in generation_names(self.home):
             self._check(name)
         current = self._current()
-        if self._adopt_plain_files() == LEGACY:
-            return self.lines
+        self._adopt_plain_files()
         if current is None:
             current = self._point_current()
         store_files.link_public(self.root, PUBLIC)
@@ -97,16 +95,12 @@ class Repair:
             self._aside(link, CURRENT, f"{CURRENT} is a regular file, not a link")
         return None
 
-    def _adopt_plain_files(self) -> str | None:
+    def _adopt_plain_files(self) -> None:
         """Plain files where DIR's links belong (a copy that followed the links): adopted when
-        their sidecar verifies them, else moved aside; a store from before generations is left
-        (LEGACY)."""
+        their sidecar verifies them, else moved aside."""
         plain = [n for n in PUBLIC if (self.root / n).exists() and not (self.root / n).is_symlink()]
         if not plain:
-            return None
-        if not self.good and "files" not in _sidecar_or_empty(self.root):
-            self.lines.append("a store from before generations: left as it is (its next save converts it)")
-            return LEGACY
+            return
         folder = self.home / f"{TEMPORARY}adopt-{self.stamp}"  # copies: the originals stay until
         folder.mkdir()  # their generation is committed, so a repair stopped here loses nothing
         for name in plain:
@@ -118,7 +112,6 @@ class Repair:
                 shutil.copy2(self.root / name, folder / name)
             store_files.sync_path(folder / name)
         self._adopt(folder, "files", "the plain files in the store's directory")
-        return None
 
     def _adopt(self, folder: Path, label: str, what: str) -> None:
         """A folder of a generation's files: a duplicate of a verified one is removed, a new one
@@ -184,10 +177,3 @@ def unlisted_parts(generation: Path) -> list[Path]:
     listed = set(read_sidecar(generation, generation.parent.parent).get("files") or {})
     folders = [generation / t for t in (RESULTS, TRAJECTORIES) if (generation / t).is_dir()]
     return sorted(p for f in folders for p in f.iterdir() if f"{f.name}/{p.name}" not in listed)
-
-
-def _sidecar_or_empty(folder: Path) -> dict[str, object]:
-    try:
-        return read_sidecar(folder, folder)
-    except StoreDamaged:
-        return {}

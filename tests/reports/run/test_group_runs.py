@@ -11,7 +11,7 @@ import numpy as np
 from adapters.base import Setting
 from reports.run.group_runs import RunConfig, Workers, run_group
 from reports.run.planning import plan_engine
-from reports.scoring.common_start import common_start
+from reports.scoring.assembly import consistent_start
 from reports.scoring.truth import NamedTruth
 from scenarios import load as build_scenario
 from tests.support.fake_engine import GOOD, FakeAdapter, fake_truth
@@ -27,7 +27,7 @@ def test_one_worker_serves_every_group_of_an_engine(tmp_path: Path) -> None:
     adapter = FakeAdapter(tmp_path / "log")
     groups = []
     for name in ("slider_crank", "four_bar", "slider_crank[offset=0.05]"):  # other bodies, grids
-        scenario = common_start(build_scenario(name))
+        scenario = consistent_start(build_scenario(name))
         groups.append(plan_engine(scenario, "fake", adapter, True, crash_between))
     with Workers(CONFIG, None) as workers:
         made = []
@@ -50,7 +50,7 @@ def test_only_a_kept_trajectory_comes_back_from_the_worker(tmp_path: Path) -> No
     """A run's trajectory crosses the pipe only when the row keeps it (the default setting's):
     the others' errors are measured in the child, and their trajectories stay there."""
     adapter = FakeAdapter(tmp_path / "log")
-    scenario = common_start(build_scenario("four_bar"))
+    scenario = consistent_start(build_scenario("four_bar"))
     group = plan_engine(scenario, "fake", adapter, True, None)
     truth = NamedTruth(fake_truth(scenario, np.asarray(scenario.times())), "fake")
     with Workers(CONFIG, None) as workers:
@@ -72,7 +72,7 @@ class UntunedFake(FakeAdapter):
 
 
 def test_the_untuned_setting_runs_beside_the_ladder_and_its_row_says_so(tmp_path: Path) -> None:
-    scenario = common_start(build_scenario("four_bar"))
+    scenario = consistent_start(build_scenario("four_bar"))
     group = plan_engine(scenario, "fake", UntunedFake(tmp_path / "log"), True, None)
     assert [s.label for s, _ in group.jobs] == [*(s.label for s in GOOD), "good dt=0.1"]
     truth = NamedTruth(fake_truth(scenario, np.asarray(scenario.times())), "fake")

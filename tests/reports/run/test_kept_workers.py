@@ -19,7 +19,7 @@ from reports.run.dask_backend import group_task, truth_task
 from reports.run.group_runs import RunConfig, run_group
 from reports.run.planning import Group, plan_engine
 from reports.run.runner import reference_residual, solve_truth
-from reports.scoring.common_start import common_start
+from reports.scoring.assembly import consistent_start
 from reports.scoring.truth import NamedTruth, independent_truth
 from reports.store.columns import WALL_COLUMNS
 from scenarios import load as build_scenario
@@ -64,7 +64,7 @@ def in_thread(task: Callable[[], T]) -> T:
 def shipped(name: str) -> Group:
     """The reference engine's group of `name`, as the Dask runner ships it (no adapter)."""
     group = plan_engine(
-        common_start(build_scenario(name)), "reference", adapters.load("reference"), True, None
+        consistent_start(build_scenario(name)), "reference", adapters.load("reference"), True, None
     )
     return Group(group.scenario, group.engine, None, group.version, group.jobs)
 

@@ -5,14 +5,14 @@ from __future__ import annotations
 import dataclasses
 
 from reports.run.rows import scenario_digest
-from reports.scoring.common_start import common_start
+from reports.scoring.assembly import consistent_start
 from scenarios import load as build_scenario
 from scenarios.identity import digest
 
 
 def test_the_digest_is_the_scenario_s_and_computed_once() -> None:
     names = ("four_bar", "cam_roller/spline", "four_bar[omega=20]", "four_bar[omega=30]")
-    scenarios = [common_start(build_scenario(name)) for name in names]
+    scenarios = [consistent_start(build_scenario(name)) for name in names]
     before = scenario_digest.cache_info()  # type: ignore[attr-defined]
     for scenario in scenarios * 3:
         assert scenario_digest(scenario) == digest(scenario)

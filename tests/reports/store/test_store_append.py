@@ -215,12 +215,11 @@ def test_a_second_writer_is_refused_and_the_parts_stay(store: ResultsStore) -> N
     assert parts(out) == before
 
 
-@pytest.mark.parametrize("generations", [True, False], ids=["generations", "before generations"])
 def test_a_store_from_before_parts_loads_and_its_first_save_converts_it(
-    store: ResultsStore, tmp_path: Path, generations: bool
+    store: ResultsStore, tmp_path: Path
 ) -> None:
-    old = write_schema_1(tmp_path / "old", store.directory, generations=generations)
-    single = old / (GENERATIONS + "/g000001" if generations else "") / RESULTS
+    old = write_schema_1(tmp_path / "old", store.directory)
+    single = old / GENERATIONS / "g000001" / RESULTS
     assert single.is_file()
     expected = single_file_frame(store.rows, tmp_path / "single.parquet")
     pd.testing.assert_frame_equal(read_results(old)[0], expected, check_dtype=True)
@@ -231,8 +230,7 @@ def test_a_store_from_before_parts_loads_and_its_first_save_converts_it(
     loaded.save(dict(loaded.meta))
     assert (old / RESULTS).is_symlink() and (old / "current" / RESULTS).is_dir()
     assert len(read_results(old)[0]) == 305 and same_rows(ResultsStore(old).rows, loaded.rows)
-    if generations:  # the old generation is kept as it was, a generation to go back to
-        assert single.is_file() and len(pd.read_parquet(single)) == 300
+    assert single.is_file() and len(pd.read_parquet(single)) == 300  # kept, a generation to go back to
 
 
 def test_lost_trajectory_parts_are_lost_trajectories_not_damage(store: ResultsStore) -> None:

@@ -21,7 +21,7 @@ MOVED = 1e-12
 their largest) is already consistent: the scenario is kept as written."""
 
 
-def common_start(scenario: Scenario) -> Scenario:
+def consistent_start(scenario: Scenario) -> Scenario:
     """The scenario with the native assembled start as its bodies' guesses and rates (dynamic only;
     unchanged where the native solver cannot assemble it: every engine then says why itself)."""
     if scenario.analysis != "dynamic":

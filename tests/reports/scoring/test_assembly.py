@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import adapters
-from reports.scoring.common_start import common_start
+from reports.scoring.assembly import consistent_start
 from scenarios import load
 from scenarios.files.writer import scenario_toml
 from tests.support.engines import COMPARED
@@ -28,15 +28,15 @@ def off_by_a_millimetre(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 def test_a_consistent_start_is_kept_as_written() -> None:
     scenario = load("four_bar_gravity")
-    assert common_start(scenario) is scenario
+    assert consistent_start(scenario) is scenario
     kinematic = load("four_bar")
-    assert common_start(kinematic) is kinematic
+    assert consistent_start(kinematic) is kinematic
 
 
 @pytest.mark.parametrize("engine", COMPARED)
 def test_every_engine_starts_from_the_native_assembly(off_by_a_millimetre: Path, engine: str) -> None:
     written = load(str(off_by_a_millimetre))
-    scenario = common_start(written)
+    scenario = consistent_start(written)
     assert scenario is not written
     times = np.asarray(scenario.times())
     native = adapters.load("reference").run(scenario, None, times).trajectory

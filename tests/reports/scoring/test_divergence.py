@@ -11,7 +11,7 @@ import pytest
 import scenarios
 from adapters.base import RunResult, Setting
 from reports.run.rows import result_row
-from reports.scoring.lost import LOST_LIMIT
+from reports.scoring.divergence import LOST_LIMIT
 
 
 def row(name: str, position_error: float, status: str = "ok") -> dict:  # type: ignore[type-arg]
