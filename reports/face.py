@@ -1,8 +1,9 @@
-"""A package's face: the short list of names it offers other packages (its `__all__`), each loaded
-from the module that defines it on first use.
+"""A package's face: the short list of names it offers other packages, each loaded from the module
+that defines it on first use.
 
-A face's `__init__` imports what it offers under TYPE_CHECKING, so that a reader and the type
-checker see where every name comes from, and hands attribute lookups to `load`. Nothing is
+A face's `__init__` lists what it offers as re-exports under TYPE_CHECKING (`from
+reports.store.lock import WriterLock as WriterLock`), so that a reader and the type checker see
+where every name comes from, and hands attribute lookups to `load`. Nothing is
 imported before it is asked for: the command line's start reads light names (a lock, a stop flag)
 from the same faces as the heavy ones (the store's tables need pandas, the recordings the native
 solver, the report its figures) and imports none of the heavy modules

@@ -14,7 +14,7 @@ level or inside a function, found with `ast`; nothing is imported):
 - inside `reports`, each part (a package or a module) sits in one of REPORTS_LAYERS and imports only
   parts of the layers below it, so no arrow runs back up; the packages of every package of ours
   import each other without a cycle;
-- a package of `reports` offers other packages a face, the names of its `__init__`'s `__all__`, and
+- a package of `reports` offers other packages a face, the names its `__init__` re-exports, and
   the modules of `reports` and `mbxval` import only that face, never a module behind it (benchmarks
   and tests may reach further: they time and test the parts).
 """
@@ -294,12 +294,17 @@ def test_the_cycle_search_sees_a_cycle(tmp_path: Path, monkeypatch: pytest.Monke
 
 
 def face(package: str) -> set[str]:
-    """The names the face of `package` (its `__init__`'s `__all__`) offers."""
+    """The names the face of `package` offers: its `__init__`'s re-exports under TYPE_CHECKING
+    (reports.face)."""
     tree = ast.parse((ROOT / package.replace(".", "/") / "__init__.py").read_text())
-    for node in tree.body:
-        if isinstance(node, ast.Assign) and any(getattr(t, "id", "") == "__all__" for t in node.targets):
-            return set(ast.literal_eval(node.value))
-    return set()
+    return {
+        alias.asname or alias.name
+        for node in tree.body
+        if isinstance(node, ast.If) and ast.unparse(node.test) == "TYPE_CHECKING"
+        for statement in node.body
+        if isinstance(statement, ast.ImportFrom)
+        for alias in statement.names
+    }
 
 
 def behind_a_face(source: str, module: str) -> list[str]:

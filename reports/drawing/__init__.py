@@ -8,11 +8,11 @@ from typing import TYPE_CHECKING
 
 from reports.face import load
 
-if TYPE_CHECKING:
-    from reports.drawing import files
-    from reports.drawing.drawing import MAX_FRAMES, DrawingError, draw_svg
-
-__all__ = ["MAX_FRAMES", "DrawingError", "draw_svg", "files"]
+if TYPE_CHECKING:  # the face: what the package offers, each loaded on first use (reports.face)
+    from reports.drawing import files as files
+    from reports.drawing.drawing import MAX_FRAMES as MAX_FRAMES
+    from reports.drawing.drawing import DrawingError as DrawingError
+    from reports.drawing.drawing import draw_svg as draw_svg
 
 
 def __getattr__(name: str) -> object:

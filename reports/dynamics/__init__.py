@@ -7,10 +7,9 @@ from typing import TYPE_CHECKING
 
 from reports.face import load
 
-if TYPE_CHECKING:
-    from reports.dynamics import cases, recording
-
-__all__ = ["cases", "recording"]
+if TYPE_CHECKING:  # the face: what the package offers, each loaded on first use (reports.face)
+    from reports.dynamics import cases as cases
+    from reports.dynamics import recording as recording
 
 
 def __getattr__(name: str) -> object:

@@ -5,36 +5,21 @@ from typing import TYPE_CHECKING
 
 from reports.face import load
 
-if TYPE_CHECKING:
-    from reports.run import recording, stop, sweep
-    from reports.run.dask_backend import DaskRunner
-    from reports.run.engine_facts import engine_packages
-    from reports.run.group_runs import RunConfig
-    from reports.run.imported import Score, add_to_store, score
-    from reports.run.runner import Runner
-    from reports.run.trajectory_file import (
-        ImportedTrajectory,
-        TrajectoryFileError,
-        parse_trajectory,
-        read_trajectory,
-    )
-
-__all__ = [
-    "DaskRunner",
-    "ImportedTrajectory",
-    "RunConfig",
-    "Runner",
-    "Score",
-    "TrajectoryFileError",
-    "add_to_store",
-    "engine_packages",
-    "parse_trajectory",
-    "read_trajectory",
-    "recording",
-    "score",
-    "stop",
-    "sweep",
-]
+if TYPE_CHECKING:  # the face: what the package offers, each loaded on first use (reports.face)
+    from reports.run import recording as recording
+    from reports.run import stop as stop
+    from reports.run import sweep as sweep
+    from reports.run.dask_backend import DaskRunner as DaskRunner
+    from reports.run.engine_facts import engine_packages as engine_packages
+    from reports.run.group_runs import RunConfig as RunConfig
+    from reports.run.imported import Score as Score
+    from reports.run.imported import add_to_store as add_to_store
+    from reports.run.imported import score as score
+    from reports.run.runner import Runner as Runner
+    from reports.run.trajectory_file import ImportedTrajectory as ImportedTrajectory
+    from reports.run.trajectory_file import TrajectoryFileError as TrajectoryFileError
+    from reports.run.trajectory_file import parse_trajectory as parse_trajectory
+    from reports.run.trajectory_file import read_trajectory as read_trajectory
 
 
 def __getattr__(name: str) -> object:

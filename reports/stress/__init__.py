@@ -7,12 +7,12 @@ from typing import TYPE_CHECKING
 
 from reports.face import load
 
-if TYPE_CHECKING:
-    from reports.stress import recording
-    from reports.stress.cases import scenario_names, stress_settings
-    from reports.stress.truth import stress_truth, stress_truth_name
-
-__all__ = ["recording", "scenario_names", "stress_settings", "stress_truth", "stress_truth_name"]
+if TYPE_CHECKING:  # the face: what the package offers, each loaded on first use (reports.face)
+    from reports.stress import recording as recording
+    from reports.stress.cases import scenario_names as scenario_names
+    from reports.stress.cases import stress_settings as stress_settings
+    from reports.stress.truth import stress_truth as stress_truth
+    from reports.stress.truth import stress_truth_name as stress_truth_name
 
 
 def __getattr__(name: str) -> object:
