@@ -35,14 +35,7 @@ import pandas as pd
 from reports.store import files as store_files
 from reports.store.columns import DECLARED
 from reports.store.layout import read_sidecar, verify
-from reports.store.results_store import (
-    RESULTS,
-    TRAJECTORIES,
-    ResultsStore,
-    key_of,
-    read_results,
-    rows_frame,
-)
+from reports.store.results_store import RESULTS, TRAJECTORIES, ResultsStore, key_of, read_results, rows_frame
 
 ENGINES = {
     "reference": ("native", ["newton tol=1e-10", "newton tol=1e-12", "fast tol=1e-10"]),

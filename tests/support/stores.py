@@ -9,7 +9,13 @@ from pathlib import Path
 
 import pandas as pd
 
+from reports.store.columns import WALL_COLUMNS
 from reports.store.results_store import ResultsStore, key_of, read_results
+
+RUN_TIMES = ("build_time", "run_time", "warmup_time", "repeats_time", *(c.name for c in WALL_COLUMNS))
+"""The columns a run's clocks fill: never the same in two runs of one setting."""
+WHERE_AND_WHEN = ("recorded_at", "host", "workers")
+"""The columns that say when, on which machine and with how many workers a row was made."""
 
 
 def doctor(source: Path, target: Path, edit: Callable[[pd.DataFrame], None]) -> Path:

@@ -16,21 +16,12 @@ from adapters.threads import blas_threads
 from reports.cli.main import main
 from reports.run.dask_backend import DaskRunner, local_cluster, warm_plugin
 from reports.run.runner import RunConfig, Runner
-from reports.store.columns import WALL_COLUMNS
 from reports.store.results_store import KEY, ResultsStore, read_results
 from tests.support.fake_engine import fake_loader, fake_truth
+from tests.support.stores import RUN_TIMES, WHERE_AND_WHEN
 
 QUICK = RunConfig(ladder=False, repeats=1, warmup=0, timeout=120.0)
-TIMING = [
-    "build_time",
-    "run_time",
-    "warmup_time",
-    "repeats_time",
-    *(column.name for column in WALL_COLUMNS),
-    "recorded_at",
-    "host",
-    "workers",
-]
+TIMING = (*RUN_TIMES, *WHERE_AND_WHEN)
 SCENARIOS = ["slider_crank", "four_bar[crank_length=0.08]"]  # the second meets a dead point
 ENGINES = ["reference", "mujoco"]
 

@@ -21,19 +21,12 @@ from reports.run.planning import Group, plan_engine
 from reports.run.runner import reference_residual, solve_truth
 from reports.scoring.assembly import consistent_start
 from reports.scoring.truth import NamedTruth, independent_truth
-from reports.store.columns import WALL_COLUMNS
 from scenarios import load as build_scenario
+from tests.support.stores import RUN_TIMES
 
 CONFIG = RunConfig(repeats=1, warmup=0, timeout=60.0)
 SCENARIOS = ("slider_crank", "four_bar", "cam_roller")  # the cam's residual takes the plain rows
-TIMING = (
-    "build_time",
-    "run_time",
-    "warmup_time",
-    "repeats_time",
-    *(c.name for c in WALL_COLUMNS),
-    "recorded_at",
-)
+TIMING = (*RUN_TIMES, "recorded_at")
 T = TypeVar("T")
 
 

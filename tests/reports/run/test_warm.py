@@ -16,24 +16,14 @@ from adapters.base import Adapter, Setting
 from reports.run import warm
 from reports.run.isolation import run_isolated
 from reports.run.runner import RunConfig, Runner
-from reports.store.columns import WALL_COLUMNS
 from reports.store.results_store import KEY, ResultsStore, read_results
 from scenarios import Scenario
 from scenarios import load as build_scenario
 from tests.support.fake_engine import GOOD, fake_loader, fake_truth
+from tests.support.stores import RUN_TIMES, WHERE_AND_WHEN
 
 CONFIG = RunConfig(ladder=True, repeats=1, warmup=0, timeout=3.0)
-TIMING = [
-    "build_time",
-    "run_time",
-    "warmup_time",
-    "repeats_time",
-    *(column.name for column in WALL_COLUMNS),
-    "recorded_at",
-    "host",
-    "workers",
-    "revision",
-]
+TIMING = (*RUN_TIMES, *WHERE_AND_WHEN, "revision")
 
 
 def test_a_forked_run_inherits_the_warmed_kernels_and_program() -> None:
