@@ -10,7 +10,7 @@ level or inside a function, found with `ast`; nothing is imported):
 - `reports/render` reads a results store: everything a report shows (verdicts, branch checks,
   truths, labels) is decided when the run is made and stored, so no module of it imports the
   solver, an engine, the stress or dynamics cases, or rebuilds a scenario; of the store it
-  names only the column declarations and the store's reader and writer (RENDER_READS);
+  names only the column declarations, its reader and the atomic writer (RENDER_READS, STORE_READ);
 - inside `reports`, each part (a package or a module) sits in one of REPORTS_LAYERS and imports only
   parts of the layers below it, so no arrow runs back up; the packages of every package of ours
   import each other without a cycle;
