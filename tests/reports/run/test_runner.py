@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import shutil
 from pathlib import Path
 
 import pandas as pd
@@ -13,7 +14,6 @@ import pytest
 from reports.run.runner import HOOK_TRUTH, RunConfig, Runner
 from reports.store.results_store import TRUTH, ResultsStore, read_results, read_trajectories
 from tests.support.fake_engine import BAD, GOOD, fake_loader, fake_truth
-from tests.support.stores import copy_entry
 
 SCENARIO = "slider_crank"
 CONFIG = RunConfig(repeats=2, warmup=1, timeout=1.5)
@@ -105,10 +105,7 @@ def test_default_trajectory_and_truth_are_stored(first_run) -> None:
 def test_a_resumed_run_redoes_only_the_missing_rows(first_run, tmp_path: Path) -> None:
     source, _, _ = first_run
     directory = tmp_path / "resumed"
-    directory.mkdir()
-    for file in source.glob("*.parquet"):
-        copy_entry(file, directory / file.name)
-    (directory / "results.json").write_text((source / "results.json").read_text())
+    shutil.copytree(source, directory, symlinks=True, ignore=shutil.ignore_patterns("calls.log"))
     frame, meta = read_results(directory)
     store = ResultsStore(directory)
     del store.rows[(SCENARIO, "fake", "good dt=0.01")]  # as if interrupted before that run
@@ -126,9 +123,7 @@ def test_a_later_plan_reconciles_the_stored_rows(first_run, tmp_path: Path) -> N
     its 'unavailable' row and gains its runs."""
     source, log, frame = first_run
     directory = tmp_path / "later"
-    directory.mkdir()
-    for file in source.glob("results.*"):
-        copy_entry(file, directory / file.name)
+    shutil.copytree(source, directory, symlinks=True)
     available = fake_loader(log)
 
     def loader(name: str):  # type: ignore[no-untyped-def]
