@@ -17,8 +17,7 @@ A subclass provides exactly:
                                                (and may say why it departs from the engine's usual
                                                one: default_reason(scenario) -> str)
     ladder(scenario) -> list[Setting]          the settings ladder: settings for the work-precision
-                                               curves (`sweep`, its old name, still works: deprecated);
-                                               a mode named UNTUNED in it is the engine's own
+                                               curves; a mode named UNTUNED in it is the engine's own
                                                defaults (`untuned_setting` finds it)
     build(scenario, setting) -> model          the engine's own model (not timed)
     simulate(model, times) -> Trajectory       the timed part; must not depend on earlier calls.
@@ -101,11 +100,9 @@ class Adapter:
     """Whether the engine runs forward dynamics (scenarios whose `analysis` is "dynamic")."""
     colour: ClassVar[str] = ""
     """The engine's colour in the report's figures, `#rrggbb` or `#rgb`, stored with its runs ('' for
-    one from a shared palette; anything else is warned about and given one: reports.harness.engine_facts)."""
+    one from a shared palette; anything else is warned about and given one: reports.run.engine_facts)."""
     packages: ClassVar[tuple[str, ...]] = ()
     """The distributions (as pip names them) whose installed versions a run records beside ours."""
-    _ladder_is_sweep: ClassVar[bool] = False
-    """Set on a class whose `ladder` is its deprecated `sweep` (__init_subclass__)."""
 
     def __init__(self) -> None:
         self._steps = 0
@@ -135,27 +132,11 @@ class Adapter:
         ladder's first setting in the mode named UNTUNED, or None for an engine without one."""
         return next((s for s in self.ladder(scenario) if s.mode == UNTUNED), None)
 
-    def sweep(self, scenario: Scenario) -> list[Setting]:
-        """Deprecated: the old name of `ladder`. The ladder of the nearest class that declares one
-        as `ladder` (so that an old subclass's `super().sweep()` reaches its parent's ladder)."""
-        warnings.warn(LADDER_RENAMED, DeprecationWarning, stacklevel=2)
-        for owner in type(self).__mro__:
-            if "ladder" in owner.__dict__ and not owner.__dict__.get("_ladder_is_sweep", False):
-                ladder: Any = owner.__dict__["ladder"]
-                return list(ladder(self, scenario))
-        raise AssertionError("Adapter declares ladder")  # pragma: no cover
-
     def __init_subclass__(cls, **kwargs: Any) -> None:
-        """A subclass's `modes` from its `measured`; and a subclass (a plug-in engine written before
-        the rename) that defines `sweep` and no `ladder` has its `sweep` taken as its ladder, with a
-        DeprecationWarning."""
+        """A subclass's `modes` from its `measured`."""
         super().__init_subclass__(**kwargs)
         if "measured" in cls.__dict__ and "modes" not in cls.__dict__:
             cls.modes = tuple(mode.name for mode in cls.measured)
-        if "sweep" in cls.__dict__ and "ladder" not in cls.__dict__:
-            warnings.warn(f"{cls.__qualname__}: {LADDER_RENAMED}", DeprecationWarning, stacklevel=2)
-            cls.ladder = cls.__dict__["sweep"]  # type: ignore[method-assign]
-            cls._ladder_is_sweep = True
 
     def build(self, scenario: Scenario, setting: Setting) -> Any:
         raise NotImplementedError
@@ -325,8 +306,6 @@ class Adapter:
 UNTUNED = "untuned"
 """The mode name of an engine's own defaults as a new user's model has them, at the rule's step:
 the report's 'untuned' point beside the rule's default and the ladder's best."""
-
-LADDER_RENAMED = "Adapter.sweep is deprecated: the settings ladder is now `ladder(scenario)`"
 
 WARMUP_POINTS = 2
 """A warm-up run simulates the grid's first this many times: its first interval, the shortest grid

@@ -19,15 +19,12 @@ ADAPTER = "adapter"
 @dataclass(frozen=True)
 class Mode:
     """One mode of an engine: its name (Setting.mode), who computes the positions (`kind`), what it
-    runs in one phrase, the levels the adapter derives with how ({level: how}), and for an alias
-    the mode it names."""
+    runs in one phrase, and the levels the adapter derives with how ({level: how})."""
 
     name: str
     kind: str
     runs: str
     derived: tuple[tuple[str, str], ...] = ()
-    alias_of: str = ""
-    """The mode this name is an older spelling of, accepted but not listed (empty for a mode)."""
 
     @property
     def measures(self) -> str:

@@ -5,7 +5,7 @@ Kinematic scenarios (mode newton): its one knob is the Newton-Raphson tolerance 
 work-precision curve. `inverse_dynamics=1` (the default where every body has mass and the problem is
 within the dense-solve limit, scenarios.limits.MAX_DENSE_ROWS) adds the
 drivers' forces, the joints' reactions and the energies as extra columns, judged against the
-independent force truth where the scenario has one (reports.harness.forces). Dynamic scenarios
+independent force truth where the scenario has one (reports.scoring.forces). Dynamic scenarios
 (modes DOP853 and Radau, coordinate partitioning): the knob is the integrator's relative tolerance
 `rtol`; mode ali3p, the second native method (index-3 augmented Lagrangian with projections, which
 passes singular configurations), takes the step `dt` instead, so that each native method can check

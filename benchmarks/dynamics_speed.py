@@ -15,7 +15,7 @@ one integration replayed (benchmarks.rhs_replay), and their ratio.
 Forward dynamics: coordinate partitioning with DOP853 at rtol 1e-12 (truth quality); its cost per
 point depends on how many integrator steps fall between output points, so the right-hand-side
 evaluations per point are printed too. Kinematic: the plain (uncompiled) Newton loop at tolerance
-1e-12, and the compiled fast path where it applies. Every time is the best of the repeats.
+1e-12, and the compiled path where it applies. Every time is the best of the repeats.
 """
 
 from __future__ import annotations

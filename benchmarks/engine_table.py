@@ -27,9 +27,9 @@ from pathlib import Path
 
 import pandas as pd
 
-from reports.harness.columns import LEVEL_COLUMNS
-from reports.harness.results_store import ResultsStore, read_results
-from reports.harness.runner import RunConfig, Runner
+from reports.run.runner import RunConfig, Runner
+from reports.store.columns import LEVEL_COLUMNS
+from reports.store.results_store import ResultsStore, read_results
 
 SCENARIOS = (
     "slider_crank",

@@ -53,7 +53,7 @@ CLOSED_FORM_TESTS = (
     "tests/scenarios/test_four_bar_chain.py",
     "tests/scenarios/test_cam_linkage.py",
     "tests/reference_solver/test_closed_forms.py",
-    "tests/reports/harness/test_truth.py",
+    "tests/reports/scoring/test_truth.py",
 )
 """The tests of the closed forms, which sit beside their families (Family.closed_form): mutating a
 family module mutates its builder too, which these tests reach only through the native solver."""
@@ -208,8 +208,8 @@ MODULES: dict[str, tuple[str, ...]] = {
         ),
         CLOSED_FORM_TESTS,
     ),
-    "reports/harness/metrics.py": ("tests/reports/harness/test_metrics.py",),
-    "reports/harness/level_error.py": ("tests/reports/harness/test_level_error.py",),
+    "reports/scoring/metrics.py": ("tests/reports/scoring/test_metrics.py",),
+    "reports/scoring/level_error.py": ("tests/reports/scoring/test_level_error.py",),
     "reference_solver/newton.py": (
         "tests/reference_solver/test_newton.py",
         "tests/reference_solver/test_newton_round_off.py",

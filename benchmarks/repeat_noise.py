@@ -1,5 +1,5 @@
 """How far apart the timed repeats of one run are, and what stopping them where two agree costs in
-accuracy and saves in time (the AGREE rule of reports.harness.group_runs).
+accuracy and saves in time (the AGREE rule of reports.run.group_runs).
 
     python -m benchmarks.repeat_noise [--low 0.03] [--high 0.3] [--repeats 5] [--engine NAME ...]
 
@@ -24,10 +24,10 @@ import numpy as np
 
 import adapters
 from adapters.timing import enough
-from reports.harness import suites
-from reports.harness.common_start import common_start
-from reports.harness.group_runs import AGREE, LONG_RUN
-from reports.harness.planning import plan_engine
+from reports import suites
+from reports.run.group_runs import AGREE, LONG_RUN
+from reports.run.planning import plan_engine
+from reports.scoring.assembly import consistent_start
 from scenarios import load as build_scenario
 
 
@@ -36,7 +36,7 @@ def repeat_times(engines: list[str], low: float, high: float, repeats: int) -> l
     found = []
     loaded = {engine: adapters.load(engine) for engine in engines}
     for name in suites.main_scenarios():
-        scenario = common_start(build_scenario(name))
+        scenario = consistent_start(build_scenario(name))
         grid = np.asarray(scenario.times(), dtype=float)
         for engine, adapter in loaded.items():
             for setting, _ in plan_engine(scenario, engine, adapter, True, None).jobs:

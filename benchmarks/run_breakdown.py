@@ -34,11 +34,12 @@ from pathlib import Path
 from typing import Any
 
 from benchmarks.run_overhead import work
-from reports.harness import comparison, group_runs, isolation, runner
-from reports.harness.results_store import ResultsStore, read_results
-from reports.harness.runner import Runner
-from reports.harness.suites import get as suite_named
-from reports.harness.sweep import points
+from reports.run import group_runs, isolation, runner
+from reports.run.runner import Runner
+from reports.run.sweep import points
+from reports.scoring import comparison
+from reports.store.results_store import ResultsStore, read_results
+from reports.suites import get as suite_named
 
 PARENT_STEPS = (
     (runner.Runner, "_plan", "planning"),

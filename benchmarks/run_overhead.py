@@ -43,13 +43,13 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from reports.harness import group_runs
-from reports.harness.results_store import ResultsStore, read_results
-from reports.harness.runner import RunConfig, Runner
-from reports.harness.suites import Suite, main_scenarios
-from reports.harness.suites import get as suite_named
-from reports.harness.sweep import points
-from reports.harness.truth import NamedTruth, independent_truth
+from reports.run import group_runs
+from reports.run.runner import RunConfig, Runner
+from reports.run.sweep import points
+from reports.scoring.truth import NamedTruth, independent_truth
+from reports.store.results_store import ResultsStore, read_results
+from reports.suites import Suite, main_scenarios
+from reports.suites import get as suite_named
 from scenarios import Scenario, Trajectory
 
 

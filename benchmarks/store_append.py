@@ -5,7 +5,7 @@ part), measured side by side in one run.
     python -m benchmarks.store_append [--sizes 1000,10000,100000] [--batch 100] [--appends 8]
         [--grow 10000]
 
-Rows are the store's declared columns (reports.harness.columns) with values of a sweep's rows
+Rows are the store's declared columns (reports.store.columns) with values of a sweep's rows
 (scenario names with parameters, engines, settings, options as JSON, errors, timings, provenance).
 For each size the store is first saved whole once; then `appends` batches of `batch` new rows are
 saved one after another, each timed from the call to `save` to its return (the new part written,
@@ -32,17 +32,10 @@ from typing import Any
 
 import pandas as pd
 
-from reports.harness import store_files
-from reports.harness.columns import DECLARED
-from reports.harness.results_store import (
-    RESULTS,
-    TRAJECTORIES,
-    ResultsStore,
-    key_of,
-    read_results,
-    rows_frame,
-)
-from reports.harness.store_layout import read_sidecar, verify
+from reports.store import files as store_files
+from reports.store.columns import DECLARED
+from reports.store.layout import read_sidecar, verify
+from reports.store.results_store import RESULTS, TRAJECTORIES, ResultsStore, key_of, read_results, rows_frame
 
 ENGINES = {
     "reference": ("native", ["newton tol=1e-10", "newton tol=1e-12", "fast tol=1e-10"]),

@@ -21,10 +21,10 @@ import time
 from pathlib import Path
 
 from benchmarks.run_overhead import work
-from reports.harness.dask_backend import DaskRunner
-from reports.harness.results_store import ResultsStore, read_results
-from reports.harness.runner import RunConfig, Runner
-from reports.harness.sweep import points
+from reports.run.dask_backend import DaskRunner
+from reports.run.runner import RunConfig, Runner
+from reports.run.sweep import points
+from reports.store.results_store import ResultsStore, read_results
 
 SWEEP = ("omega=log:10:1e4:50", "crank_length=lin:0.05:0.2:4")
 CONFIG = RunConfig(ladder=False, repeats=1, warmup=0)

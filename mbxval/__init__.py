@@ -13,10 +13,10 @@ Bad input raises ArgumentError or ScenarioError (both ValueError) with the comma
 """
 
 from mbxval.api import ArgumentError, compare, load_scenario, read_results, run, solve
-from reports.harness.provenance import version as _version
+from reports.store import provenance as _provenance
 from scenarios import Scenario, ScenarioError
 
-__version__ = _version()
+__version__ = _provenance.version()
 
 __all__ = [
     "ArgumentError",

@@ -18,23 +18,13 @@ from pathlib import Path
 import pandas as pd
 
 import mbxval.arguments as check
-import reports.cli.compare_command as compare_command
-import reports.cli.suite_commands as suite_commands
 from adapters import NATIVE
 from adapters.base import OptionValue
 from mbxval.arguments import ArgumentError
-from reports.cli.main import parser, solve_trajectory
-from reports.cli.usage import UsageError
-from reports.harness import results_store
-from reports.harness.imported import score
-from reports.harness.store_layout import StoreDamaged
-from reports.harness.store_lock import StoreBusy
-from reports.harness.trajectory_file import (
-    ImportedTrajectory,
-    TrajectoryFileError,
-    parse_trajectory,
-    read_trajectory,
-)
+from reports.cli import UsageError, check_label, parser, run_and_render, select, solve_trajectory
+from reports.run import ImportedTrajectory, TrajectoryFileError, parse_trajectory, read_trajectory, score
+from reports.store import StoreBusy, StoreDamaged
+from reports.store import read_results as read_stored
 from scenarios import Scenario
 from scenarios import load as load_by_name
 from scenarios.limits import MAX_LABEL_LENGTH
@@ -147,8 +137,8 @@ def run(
     args.out = str(target)
     try:
         with _checked():
-            selection = suite_commands.select(args, target)
-            suite_commands.run_and_render(selection, target, wait=False, progress=progress, report=report)
+            selection = select(args, target)
+            run_and_render(selection, target, wait=False, progress=progress, report=report)
     except BaseException:
         if out is None:
             shutil.rmtree(target, ignore_errors=True)  # the temporary directory made above
@@ -172,7 +162,7 @@ def compare(
         trajectory = check.path("trajectory", trajectory, "a DataFrame or a CSV file's path")
     built = _scenario(scenario, parameters)
     with _checked():
-        compare_command.check_label(label)
+        check_label(label)
         if isinstance(trajectory, pd.DataFrame):
             imported = _read_frame(trajectory, built)
         else:
@@ -203,6 +193,6 @@ def read_results(directory: PathLike) -> pd.DataFrame:
     `frame.attrs["meta"]` and the directory `frame.attrs["results"]`."""
     directory = check.path("directory", directory)
     with _checked():
-        frame, meta = results_store.read_results(directory)
+        frame, meta = read_stored(directory)
     frame.attrs.update(meta=meta, results=str(directory))
     return frame

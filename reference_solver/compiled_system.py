@@ -1,4 +1,4 @@
-"""The constraint system through the fast path's kernels, for forward dynamics.
+"""The constraint system through the compiled path's kernels, for forward dynamics.
 
 Every right-hand side of the partitioned integrator evaluates C (Newton on the dependent
 coordinates), C_q, C_t and Q_d; in plain Python that costs milliseconds. `constraint_system` gives

@@ -10,7 +10,7 @@ from collections.abc import Sequence
 
 def main(argv: Sequence[str] | None = None) -> int:
     try:
-        from reports.cli.main import main as command_line
+        from reports.cli import command_line
     except KeyboardInterrupt:
         print("mbxval: interrupted while starting", file=sys.stderr)
         return 130

@@ -148,6 +148,6 @@ def disc_radii(r: float, e: float, phi: float) -> tuple[float, float, float, flo
 
 def lobed_radii(r: float, a: float, n: float, phi: float) -> tuple[float, float, float, float]:
     """A lobed cam's d(phi) = r + a cos(n phi) and its first three derivatives (compiled as is by
-    the fast path, like disc_radii)."""
+    the compiled path, like disc_radii)."""
     c, s = math.cos(n * phi), math.sin(n * phi)
     return r + a * c, -a * n * s, -a * n * n * c, a * n**3 * s

@@ -16,9 +16,9 @@ import pytest
 import adapters
 import scenarios
 from reports.cli.main import main
-from reports.harness import engine_facts
-from reports.harness.results_store import read_results
 from reports.render import plots
+from reports.run import engine_facts
+from reports.store.results_store import read_results
 from reports.stress.cases import stress_settings
 from tests.support.toy_engine import COLOUR, PACKAGE, STIFF
 

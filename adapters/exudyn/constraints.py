@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Protocol
 
 from scenarios.bodies import GROUND, Point
@@ -83,15 +83,22 @@ class _Surface:
 
 
 @dataclass(frozen=True)
-class KnifeEdgeContact:
-    """r_cam(phi) - r_tip = 0."""
+class _CamContact:
+    """What every cam contact holds: its name, (cam, follower), the cam's surface, and its one extra
+    unknown (the contact parameter phi) beside two rows."""
 
     name: str
     bodies: tuple[str, ...]
     surface: _Surface
+    extra: int = field(default=1, kw_only=True)
+    size: int = field(default=2, kw_only=True)
+
+
+@dataclass(frozen=True)
+class KnifeEdgeContact(_CamContact):
+    """r_cam(phi) - r_tip = 0."""
+
     tip: Vec
-    extra: int = 1
-    size: int = 2
 
     def evaluate(self, poses: Sequence[Sequence[float]], extra: Sequence[float], t: float) -> Evaluation:
         r, r_theta, tangent, _, _ = self.surface.at(poses[0], extra[0])
@@ -102,16 +109,11 @@ class KnifeEdgeContact:
 
 
 @dataclass(frozen=True)
-class RollerContact:
+class RollerContact(_CamContact):
     """n.t = 0 and n.n - r^2 = 0 with n = r_centre - r_cam(phi)."""
 
-    name: str
-    bodies: tuple[str, ...]
-    surface: _Surface
     centre: Vec
     radius: float
-    extra: int = 1
-    size: int = 2
 
     def evaluate(self, poses: Sequence[Sequence[float]], extra: Sequence[float], t: float) -> Evaluation:
         r, r_theta, tan, tan_theta, tan_phi = self.surface.at(poses[0], extra[0])
@@ -128,16 +130,11 @@ class RollerContact:
 
 
 @dataclass(frozen=True)
-class FlatFaceContact:
+class FlatFaceContact(_CamContact):
     """h.t = 0 and h.(r_cam(phi) - r_face) = 0, h the face's unit normal on the follower."""
 
-    name: str
-    bodies: tuple[str, ...]
-    surface: _Surface
     face: Vec
     normal: Vec
-    extra: int = 1
-    size: int = 2
 
     def evaluate(self, poses: Sequence[Sequence[float]], extra: Sequence[float], t: float) -> Evaluation:
         r, r_theta, tan, tan_theta, tan_phi = self.surface.at(poses[0], extra[0])

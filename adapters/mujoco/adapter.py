@@ -16,10 +16,10 @@ assembled poses and the bodies' rates without a run-in, and has its own settings
 Settings: mode RK4 (default), implicitfast, Euler or implicit, or untuned (MuJoCo's own defaults,
 adapters.mujoco.untuned); dt, the engine step (by default the rule's, adapters.step_rule and
 adapters.mujoco.settings; the output grid never changes it: outputs between steps are reached by a
-side step, adapters.lattice); tc, the solref time constant in seconds (tc_steps, in steps, is the
-older form); solref, its form (time constant, or stiffness and damping directly); invweight, the
-factor on the compiled model's invweight0 that sets the regulariser (adapters.mujoco.weights: the
-closed loops' accuracy floor); impedance, solimp of the equalities; for cams
+side step, adapters.lattice); tc, the solref time constant in seconds; solref, its form (time
+constant, or stiffness and damping directly); invweight, the factor on the compiled model's
+invweight0 that sets the regulariser (adapters.mujoco.weights: the closed loops' accuracy floor);
+impedance, solimp of the equalities; for cams
 preload (N), contact_impedance and, for a profile other than a disc, cam_pieces (its facets);
 polynomial, how a polynomial drive of degree 2 to 4 is carried (adapters.mujoco.laws: polycoef,
 the default, or a steered clock).
@@ -163,7 +163,6 @@ class MujocoAdapter(Adapter):
     options = (
         Option("dt", float, 0.0, 1.0, low_open=True, unit="s", help="integration step"),
         Option("tc", float, 0.0, 1e3, low_open=True, unit="s", help="solref time constant of the equalities"),
-        Option("tc_steps", float, 1.0, 1e6, help="solref time constant in steps (when tc is not given)"),
         Option("impedance", float, 0.0, 1.0, low_open=True, help="solimp of the equalities"),
         Option(
             "invweight",

@@ -45,7 +45,6 @@ KNOBS = (
         f"regulariser scaled (default {TC_STEPS:g}; in free dynamics {_steps(DYNAMIC_TC_LADDER)}, default "
         f"{DYNAMIC_TC_STEPS:g}), {_steps(OWN_TC_LADDER)} with MuJoCo's own",
     ),
-    Knob("tc_steps", NOT_APPLICABLE, "the older spelling of tc, in steps: swept as tc"),
     Knob(
         "invweight",
         SWEPT,

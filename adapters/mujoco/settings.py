@@ -150,11 +150,11 @@ def rule_ladder(scenario: Scenario, modes: tuple[str, ...], closes_loops: bool) 
 
 
 def time_constant(setting: Setting, dt: float) -> float:
-    """The equalities' time constant in seconds: `tc`, else `tc_steps` steps (the older option),
-    else OWN_TC_STEPS steps (a setting without `invweight` has MuJoCo's own regulariser)."""
+    """The equalities' time constant in seconds: `tc`, else OWN_TC_STEPS steps (a setting without
+    `invweight` has MuJoCo's own regulariser)."""
     if setting.get("tc") is not None:
         return float(setting["tc"])
-    return float(setting.get("tc_steps", OWN_TC_STEPS)) * dt
+    return OWN_TC_STEPS * dt
 
 
 TIME_FORM, DIRECT_FORM = "timeconst", "direct"

@@ -24,7 +24,7 @@ step (adapters.pinocchio.settings, adapters.lattice).
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -65,14 +65,12 @@ from scenarios.trajectory import Trajectory
 
 MODES = {
     "kinematic": KINEMATIC,
-    "kinematics": KINEMATIC,
     "dynamic": DYNAMIC,
-    "dynamics": DYNAMIC,
     "baumgarte": BAUMGARTE,
     "euler": EULER,
 }
 _SHARE = "timing adapter-dominated: Pinocchio's kernels are 12-30 % of a step in free dynamics"
-_DECLARED = (
+MEASURED = (
     Mode(
         "kinematic",
         ADAPTER,
@@ -102,14 +100,6 @@ _DECLARED = (
         f"around pin.integrate (the loop of Pinocchio's simulation examples; {_SHARE})",
     ),
 )
-MEASURED = tuple(
-    m if alias == mode else replace(m, name=alias, alias_of=mode)
-    for alias, mode in MODES.items()
-    for m in _DECLARED
-    if m.name == mode
-)
-"""What each mode measures; the aliases (kinematics, dynamics) measure what their modes do and are
-marked as aliases, so that `mbxval list` gives one name per mode."""
 TOLERANCES = (1e-5, 1e-9, 1e-15)
 """Newton residual bounds in the kinematic ladder; the default is the last."""
 

@@ -8,7 +8,7 @@ p_i's body at p_i (its opposite on p_j's body); a driver's is the force or torqu
 coordinate. Passed to `pin.rnea` as external forces (`fext`, one spatial force per joint in its
 own frame) with the applied loads, they leave the tree joints unloaded, and `data.f[i]` is then the
 force the parent applies through tree joint i: its reaction (a prismatic's force along its axis
-taken out). Columns follow the canonical convention (reports.harness.forces): `<joint>.fx/.fy` the
+taken out). Columns follow the canonical convention (reports.scoring.forces): `<joint>.fx/.fy` the
 force on the joint's first moving body, world axes; `<driver>.force` along the driver's coordinate.
 """
 

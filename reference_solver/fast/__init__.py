@@ -1,4 +1,4 @@
-"""The compiled fast path of the reference solver (numba), beside the plain path it must agree with.
+"""The compiled path of the reference solver (numba), beside the plain path it must agree with.
 
 `analyse` returns the Analysis, or None when the plain path must run: numba is not installed, the
 scenario has a constraint with no kernel, or the kernel met anything abnormal (see fast.path).

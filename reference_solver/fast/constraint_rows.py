@@ -23,7 +23,7 @@ POINT, DIRECTION, PROFILE_POINT, PROFILE_TANGENT = 1, 2, 3, 4
 
 
 class NotCompiled(TypeError):
-    """A constraint or motion the fast path has no kernel for (the plain path handles it)."""
+    """A constraint or motion the compiled path has no kernel for (the plain path handles it)."""
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,4 @@
-"""The fast path's kernels for a constraint system that is not square: C, the dense C_q, Q_d and
+"""The compiled path's kernels for a constraint system that is not square: C, the dense C_q, Q_d and
 C_t at one state, as forward dynamics asks for them at every right-hand side (program.compile_dense
 places the Jacobian in a row-major dense store)."""
 

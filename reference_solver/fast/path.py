@@ -1,4 +1,4 @@
-"""The fast path: the compiled kernel over a whole grid, handing anything abnormal to the plain path.
+"""The compiled path: the compiled kernel over a whole grid, handing anything abnormal to the plain path.
 
 A scenario is compiled once (cached per scenario) into its instruction table. The kernel also
 verifies the mobility: C_q square and clearly regular at the initial guess (then the plain
@@ -102,5 +102,5 @@ def _drop_stale_cache() -> None:
 
 
 def analyse(scenario: Scenario, grid: np.ndarray, tolerance: float, max_iterations: int) -> Analysis | None:
-    """The analysis on the fast path, or None when the plain path must do it."""
+    """The analysis on the compiled path, or None when the plain path must do it."""
     return run(scenario, grid, tolerance, max_iterations).analysis

@@ -2,7 +2,7 @@
 print a one-screen verdict per level, and with --out add it to a results store beside the engines.
 
 Everything the user gives is checked before anything is written: the scenario, the file (its
-columns, grid and values: reports.harness.trajectory_file), the label, and that the store holds no
+columns, grid and values: reports.run.trajectory_file), the label, and that the store holds no
 other mechanism under the scenario's name.
 """
 
@@ -16,16 +16,15 @@ from typing import TYPE_CHECKING
 
 import adapters
 from reports.cli.usage import UsageError, pairs, scenario_argument
-from reports.harness import scenario_identity, store_files
-from reports.harness.level_error import LEVEL_COLUMNS, characteristic_rate
-from reports.harness.store_lock import WriterLock
+from reports.scoring import LEVEL_COLUMNS, characteristic_rate
+from reports.store import WriterLock, committed, scenario_identity
 from scenarios import Scenario, limits, load
 from scenarios.names import NameRefused, safe_file_stem
 from scenarios.scenario import LEVELS
 
 if TYPE_CHECKING:  # the store, the scoring and the report's scale are imported when a comparison runs
-    from reports.harness.imported import Score
-    from reports.harness.results_store import ResultsStore
+    from reports.run import Score
+    from reports.store import ResultsStore
 
 SCALE_WORDS = ("green", "yellow", "red")
 
@@ -33,7 +32,7 @@ SCALE_WORDS = ("green", "yellow", "red")
 def colour_word(error: float) -> str:
     """Where `error` falls on the report's colour scale: green up to 10^(BEST + a third of the
     span), red from two thirds on (the report colours by log error; it has no pass/fail line)."""
-    from reports.render.first_screen import BEST, WORST
+    from reports.render import BEST, WORST
 
     if math.isinf(error):
         return SCALE_WORDS[-1]
@@ -45,7 +44,7 @@ def check_label(label: object, what: str = "--label") -> str:
     """A label that cannot be mistaken for an engine's rows or the truth's, and is a name that may
     become a file name (scenarios.names.safe_file_stem: a path, blank, over-long or control
     characters are refused)."""
-    from reports.harness.results_store import TRUTH
+    from reports.store import TRUTH
 
     try:
         label = safe_file_stem(label, what)
@@ -58,7 +57,7 @@ def check_label(label: object, what: str = "--label") -> str:
 
 def verdict(scenario: Scenario, scored: Score, label: str) -> list[str]:
     """The lines of the one-screen verdict."""
-    from reports.render.first_screen import BEST, WORST
+    from reports.render import BEST, WORST
 
     row, imported = scored.row, scored.imported
     lines = [
@@ -88,9 +87,8 @@ def verdict(scenario: Scenario, scored: Score, label: str) -> list[str]:
 
 
 def cmd_compare(args: argparse.Namespace) -> int:
-    from reports.harness.imported import add_to_store, score
-    from reports.harness.results_store import ResultsStore
-    from reports.harness.trajectory_file import TrajectoryFileError, read_trajectory
+    from reports.run import TrajectoryFileError, add_to_store, read_trajectory, score
+    from reports.store import ResultsStore
 
     scenario = load(args.scenario, pairs(args.set, "--set"))
     if args.label is not None:
@@ -137,10 +135,10 @@ def beside(store: ResultsStore, name: str) -> list[str]:
 
 def _check_store(out: Path, given: str, scenario: Scenario) -> None:
     """Refuse a store that holds another mechanism under the scenario's name (a family's rows and a
-    file of its name, in either order: reports.harness.scenario_identity)."""
-    from reports.harness.results_store import ResultsStore
+    file of its name, in either order: reports.store.scenario_identity)."""
+    from reports.store import ResultsStore
 
-    if store_files.committed(out) is None:
+    if committed(out) is None:
         return
     rows = ResultsStore(out).rows.values()
     clash = scenario_identity.stored_clash(rows, given, scenario, str(out))

@@ -11,8 +11,8 @@ import argparse
 from collections.abc import Callable
 
 from reports.cli.usage import UsageError, pairs, scenario_argument
-from reports.drawing.drawing import MAX_FRAMES, DrawingError, draw_svg
-from reports.harness.atomic_write import output_target, write_text
+from reports.drawing import MAX_FRAMES, DrawingError, draw_svg
+from reports.store import output_target, write_text
 from scenarios import load
 
 

@@ -13,7 +13,7 @@ FORMATS = ("text", "markdown")
 def engine_text(kind: type[Adapter]) -> list[str]:
     """`kind`'s modes, options and knobs, one line each."""
     lines = [f"engine {kind.name}", "modes:"]
-    lines += [f"  {mode.name}: {mode.measures}" for mode in kind.measured if not mode.alias_of]
+    lines += [f"  {mode.name}: {mode.measures}" for mode in kind.measured]
     lines += [f"  {name}" for name in kind.modes if not kind.measured]
     lines.append("options:")
     lines += [f"  {o.name}: {o.describe()}{': ' + o.help if o.help else ''}" for o in kind.options]
@@ -25,7 +25,7 @@ def engine_text(kind: type[Adapter]) -> list[str]:
 def engine_markdown(kind: type[Adapter]) -> list[str]:
     """`kind`'s modes, options and knobs as a Markdown section of three tables."""
     lines = [f"## {kind.name}", "", "| mode | measures |", "| --- | --- |"]
-    lines += [f"| {_cell(m.name)} | {_cell(m.measures)} |" for m in kind.measured if not m.alias_of]
+    lines += [f"| {_cell(m.name)} | {_cell(m.measures)} |" for m in kind.measured]
     lines += [f"| {_cell(name)} | |" for name in kind.modes if not kind.measured]
     lines += ["", "| option | type and range | help |", "| --- | --- | --- |"]
     lines += [f"| `{o.name}` | {_cell(o.describe())} | {_cell(o.help)} |" for o in kind.options]

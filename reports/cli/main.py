@@ -27,12 +27,10 @@ from adapters.step_rule import RULE
 from adapters.threads import one_blas_thread
 from reports.cli.engine_listing import FORMATS, engine_listing
 from reports.cli.usage import Parser, UsageError, Versions, pairs, scenario_argument
-from reports.harness import self_check, stop
-from reports.harness.atomic_write import atomic_output, atomic_path, output_target, write_text
-from reports.harness.common_start import common_start
-from reports.harness.gate import GateError
-from reports.harness.store_files import StoreDamaged
-from reports.harness.store_lock import StoreBusy
+from reports.gate import GateError
+from reports.run import stop
+from reports.scoring import consistent_start, self_check
+from reports.store import StoreBusy, StoreDamaged, atomic_output, atomic_path, output_target, write_text
 from scenarios import Scenario, ScenarioError, all_families, catalogue, limits, load
 from scenarios.files import scenario_toml
 from scenarios.names import NameRefused, check_scenario_name
@@ -153,7 +151,7 @@ def cmd_list(args: argparse.Namespace) -> int:
         return 0
     print("\nmodes: what each measures (derived levels named):")
     for engine, adapter in engines.items():
-        for mode in (m for m in adapter.measured if not m.alias_of):
+        for mode in adapter.measured:
             print(f"  {engine} {mode.name}: {mode.measures}")
     print(f"\nsettings, one rule (docs/settings-rule.md): {RULE}")
     for engine, adapter in engines.items():
@@ -202,7 +200,7 @@ def solve_trajectory(
 def cmd_solve(args: argparse.Namespace) -> int:
     if args.out is not None:
         output_target(args.out)  # a device, FIFO or directory is refused before solving
-    scenario = common_start(load(args.scenario, pairs(args.set, "--set")))
+    scenario = consistent_start(load(args.scenario, pairs(args.set, "--set")))
     grid = (args.t_end, args.steps, args.dt)
     trajectory = solve_trajectory(scenario, args.engine, args.mode, args.setting, grid)
     if args.out is None:

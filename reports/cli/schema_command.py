@@ -7,7 +7,7 @@ import json
 import sys
 from collections.abc import Callable
 
-from reports.harness.atomic_write import write_text
+from reports.store import write_text
 from scenarios.files.json_schema import scenario_schema
 
 

@@ -1,5 +1,5 @@
 """`mbxval store repair DIR`: bring a results store back to a state mbxval understands (see
-reports.harness.store_repair), under the store's writer lock, saying what was done."""
+reports.store.repair), under the store's writer lock, saying what was done."""
 
 from __future__ import annotations
 
@@ -8,11 +8,11 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from reports.harness.store_lock import WriterLock
+from reports.store import WriterLock
 
 
 def cmd_store(args: argparse.Namespace) -> int:
-    from reports.harness.store_repair import Repair, holds_a_store  # pandas: imported when it runs
+    from reports.store import Repair, holds_a_store  # pandas: imported when it runs
 
     directory = Path(args.directory)
     if not holds_a_store(directory):  # before the lock, which would leave its file there

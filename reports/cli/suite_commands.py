@@ -16,11 +16,11 @@ from typing import Any
 
 import adapters
 import reports.cli.run_overrides as run_overrides
+from reports import gate, suites
 from reports.cli.usage import UsageError
-from reports.harness import baselines, gate, scenario_identity, stop, store_files, suites, sweep
-from reports.harness.group_runs import RunConfig
-from reports.harness.store_lock import WriterLock
-from reports.harness.suites import Suite
+from reports.run import RunConfig, stop, sweep
+from reports.store import WriterLock, committed, scenario_identity
+from reports.suites import Suite
 from scenarios import Scenario, limits
 from scenarios import load as build_scenario
 
@@ -139,7 +139,7 @@ def check_scenario_names(names: list[str], out: Path, rerun: bool) -> None:
     under another digest, whichever came first (unless `rerun` replaces those rows)."""
     given = {name: build_scenario(name) for name in names}
     clash = scenario_identity.name_clash(given)
-    if clash is None and not rerun and store_files.committed(out) is not None:
+    if clash is None and not rerun and committed(out) is not None:
         rows = stored_identities(out)
         found = (scenario_identity.stored_clash(rows, n, given[n], str(out)) for n in names)
         clash = next((f"{c}, or add --rerun to replace those results" for c in found if c), None)
@@ -149,7 +149,7 @@ def check_scenario_names(names: list[str], out: Path, rerun: bool) -> None:
 
 def stored_identities(results: Path | str) -> list[dict[str, Any]]:
     """Each scenario name the store holds with each digest its rows record, once."""
-    from reports.harness.results_store import read_results  # pandas: imported when a store is read
+    from reports.store import read_results  # pandas: imported when a store is read
 
     frame = read_results(results)[0].reindex(columns=["scenario", "scenario_digest"]).fillna("")
     return frame.drop_duplicates().to_dict("records")  # type: ignore[no-any-return]
@@ -159,8 +159,8 @@ def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = 
     """Run a checked selection into `out` (the caller holds its writer lock), and with `draw` draw
     its mechanisms beside the results for a report; returns the rows this run made, by status (the
     store may hold more: rows kept from earlier runs)."""
-    from reports.harness.results_store import ResultsStore
-    from reports.harness.runner import Runner
+    from reports.run import Runner
+    from reports.store import ResultsStore
 
     suite, backend = selection.suite, selection.backend
     arguments: dict[str, Any] = {
@@ -172,7 +172,7 @@ def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = 
     if backend == Backend():
         runner = Runner(ResultsStore(out), selection.engines, selection.config, **arguments)
     else:  # Dask is imported only here
-        from reports.harness.dask_backend import DaskRunner
+        from reports.run import DaskRunner
 
         runner = DaskRunner(
             ResultsStore(out), selection.engines, selection.config, **arguments, **vars(backend)
@@ -186,12 +186,12 @@ def run_selection(selection: Selection, out: Path, progress: bool, draw: bool = 
 
 def record_verdicts(out: Path, suite: str) -> None:
     """Decide, now the suite's runs are stored, what the report shows of them and store it with
-    them (reports.stress.recording, reports.dynamics.recording, reports.harness.recording): the
+    them (reports.stress.recording, reports.dynamics.recording, reports.run.recording): the
     stored results read back as a report reads them, so that a verdict is the one the stored
     trajectories give. The caller holds the store's writer lock."""
     from reports.dynamics import recording as dynamics_recording  # the native solver: imported when needed
-    from reports.harness import recording as harness_recording
-    from reports.harness.results_store import ResultsStore
+    from reports.run import recording as harness_recording
+    from reports.store import ResultsStore
     from reports.stress import recording as stress_recording
 
     store = ResultsStore(out)
@@ -203,14 +203,14 @@ def record_verdicts(out: Path, suite: str) -> None:
 def _draw(out: Path, planned: Iterable[Scenario]) -> None:
     """The run's mechanisms drawn beside its results for the report (reports.drawing.files),
     imported when needed: it poses them with the native solver."""
-    from reports.drawing.files import write_drawings
+    from reports.drawing import files as drawing_files
 
-    write_drawings(out, planned)
+    drawing_files.write_drawings(out, planned)
 
 
 def run_summary(made: Counter[str], out: Path, page: Path | None) -> str:
     """The last line of a run: this run's rows by status, then the store's total apart."""
-    from reports.harness.results_store import read_results
+    from reports.store import read_results
 
     counts = ", ".join(f"{status} {n}" for status, n in made.most_common())
     frame = read_results(out)[0]
@@ -224,7 +224,7 @@ def run_summary(made: Counter[str], out: Path, page: Path | None) -> str:
 
 def render_reports(results: Path | str, out: str | None = None) -> Path:
     """reports.render.report.render_reports, imported when needed: matplotlib is slow to import."""
-    from reports.render.report import render_reports as render
+    from reports.render import render_reports as render
 
     return render(results, out)
 
@@ -275,7 +275,7 @@ def cmd_check(args: argparse.Namespace) -> int:
     for option, target in (("--junit", args.junit), ("--json", args.json)):  # before running anything
         if target is not None and (Path(target).is_dir() or not Path(target).parent.is_dir()):
             raise UsageError(f"{option} {target}: not a file in an existing directory")
-    args.baseline = str(baselines.resolve(args.baseline))
+    args.baseline = str(gate.baselines.resolve(args.baseline))
     if args.update:
         gate.updatable_cells(args.baseline)  # not a regular file, or not a baseline: before running
     baseline = None if args.update else gate.read_baseline(args.baseline)  # bad baseline: before running
@@ -294,8 +294,7 @@ def cmd_check(args: argparse.Namespace) -> int:
 
 def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, Any]] | None) -> int:
     """Compare the results in `directory` with the baseline, or write the baseline (--update)."""
-    from reports.harness import gate_files
-    from reports.harness.results_store import read_results
+    from reports.store import read_results
 
     frame, meta = read_results(directory)
     if baseline is None:
@@ -303,9 +302,9 @@ def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, A
         return 0
     verdict = gate.judge(baseline, frame, args.factor)
     if args.junit:
-        gate_files.write(args.junit, gate_files.junit_xml(verdict, args.baseline, args.factor))
+        gate.files.write(args.junit, gate.files.junit_xml(verdict, args.baseline, args.factor))
     if args.json:
-        gate_files.write(args.json, gate_files.verdict_json(verdict, args.baseline, args.factor))
+        gate.files.write(args.json, gate.files.verdict_json(verdict, args.baseline, args.factor))
     print(gate.describe(verdict, args.baseline, args.factor))
     return 0 if verdict.passed else 1
 
@@ -378,7 +377,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
     check.add_argument(
         "--baseline",
         required=True,
-        help=f"baseline JSON file, or a shipped one by name ({', '.join(baselines.names())})",
+        help=f"baseline JSON file, or a shipped one by name ({', '.join(gate.baselines.names())})",
     )
     check.add_argument("--junit", metavar="FILE", help="also write the verdict as JUnit XML, a test per cell")
     check.add_argument("--json", metavar="FILE", help="also write the verdict as JSON")

@@ -7,8 +7,8 @@ import argparse
 from collections.abc import Sequence
 from typing import NoReturn
 
-from reports.harness.engine_facts import engine_packages
-from reports.harness.provenance import version_text
+from reports.run import engine_packages
+from reports.store import provenance
 
 
 class UsageError(Exception):
@@ -60,5 +60,5 @@ class Versions(argparse.Action):
         values: object,
         option_string: str | None = None,
     ) -> NoReturn:
-        print(version_text(engine_packages()))
+        print(provenance.version_text(engine_packages()))
         parser.exit()

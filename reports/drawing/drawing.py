@@ -31,7 +31,7 @@ from reports.drawing.svg import (
     scoped_style,
     unique_ids,
 )
-from reports.harness.common_start import common_start
+from reports.scoring import consistent_start
 from scenarios import Scenario
 from scenarios.drivers import AbsoluteDriver, RelativeRotationDriver
 from scenarios.motions import ConstantSpeed, Harmonic
@@ -95,7 +95,7 @@ def frame_grid(scenario: Scenario, frames: int) -> tuple[np.ndarray, list[int]]:
 def solve(scenario: Scenario, times: np.ndarray) -> Trajectory:
     """Every body's trajectory on `times` by the native solver; DrawingError if it fails."""
     engine = adapters.load(adapters.NATIVE)
-    result = engine.run(common_start(scenario), native_setting(scenario), times)
+    result = engine.run(consistent_start(scenario), native_setting(scenario), times)
     if result.status != "ok" or result.trajectory is None:
         raise DrawingError(
             f"the native solver could not pose {scenario.name}: {result.status}: {result.message}"

@@ -11,8 +11,8 @@ from collections.abc import Iterable
 from pathlib import Path
 
 from reports.drawing.drawing import DrawingError, draw_svg
-from reports.harness.atomic_write import atomic_output
-from reports.render.drawings import DRAWINGS, INDEX, read_index
+from reports.render import DRAWINGS, INDEX, read_index
+from reports.store import atomic_output
 from scenarios import Scenario
 from scenarios.names import safe_file_stem
 

@@ -19,7 +19,7 @@ from typing import Any
 from adapters import NATIVE
 from adapters.base import Adapter, Setting
 from adapters.step_rule import at_step
-from reports.harness.truth import DYNAMIC_RTOL, NamedTruth
+from reports.scoring import DYNAMIC_RTOL, NamedTruth
 from scenarios import catalogue
 from scenarios.families.stiff_spring import MAP_VARIANTS
 from scenarios.registry import all_families
@@ -73,7 +73,7 @@ def truth(scenario: Scenario, times: Any) -> NamedTruth:
 
 
 def settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
-    """The suite's settings hook (reports.harness.suites): a map cell runs each engine's modes at the
+    """The suite's settings hook (reports.suites): a map cell runs each engine's modes at the
     cell's step; the native engine, whose forward dynamics is the truth, runs no
     tighter than JUDGED_MARGIN times the truth's tolerance; otherwise each engine's own ladder."""
     if scenario.name in map_cells():

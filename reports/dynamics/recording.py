@@ -4,8 +4,8 @@ After a suite's runs, for every stored row that has none yet:
 - a row at a stiffness-step map cell gets its verdict (reports.dynamics.stability), the cell's
   stiffness and step, and the verdict's definition as its detail;
 - a dynamic scenario's default run (the trajectories the store keeps) gets its energy drift
-  (reports.harness.energy_drift) and its scaled constraint residual (the native constraint
-  equations) at each time, as extras of its stored trajectory (reports.harness.columns.DRIFT_SERIES).
+  (reports.scoring.energy_drift) and its scaled constraint residual (the native constraint
+  equations) at each time, as extras of its stored trajectory (reports.store.columns.DRIFT_SERIES).
 The report draws these as stored and never evaluates a scenario (reports.render).
 """
 
@@ -18,10 +18,8 @@ import numpy as np
 from reference_solver import constraint_residual
 from reports.dynamics.cases import is_dynamic, map_cells
 from reports.dynamics.stability import DRIFTED, verdict
-from reports.harness.columns import DRIFT_SERIES
-from reports.harness.energy_drift import drift_series
-from reports.harness.results_store import TRUTH, ResultsStore, stored_truths
-from reports.harness.scenario_identity import stored_scenario
+from reports.scoring import drift_series
+from reports.store import DRIFT_SERIES, TRUTH, ResultsStore, stored_scenario, stored_truths
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 

@@ -1,5 +1,5 @@
 """Which clock a store's run times were read on, as a report states it. Runs record the process's
-CPU time in `run_time` and the wall clock's beside it (`run_time_wall`, reports.harness.columns);
+CPU time in `run_time` and the wall clock's beside it (`run_time_wall`, reports.store.columns);
 a store written before that has no wall columns (NaN once read) and its `run_time` is wall time.
 Read from the stored columns alone, so that an old store renders and says what it shows."""
 
@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from reports.harness.columns import WALL_COLUMNS
+from reports.store import WALL_COLUMNS
 
 CPU = "CPU"
 OLD_WALL = "wall (recorded before CPU time)"

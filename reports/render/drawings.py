@@ -8,7 +8,7 @@ import json
 import os
 from pathlib import Path
 
-from reports.harness.results_store import results_directory
+from reports.store import results_directory
 
 DRAWINGS = "drawings"
 """The folder of a results directory that holds the drawings."""

@@ -13,11 +13,11 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from reports.harness.columns import DRIFT_DEFINITION, DRIFT_SERIES, NOT_RECORDED
 from reports.render import markup
 from reports.render.first_screen import truth_names
 from reports.render.plots import FLOOR, colour, legend_entries
 from reports.render.report_data import ReportData, drift_mark, map_cell_rows, number
+from reports.store import DRIFT_DEFINITION, DRIFT_SERIES, NOT_RECORDED
 
 SHADES = {
     "stable": "#e6f4e6",
@@ -30,7 +30,7 @@ SHADES = {
     "unsupported": "#eeeeee",
 }
 DYNAMIC_TRUTH = "native dynamics"
-"""How the `truth` of a dynamic scenario's rows begins (reports.harness.truth, reports.dynamics.cases)."""
+"""How the `truth` of a dynamic scenario's rows begins (reports.scoring.truth, reports.dynamics.cases)."""
 
 
 def dynamic_scenarios(data: ReportData) -> list[str]:

@@ -21,8 +21,8 @@ from collections.abc import Callable
 import numpy as np
 import pandas as pd
 
-from reports.harness.columns import LEVEL_COLUMNS
 from reports.render.clock import CPU, clock_label
+from reports.store import LEVEL_COLUMNS
 
 TARGET = 1e-6
 LEVELS = list(LEVEL_COLUMNS.values())

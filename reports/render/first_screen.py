@@ -9,14 +9,14 @@ from typing import Any
 
 import pandas as pd
 
-from reports.harness.columns import CLOSED_FORM, LEVEL_COLUMNS, NOT_RECORDED
 from reports.render import markup
 from reports.render.report_data import ReportData, drift_mark, number
+from reports.store import CLOSED_FORM, LEVEL_COLUMNS, NOT_RECORDED
 
 BEST, WORST = -14.0, -1.0  # log10 error drawn fully green, fully red
 LEVEL_LETTERS = {"position": "pos", "velocity": "vel", "acceleration": "acc", "force": "force"}
 MATRIX_COLUMNS: dict[str, str] = {str(k): v for k, v in LEVEL_COLUMNS.items()} | {"force": "error_force"}
-"""The matrix's columns per engine: the three levels, then the forces (harness.forces), whose truth
+"""The matrix's columns per engine: the three levels, then the forces (scoring.forces), whose truth
 is always the native solver's."""
 SPAN = f'colspan="{len(MATRIX_COLUMNS)}"'
 
@@ -86,7 +86,7 @@ def matrix_cells(row: pd.Series | None) -> list[str]:
         tip = markup.escape(f"{row['setting']}: {row['message']}")
         return [f'<td class="{markup.escape(status)}" {SPAN} title="{tip}">{markup.escape(status)}</td>']
     cells = []
-    mark = drift_mark(row)  # stored when the run was made (harness.self_check)
+    mark = drift_mark(row)  # stored when the run was made (scoring.self_check)
     why = f"; {row['self_check']}" if mark else ""
     for level, column in MATRIX_COLUMNS.items():
         value = float(row[column]) if column in row and row[column] is not None else math.nan
@@ -103,7 +103,7 @@ def matrix_cells(row: pd.Series | None) -> list[str]:
 
 def _heading(level: str) -> str:
     if level == "force":
-        tip = "driving forces and joint reactions against the native solver's (harness.forces)"
+        tip = "driving forces and joint reactions against the native solver's (scoring.forces)"
         return f'<th class="force" title="{tip}">{LEVEL_LETTERS[level]}</th>'
     return f"<th>{LEVEL_LETTERS[level]}</th>"
 
@@ -122,7 +122,7 @@ def truth_names(rows: pd.DataFrame) -> str:
 
 def agreement_frame(data: ReportData) -> pd.DataFrame:
     """Per scenario and level: the pair of engines whose default runs differ most, and by how much,
-    as the rows stored it (harness.recording); NOT_RECORDED where a store with two runs lacks it."""
+    as the rows stored it (run.recording); NOT_RECORDED where a store with two runs lacks it."""
     records: list[dict[str, Any]] = []
     for scenario in data.scenarios():
         rows = data.rows(scenario)

@@ -18,7 +18,6 @@ import re
 from collections.abc import Callable, Iterator
 from typing import Any
 
-from reports.harness.columns import ERROR_SERIES, FORCE_DEFINITION, NOT_RECORDED, SCALE_DEFINITION
 from reports.render import (
     dynamics_render,
     engine_reach,
@@ -40,6 +39,7 @@ from reports.render.report_data import (
     table,
     timing_note,
 )
+from reports.store import ERROR_SERIES, FORCE_DEFINITION, NOT_RECORDED, SCALE_DEFINITION
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 1.5em auto; max-width: 1200px; color: #222; }

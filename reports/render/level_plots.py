@@ -16,11 +16,11 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator
 
-from reports.harness.columns import ERROR_SERIES, LEVEL_COLUMNS
 from reports.render.clock import time_axis_label
 from reports.render.markup import figure_text
 from reports.render.plots import FLOOR, MARKERS, colour, legend_entries, swept_value, untimed, value_text
 from reports.render.svg_figure import hover
+from reports.store import ERROR_SERIES, LEVEL_COLUMNS
 from scenarios.trajectory import Trajectory
 
 PEAK_POINTS = 400

@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-from reports.harness.columns import LEVEL_COLUMNS, SCALE_DEFINITION
 from reports.render import engine_reach, stability_render, sweep_render
 from reports.render.first_screen import native_line, scenario_rate, truth_names
 from reports.render.markdown_table import markdown_table
 from reports.render.markup import markdown_code, markdown_text
 from reports.render.report_data import HEADINGS, ReportData, number, revision_label, table, timing_note
+from reports.store import LEVEL_COLUMNS, SCALE_DEFINITION
 
 SHOWN = ("engine", "setting", "status", *LEVEL_COLUMNS.values(), "constraint_residual", "run_time", "message")
 SUMMARY_COLUMNS = tuple(HEADINGS.get(c, c) for c in SHOWN)

@@ -21,11 +21,11 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from reports.harness.columns import LEVEL_COLUMNS
 from reports.render.clock import CPU
 from reports.render.level_plots import MARGINS, finish
 from reports.render.plots import FLOOR, MARKERS, colour, untimed, value_text
 from reports.render.svg_figure import hover
+from reports.store import LEVEL_COLUMNS
 
 SHIFT_TIME = 1e-3  # s
 SHIFT_ERROR = 1e-15  # dimensionless: double precision

@@ -5,11 +5,10 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from reports.harness.atomic_write import atomic_output
-from reports.harness.results_store import results_directory
 from reports.render import html as html_report
 from reports.render import markdown as markdown_report
 from reports.render.report_data import ReportData
+from reports.store import atomic_output, results_directory
 
 HTML, MARKDOWN = "index.html", "summary.md"
 

@@ -12,10 +12,10 @@ from typing import Any
 
 import pandas as pd
 
-from reports.harness.results_store import TRUTH, Key, read_results, read_trajectories
 from reports.render import plots
 from reports.render.clock import OLD_WALL, clock_label
 from reports.render.drawings import read_drawings
+from reports.store import TRUTH, Key, read_results, read_trajectories
 from scenarios.trajectory import Trajectory
 
 TABLE_COLUMNS = (
@@ -166,7 +166,7 @@ def is_swept(frame: pd.DataFrame) -> pd.Series:
 
 def swept_point(cell: object) -> dict[str, str] | None:
     """The parameter values a row's `sweep` cell holds (the JSON object of names to values a run
-    stores, reports.harness.rows), or None: off a sweep, and for a cell that holds anything else (a
+    stores, reports.run.rows), or None: off a sweep, and for a cell that holds anything else (a
     store edited by hand), whose row is then drawn as an unswept one rather than failing the map."""
     if not isinstance(cell, str) or not cell:
         return None
@@ -231,7 +231,7 @@ CLOCKS = (
 
 DRIFT_MARK = " ⚠"
 """Beside an ok run's errors, wherever they are shown, when its own figures say it drifted (the
-stored `self_check` column, harness.self_check; no truth used)."""
+stored `self_check` column, scoring.self_check; no truth used)."""
 ERROR_COLUMNS = ("error_position", "error_velocity", "error_acceleration")
 
 

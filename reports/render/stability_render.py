@@ -19,11 +19,11 @@ from collections import Counter
 
 import pandas as pd
 
-from reports.harness.columns import NOT_RECORDED
 from reports.render import markup
 from reports.render.markdown_table import markdown_table
 from reports.render.report_data import ReportData
 from reports.render.stored_verdicts import LOST, STRESS_SUITE, Judgement, judgements, stress_rows
+from reports.store import NOT_RECORDED
 
 GROWTH = 10.0
 """An engine whose error at a scale or speed is more than this times its nominal error (both

@@ -1,5 +1,5 @@
 """The verdicts a report shows, as the rows stored them when the run was made (the verdict columns
-of reports.harness.columns, decided by reports.stress.recording and reports.dynamics.stability): read,
+of reports.store.columns, decided by reports.stress.recording and reports.dynamics.stability): read,
 never judged. A row stored before the verdicts were recorded shows NOT_RECORDED."""
 
 from __future__ import annotations
@@ -8,8 +8,8 @@ import math
 
 import pandas as pd
 
-from reports.harness.columns import LOST, NOT_RECORDED, Judgement
 from reports.render.report_data import is_swept
+from reports.store import LOST, NOT_RECORDED, Judgement
 
 STRESS_SUITE = "stress"
 """The suite whose rows the stability map shows."""

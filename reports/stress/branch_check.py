@@ -28,7 +28,7 @@ from reference_solver.factorization import factorize
 from reference_solver.layout import Layout
 from reference_solver.newton import NewtonSettings, newton
 from reference_solver.system import ConstraintSystem
-from reports.harness.columns import LOST  # farther than it from every closure: `off`
+from reports.store import LOST  # farther than it from every closure: `off`
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 

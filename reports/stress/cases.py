@@ -189,6 +189,6 @@ def scenario_names() -> list[str]:
 
 
 def stress_settings(scenario: Scenario, adapter: Adapter) -> list[Setting] | None:
-    """The settings hook of the stress suite (see reports.harness.suites)."""
+    """The settings hook of the stress suite (see reports.suites)."""
     settings = case(scenario.name).settings
     return None if settings is None else settings(scenario, adapter)

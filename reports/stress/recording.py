@@ -1,7 +1,7 @@
 """The stress suite's and the swept points' verdicts, decided when the run is made and stored.
 
 After a suite's runs, every stored row a stability map shows gets its verdict columns
-(the verdict columns of reports.harness.columns), judged by reports.stress.stability_map from what the
+(the verdict columns of reports.store.columns), judged by reports.stress.stability_map from what the
 store holds (the row, the default runs' trajectories, the truth; the branch check solves on the
 scenario's constraint equations):
 - in the stress suite, every row of a stress case, with the case's description (its place, what it
@@ -20,9 +20,8 @@ from typing import Any
 import numpy as np
 
 from reference_solver import constraint_residual
-from reports.harness.metrics import headline_series
-from reports.harness.results_store import ResultsStore, stored_truths
-from reports.harness.scenario_identity import stored_scenario
+from reports.scoring import headline_series
+from reports.store import ResultsStore, stored_scenario, stored_truths
 from reports.stress.cases import CASES, StressCase
 from reports.stress.stability_map import columns, judge
 from scenarios.scenario import Scenario

@@ -29,8 +29,8 @@ from typing import Any
 
 import numpy as np
 
-from reports.harness.columns import LOST, Judgement
-from reports.harness.metrics import headline_series
+from reports.scoring import headline_series
+from reports.store import LOST, Judgement
 from reports.stress.branch_check import ON_CLOSURE, check_branch
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory

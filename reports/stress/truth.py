@@ -9,7 +9,7 @@ native solver, made to say where it has no answer, elsewhere.
   time and NaN from there on: no truth exists past a singular configuration, and no error is
   measured there.
 - Elsewhere (spline and lobed cams, a scenario file that takes a case's name) the truth is the native
-  solver (reports.harness.truth.partial_truth), on a grid `refine` times finer where the case asks,
+  solver (reports.scoring.truth.partial_truth), on a grid `refine` times finer where the case asks,
   so that it follows the branch where the scenario's grid would let the solver's predictor jump;
   where it stops (a singular configuration, no configuration beyond), it is NaN from that time.
 """
@@ -20,8 +20,7 @@ import dataclasses
 
 import numpy as np
 
-from reports.harness.forces import TRUTH_TOLERANCE
-from reports.harness.truth import CLOSED_FORM, closed_form, partial_truth
+from reports.scoring import CLOSED_FORM, TRUTH_TOLERANCE, closed_form, partial_truth
 from reports.stress.cases import StressCase, case
 from scenarios.identity import family_twin
 from scenarios.scenario import Scenario

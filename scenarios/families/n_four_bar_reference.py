@@ -104,7 +104,7 @@ def criterion(scenario: Scenario, trajectory: Trajectory) -> dict[str, float]:
     grid: `benchmark_error`, the largest |B0 - B0_reference| over x, y, vx, vy and the grid (m and
     m/s), against `benchmark_limit`, the specification's high-precision limit, and
     `invariant_error`, the largest angle of any rocker to the crank (rad). The energy is every
-    dynamic row's own figure (reports.harness.energy_drift)."""
+    dynamic row's own figure (reports.scoring.energy_drift)."""
     found = reduced(scenario)
     theta = _level(trajectory, "position")[:, :, 2]
     rockers = [k for k, b in enumerate(trajectory.bodies) if b.startswith("rocker")]

@@ -12,21 +12,9 @@ from collections.abc import Mapping
 from typing import Any
 
 from scenarios.bodies import GROUND, Body
+from scenarios.files import schema as declared
 from scenarios.files.reader import required_keys
-from scenarios.files.schema import (
-    ANGLE_OUTPUT_KEYS,
-    BODY_KEYS,
-    FORMAT,
-    MOTIONS,
-    POINT_KEYS,
-    PROFILES,
-    SECTIONS,
-    SPLINE_CSV_KEY,
-    TOP_LEVEL,
-    TOP_LEVEL_REQUIRED,
-    Key,
-    Kind,
-)
+from scenarios.files.schema import Key, Kind
 from scenarios.names import MAX_NAME_LENGTH
 from scenarios.outputs import AngleOutput
 from scenarios.scenario import LEVELS
@@ -106,9 +94,12 @@ def kinds(options: Mapping[str, Kind]) -> Schema:
         keys = {"kind": Key("choice", choices=(name,)), **spec.keys}
         then = table(keys, ("kind", *required_keys(spec.cls)))
         if name == "spline":  # the radii inline, or from a CSV file beside the scenario file
-            then["properties"][SPLINE_CSV_KEY] = {"type": "string", "description": "CSV file of radii"}
+            then["properties"][declared.SPLINE_CSV_KEY] = {
+                "type": "string",
+                "description": "CSV file of radii",
+            }
             then["required"] = ["kind"]
-            then["oneOf"] = [{"required": ["table"]}, {"required": [SPLINE_CSV_KEY]}]
+            then["oneOf"] = [{"required": ["table"]}, {"required": [declared.SPLINE_CSV_KEY]}]
         cases.append({"if": {"properties": {"kind": {"const": name}}}, "then": then})
     return {
         "type": "object",
@@ -123,23 +114,27 @@ def _array(items: Schema, minimum: int = 0) -> Schema:
 
 
 def scenario_schema() -> Schema:
-    """The JSON Schema of a scenario file (format FORMAT), as a JSON-ready dict."""
-    top = table({k: v for k, v in TOP_LEVEL.items() if v.type != "tables"}, TOP_LEVEL_REQUIRED)
-    top["properties"]["format"] = {"const": FORMAT}
+    """The JSON Schema of a scenario file (of the format schema.FORMAT), as a JSON-ready dict."""
+    top = table(
+        {k: v for k, v in declared.TOP_LEVEL.items() if v.type != "tables"}, declared.TOP_LEVEL_REQUIRED
+    )
+    top["properties"]["format"] = {"const": declared.FORMAT}
     top["properties"].update(
-        bodies=_array(table(BODY_KEYS, required_keys(Body)), TOP_LEVEL["bodies"].minimum_length),
-        angle_outputs=_array(table(ANGLE_OUTPUT_KEYS, required_keys(AngleOutput))),
-        **{section: _array(kinds(options)) for section, options in SECTIONS.items()},
+        bodies=_array(
+            table(declared.BODY_KEYS, required_keys(Body)), declared.TOP_LEVEL["bodies"].minimum_length
+        ),
+        angle_outputs=_array(table(declared.ANGLE_OUTPUT_KEYS, required_keys(AngleOutput))),
+        **{section: _array(kinds(options)) for section, options in declared.SECTIONS.items()},
     )
     return {
         "$schema": DRAFT,
         "title": "mbxval scenario file",
-        "description": f"A planar mechanism for mbxval, scenario file format {FORMAT} "
+        "description": f"A planar mechanism for mbxval, scenario file format {declared.FORMAT} "
         "(docs/scenario-files.md).",
         **top,
         "$defs": {
-            "point": table(POINT_KEYS, ("body",)),
-            "motion": kinds(MOTIONS),
-            "profile": kinds(PROFILES),
+            "point": table(declared.POINT_KEYS, ("body",)),
+            "motion": kinds(declared.MOTIONS),
+            "profile": kinds(declared.PROFILES),
         },
     }

@@ -16,8 +16,8 @@ import pytest
 
 import adapters
 from reports.cli.main import main
-from reports.harness import engine_facts
-from reports.harness.results_store import read_results
+from reports.run import engine_facts
+from reports.store.results_store import read_results
 
 GOOD = """
 from adapters.reference import ReferenceAdapter

@@ -12,7 +12,7 @@ import pytest
 
 from adapters.base import WARMUP_POINTS
 from adapters.timing import timed
-from reports.harness.rows import result_row
+from reports.run.rows import result_row
 from scenarios import Scenario, Trajectory
 from scenarios import load as load_scenario
 from tests.support.fake_clock import Clock

@@ -4,7 +4,7 @@ a change in the rule, an adapter or an engine shows. Round-off values are held f
 
 Measured on the 2-core machine with mujoco 4.0.0, exudyn 1.13.6 and pin 4.1.0 against the harness
 truth (closed forms, the native forward dynamics), as the runner measures them
-(reports.harness.level_error)."""
+(reports.scoring.level_error)."""
 
 from __future__ import annotations
 
@@ -72,15 +72,3 @@ def test_exudyn_s_floor_on_the_slider_crank() -> None:
     finest = adapter.ladder(scenario)[4]
     assert finest.mode == "GA3"
     held(errors("slider_crank", "exudyn", finest), FLOORS[("slider_crank", "exudyn")])
-
-
-@pytest.mark.slow
-def test_mujoco_s_floor_on_the_free_four_bar() -> None:
-    """The direct solref form at 1e4 steps (next to no stiffness and damping, the loop held by its
-    exact accelerations), the regulariser scaled: below the default's 1024 steps in free dynamics."""
-    adapter = adapters.load("mujoco")
-    scenario = scenarios.load("four_bar_gravity")
-    default = adapter.default_setting(scenario)
-    floor = default.replace(tc=1e4 * float(default["dt"]), solref="direct")
-    assert floor in adapter.ladder(scenario)
-    held(errors("four_bar_gravity", "mujoco", floor), FLOORS[("four_bar_gravity", "mujoco")])

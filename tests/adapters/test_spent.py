@@ -15,7 +15,7 @@ import scenarios
 from adapters import timing
 from adapters.base import WARMUP_POINTS
 from adapters.failures import Singular
-from reports.harness.rows import result_row
+from reports.run.rows import result_row
 from scenarios import Scenario, Trajectory
 from tests.support.fake_clock import Clock
 from tests.support.grid_engine import GridAdapter

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import adapters
-from reports.harness.level_error import LEVEL_COLUMNS, level_errors
+from reports.scoring.level_error import LEVEL_COLUMNS, level_errors
 from scenarios import Scenario, Trajectory
 from scenarios.files import parse_scenario
 from tests.support.bounds import held

@@ -12,7 +12,7 @@ import pytest
 import adapters
 from adapters.base import WARMUP_POINTS, Diverged, Setting
 from adapters.timing import fastest
-from reports.harness.group_runs import LONG_RUN, RunConfig, timed_run
+from reports.run.group_runs import LONG_RUN, RunConfig, timed_run
 from scenarios import Scenario, Trajectory
 from scenarios import load as load_scenario
 from tests.support.busy import work

@@ -26,7 +26,7 @@ MUTANT = re.compile(r"(?P<module>.*?)\.x(?:_(?P<function>.*)|ǁ(?P<cls>.*)ǁ(?P<
 
 @pytest.mark.slow
 def test_every_mutant_of_the_level_errors_is_killed_or_explained() -> None:
-    outcome = run("reports/harness/level_error.py", niceness=0)
+    outcome = run("reports/scoring/level_error.py", niceness=0)
     assert outcome.total > 50 and outcome.timeout == 0 and outcome.other == 0
     assert outcome.unexplained == ()
     assert outcome.killed == outcome.total - len(outcome.survivors)

@@ -8,7 +8,7 @@ import pytest
 from adapters import timing
 from adapters.timing import enough, timed
 from benchmarks.repeat_noise import by_the_rule
-from reports.harness.group_runs import AGREE, LONG_RUN
+from reports.run.group_runs import AGREE, LONG_RUN
 from tests.support.fake_clock import Clock
 
 CASES = [

@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from benchmarks.run_breakdown import breakdown, table
-from reports.harness import group_runs, runner
+from reports.run import group_runs, runner
 
 
 def test_a_run_s_overhead_is_accounted_for_step_by_step(tmp_path: Path) -> None:

@@ -10,7 +10,7 @@ import pytest
 
 from benchmarks.run_overhead import WORK, work, work_of
 from benchmarks.sweep_speed import timing_line
-from reports.harness.results_store import read_results
+from reports.store.results_store import read_results
 from tests.support.sleeper import CONFIG, RUN, WARM, run_sleeper
 
 

@@ -7,8 +7,8 @@ import pytest
 
 from benchmarks.store_append import realistic_rows
 from reports.cli.main import main
-from reports.harness.columns import COLUMNS
-from reports.harness.results_store import key_of
+from reports.store.columns import COLUMNS
+from reports.store.results_store import key_of
 
 
 def test_the_rows_are_the_declared_columns_with_distinct_keys() -> None:

@@ -1,7 +1,7 @@
 """Every example file on every engine at its default setting, against the example's closed form.
 
 Each supported (example, engine) pair must stay within a factor 3 of its measured error, either
-way (MEASURED below: the dimensionless error per level of reports.harness.level_error: lengths
+way (MEASURED below: the dimensionless error per level of reports.scoring.level_error: lengths
 over L, rates over L w, accelerations over L w^2; round-off held from above only). Each pair an
 engine does not support must say so with the reason listed here. The slider-crank, its polynomial
 drive and the straight-line linkage run in the quick loop; the other examples are marked slow.

@@ -12,7 +12,7 @@ import pandas as pd
 import pytest
 
 import mbxval
-from reports.harness.engine_facts import engine_packages
+from reports.run.engine_facts import engine_packages
 from scenarios.closed_form import exact
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"

@@ -18,12 +18,14 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
+import reports.gate as gate_face
 from reports.cli import suite_commands
 from reports.cli.main import main
-from reports.harness import gate, store_files
-from reports.harness.results_store import RESULTS, TRAJECTORIES, ResultsStore, read_results, read_trajectories
-from reports.harness.store_files import StoreDamaged
-from reports.harness.store_lock import StoreBusy, WriterLock
+from reports.gate import gate
+from reports.store import files as store_files
+from reports.store.files import StoreDamaged
+from reports.store.lock import StoreBusy, WriterLock
+from reports.store.results_store import RESULTS, TRAJECTORIES, ResultsStore, read_results, read_trajectories
 from tests.support.fake_engine import FakeAdapter
 from tests.support.store_runs import CONFIG, ROOT, SCENARIO, copy, fake_run, one_line_error, rows
 from tests.support.stores import table_files, write_schema_1
@@ -120,20 +122,27 @@ def test_every_bit_flip_is_detected_and_never_copied_forward(
 
 
 def test_a_store_without_its_status_column_is_refused(stored: Path, tmp_path: Path, capsys) -> None:
-    """A store from before generations (plain files, no checksums) is still checked for its columns."""
-    out = tmp_path / "legacy"
-    out.mkdir()
-    frame, _ = read_results(stored)
-    frame.drop(columns=["status"]).to_parquet(out / RESULTS, index=False)
+    """A store whose rows lack a column every store has had is refused, naming it."""
+    out = write_schema_1(tmp_path / "old", stored, without=["status"])
     assert main(["report", str(out)]) == 2
     one_line_error(capsys, "lacks the columns status")
 
 
-def test_a_store_from_before_generations_is_read_and_converted(stored: Path, tmp_path: Path) -> None:
-    out = write_schema_1(tmp_path / "legacy", stored, generations=False)
-    fake_run(out, dataclasses.replace(CONFIG, keep_failures=True))
-    assert (out / "current").is_symlink() and (out / RESULTS).is_symlink()
-    assert rows(out).drop(columns=["recorded_at"]).equals(rows(stored).drop(columns=["recorded_at"]))
+def test_a_plain_table_that_no_generation_holds_is_refused_and_kept(
+    stored: Path, tmp_path: Path, capsys
+) -> None:
+    """A results.parquet in DIR with no generation (a layout this mbxval does not read) is neither
+    read as empty nor written over: the run stops in one line naming the repair."""
+    out = tmp_path / "plain"
+    out.mkdir()
+    frame, _ = read_results(stored)
+    frame.to_parquet(out / RESULTS, index=False)
+    pristine = (out / RESULTS).read_bytes()
+    assert main(["report", str(out)]) == 2
+    one_line_error(capsys, "not in a state mbxval understands", "mbxval store repair")
+    with pytest.raises(StoreDamaged, match="no generation"):
+        fake_run(out)
+    assert (out / RESULTS).read_bytes() == pristine and not (out / "current").exists()
 
 
 # --- resume never loses a good row ----------------------------------------------------------------
@@ -309,7 +318,7 @@ BAD_INPUTS = [
     (["solve", SCENARIO, "--engine", "pinocchio", "--setting", "tol=-1"], "tol"),
     (["solve", SCENARIO, "--engine", "pinocchio", "--setting", "tol=nan"], "tol"),
     (["solve", SCENARIO, "--engine", "pinocchio", "--setting", "nosuch=1"], "known:"),
-    (["solve", SCENARIO, "--engine", "mujoco", "--setting", "tc_steps=0"], "tc_steps"),
+    (["solve", SCENARIO, "--engine", "mujoco", "--setting", "tc=0"], "tc"),
     (["solve", SCENARIO, "--engine", "mujoco", "--setting", "impedance=2"], "impedance"),
     (["solve", SCENARIO, "--engine", "mujoco", "--setting", "dt=0"], "dt"),
     (["solve", SCENARIO, "--engine", "mujoco", "--setting", "nosuch=1"], "known:"),
@@ -378,7 +387,7 @@ def test_ctrl_c_in_report_or_check_is_one_line(
     stored: Path, tmp_path: Path, command: str, monkeypatch, capsys
 ) -> None:
     monkeypatch.setattr(suite_commands, "render_reports", interrupt)
-    monkeypatch.setattr(gate, "judge", interrupt)
+    monkeypatch.setattr(gate_face, "judge", interrupt)  # the command reads the gate's face
     baseline = tmp_path / "b.json"
     gate.write_baseline(baseline, read_results(stored)[0], {})
     argv = (

@@ -16,7 +16,7 @@ import pytest
 
 import scenarios
 from reports.cli.main import main
-from reports.harness.truth import CLOSED_FORM, NATIVE_REFINED, independent_truth
+from reports.scoring.truth import CLOSED_FORM, NATIVE_REFINED, independent_truth
 from scenarios.closed_form import NoClosedForm, exact
 from scenarios.files import read_scenario, scenario_toml
 from scenarios.identity import family_twin
@@ -184,8 +184,8 @@ def test_plain_csv_numbers_with_spaces_and_exponents_are_read(tmp_path: Path, ca
 
 
 def test_an_overflowing_error_counts_as_infinite_not_as_undefined() -> None:
-    from reports.harness.level_error import largest
-    from reports.harness.metrics import summarise
+    from reports.scoring.level_error import largest
+    from reports.scoring.metrics import summarise
 
     assert largest(np.array([1e-3, math.inf, math.nan])) == math.inf
     assert math.isnan(largest(np.array([math.nan, math.nan])))

@@ -1,5 +1,5 @@
 """An engine's errors per level at a setting (its default unless given), against the harness truth, as
-the runner measures them (reports.harness.level_error)."""
+the runner measures them (reports.scoring.level_error)."""
 
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ import numpy as np
 import adapters
 import scenarios
 from adapters.base import Setting
-from reports.harness.level_error import level_errors
-from reports.harness.truth import independent_truth
+from reports.scoring.level_error import level_errors
+from reports.scoring.truth import independent_truth
 
 LEVELS = ("error_position", "error_velocity", "error_acceleration")
 

@@ -1,13 +1,13 @@
 """The engines the tests run, drawn from the registry (adapters.names), so that a registered engine
 joins every test that runs them all without the test being edited. An engine whose package is not
 installed here (an optional extra, such as Drake without `pip install -e '.[drake]'`) is left out,
-as `mbxval run` leaves it out (reports.harness.runner.not_installed); an engine whose own module is
+as `mbxval run` leaves it out (reports.run.runner.not_installed); an engine whose own module is
 broken stays in, and its tests fail."""
 
 from __future__ import annotations
 
 import adapters
-from reports.harness.runner import not_installed
+from reports.run.runner import not_installed
 
 
 def _installed(name: str) -> bool:

@@ -4,16 +4,6 @@ against cold workers, kept workers) compare every other column."""
 
 from __future__ import annotations
 
-from reports.harness.columns import WALL_COLUMNS
+from tests.support.stores import RUN_TIMES, WHERE_AND_WHEN
 
-VARIES_BETWEEN_RUNS: tuple[str, ...] = (
-    "build_time",
-    "run_time",
-    "warmup_time",
-    "repeats_time",
-    *(column.name for column in WALL_COLUMNS),
-    "recorded_at",
-    "host",
-    "workers",
-    "revision",
-)
+VARIES_BETWEEN_RUNS: tuple[str, ...] = (*RUN_TIMES, *WHERE_AND_WHEN, "revision")

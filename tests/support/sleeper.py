@@ -10,8 +10,8 @@ from pathlib import Path
 import numpy as np
 
 from adapters.base import WARMUP_POINTS, Adapter, Setting
-from reports.harness.results_store import ResultsStore
-from reports.harness.runner import RunConfig, Runner
+from reports.run.runner import RunConfig, Runner
+from reports.store.results_store import ResultsStore
 from scenarios import Scenario, Trajectory
 from tests.support.busy import work
 from tests.support.fake_engine import GOOD, FakeAdapter, fake_loader, fake_truth

@@ -8,8 +8,8 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from reports.harness.results_store import ResultsStore, read_results
-from reports.harness.runner import RunConfig, Runner
+from reports.run.runner import RunConfig, Runner
+from reports.store.results_store import ResultsStore, read_results
 from tests.support.fake_engine import GOOD, FakeAdapter, fake_truth
 
 ROOT = Path(__file__).resolve().parents[2]

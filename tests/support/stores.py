@@ -4,12 +4,18 @@ from __future__ import annotations
 
 import json
 import shutil
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 import pandas as pd
 
-from reports.harness.results_store import ResultsStore, key_of, read_results
+from reports.store.columns import WALL_COLUMNS
+from reports.store.results_store import ResultsStore, key_of, read_results
+
+RUN_TIMES = ("build_time", "run_time", "warmup_time", "repeats_time", *(c.name for c in WALL_COLUMNS))
+"""The columns a run's clocks fill: never the same in two runs of one setting."""
+WHERE_AND_WHEN = ("recorded_at", "host", "workers")
+"""The columns that say when, on which machine and with how many workers a row was made."""
 
 
 def doctor(source: Path, target: Path, edit: Callable[[pd.DataFrame], None]) -> Path:
@@ -39,28 +45,25 @@ def copy_entry(source: Path, target: Path) -> None:
         shutil.copy(source, target)
 
 
-def write_schema_1(directory: Path, source: Path, generations: bool = True) -> Path:
+def write_schema_1(directory: Path, source: Path, without: Iterable[str] = ()) -> Path:
     """The rows and trajectories of the store `source` written as the mbxval before parts wrote
-    them (no parts): one results.parquet (every row, sorted by key, with the opt_ columns) and one
-    trajectories.parquet; in a generation with the checksums in its sidecar, `current` and the
-    public links (`generations`), or as plain files in DIR with a sidecar without checksums (the
-    store from before generations)."""
-    from reports.harness.results_store import _trajectory_frame, read_trajectories, rows_frame
-    from reports.harness.store_layout import checksum
+    them (no parts): one results.parquet (every row, sorted by key, with the opt_ columns, but the
+    columns `without`, as a store from before they existed) and one trajectories.parquet, in a
+    generation with the checksums in its sidecar, `current` and the public links."""
+    from reports.store.layout import checksum
+    from reports.store.results_store import _trajectory_frame, read_trajectories, rows_frame
 
     frame, meta = read_results(source)
     meta = {k: v for k, v in meta.items() if k not in ("files", "parts")} | {"schema_version": 1}
-    folder = directory / ".generations" / "g000001" if generations else directory
+    folder = directory / ".generations" / "g000001"
     folder.mkdir(parents=True)
-    rows_frame(frame.to_dict("records")).to_parquet(folder / "results.parquet", index=False)
+    rows = rows_frame(frame.to_dict("records"))
+    rows.drop(columns=list(without)).to_parquet(folder / "results.parquet", index=False)
     _trajectory_frame(read_trajectories(source)).to_parquet(folder / "trajectories.parquet", index=False)
-    if generations:
-        names = ("results.parquet", "trajectories.parquet")
-        sums = {n: dict(zip(("bytes", "sha256"), checksum(folder / n), strict=True)) for n in names}
-        meta["files"] = sums
+    names = ("results.parquet", "trajectories.parquet")
+    meta["files"] = {n: dict(zip(("bytes", "sha256"), checksum(folder / n), strict=True)) for n in names}
     (folder / "results.json").write_text(json.dumps(meta, indent=2, sort_keys=True, default=str) + "\n")
-    if generations:
-        (directory / "current").symlink_to(Path(".generations") / "g000001")
-        for name in ("results.parquet", "results.json", "trajectories.parquet"):
-            (directory / name).symlink_to(Path("current") / name)
+    (directory / "current").symlink_to(Path(".generations") / "g000001")
+    for name in ("results.parquet", "results.json", "trajectories.parquet"):
+        (directory / name).symlink_to(Path("current") / name)
     return directory

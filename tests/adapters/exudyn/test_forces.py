@@ -11,9 +11,9 @@ import pytest
 import adapters
 from adapters.base import Setting
 from adapters.exudyn.force_sensors import add_force_sensors
-from reports.harness.comparison import measure
-from reports.harness.forces import native_forces
-from reports.harness.truth import independent_truth
+from reports.scoring.comparison import measure
+from reports.scoring.forces import native_forces
+from reports.scoring.truth import independent_truth
 from scenarios import load
 from tests.support.bounds import held
 from tests.support.measured import EXUDYN_FORCES
@@ -56,7 +56,7 @@ def test_the_start_s_forces_are_exudyn_s_own_not_zero(run_in: int | None) -> Non
 
 PRISMATIC = {("slider_crank", "slide"): 1.2e-6, ("cam_roller", "guide"): 1.7e-7}
 """(scenario, prismatic joint): the error of its reaction (both components, over the mechanism's
-force scale, harness.forces) at the default, measured: Exudyn's ForceLocal, in the
+force scale, scoring.forces) at the default, measured: Exudyn's ForceLocal, in the
 marker-0 body's axes, turned into world axes. The slider's axis is x, the follower's y, so a
 mapping that took the joint's axial and normal components for x and y would fail the second."""
 

@@ -1,6 +1,6 @@
 """Exudyn's start-up transient, its run-in and its outputs on its own steps: the four-bar's verdict
 does not depend on how many outputs are asked for; without the run-in the transient is there and
-shows as the start-up figure (reports.harness.startup); even grids are read on Exudyn's steps (positions
+shows as the start-up figure (reports.scoring.startup); even grids are read on Exudyn's steps (positions
 at round-off), uneven ones interpolated with the cost said; the untuned setting at its measured
 errors."""
 
@@ -16,8 +16,8 @@ import adapters
 from adapters.base import RunResult, Setting
 from adapters.exudyn.run_in import DECAY, run_in_steps
 from adapters.lattice import hermite, interpolation_cost, outputs_on_steps
-from reports.harness.comparison import measure
-from reports.harness.truth import independent_truth
+from reports.scoring.comparison import measure
+from reports.scoring.truth import independent_truth
 from scenarios import Scenario, build
 from tests.support.bounds import held
 

@@ -2,7 +2,7 @@
 three steps, and the correct digits of Andrews' squeezer at t = 0.03 s against the published
 reference.
 
-On the free four-bar the loop is a soft `connect` whose time constant is tc_steps steps, so it
+On the free four-bar the loop is a soft `connect` whose time constant is tc (four steps here), so it
 shrinks with the step: with MuJoCo's own regulariser (these settings leave invweight0 as
 compiled) the trajectory's error is then the regulariser's sag, about (1 - impedance) times the
 unconstrained acceleration times tc^2, which falls as dt^2 and stays above RK4's own dt^4 (the
@@ -23,7 +23,7 @@ from tests.support.mujoco.truths import ADAPTER, errors
 
 FOUR_BAR = {"t_end": 0.25, "steps": 25}
 PENDULUM = {"t_end": 1.0, "steps": 25}
-BEST = Setting.of("RK4", dt=3e-6, tc_steps=4.0, impedance=0.9999)
+BEST = Setting.of("RK4", dt=3e-6, tc=4.0 * 3e-6, impedance=0.9999)
 """The best of the default ladder on Andrews' squeezer."""
 
 
@@ -31,7 +31,7 @@ def order(name: str, mode: str, steps: tuple[float, ...], overrides: dict[str, f
     """The fitted slope of log position error against log step (the engine's step: the output
     grid never changes it)."""
     found = [
-        errors(name, Setting.of(mode, dt=dt, tc_steps=4.0, impedance=0.9999), **overrides)["position"]
+        errors(name, Setting.of(mode, dt=dt, tc=4.0 * dt, impedance=0.9999), **overrides)["position"]
         for dt in steps
     ]
     return float(np.polyfit(np.log(steps), np.log(found), 1)[0])
@@ -77,7 +77,7 @@ def andrews_digits(setting: Setting | None) -> np.ndarray:
         # the ladder's best, RK4 at its finest step 3e-6 s
         (BEST, (7.86, 7.76, 6.64, 7.77, 8.41, 7.77, 8.89)),
         pytest.param(
-            Setting.of("RK4", dt=1e-6, tc_steps=4.0, impedance=0.9999),
+            Setting.of("RK4", dt=1e-6, tc=4.0 * 1e-6, impedance=0.9999),
             (8.82, 8.72, 7.6, 8.73, 9.35, 8.73, 9.83),
             marks=pytest.mark.slow,
         ),

@@ -8,8 +8,8 @@ import pytest
 
 import adapters
 from adapters.mujoco.settings import own_regulariser
-from reports.harness.comparison import measure
-from reports.harness.truth import independent_truth
+from reports.scoring.comparison import measure
+from reports.scoring.truth import independent_truth
 from scenarios import load
 from tests.support.bounds import held
 from tests.support.measured import MUJOCO_FORCES

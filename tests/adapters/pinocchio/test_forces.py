@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from adapters.pinocchio import PinocchioAdapter
-from reports.harness.forces import CLOSED_FORM_FORCES, NATIVE_MULTIPLIERS, force_columns, force_errors
-from reports.harness.truth import independent_truth
+from reports.scoring.forces import CLOSED_FORM_FORCES, NATIVE_MULTIPLIERS, force_columns, force_errors
+from reports.scoring.truth import independent_truth
 from scenarios.registry import build
 
 ADAPTER = PinocchioAdapter()

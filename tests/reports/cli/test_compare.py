@@ -12,9 +12,9 @@ import pytest
 
 import scenarios
 from reports.cli.main import main
-from reports.harness import engine_facts
-from reports.harness.results_store import read_results, read_trajectories
 from reports.render.report_data import ReportData
+from reports.run import engine_facts
+from reports.store.results_store import read_results, read_trajectories
 from scenarios import Trajectory
 from scenarios.closed_form import exact
 

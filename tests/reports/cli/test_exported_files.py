@@ -13,8 +13,8 @@ import pytest
 
 import scenarios
 from reports.cli import main
-from reports.harness.level_error import characteristic_rate
-from reports.harness.scenario_identity import digest
+from reports.scoring.level_error import characteristic_rate
+from reports.store.scenario_identity import digest
 from scenarios.files import read_scenario
 
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 
 from reports.cli.main import main
 from reports.cli.suite_commands import MAX_WORKERS
-from reports.harness.stop import MAX_MESSAGE
+from reports.run.stop import MAX_MESSAGE
 from scenarios import ScenarioError
 from scenarios.files.reader import MAX_NUMBERS, MAX_TABLES, Reader, parse_scenario
 from scenarios.files.schema import Key

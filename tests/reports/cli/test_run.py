@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from reports.cli.main import main
-from reports.harness.results_store import read_results
+from reports.store.results_store import read_results
 from tests.support.engines import ENGINES
 
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from reports.cli.main import main
-from reports.harness.results_store import read_results, read_trajectories
+from reports.store.results_store import read_results, read_trajectories
 from scenarios import all_families
 
 NARROW = ["--suite", "quick", "--engine", "reference", "--repeats", "1", "--warmup", "0"]
@@ -68,9 +68,10 @@ def test_list_gives_one_name_per_mode_and_every_family_it_lists(capsys) -> None:
     assert set(all_families()) <= rows  # the dynamic families whose parameters it lists too
 
 
-def test_the_old_mode_names_are_still_accepted(capsys) -> None:
+def test_a_mode_name_the_engine_does_not_have_is_one_error_line_naming_its_modes(capsys) -> None:
     argv = ["solve", "four_bar", "--engine", "pinocchio", "--steps", "20"]
-    assert main([*argv, "--mode", "kinematics"]) == 0
-    old = capsys.readouterr().out
-    assert main([*argv, "--mode", "kinematic"]) == 0
-    assert capsys.readouterr().out == old
+    assert main([*argv, "--mode", "kinematics"]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == "" and captured.err.count("\n") == 1
+    assert captured.err.startswith("mbxval: error: pinocchio: unknown mode 'kinematics'")
+    assert "known: kinematic, dynamic, baumgarte, euler" in captured.err

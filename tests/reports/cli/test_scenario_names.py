@@ -12,8 +12,8 @@ import pytest
 
 import scenarios
 from reports.cli.main import main
-from reports.harness.results_store import read_results
-from reports.harness.scenario_identity import digest
+from reports.store.results_store import read_results
+from reports.store.scenario_identity import digest
 from scenarios.files import read_scenario, scenario_toml
 
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"

@@ -14,7 +14,7 @@ import pytest
 import adapters
 import scenarios
 from reports.cli.main import main
-from reports.harness.results_store import read_trajectories
+from reports.store.results_store import read_trajectories
 from scenarios.closed_form import exact
 from scenarios.newton_euler import body_forces
 from tests.support.engines import ENGINES

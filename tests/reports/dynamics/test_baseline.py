@@ -7,7 +7,7 @@ import pandas as pd
 
 import adapters
 from reports.dynamics.cases import scenario_names
-from reports.harness import baselines, gate
+from reports.gate import baselines, gate
 
 BASELINE = baselines.resolve("dynamics")
 

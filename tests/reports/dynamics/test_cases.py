@@ -14,7 +14,7 @@ from reports.dynamics.cases import (
     settings,
     truth_rtol,
 )
-from reports.harness.suites import get
+from reports.suites import get
 from scenarios import load
 from scenarios.registry import all_families
 from tests.support.engines import COMPARED

@@ -12,8 +12,8 @@ import pytest
 from reports.dynamics.cases import map_cells
 from reports.dynamics.recording import DEFINITION, record
 from reports.dynamics.stability import DRIFTED, verdict
-from reports.harness.columns import empty_row
-from reports.harness.results_store import ResultsStore
+from reports.store.columns import empty_row
+from reports.store.results_store import ResultsStore
 
 
 def _row(status: str = "ok", error: float = 1e-9, drift: float = 1e-10) -> pd.Series:

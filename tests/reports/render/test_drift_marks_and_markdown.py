@@ -10,10 +10,10 @@ from pathlib import Path
 import pytest
 
 from reports.cli.main import main
-from reports.harness import self_check
-from reports.harness.results_store import read_results
 from reports.render import markdown
 from reports.render.report_data import ReportData
+from reports.scoring import self_check
+from reports.store.results_store import read_results
 
 MARK = "⚠"
 

@@ -5,7 +5,6 @@ solver, stress case or engine is imported to render it)."""
 from __future__ import annotations
 
 import json
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -14,10 +13,10 @@ import pandas as pd
 import pytest
 
 from reports.cli.main import main
-from reports.harness.columns import NOT_RECORDED, RECORDED_COLUMNS, WALL_COLUMNS
-from reports.harness.results_store import read_results
 from reports.render.clock import CPU, OLD_WALL
 from reports.render.report import render_reports
+from reports.store.columns import NOT_RECORDED, RECORDED_COLUMNS, WALL_COLUMNS
+from reports.store.results_store import read_results
 from tests.support.stores import write_schema_1
 
 CASES = ("slider_crank/stress_dead_centre", "slider_crank")
@@ -34,11 +33,10 @@ def fresh(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 @pytest.fixture(scope="module")
 def old(fresh: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The same rows as a store from before generations wrote them, without the columns added since."""
-    out = write_schema_1(tmp_path_factory.mktemp("old") / "store", fresh, generations=False)
-    frame = pd.read_parquet(out / "results.parquet")
-    frame.drop(columns=[c.name for c in RECORDED_COLUMNS]).to_parquet(out / "results.parquet", index=False)
-    return out
+    """The same rows as a store from before parts wrote them, without the columns added since."""
+    return write_schema_1(
+        tmp_path_factory.mktemp("old") / "store", fresh, without=[c.name for c in RECORDED_COLUMNS]
+    )
 
 
 def _section(text: str, heading: str) -> str:
@@ -86,10 +84,7 @@ def test_rendering_imports_no_solver_engine_or_case(old: Path, tmp_path: Path) -
 def test_a_store_from_before_cpu_time_says_its_run_times_are_wall(
     fresh: Path, old: Path, tmp_path: Path
 ) -> None:
-    before = tmp_path / "store"
-    shutil.copytree(old, before)
-    frame = pd.read_parquet(before / "results.parquet")
-    frame.drop(columns=[c.name for c in WALL_COLUMNS]).to_parquet(before / "results.parquet", index=False)
-    render_reports(before, tmp_path / "page")
+    dropped = [c.name for c in (*RECORDED_COLUMNS, *WALL_COLUMNS)]
+    render_reports(write_schema_1(tmp_path / "store", old, without=dropped), tmp_path / "page")
     assert f"Run times are {OLD_WALL} seconds." in (tmp_path / "page" / "summary.md").read_text()
     assert f"Run times are {CPU} seconds (" in (fresh / "summary.md").read_text()

@@ -6,6 +6,7 @@ from __future__ import annotations
 import html
 import os
 import re
+import shutil
 import subprocess
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
@@ -14,8 +15,7 @@ import pandas as pd
 import pytest
 
 from reports.cli.main import main
-from reports.harness.results_store import read_results
-from tests.support.stores import copy_entry
+from reports.store.results_store import read_results
 
 SCENARIOS = ("slider_crank", "cam_roller/stress_undercut")
 CHROMIUM = Path("/usr/bin/chromium")
@@ -75,8 +75,11 @@ def test_markdown_summary_has_the_matrix_and_each_scenario(results: Path) -> Non
 def test_report_rerenders_from_stored_files_alone(results: Path, tmp_path: Path) -> None:
     copy = tmp_path / "stored"
     copy.mkdir()
-    for name in ("results.parquet", "results.json", "trajectories.parquet"):
-        copy_entry(results / name, copy / name)
+    for name in (".generations", "current", "results.parquet", "results.json", "trajectories.parquet"):
+        if (results / name).is_symlink():
+            shutil.copy(results / name, copy / name, follow_symlinks=False)
+        else:
+            shutil.copytree(results / name, copy / name, symlinks=True)
     assert main(["report", str(copy / "results.parquet")]) == 0
     assert (copy / "index.html").read_text().count('<svg class="plot"') == 3
     assert (copy / "summary.md").read_text() == (results / "summary.md").read_text()

@@ -11,12 +11,12 @@ import numpy as np
 import pytest
 from matplotlib.colors import to_rgba
 
-from reports.harness.results_store import ResultsStore
-from reports.harness.runner import RunConfig, Runner
-from reports.harness.sweep import points
 from reports.render import html, markdown, markup, sweep_render
 from reports.render.report_data import ReportData
 from reports.render.swept_map import SINGULAR, swept_maps
+from reports.run.runner import RunConfig, Runner
+from reports.run.sweep import points
+from reports.store.results_store import ResultsStore
 from reports.stress.recording import record
 
 GROUND, COUPLER, ROCKER, THETA0 = 0.1, 0.1, 0.125, 0.3  # the four_bar family's defaults

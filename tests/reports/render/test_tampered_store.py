@@ -14,10 +14,10 @@ import pytest
 
 import adapters
 from reports.cli.main import main
-from reports.harness.results_store import ResultsStore
 from reports.render import plots
 from reports.render.report_data import ReportData, swept_point
 from reports.render.swept_map import swept_maps
+from reports.store.results_store import ResultsStore
 from tests.support.stores import doctor
 
 POINTS = ("0", "0.02", "0.05")

@@ -10,9 +10,9 @@ from pathlib import Path
 import pytest
 
 from reports.cli.main import main
-from reports.harness.results_store import read_results
 from reports.render.report_data import ReportData
 from reports.render.stored_verdicts import Judgement, judgements, stress_rows
+from reports.store.results_store import read_results
 from reports.stress.cases import CASES
 
 FEW = (

@@ -12,12 +12,12 @@ import pytest
 import scenarios
 from adapters.base import RunResult, Setting
 from reference_solver import constraint_residual, solve
-from reports.harness.comparison import measure
-from reports.harness.results_store import ResultsStore
-from reports.harness.rows import failure_row, result_row
 from reports.render.report_data import ReportData
 from reports.render.stability_render import html_fragment, markdown_section
 from reports.render.stored_verdicts import Judgement, judgements, stress_rows
+from reports.run.rows import failure_row, result_row
+from reports.scoring.comparison import measure
+from reports.store.results_store import ResultsStore
 from reports.stress.recording import record
 from reports.stress.truth import stress_truth
 from scenarios.trajectory import Trajectory

@@ -13,9 +13,9 @@ import pytest
 import adapters
 import scenarios
 from reference_solver import solve
-from reports.harness import suites
-from reports.harness.level_error import level_errors
-from reports.harness.truth import CLOSED_FORM, closed_form
+from reports import suites
+from reports.scoring.level_error import level_errors
+from reports.scoring.truth import CLOSED_FORM, closed_form
 from reports.stress.cases import CASES, NOMINAL_SPEED
 from reports.stress.truth import partial_truth, stress_truth, stress_truth_name
 from scenarios.closed_form import exact

@@ -1,5 +1,5 @@
 """An example file run on one engine at its default setting, and its dimensionless error per level
-against the example's closed form (scaled as reports.harness.level_error scales a run's)."""
+against the example's closed form (scaled as reports.scoring.level_error scales a run's)."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import numpy as np
 
 import adapters
 from adapters.base import RunResult
-from reports.harness.level_error import LEVEL_COLUMNS, level_errors
+from reports.scoring.level_error import LEVEL_COLUMNS, level_errors
 from scenarios import Scenario, Trajectory
 from tests.support.examples.closed_forms import CLOSED_FORMS
 

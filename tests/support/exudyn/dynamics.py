@@ -11,7 +11,7 @@ import scenarios
 from adapters.base import Setting
 from adapters.exudyn import ExudynAdapter
 from reference_solver.dynamics import simulate
-from reports.harness.level_error import level_errors
+from reports.scoring.level_error import level_errors
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 from tests.support.truths import compiled

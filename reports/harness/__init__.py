@@ -1,1 +1,0 @@
-"""The harness: runs each engine in isolation, times and scores it, stores the rows and gates them."""

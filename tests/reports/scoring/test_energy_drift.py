@@ -1,0 +1,62 @@
+"""The harness's energy of a trajectory against the native solver's own energy accounting (two
+independent computations), and the drift metric on trajectories of known drift."""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+
+import numpy as np
+import pytest
+
+from reference_solver.dynamics import simulate
+from reports.scoring.energy_drift import (
+    energy_drift,
+    energy_scale,
+    kinetic_energy,
+    potential_energy,
+)
+from scenarios import Scenario, Trajectory, load
+
+SCENES = ["four_bar_gravity", "compound_pendulum", "slider_crank_spring", "stiff_spring/damped"]
+
+
+@functools.cache
+def _native(name: str) -> tuple[Scenario, Trajectory]:
+    """A short run: the energies are compared on the same trajectory, so its accuracy is moot."""
+    scenario = load(name, {"t_end": 0.2, "steps": 10} if name != "stiff_spring/damped" else {"t_end": 0.01})
+    return scenario, simulate(scenario, np.asarray(scenario.times()), 1e-6).trajectory()
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_energy_matches_the_native_accounting(name: str) -> None:
+    scenario, trajectory = _native(name)
+    scale = energy_scale(scenario, trajectory)
+    kinetic = kinetic_energy(scenario, trajectory)
+    potential = potential_energy(scenario, trajectory)
+    assert np.max(np.abs(kinetic - trajectory.extras["energy.kinetic"])) < 1e-12 * scale
+    assert np.max(np.abs(potential - trajectory.extras["energy.potential"])) < 1e-12 * scale
+
+
+def test_the_truth_has_no_drift_against_itself() -> None:
+    scenario, trajectory = _native("four_bar_gravity")
+    assert energy_drift(scenario, trajectory, trajectory) == 0.0
+
+
+def test_a_known_energy_error_is_measured() -> None:
+    """Velocities scaled by (1 + e) from the second grid time on add e (2 + e) T(t) to the energy:
+    the drift is that over the largest kinetic energy."""
+    scenario, truth = _native("four_bar_gravity")
+    e = 1e-3
+    velocity = truth.velocity.copy()
+    velocity[1:] *= 1.0 + e
+    run = dataclasses.replace(truth, velocity=velocity)
+    kinetic = kinetic_energy(scenario, truth)
+    expected = np.max(e * (2 + e) * kinetic[1:]) / np.max(kinetic)
+    assert energy_drift(scenario, run, truth) == pytest.approx(expected, rel=1e-9)
+
+
+def test_a_trajectory_without_velocities_is_refused() -> None:
+    scenario, truth = _native("four_bar_gravity")
+    with pytest.raises(ValueError, match="no velocity"):
+        energy_drift(scenario, dataclasses.replace(truth, velocity=None), truth)
