@@ -3,5 +3,6 @@
 import sys
 
 from reports.cli.main import main
+from reports.harness.stop import end
 
-sys.exit(main())
+sys.exit(end(main()))
