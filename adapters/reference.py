@@ -2,15 +2,16 @@
 
 Kinematic scenarios (mode newton): its one knob is the Newton-Raphson tolerance (on both |dq| and
 |C|, relative to the scenario's characteristic length); its ladder traces the native solver's own
-work-precision curve. `inverse_dynamics=1` (the default where every body has mass and the problem is
-within the dense-solve limit, scenarios.limits.MAX_DENSE_ROWS) adds the
-drivers' forces, the joints' reactions and the energies as extra columns, judged against the
-independent force truth where the scenario has one (reports.scoring.forces). Dynamic scenarios
-(modes DOP853 and Radau, coordinate partitioning): the knob is the integrator's relative tolerance
-`rtol`; mode ali3p, the second native method (index-3 augmented Lagrangian with projections, which
-passes singular configurations), takes the step `dt` instead, so that each native method can check
-the other. Through singular passages (a family's `singular_passages`), where the partitioned method
-cannot be relied on, ALI3-P is the default, at the settings rule's step.
+work-precision curve. `inverse_dynamics=1` (the default where every body has mass and its dense
+solves are within scenarios.limits' MAX_DENSE_ROWS; refused before the analysis where its work is
+above the limits) adds the drivers' forces, the joints' reactions and the energies as extra
+columns, judged against the independent force truth where the scenario has one
+(reports.scoring.forces). Dynamic scenarios (modes DOP853 and Radau, coordinate partitioning): the
+knob is the integrator's relative tolerance `rtol`; mode ali3p, the second native method (index-3
+augmented Lagrangian with projections, which passes singular configurations), takes the step `dt`
+instead, so that each native method can check the other. Through singular passages (a family's
+`singular_passages`), where the partitioned method cannot be relied on, ALI3-P is the default, at
+the settings rule's step.
 """
 
 from __future__ import annotations
@@ -30,9 +31,10 @@ from adapters.step_rule import rule_step
 from reference_solver import SingularConfigurationError, SolverError, analyse
 from reference_solver.dynamics import inverse_dynamics, simulate
 from reference_solver.dynamics.forward import ALI3P, ALI3P_STEP, METHODS
+from scenarios import limits
 from scenarios.limits import check_dense_rows, dense_admitted
 from scenarios.registry import singular_passages
-from scenarios.scenario import Scenario
+from scenarios.scenario import Scenario, ScenarioError
 from scenarios.trajectory import Trajectory
 
 TOLERANCES = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
@@ -177,6 +179,8 @@ class ReferenceAdapter(Adapter):
                 dynamic = simulate(model.scenario, times, model.tolerance, model.mode, fast, model.step)
                 self.count_steps(dynamic.evaluations)
                 return dynamic.trajectory()
+            if model.inverse:
+                _check_inverse_work(model.scenario, len(times))
             analysis = analyse(model.scenario, times, model.tolerance)
             trajectory = analysis.trajectory()
             if model.inverse:
@@ -196,3 +200,11 @@ def _forceless_reason(scenario: Scenario) -> str:
     if not dense_admitted(len(scenario.bodies)):
         return f"forces not given: {len(scenario.bodies)} bodies are past the dense solve's limit"
     return "forces not given: inverse_dynamics=0 (1 adds the drivers' forces and the joints' reactions)"
+
+
+def _check_inverse_work(scenario: Scenario, points: int) -> None:
+    """Refuse, before the analysis, inverse dynamics whose dense solves are above scenarios.limits."""
+    try:
+        limits.check_work(scenario.name, points, len(scenario.bodies), dense=True)
+    except ScenarioError as error:
+        raise EngineFailure(f"{error} (its forces; inverse_dynamics=0 solves the motion alone)") from None

@@ -28,6 +28,7 @@ from reports.store import read_results as read_stored
 from scenarios import Scenario
 from scenarios import load as load_by_name
 from scenarios.limits import MAX_LABEL_LENGTH
+from scenarios.names import check_scenario_names
 
 __all__ = ["ArgumentError", "compare", "load_scenario", "read_results", "run", "solve"]
 
@@ -68,7 +69,7 @@ def _scenario(scenario: object, parameters: Mapping[str, Value]) -> Scenario:
         return load_scenario(check.scenario_name("scenario", scenario), **parameters)
     if parameters:
         raise ArgumentError(f"parameters {', '.join(parameters)} given with a built Scenario: set them in it")
-    return scenario
+    return check_scenario_names(scenario)  # its names are checked as a file's would be
 
 
 def solve(

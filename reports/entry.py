@@ -1,6 +1,7 @@
 """The `mbxval` console entry point. It imports the command line (reports.cli.main) only when
 called, so that a Ctrl-C while numpy, the engines and the solver load ends like a Ctrl-C anywhere
-else: one line, exit 130, instead of a traceback from inside an import."""
+else: one line, exit 130, instead of a traceback from inside an import. A command stopped by Ctrl-C
+or SIGTERM ends at once once it has unwound (reports.run.stop.end)."""
 
 from __future__ import annotations
 
@@ -14,4 +15,6 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("mbxval: interrupted while starting", file=sys.stderr)
         return 130
-    return command_line(argv)
+    from reports.run import stop  # loaded with the command line
+
+    return stop.end(command_line(argv))

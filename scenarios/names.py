@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import unicodedata
 
-from scenarios.scenario import POINT_RESERVED, ScenarioError
+from scenarios.scenario import POINT_RESERVED, Scenario, ScenarioError
 
 MAX_NAME_LENGTH = 100
 """The most characters of a name (a scenario's, a body's, a label): far past any a user types, and
@@ -64,6 +64,28 @@ def check_scenario_name(name: object, what: str) -> str:
     if any(c in POINT_RESERVED + "/" for c in text) or text.endswith(".toml"):
         raise NameRefused(f"{what} must be a plain name, without '/', '.toml' or any of {POINT_RESERVED}")
     return text
+
+
+def check_scenario_names(scenario: Scenario) -> Scenario:
+    """`scenario` when every name it holds passes the checks a scenario file's names pass (its
+    `name` and `variant` as check_scenario_name; its bodies', joints', drivers', forces', angle
+    outputs' and parameters' names as check_name), for a Scenario built in Python rather than read;
+    NameRefused naming the first that does not, by where it is."""
+    check_scenario_name(scenario.family, "the scenario's name")
+    check_scenario_name(scenario.variant, "the scenario's variant")
+    groups = {
+        "bodies": scenario.bodies,
+        "joints": scenario.joints,
+        "drivers": scenario.drivers,
+        "forces": scenario.forces,
+        "angle_outputs": scenario.angle_outputs,
+    }
+    for group, items in groups.items():
+        for k, item in enumerate(items):
+            check_name(item.name, f"{group}[{k}].name")
+    for key, _ in scenario.parameters:
+        check_name(key, "a parameter's name")
+    return scenario
 
 
 def safe_file_stem(name: object, what: str) -> str:

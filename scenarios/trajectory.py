@@ -23,6 +23,9 @@ COLUMNS: dict[Level, tuple[str, str, str]] = {
     "velocity": ("vx", "vy", "omega"),
     "acceleration": ("ax", "ay", "alpha"),
 }
+CSV_BLOCK_ROWS = 4096
+"""Rows `write_csv` turns into Python numbers at once: one call for a million rows holds the
+interpreter (and a Ctrl-C's or SIGTERM's handler) for a second and the memory of every row."""
 
 
 @dataclass(frozen=True)
@@ -104,5 +107,6 @@ class Trajectory:
         writer = csv.writer(stream, lineterminator="\n")
         writer.writerow(columns)
         values = np.column_stack([np.asarray(v, dtype=float) for v in columns.values()])
-        for row in values.tolist():
-            writer.writerow(["" if x != x else f"{x:.17g}" for x in row])
+        for start in range(0, len(values), CSV_BLOCK_ROWS):
+            for row in values[start : start + CSV_BLOCK_ROWS].tolist():
+                writer.writerow(["" if x != x else f"{x:.17g}" for x in row])

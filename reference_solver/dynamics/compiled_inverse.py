@@ -1,7 +1,8 @@
-"""Inverse dynamics of a whole analysis in one compiled call (fast.inverse_kernel), where the
-constraints compile (reference_solver.compiled_system) and every force element has a kernel
-(fast.load_program): the same multipliers, driver forces, reactions and energies as the plain loop
-in dynamics.inverse, to 1e-12 (tests/reference_solver/dynamics/test_compiled_inverse.py)."""
+"""Inverse dynamics of a whole analysis in compiled calls (fast.inverse_kernel, one chunk of the grid
+each: fast.chunks), where the constraints compile (reference_solver.compiled_system) and every force
+element has a kernel (fast.load_program): the same multipliers, driver forces, reactions and
+energies as the plain loop in dynamics.inverse, to 1e-12
+(tests/reference_solver/dynamics/test_compiled_inverse.py)."""
 
 from __future__ import annotations
 
@@ -11,9 +12,9 @@ from reference_solver.compiled_system import CompiledSystem
 from reference_solver.dynamics.augmented import output_rows
 from reference_solver.dynamics.loads import Loads
 from reference_solver.fast import inverse_kernels
+from reference_solver.fast.chunks import chunks, dense_point_seconds
 from reference_solver.fast.constraint_rows import NotCompiled
 from reference_solver.fast.load_program import compile_loads
-from reference_solver.fast.path import CHUNK_ROW_STEPS
 from reference_solver.solution import Analysis
 from reference_solver.system import ConstraintSystem
 
@@ -41,9 +42,8 @@ def compiled_outputs(
     program = dense.program  # type: ignore[attr-defined]
     q, qd, qdd = (np.ascontiguousarray(a, dtype=float) for a in (analysis.q, analysis.qd, analysis.qdd))
     work, scratch = dense.work.copy(), dense.scratch.copy()  # type: ignore[attr-defined]
-    chunk = max(1, CHUNK_ROW_STEPS // (m * m))  # a least-squares solve of m rows a point
-    for start in range(0, count, chunk):  # a signal's handler runs between two chunks
-        part = slice(start, min(start + chunk, count))
+    for start, stop in chunks(count, dense_point_seconds(m)):  # a signal's handler runs between two
+        part = slice(start, stop)
         kernels.multipliers(
             *(program.ints, program.reals, forces.ints, forces.reals, forces.gravity, mass, times[part]),
             *(q[part], qd[part], qdd[part], first, lam[part], pairs[part], potential[part], work, scratch),

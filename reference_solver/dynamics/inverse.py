@@ -18,7 +18,7 @@ from scenarios.scenario import Scenario
 
 def inverse_dynamics(scenario: Scenario, analysis: Analysis, compiled: bool = True) -> dict[str, np.ndarray]:
     """Driver forces, joint reactions, kinetic and potential energy on the analysis grid. Where the
-    scenario and its loads compile and `compiled`, the whole grid in one numba call
+    scenario and its loads compile and `compiled`, the grid in compiled chunks
     (dynamics.compiled_inverse, equal to this loop to 1e-12); otherwise this loop, on the compiled
     Jacobian where the rows compile and `compiled` (equal to the plain rows to 1e-13,
     tests/reference_solver/test_compiled_system.py), on the plain rows without `compiled`."""

@@ -1,9 +1,9 @@
-"""Inverse dynamics over a whole trajectory in one numba call: at each time C_q from the compiled
-rows (fast.evaluate), Q_e from the compiled loads (fast.load_kernel), and the multipliers from the
-first block row of the augmented equations, C_q^T lambda = Q_e - M q'', in the least-squares sense
-(LAPACK's gelsd, as scipy's lstsq in reference_solver.dynamics.inverse, the plain path it is
-checked against). The reactions need only each joint's rows of C_q at its first moving body's x
-and y, so those products with lambda are returned instead of C_q at every time."""
+"""Inverse dynamics over a trajectory (or a chunk of it) in one numba call: at each time C_q from
+the compiled rows (fast.evaluate), Q_e from the compiled loads (fast.load_kernel), and the
+multipliers from the first block row of the augmented equations, C_q^T lambda = Q_e - M q'', in the
+least-squares sense (LAPACK's gelsd, as scipy's lstsq in reference_solver.dynamics.inverse, the
+plain path it is checked against). The reactions need only each joint's rows of C_q at its first
+moving body's x and y, so those products with lambda are returned instead of C_q at every time."""
 
 from __future__ import annotations
 

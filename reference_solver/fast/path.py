@@ -17,6 +17,7 @@ import numpy as np
 
 from reference_solver.diagnostics import RANK_TOLERANCE
 from reference_solver.fast.cache_guard import refresh
+from reference_solver.fast.chunks import banded_point_seconds, chunks
 from reference_solver.fast.constraint_rows import NotCompiled
 from reference_solver.fast.loop import EVENTS, OK
 from reference_solver.fast.loop import run as run_kernel
@@ -35,11 +36,6 @@ MOBILITY_MARGIN = 100.0 * RANK_TOLERANCE
 bounds sigma_min / sigma_max from below (||A||_2^2 <= ||A||_1 ||A||_inf), and the plain check's rank
 test needs sigma_min / sigma_max > RANK_TOLERANCE; the factor 100 covers the estimates (which can
 only overstate rcond, in practice by less than 10)."""
-
-CHUNK_ROW_STEPS = 500_000
-"""Constraint rows x grid points the kernel marches in one call (about a quarter of a second at its
-cost of about 0.5 microseconds a row-step): the interpreter, and so a SIGTERM's or Ctrl-C's
-handler, runs between two calls."""
 
 
 @dataclass(frozen=True)
@@ -83,12 +79,12 @@ def run(scenario: Scenario, grid: np.ndarray, tolerance: float = 1e-12, max_iter
     if count == 0:
         return FastRun("empty grid", 0, None)
     _drop_stale_cache()
-    state, chunk = np.zeros(1), max(1, CHUNK_ROW_STEPS // n)
-    for start in range(0, count, chunk):  # a signal's handler runs between two chunks
+    state = np.zeros(1)
+    for start, stop in chunks(count, banded_point_seconds(n)):  # a signal's handler runs between two
         event, index = run_kernel(
             *c.program, grid, c.guess, float(tolerance), int(max_iterations), ASSEMBLY_ITERATIONS,
             BACKTRACK_HALVINGS, HANDOVER, MOBILITY_MARGIN, q, qd, qdd, iterations, residual, rcond,
-            start, min(start + chunk, count), state,
+            start, stop, state,
         )  # fmt: skip
         if event != OK:
             return FastRun(EVENTS[event], int(index), None)

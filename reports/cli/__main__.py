@@ -3,5 +3,6 @@
 import sys
 
 from reports.cli.main import main
+from reports.run import stop
 
-sys.exit(main())
+sys.exit(stop.end(main()))

@@ -18,7 +18,7 @@ import adapters
 import reports.cli.run_overrides as run_overrides
 from reports import gate, suites
 from reports.cli.usage import UsageError
-from reports.run import RunConfig, stop, sweep
+from reports.run import RunConfig, scratch, stop, sweep
 from reports.store import WriterLock, committed, scenario_identity
 from reports.suites import Suite
 from scenarios import Scenario, limits
@@ -287,9 +287,10 @@ def cmd_check(args: argparse.Namespace) -> int:
         with WriterLock(out, wait=args.wait):
             run_selection(selection, out, progress=not args.quiet)
             return _check(args, out, baseline)
-    with tempfile.TemporaryDirectory(prefix="mbxval-check-") as temporary:
-        run_selection(selection, Path(temporary), progress=not args.quiet)
-        return _check(args, Path(temporary), baseline)
+    with scratch.scratch("check") as temporary:  # swept by the next check if a kill -9 leaves it
+        results = Path(temporary) / "results"
+        run_selection(selection, results, progress=not args.quiet)
+        return _check(args, results, baseline)
 
 
 def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, Any]] | None) -> int:

@@ -7,6 +7,7 @@ from reports.face import load
 
 if TYPE_CHECKING:  # the face: what the package offers, each loaded on first use (reports.face)
     from reports.run import recording as recording
+    from reports.run import scratch as scratch
     from reports.run import stop as stop
     from reports.run import sweep as sweep
     from reports.run.dask_backend import DaskRunner as DaskRunner

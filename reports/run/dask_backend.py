@@ -22,7 +22,6 @@ Dask is imported here only: the serial runner does not import it.
 from __future__ import annotations
 
 import contextlib
-import tempfile
 from collections import Counter
 from collections.abc import Iterator, Sequence
 from typing import Any
@@ -32,6 +31,7 @@ from reports.run import kept_workers
 from reports.run.group_runs import RunConfig, Stored, failure, run_group
 from reports.run.planning import Group
 from reports.run.runner import Loader, Runner, Truth, progress_bar, truth_named
+from reports.run.scratch import scratch
 from reports.scoring import NamedTruth, Residual
 from scenarios import Scenario
 
@@ -47,20 +47,21 @@ LOCAL_CONFIG = {
 def local_cluster(workers: int) -> Iterator[Any]:
     """A LocalCluster of `workers` single-threaded processes on the loopback address, no dashboard;
     its scratch space (the workers' spill and lock files) in a private temporary directory removed
-    when the cluster closes, even by Ctrl-C or SIGTERM, not left in the system's."""
+    when the cluster closes, even by Ctrl-C or SIGTERM, and by the next local cluster's start when
+    a kill -9 left it (reports.run.scratch)."""
     import dask
     from distributed import LocalCluster
 
     with (
-        tempfile.TemporaryDirectory(prefix="mbxval-dask-", ignore_cleanup_errors=True) as scratch,
-        dask.config.set({**LOCAL_CONFIG, "temporary-directory": scratch}),
+        scratch("dask") as directory,
+        dask.config.set({**LOCAL_CONFIG, "temporary-directory": directory}),
         LocalCluster(
             n_workers=workers,
             threads_per_worker=1,
             processes=True,
             host="127.0.0.1",
             dashboard_address=None,
-            local_directory=scratch,
+            local_directory=directory,
         ) as cluster,
     ):
         yield cluster

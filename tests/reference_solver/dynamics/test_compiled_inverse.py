@@ -66,25 +66,3 @@ def test_a_scene_with_cams_keeps_the_plain_loop() -> None:
     assert set(inverse_dynamics(scenario, analysis)) == set(
         inverse_dynamics(scenario, analysis, compiled=False)
     )
-
-
-@pytest.mark.parametrize("chunk_points", [1, 3])
-@pytest.mark.parametrize("name", ["slider_crank", "andrews_squeezer"])
-def test_chunks_give_the_whole_grid_s_outputs(
-    monkeypatch: pytest.MonkeyPatch, name: str, chunk_points: int
-) -> None:
-    """Marched in chunks of a few grid points (so that a signal's handler runs between two calls),
-    the kernel gives one call's outputs bit for bit."""
-    from reference_solver.dynamics import compiled_inverse
-
-    scenario = scenarios.build(name)
-    analysis = _random_analysis(scenario, 3, count=10)
-    system = constraint_system(scenario)
-    mass = mass_diagonal(scenario, system.layout, massless_contacts=True)
-    loads = Loads(scenario, system.layout, mass)
-    whole = compiled_outputs(system, mass, loads, analysis)
-    monkeypatch.setattr(compiled_inverse, "CHUNK_ROW_STEPS", chunk_points * system.size**2)
-    chunked = compiled_outputs(system, mass, loads, analysis)
-    assert whole is not None and chunked is not None and list(whole) == list(chunked)
-    for key, value in whole.items():
-        np.testing.assert_array_equal(chunked[key], value, err_msg=key)

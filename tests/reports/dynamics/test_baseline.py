@@ -3,13 +3,20 @@ every scenario of the suite on every engine, and the gate sees a regression in i
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
+from pathlib import Path
+
 import pandas as pd
+import pytest
 
 import adapters
 from reports.dynamics.cases import scenario_names
 from reports.gate import baselines, gate
 
 BASELINE = baselines.resolve("dynamics")
+ROOT = Path(__file__).resolve().parents[3]
 
 
 def test_every_scenario_of_the_suite_has_a_default_cell_per_engine() -> None:
@@ -44,3 +51,22 @@ def _dynamic_engines() -> list[str]:
         except adapters.EngineUnavailable:
             continue
     return found
+
+
+@pytest.mark.slow
+def test_the_shipped_dynamics_gate_passes_as_a_newcomer_runs_it(tmp_path: Path) -> None:
+    """`mbxval check --suite dynamics --baseline dynamics`, as on a fresh clone: from a directory
+    of its own, the suite run into a temporary store and compared with the shipped baseline."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    argv = ["check", "--suite", "dynamics", "--baseline", "dynamics", "--quiet"]
+    done = subprocess.run(
+        [sys.executable, "-m", "mbxval", *argv],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=1800,
+    )
+    assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
+    assert "no regressions" in done.stdout, done.stdout[-3000:]
+    assert list(tmp_path.iterdir()) == []  # the suite's store was a temporary one, removed
