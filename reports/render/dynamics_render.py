@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from reports.render import markup
+import reports.render.markup as markup
 from reports.render.first_screen import truth_names
 from reports.render.plots import FLOOR, colour, legend_entries
 from reports.render.report_data import ReportData, drift_mark, map_cell_rows, number

@@ -9,7 +9,7 @@ from typing import Any
 
 import pandas as pd
 
-from reports.render import markup
+import reports.render.markup as markup
 from reports.render.report_data import ReportData, drift_mark, number
 from reports.store import CLOSED_FORM, LEVEL_COLUMNS, NOT_RECORDED
 

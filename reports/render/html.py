@@ -18,17 +18,15 @@ import re
 from collections.abc import Callable, Iterator
 from typing import Any
 
-from reports.render import (
-    dynamics_render,
-    engine_reach,
-    first_screen,
-    level_plots,
-    markup,
-    overview,
-    stability_render,
-    svg_figure,
-    sweep_render,
-)
+import reports.render.dynamics_render as dynamics_render
+import reports.render.engine_reach as engine_reach
+import reports.render.first_screen as first_screen
+import reports.render.level_plots as level_plots
+import reports.render.markup as markup
+import reports.render.overview as overview
+import reports.render.stability_render as stability_render
+import reports.render.svg_figure as svg_figure
+import reports.render.sweep_render as sweep_render
 from reports.render.clock import clock_label
 from reports.render.report_data import (
     DRIFT_MARK,

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from reports.render import engine_reach, stability_render, sweep_render
+import reports.render.engine_reach as engine_reach
+import reports.render.stability_render as stability_render
+import reports.render.sweep_render as sweep_render
 from reports.render.first_screen import native_line, scenario_rate, truth_names
 from reports.render.markdown_table import markdown_table
 from reports.render.markup import markdown_code, markdown_text

@@ -5,8 +5,8 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from reports.render import html as html_report
-from reports.render import markdown as markdown_report
+import reports.render.html as html_report
+import reports.render.markdown as markdown_report
 from reports.render.report_data import ReportData
 from reports.store import atomic_output, results_directory
 

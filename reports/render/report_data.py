@@ -12,7 +12,7 @@ from typing import Any
 
 import pandas as pd
 
-from reports.render import plots
+import reports.render.plots as plots
 from reports.render.clock import OLD_WALL, clock_label
 from reports.render.drawings import read_drawings
 from reports.store import TRUTH, Key, read_results, read_trajectories

@@ -19,7 +19,7 @@ from collections import Counter
 
 import pandas as pd
 
-from reports.render import markup
+import reports.render.markup as markup
 from reports.render.markdown_table import markdown_table
 from reports.render.report_data import ReportData
 from reports.render.stored_verdicts import LOST, STRESS_SUITE, Judgement, judgements, stress_rows

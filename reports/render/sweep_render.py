@@ -20,7 +20,9 @@ from matplotlib.colors import Normalize, to_rgba
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from reports.render import markup, plots, svg_figure
+import reports.render.markup as markup
+import reports.render.plots as plots
+import reports.render.svg_figure as svg_figure
 from reports.render.first_screen import BEST, WORST
 from reports.render.markdown_table import markdown_table
 from reports.render.report_data import ReportData, number

@@ -26,8 +26,8 @@ from collections import Counter
 from collections.abc import Iterator, Sequence
 from typing import Any
 
+import reports.run.kept_workers as kept_workers
 from adapters.base import Setting
-from reports.run import kept_workers
 from reports.run.group_runs import RunConfig, Stored, failure, run_group
 from reports.run.planning import Group
 from reports.run.runner import Loader, Runner, Truth, progress_bar, truth_named

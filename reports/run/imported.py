@@ -14,8 +14,8 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+import reports.run.recording as recording
 from adapters.base import RunResult, Setting
-from reports.run import recording
 from reports.run.engine_facts import colours, engine_packages
 from reports.run.rows import result_row
 from reports.run.runner import reference_residual

@@ -28,9 +28,9 @@ import numpy as np
 import tqdm
 
 import adapters
+import reports.run.stop as stop
 from adapters.base import Adapter, Setting
 from adapters.threads import one_blas_thread
-from reports.run import stop
 from reports.run.engine_facts import colours, engine_packages
 from reports.run.group_runs import RunConfig, Workers, run_group
 from reports.run.isolation import Outcome, run_here, run_isolated

@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import math
 
+import reports.scoring.self_check as self_check
 from adapters import NATIVE
 from adapters.base import RunResult
-from reports.scoring import self_check
 from reports.scoring.energy_drift import energy_drift
 from reports.scoring.forces import force_columns, force_errors, judges_native
 from reports.scoring.level_error import level_errors

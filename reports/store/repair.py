@@ -22,7 +22,7 @@ import shutil
 import time
 from pathlib import Path
 
-from reports.store import files as store_files
+import reports.store.files as store_files
 from reports.store.layout import (
     CURRENT,
     GENERATIONS,

@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from reports.store import files as store_files
+import reports.store.files as store_files
 from reports.store.changes import ChangedRows, Changes
 from reports.store.columns import COLUMNS, DECLARED
 from reports.store.layout import CURRENT, damaged
