@@ -200,7 +200,11 @@ MUJOCO_TESTS = (
     "tests/adapters/mujoco/test_simulation.py",
 )
 EXUDYN_TESTS = ("tests/adapters/exudyn/test_adapter.py",)
-PINOCCHIO_TESTS = ("tests/adapters/pinocchio/test_adapter.py",)
+PINOCCHIO_TESTS = (
+    "tests/adapters/pinocchio/test_adapter.py",
+    "tests/adapters/pinocchio/test_branch.py",
+    "tests/adapters/pinocchio/test_kinematics.py",
+)
 """Each engine's builder (its model from a scenario) and reader (the trajectory from its state) are
 mutated against the engine's adapter tests: every catalogue scenario it runs against its truth."""
 
