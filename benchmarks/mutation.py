@@ -503,7 +503,7 @@ def _codes(module: str, where: Path) -> dict[str, int | None]:
 
 
 def verdict(code: int | None) -> str:
-    """mutmut's exit code as benchmarks.mutation_results records it."""
+    """mutmut's exit code as benchmarks.mutation_results records it (None, not run, is left out)."""
     if code == KILLED:
         return "killed"
     if code == SURVIVED:
@@ -518,7 +518,7 @@ def _outcome(module: str, where: Path, names: list[str] | None = None) -> Outcom
     killed = sum(code == KILLED for code in codes.values())
     timeout = sum(code in TIMEOUTS for code in codes.values())
     other = len(codes) - killed - timeout - len(survivors)
-    verdicts = {name: verdict(code) for name, code in codes.items()}
+    verdicts = {name: verdict(code) for name, code in codes.items() if code is not None}
     return Outcome(module, len(codes), killed, timeout, survivors, other, verdicts, len(every))
 
 
@@ -586,7 +586,17 @@ def main(argv: list[str] | None = None) -> None:
         help="write the verdicts to benchmarks/mutation_results/ (a pass; with --names, an update)",
     )
     parser.add_argument("--niceness", type=int, default=19, help="nice level of the run (default 19)")
+    parser.add_argument(
+        "--record-stopped",
+        type=Path,
+        metavar="DIR",
+        help="record, as a stopped pass, the verdicts a run kept in DIR (--keep) reached before its stop",
+    )
     args = parser.parse_args(argv)
+    if args.record_stopped:
+        for module in args.module or ():
+            _record_stopped(module, args.record_stopped / module.replace("/", "_"))
+        return
     print(f"{'module':<40} {'total':>6} {'killed':>7} {'survived':>9} {'timeout':>8} {'no tests':>9}")
     for module in args.module or list(MODULES):
         mine = [name for name in args.names or () if name.startswith(_dotted(module) + ".")]
@@ -612,6 +622,16 @@ def main(argv: list[str] | None = None) -> None:
 
 def _dotted(module: str) -> str:
     return module.removesuffix(".py").replace("/", ".")
+
+
+def _record_stopped(module: str, where: Path) -> None:
+    """A pass stopped by hand: the mutants it reached, as a first pass marked stopped."""
+    from benchmarks import mutation_results
+
+    reached = [name for name, code in _codes(module, where).items() if code is not None]
+    outcome = _outcome(module, where, reached)
+    record = mutation_results.record_pass(module, outcome.mutants, outcome.verdicts, None, None, stopped=True)
+    mutation_results.save(record)
 
 
 def _record(module: str, outcome: Outcome, args: argparse.Namespace) -> None:

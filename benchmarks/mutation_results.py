@@ -33,6 +33,8 @@ class Record:
     first_uncaught: tuple[str, ...]
     sample: int | None = None
     seed: int | None = None
+    stopped: bool = False
+    """The pass was stopped before every mutant was reached: `verdicts` are those it reached."""
 
     @property
     def planted(self) -> int:
@@ -72,6 +74,7 @@ def load(module: str) -> Record | None:
         tuple(data["first_uncaught"]),
         data.get("sample"),
         data.get("seed"),
+        data.get("stopped", False),
     )
 
 
@@ -84,6 +87,7 @@ def save(record: Record) -> Path:
         "mutants": record.mutants,
         "sample": record.sample,
         "seed": record.seed,
+        "stopped": record.stopped,
         "first_uncaught": list(record.first_uncaught),
         "verdicts": dict(sorted(record.verdicts.items())),
     }
@@ -94,12 +98,17 @@ def save(record: Record) -> Path:
 
 
 def record_pass(
-    module: str, mutants: int, verdicts: Mapping[str, str], sample: int | None, seed: int | None
+    module: str,
+    mutants: int,
+    verdicts: Mapping[str, str],
+    sample: int | None,
+    seed: int | None,
+    stopped: bool = False,
 ) -> Record:
     """A first pass over `module`: what it did not catch (survivors, and mutants no selected test
     ran) is kept as the first pass's uncaught."""
     uncaught = tuple(sorted(name for name, verdict in verdicts.items() if verdict not in CAUGHT))
-    return Record(module, mutants, dict(verdicts), uncaught, sample, seed)
+    return Record(module, mutants, dict(verdicts), uncaught, sample, seed, stopped)
 
 
 def record_again(module: str, verdicts: Mapping[str, str]) -> Record:
@@ -111,7 +120,9 @@ def record_again(module: str, verdicts: Mapping[str, str]) -> Record:
     if missing:
         raise ValueError(f"{module}: mutants never planted in its recorded pass: {', '.join(missing)}")
     merged = {**record.verdicts, **verdicts}
-    return Record(module, record.mutants, merged, record.first_uncaught, record.sample, record.seed)
+    return Record(
+        module, record.mutants, merged, record.first_uncaught, record.sample, record.seed, record.stopped
+    )
 
 
 def records() -> list[Record]:
@@ -135,7 +146,10 @@ def _row(name: str, rows: Iterable[Record], explained: Mapping[str, str]) -> str
     known = sum(s in explained for s in survivors)
     new = sum(len(r.killed_by_new_tests()) for r in rows)
     untested = sum(r.untested() for r in rows)
-    sampled = "all" if planted == mutants else f"sample of {planted}"
+    if any(r.stopped for r in rows):
+        sampled = f"first {planted} reached (stopped)"
+    else:
+        sampled = "all" if planted == mutants else f"sample of {planted}"
     return (
         f"| {name} | {mutants} | {sampled} | {first} / {planted} | {new} | {caught} / {planted} | "
         f"{known} | {len(survivors) - known} | {untested} |"
@@ -160,7 +174,8 @@ def page(found: list[Record], explained: Mapping[str, str]) -> str:
         "not edit by hand. How the runs are made and what each column means: [mutation.md](mutation.md).",
         '"Caught" is killed or timed out; a survivor is explained in `benchmarks/mutation_explained/`',
         '(why it is equivalent) or not; "sample of N": N mutants drawn at random (seeded) from the',
-        "module's, not all of them.",
+        'module\'s, not all of them; "first N reached (stopped)": a pass stopped by hand after N mutants',
+        "(mutmut runs them in the order of their tests' estimated time).",
         "",
         "## By package",
         "",

@@ -29,7 +29,7 @@ def test_every_record_is_of_a_module_the_bench_mutates_and_names_its_own_mutants
         assert all(name.startswith(_dotted(record.module) + ".") for name in record.verdicts)
         assert set(record.first_uncaught) <= set(record.verdicts)
         assert record.planted <= record.mutants
-        if record.sample is None:
+        if record.sample is None and not record.stopped:
             assert record.planted == record.mutants, record.module
 
 
@@ -72,3 +72,10 @@ def test_the_page_sums_modules_into_their_package_and_lists_the_unexplained() ->
     assert "| adapters/mujoco | 12 | sample of 4 | 2 / 4 | 1 | 3 / 4 | 0 | 1 | 0 |" in text
     assert "| `adapters/mujoco/simulation.py` | 2 | all | 1 / 2 | 1 | 2 / 2 | 0 | 0 | 0 |" in text
     assert text.endswith("- `a.x__mutmut_2` (adapters/mujoco/tree.py)\n")
+
+
+def test_a_stopped_pass_says_how_many_mutants_it_reached() -> None:
+    stopped = Record("reports/harness/energy_drift.py", 9, {"c.x__mutmut_1": "killed"}, (), stopped=True)
+    assert "| reports/harness | 9 | first 1 reached (stopped) | 1 / 1 | 0 | 1 / 1 | 0 | 0 | 0 |" in page(
+        [stopped], {}
+    )
