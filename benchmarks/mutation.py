@@ -199,7 +199,7 @@ MUJOCO_TESTS = (
     "tests/adapters/mujoco/test_compile.py",
     "tests/adapters/mujoco/test_simulation.py",
 )
-EXUDYN_TESTS = ("tests/adapters/exudyn/test_adapter.py",)
+EXUDYN_TESTS = ("tests/adapters/exudyn/test_adapter.py", "tests/adapters/exudyn/test_simulation.py")
 PINOCCHIO_TESTS = (
     "tests/adapters/pinocchio/test_adapter.py",
     "tests/adapters/pinocchio/test_branch.py",
