@@ -198,6 +198,7 @@ MUJOCO_TESTS = (
     "tests/adapters/mujoco/test_adapter.py",
     "tests/adapters/mujoco/test_compile.py",
     "tests/adapters/mujoco/test_simulation.py",
+    "tests/adapters/mujoco/test_tree.py",
 )
 EXUDYN_TESTS = ("tests/adapters/exudyn/test_adapter.py", "tests/adapters/exudyn/test_simulation.py")
 PINOCCHIO_TESTS = (
