@@ -146,10 +146,14 @@ def _row(name: str, rows: Iterable[Record], explained: Mapping[str, str]) -> str
     known = sum(s in explained for s in survivors)
     new = sum(len(r.killed_by_new_tests()) for r in rows)
     untested = sum(r.untested() for r in rows)
-    if any(r.stopped for r in rows):
+    if planted == mutants:
+        sampled = "all"
+    elif len(rows) > 1:
+        sampled = f"{planted} of {mutants}"
+    elif rows[0].stopped:
         sampled = f"first {planted} reached (stopped)"
     else:
-        sampled = "all" if planted == mutants else f"sample of {planted}"
+        sampled = f"sample of {planted}"
     return (
         f"| {name} | {mutants} | {sampled} | {first} / {planted} | {new} | {caught} / {planted} | "
         f"{known} | {len(survivors) - known} | {untested} |"
