@@ -55,6 +55,7 @@ CLOSED_FORM_TESTS = (
     "tests/scenarios/test_cam_linkage.py",
     "tests/reference_solver/test_closed_forms.py",
     "tests/reports/harness/test_truth.py",
+    "tests/scenarios/families",
 )
 """The tests of the closed forms, which sit beside their families (Family.closed_form): mutating a
 family module mutates its builder too, which these tests reach only through the native solver."""
@@ -205,6 +206,7 @@ PINOCCHIO_TESTS = (
     "tests/adapters/pinocchio/test_adapter.py",
     "tests/adapters/pinocchio/test_branch.py",
     "tests/adapters/pinocchio/test_kinematics.py",
+    "tests/adapters/pinocchio/test_model.py",
 )
 """Each engine's builder (its model from a scenario) and reader (the trajectory from its state) are
 mutated against the engine's adapter tests: every catalogue scenario it runs against its truth."""
