@@ -27,12 +27,13 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import random
 import re
 import shutil
 import subprocess
 import sys
 import tempfile
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -54,6 +55,7 @@ CLOSED_FORM_TESTS = (
     "tests/scenarios/test_cam_linkage.py",
     "tests/reference_solver/test_closed_forms.py",
     "tests/reports/scoring/test_truth.py",
+    "tests/scenarios/families",
 )
 """The tests of the closed forms, which sit beside their families (Family.closed_form): mutating a
 family module mutates its builder too, which these tests reach only through the native solver."""
@@ -192,6 +194,22 @@ and the value tests; about 15 s as Python. No integration: Radau's comparison al
 uncompiled, the energy balance at rtol 1e-6 longer."""
 LOAD_KERNEL_TESTS = (*FORCE_ELEMENT_TESTS, "tests/reference_solver/fast/test_load_program.py")
 """The compiled force elements against the plain ones (themselves against finite differences)."""
+
+MUJOCO_TESTS = (
+    "tests/adapters/mujoco/test_adapter.py",
+    "tests/adapters/mujoco/test_compile.py",
+    "tests/adapters/mujoco/test_simulation.py",
+    "tests/adapters/mujoco/test_tree.py",
+)
+EXUDYN_TESTS = ("tests/adapters/exudyn/test_adapter.py", "tests/adapters/exudyn/test_simulation.py")
+PINOCCHIO_TESTS = (
+    "tests/adapters/pinocchio/test_adapter.py",
+    "tests/adapters/pinocchio/test_branch.py",
+    "tests/adapters/pinocchio/test_kinematics.py",
+    "tests/adapters/pinocchio/test_model.py",
+)
+"""Each engine's builder (its model from a scenario) and reader (the trajectory from its state) are
+mutated against the engine's adapter tests: every catalogue scenario it runs against its truth."""
 
 MODULES: dict[str, tuple[str, ...]] = {
     **dict.fromkeys(
@@ -377,6 +395,25 @@ MODULES: dict[str, tuple[str, ...]] = {
         f"{DYNAMICS}test_ali3p_schedule.py",
     ),
     # --- end of ALI3-P's singular passages ---
+    # --- the engines' builders and readers, the profiles and laws, the scoring (issue 41) ---
+    "scenarios/cam_profiles.py": (
+        "tests/scenarios/test_derivatives_by_finite_differences.py",
+        "tests/scenarios/test_cam_profiles.py",
+        "tests/reference_solver/equations/test_cams.py",
+    ),
+    "scenarios/motion_laws.py": (
+        "tests/scenarios/test_derivatives_by_finite_differences.py",
+        "tests/scenarios/test_motion_laws.py",
+    ),
+    "reports/scoring/agreement.py": ("tests/reports/scoring/test_agreement.py",),
+    "reports/scoring/energy_drift.py": (
+        "tests/reports/scoring/test_energy_drift.py",
+        "tests/reports/scoring/test_energy_balance.py",
+    ),
+    "reports/scoring/self_check.py": ("tests/reports/scoring/test_self_check.py",),
+    **dict.fromkeys(("adapters/mujoco/tree.py", "adapters/mujoco/simulation.py"), MUJOCO_TESTS),
+    **dict.fromkeys(("adapters/exudyn/model.py", "adapters/exudyn/simulation.py"), EXUDYN_TESTS),
+    **dict.fromkeys(("adapters/pinocchio/model.py", "adapters/pinocchio/kinematics.py"), PINOCCHIO_TESTS),
 }
 
 KERNEL_MODULES = frozenset(
@@ -427,6 +464,8 @@ class Outcome:
     timeout: int
     survivors: tuple[str, ...]
     other: int  # mostly 'no tests': no selected test runs the mutated function
+    verdicts: dict[str, str] = field(default_factory=dict)  # each planted mutant's, by name
+    mutants: int = 0  # in the module (more than `total` when only some were planted)
 
     @property
     def unexplained(self) -> tuple[str, ...]:
@@ -463,21 +502,61 @@ def _environment(module: str, where: Path) -> dict[str, str]:
     return env
 
 
-def _outcome(module: str, where: Path) -> Outcome:
+def _codes(module: str, where: Path) -> dict[str, int | None]:
     meta = json.loads((where / "mutants" / f"{module}.meta").read_text())
     codes: dict[str, int | None] = meta["exit_code_by_key"]
+    return codes
+
+
+def verdict(code: int | None) -> str:
+    """mutmut's exit code as benchmarks.mutation_results records it (None, not run, is left out)."""
+    if code == KILLED:
+        return "killed"
+    if code == SURVIVED:
+        return "survived"
+    return "timeout" if code in TIMEOUTS else "no tests"
+
+
+def _outcome(module: str, where: Path, names: list[str] | None = None) -> Outcome:
+    every = _codes(module, where)
+    codes = every if names is None else {name: every[name] for name in names}
     survivors = tuple(sorted(name for name, code in codes.items() if code == SURVIVED))
     killed = sum(code == KILLED for code in codes.values())
     timeout = sum(code in TIMEOUTS for code in codes.values())
     other = len(codes) - killed - timeout - len(survivors)
-    return Outcome(module, len(codes), killed, timeout, survivors, other)
+    verdicts = {name: verdict(code) for name, code in codes.items() if code is not None}
+    return Outcome(module, len(codes), killed, timeout, survivors, other, verdicts, len(every))
 
 
-def run(module: str, keep: Path | None = None, niceness: int = 19) -> Outcome:
+NO_MUTANT = "no-such-mutant"
+"""A name no mutant has: `mutmut run` with it generates the mutants and collects the tests' stats,
+then stops (nothing matches), which lists the mutants to draw a sample from."""
+
+
+def _sample(
+    module: str, where: Path, command: list[str], env: dict[str, str], size: int, seed: int
+) -> list[str]:
+    """`size` of the module's mutant names, drawn at random with `seed` (all of them if fewer)."""
+    subprocess.run(
+        [*command, NO_MUTANT], cwd=where, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+    )
+    names = sorted(_codes(module, where))
+    return sorted(random.Random(seed).sample(names, min(size, len(names))))
+
+
+def run(
+    module: str,
+    keep: Path | None = None,
+    niceness: int = 19,
+    names: list[str] | None = None,
+    sample: int | None = None,
+    seed: int = 0,
+) -> Outcome:
     """Mutate `module` (a key of MODULES) in a scratch copy, one worker, at the lowest priority by
     default (the bench shares the machine). mutmut stops a mutant's tests after a wall time that
     is a multiple of their unmutated time, so a test that runs a pass beside other work of its own
-    priority (a CI job) passes `niceness=0`: at 19 it would starve and count every mutant a timeout."""
+    priority (a CI job) passes `niceness=0`: at 19 it would starve and count every mutant a timeout.
+    `names` plants only those mutants; `sample` plants that many drawn at random with `seed`."""
     if module not in MODULES:
         raise ValueError(f"no mutation setup for {module}: one of {', '.join(MODULES)}")
     mutmut = Path(sys.executable).with_name("mutmut")
@@ -486,14 +565,11 @@ def run(module: str, keep: Path | None = None, niceness: int = 19) -> Outcome:
         where.mkdir(parents=True, exist_ok=True)
         _scratch_copy(module, where)
         env = _environment(module, where)
-        subprocess.run(
-            ["nice", "-n", str(niceness), str(mutmut), "run", "--max-children", "1"],
-            cwd=where,
-            env=env,
-            check=True,
-            stdout=subprocess.DEVNULL,
-        )
-        return _outcome(module, where)
+        command = ["nice", "-n", str(niceness), str(mutmut), "run", "--max-children", "1"]
+        if sample is not None:
+            names = _sample(module, where, command, env, sample, seed)
+        subprocess.run([*command, *(names or ())], cwd=where, env=env, check=True, stdout=subprocess.DEVNULL)
+        return _outcome(module, where, names)
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -507,16 +583,73 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument(
         "--keep", type=Path, help="run in this directory and keep it (mutmut show works there)"
     )
+    parser.add_argument("--sample", type=int, help="plant this many mutants drawn at random, not all")
+    parser.add_argument("--seed", type=int, default=0, help="the sample's seed (default 0)")
+    parser.add_argument("--names", nargs="+", help="plant only these mutants (mutmut's names)")
+    parser.add_argument(
+        "--record",
+        action="store_true",
+        help="write the verdicts to benchmarks/mutation_results/ (a pass; with --names, an update)",
+    )
+    parser.add_argument("--niceness", type=int, default=19, help="nice level of the run (default 19)")
+    parser.add_argument(
+        "--record-stopped",
+        type=Path,
+        metavar="DIR",
+        help="record, as a stopped pass, the verdicts a run kept in DIR (--keep) reached before its stop",
+    )
     args = parser.parse_args(argv)
+    if args.record_stopped:
+        for module in args.module or ():
+            _record_stopped(module, args.record_stopped / module.replace("/", "_"))
+        return
     print(f"{'module':<40} {'total':>6} {'killed':>7} {'survived':>9} {'timeout':>8} {'no tests':>9}")
     for module in args.module or list(MODULES):
-        outcome = run(module, args.keep / module.replace("/", "_") if args.keep else None)
+        mine = [name for name in args.names or () if name.startswith(_dotted(module) + ".")]
+        if args.names and not mine:
+            continue
+        outcome = run(
+            module,
+            args.keep / module.replace("/", "_") if args.keep else None,
+            args.niceness,
+            names=mine or None,
+            sample=args.sample,
+            seed=args.seed,
+        )
+        if args.record:
+            _record(module, outcome, args)
         print(
             f"{module:<40} {outcome.total:>6} {outcome.killed:>7} {len(outcome.survivors):>9} "
             f"{outcome.timeout:>8} {outcome.other:>9}"
         )
         for name in outcome.survivors:
             print(f"    survived {name}: {EXPLAINED.get(name, 'NOT EXPLAINED')}")
+
+
+def _dotted(module: str) -> str:
+    return module.removesuffix(".py").replace("/", ".")
+
+
+def _record_stopped(module: str, where: Path) -> None:
+    """A pass stopped by hand: the mutants it reached, as a first pass marked stopped."""
+    from benchmarks import mutation_results
+
+    reached = [name for name, code in _codes(module, where).items() if code is not None]
+    outcome = _outcome(module, where, reached)
+    record = mutation_results.record_pass(module, outcome.mutants, outcome.verdicts, None, None, stopped=True)
+    mutation_results.save(record)
+
+
+def _record(module: str, outcome: Outcome, args: argparse.Namespace) -> None:
+    from benchmarks import mutation_results
+
+    if args.names:
+        record = mutation_results.record_again(module, outcome.verdicts)
+    else:
+        record = mutation_results.record_pass(
+            module, outcome.mutants, outcome.verdicts, args.sample, args.seed if args.sample else None
+        )
+    mutation_results.save(record)
 
 
 if __name__ == "__main__":

@@ -22,7 +22,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 SKIPPED = {
     "mbxval bench": "measurements, run on demand (tests/benchmarks run their quick forms)",
-    "--workers": "200 points on a Dask cluster: minutes (tests/reports/harness/test_dask_backend.py)",
+    "--workers": "200 points on a Dask cluster: minutes (tests/reports/run/test_dask_backend.py)",
 }
 GIVEN = {
     "my_tool.csv": ["solve", "slider_crank"],  # 'a trajectory made by any tool': the reader's own

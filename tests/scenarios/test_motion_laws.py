@@ -83,3 +83,24 @@ def test_a_tabulated_spline_through_a_smooth_law_converges_to_it() -> None:
         probe = np.linspace(0.0, 2 * math.pi, 997)
         errors.append(max(abs(law.f(float(t)) - math.sin(t)) for t in probe))
     assert errors[1] < errors[0] / 10 and errors[2] < errors[1] / 10
+
+
+def test_a_periodic_table_starting_after_zero_repeats_from_its_own_start() -> None:
+    """A table over [0.3, 2.3] (period 2): one period before or after a table time, the law is back at
+    that time's value, and inside the table it passes through its points."""
+    times = (0.3, 0.8, 1.3, 1.8, 2.3)
+    law = TabulatedLaw(times, (0.0, 0.6, -0.2, 0.4, 0.0), "periodic")
+    for t, value in zip(times[:-1], law.values, strict=False):
+        for shift in (-4.0, -2.0, 0.0, 2.0):
+            assert law.f(t + shift) == pytest.approx(value, abs=1e-13), (t, shift)
+
+
+def test_a_clamped_table_is_its_spline_at_its_first_and_last_times() -> None:
+    """Points of p(t) = 1 + t + t^2 - t^3 with p's slopes at the ends: the clamped cubic spline is p
+    itself, so at the table's ends f'' is p'' (2 at t = 0, 2 - 6 t = -10 at t = 2), not the straight
+    continuation's 0, which starts only beyond them."""
+    times = (0.0, 0.5, 1.0, 1.5, 2.0)
+    law = TabulatedLaw(times, tuple(1 + t + t * t - t**3 for t in times), "clamped", (1.0, 1.0 + 4.0 - 12.0))
+    assert law.ddf(0.0) == pytest.approx(2.0, abs=1e-12)
+    assert law.ddf(2.0) == pytest.approx(-10.0, abs=1e-12)
+    assert law.f(1.25) == pytest.approx(1 + 1.25 + 1.25**2 - 1.25**3, abs=1e-12)

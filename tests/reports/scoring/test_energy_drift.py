@@ -17,6 +17,8 @@ from reports.scoring.energy_drift import (
     potential_energy,
 )
 from scenarios import Scenario, Trajectory, load
+from scenarios.bodies import GROUND, Point
+from scenarios.forces import RotationalSpringDamper, SpringDamper
 
 SCENES = ["four_bar_gravity", "compound_pendulum", "slider_crank_spring", "stiff_spring/damped"]
 
@@ -60,3 +62,32 @@ def test_a_trajectory_without_velocities_is_refused() -> None:
     scenario, truth = _native("four_bar_gravity")
     with pytest.raises(ValueError, match="no velocity"):
         energy_drift(scenario, dataclasses.replace(truth, velocity=None), truth)
+
+
+def _sprung_four_bar() -> tuple[Scenario, Trajectory]:
+    """The four-bar under gravity with a torsion spring between coupler and rocker (both moving, so
+    both angles enter, with a free angle), another from the ground to the crank, and a spring
+    between points of the crank and the rocker: each term of V has bodies on both ends."""
+    scenario = load("four_bar_gravity", {"t_end": 0.2, "steps": 10})
+    forces = (
+        RotationalSpringDamper("twist", "coupler", "rocker", stiffness=3.0, free_angle=0.2),
+        RotationalSpringDamper("wind", GROUND, "crank", stiffness=0.5, free_angle=-0.1),
+        SpringDamper("tie", Point("crank", (0.01, 0.0)), Point("rocker", (0.02, 0.01)), 40.0, 0.0, 0.05),
+    )
+    scenario = dataclasses.replace(scenario, forces=forces)
+    return scenario, simulate(scenario, np.asarray(scenario.times()), 1e-6).trajectory()
+
+
+def test_springs_between_moving_bodies_store_the_native_accounting_s_energy() -> None:
+    scenario, trajectory = _sprung_four_bar()
+    scale = energy_scale(scenario, trajectory)
+    potential = potential_energy(scenario, trajectory)
+    assert np.ptp(potential) > 1e-3 * scale  # the springs work over the run
+    assert np.max(np.abs(potential - trajectory.extras["energy.potential"])) < 1e-12 * scale
+
+
+def test_a_truth_defined_nowhere_gives_no_drift() -> None:
+    """A truth whose velocities are NaN throughout (undefined at every time) has no drift: NaN."""
+    scenario, truth = _native("four_bar_gravity")
+    undefined = dataclasses.replace(truth, velocity=np.full_like(truth.velocity, np.nan))
+    assert np.isnan(energy_drift(scenario, truth, undefined))

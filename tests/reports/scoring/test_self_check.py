@@ -163,6 +163,13 @@ def test_the_step_halving_limit_is_pinned_on_each_side() -> None:
     assert self_check.verdict(0.0, 0.0, math.inf).startswith("drifted: positions moved by inf")
 
 
+@pytest.mark.parametrize(("halving", "drifted"), [(0.99e-2, False), (1.01e-2, True)])
+def test_the_step_halving_limit_is_1e_2_written_as_a_number(halving: float, drifted: bool) -> None:
+    """The documented limit (README: positions that move by more than 1e-2 at half the step) as a
+    number, so that a changed STEP_LIMIT is caught (the test above reads the constant and follows it)."""
+    assert bool(self_check.verdict(0.0, 0.0, halving)) is drifted
+
+
 def _andrews_on_mujoco(stiffness: float) -> float:
     scenario = scenarios.build("andrews_squeezer", overrides={"spring_stiffness": stiffness})
     adapter = load_engine("mujoco")
