@@ -295,13 +295,15 @@ def cmd_check(args: argparse.Namespace) -> int:
 def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, Any]] | None) -> int:
     """Compare the results in `directory` with the baseline, or write the baseline (--update)."""
     from reports.harness import gate_files
+    from reports.harness.planning import NOT_INSTALLED
     from reports.harness.results_store import read_results
 
     frame, meta = read_results(directory)
+    absent = [engine for engine, version in meta.get("engines", {}).items() if version == NOT_INSTALLED]
     if baseline is None:
-        print(gate.update_baseline(args.baseline, frame, meta))
+        print(gate.update_baseline(args.baseline, frame, meta, absent))
         return 0
-    verdict = gate.judge(baseline, frame, args.factor)
+    verdict = gate.judge(baseline, frame, args.factor, absent)
     if args.junit:
         gate_files.write(args.junit, gate_files.junit_xml(verdict, args.baseline, args.factor))
     if args.json:
