@@ -3,8 +3,11 @@
 The plant's joints are the spanning tree (revolute about z, prismatic in the plane); revolute loop
 closures are ball constraints and gear pairs coupler constraints, both solved by SAP, the only
 discrete solver that takes them (adapters.drake.tree). The driver is a PD actuator on its joint fed
-by a TrajectorySource (adapters.drake.model). One mode, `sap`; its knobs and the rule in
-adapters.drake.settings; the reading of velocities in adapters.drake.simulation.
+by a TrajectorySource (adapters.drake.model); in free dynamics gravity, spring-dampers and applied
+loads move the bodies from the scenario's start (adapters.drake.loads). One mode, `sap`; its knobs
+and the rule in adapters.drake.settings; the reading of velocities in adapters.drake.simulation.
+Drake writes no model file (it reads URDF, SDFormat and MJCF, and writes none of them), so the
+adapter has no `export`.
 """
 
 from __future__ import annotations
@@ -42,16 +45,16 @@ class DrakeAdapter(Adapter):
     name = "drake"
     colour = "#9467bd"
     packages = ("drake",)
-    rule = (
-        f"kinematic scenarios: SAP at 1/{STEPS_PER_PERIOD} of the shortest period, PD drive targeting t + h"
-    )
+    dynamics = True
+    rule = f"SAP at 1/{STEPS_PER_PERIOD} of the shortest period; a driven scenario's PD drive targets t + h"
     measured = (
         Mode(
             SAP,
             ENGINE,
             "Drake's discrete MultibodyPlant with SAP: loops as ball constraints, gears as couplers, the "
-            "driver a PD actuator, stepped by Drake's Simulator (velocities the central difference of "
-            "Drake's steps; accelerations from the step velocities)",
+            "driver a PD actuator (free dynamics: gravity, LinearSpringDamper and applied spatial "
+            "forces), stepped by Drake's Simulator (velocities the central difference of Drake's "
+            "steps; accelerations from the step velocities)",
         ),
     )
     knobs = KNOBS
@@ -91,7 +94,7 @@ class DrakeAdapter(Adapter):
         knob = {name: float(setting.get(name, default.get(name))) for name in ("dt", "kp", "kd", "lead")}
         knob["dt"] = outputs_on_steps(np.asarray(scenario.times()), knob["dt"])
         t0 = float(scenario.times()[0])
-        t_start = t0 - RUN_IN * knob["dt"]
+        t_start = t0 - (RUN_IN * knob["dt"] if planned.driver is not None else 0.0)
         diagram = build_diagram(scenario, planned, Knobs(**knob), (t_start, scenario.t_end))
         context = diagram.plant.CreateDefaultContext()
         assemble(diagram, scenario, planned, context, t_start)
