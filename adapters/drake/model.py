@@ -223,14 +223,15 @@ def free_rates(built: Diagram, scenario: Scenario, context: Any, rows: np.ndarra
     omega), projected onto the closure rows' velocity constraints in the kinetic-energy norm (as
     the native solver projects them)."""
     plant, world = built.plant, built.plant.world_frame()
-    jac, rates = [], []
+    jac: list[np.ndarray] = []
+    rates: list[float] = []
     for body in scenario.bodies:
         spatial = plant.CalcJacobianSpatialVelocity(
             context, JacobianWrtVariable.kV, built.bodies[body.name].body_frame(), np.zeros(3), world, world
         )
         jac.append(spatial[[3, 4, 2]])
         rates.extend(body.rate)
-    v = np.linalg.lstsq(np.vstack(jac), np.array(rates, dtype=float), rcond=None)[0]
+    v = np.linalg.lstsq(np.vstack(jac), np.asarray(rates, dtype=np.float64), rcond=None)[0]
     if len(rows):
         m_inv_g = np.linalg.solve(plant.CalcMassMatrix(context), rows.T)
         v = v - m_inv_g @ np.linalg.lstsq(rows @ m_inv_g, rows @ v, rcond=None)[0]

@@ -179,7 +179,7 @@ def _forces(
 def _driven_joint_first(scenario: Scenario) -> Scenario:
     """`scenario` with the driven body's joint on the ground listed first, so that the tree hangs
     that body from the ground (the PD drive acts on its joint); the same mechanism otherwise."""
-    if len(scenario.drivers) != 1:
+    if len(scenario.drivers) != 1 or not isinstance(scenario.drivers[0], AbsoluteDriver):
         return scenario
     body = scenario.drivers[0].body
     grounded = [

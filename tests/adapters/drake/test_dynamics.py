@@ -37,7 +37,7 @@ def errors(scenario: Scenario, **options: object) -> dict[str, float]:
     assert result.trajectory is not None
     times = result.trajectory.times
     native = truth(scenario, times).trajectory.select(result.trajectory.bodies)
-    found = {}
+    found: dict[str, float] = {}
     for level in LEVELS:
         ours, theirs = result.trajectory.level(level), native.level(level)
         assert ours is not None and theirs is not None
