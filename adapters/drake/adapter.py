@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from adapters.base import Adapter, Option, Setting, Unsupported
+from adapters.drake.forces import ForceReader
 from adapters.drake.knobs import KNOBS
 from adapters.drake.model import Diagram, Knobs, assemble, build_diagram
 from adapters.drake.settings import SAP, STEPS_PER_PERIOD, ladder, rule_setting, untuned
@@ -39,6 +40,7 @@ class Built:
     diagram: Diagram
     velocity: str
     start: tuple[float, np.ndarray, np.ndarray]
+    forces: ForceReader | None
 
 
 class DrakeAdapter(Adapter):
@@ -104,13 +106,21 @@ class DrakeAdapter(Adapter):
             diagram.plant.GetVelocities(context).copy(),
         )
         velocity = str(setting.get("velocity", CENTRAL))
-        return Built(scenario, planned, diagram, velocity, start)
+        # a driven scene's loads are not in the plant (it moves as driven): its forces would lack them
+        forces = (
+            None
+            if scenario.forces and planned.driver is not None
+            else ForceReader(diagram, planned, scenario)
+        )
+        return Built(scenario, planned, diagram, velocity, start, forces)
 
     def simulate(self, model: Any, times: np.ndarray) -> Trajectory:
         built: Built = model
         scenario = built.scenario
         bodies = scenario.output_bodies
         guesses = np.array([scenario.body(b).guess[2] for b in bodies])
-        trajectory, steps = run(built.diagram, built.start, times, bodies, built.velocity, guesses)
+        trajectory, steps = run(
+            built.diagram, built.start, times, bodies, built.velocity, guesses, built.forces
+        )
         self.count_steps(steps)
         return trajectory

@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 from pydrake.systems.analysis import Simulator  # not pydrake.all, which imports matplotlib
 
+from adapters.drake.forces import ForceReader
 from adapters.drake.model import Diagram
 from adapters.lattice import check_grid, lattice_point
 from scenarios.trajectory import Trajectory
@@ -58,9 +59,12 @@ def run(
     bodies: tuple[str, ...],
     velocity: str,
     guesses: np.ndarray,
+    forces: ForceReader | None = None,
 ) -> tuple[Trajectory, int]:
     """The trajectory on `times` from the consistent `start` (t, q, v) at or before times[0], and
-    the steps taken. Every output time must be on the plant's step lattice (adapters.lattice)."""
+    the steps taken; with `forces`, their columns as extras (the mean of the steps either side of
+    each output, as the velocities). Every output time must be on the plant's step lattice
+    (adapters.lattice)."""
     check_grid(times, float(times[0]))
     h = built.dt
     t_start = start[0]
@@ -76,6 +80,7 @@ def run(
     simulator.Initialize()
     reader = built.plant.CreateDefaultContext()
     levels = np.zeros((len(times), 3, len(bodies), 3))
+    found = np.zeros((len(times), len(forces.columns) if forces else 0))
     steps = 0
     for k, t in enumerate(times):
         m, _ = lattice_point(t_start, float(t), h)
@@ -84,17 +89,25 @@ def run(
             simulator.AdvanceTo(0.0)
             v_after = built.plant.GetVelocities(plant_context).copy()
             v = v_before  # the start's own rates, not a step's mean
+            if forces:
+                found[k] = forces.read(plant_context)  # the first step's: none before the start
         else:
             simulator.AdvanceTo(m * h)
             q = built.plant.GetPositions(plant_context).copy()
             v_before = built.plant.GetVelocities(plant_context).copy()
+            before = forces.read(plant_context) if forces else None
             simulator.AdvanceTo((m + 1) * h)
             v_after = built.plant.GetVelocities(plant_context).copy()
             v = v_before if velocity == STATE else (v_before + v_after) / 2.0
+            if forces and before is not None:
+                found[k] = (before + forces.read(plant_context)) / 2.0
         steps = m + 1
         levels[k] = _read(built, reader, q, v, (v_after - v_before) / h, bodies)
     theta = np.unwrap(levels[:, 0, :, 2], axis=0)
     theta += 2.0 * math.pi * np.round((guesses - theta[0]) / (2.0 * math.pi))
     levels[:, 0, :, 2] = theta
-    trajectory = Trajectory(np.asarray(times, dtype=float), bodies, levels[:, 0], levels[:, 1], levels[:, 2])
+    extras = {c: found[:, i].copy() for i, c in enumerate(forces.columns)} if forces else {}
+    trajectory = Trajectory(
+        np.asarray(times, dtype=float), bodies, levels[:, 0], levels[:, 1], levels[:, 2], extras
+    )
     return trajectory, steps

@@ -84,3 +84,14 @@ def test_a_spring_of_zero_free_length_is_unsupported_with_the_reason() -> None:
     forces = tuple(replace(f, free_length=0.0) if isinstance(f, SpringDamper) else f for f in scenario.forces)
     reason = DrakeAdapter().supports(replace(scenario, forces=forces))
     assert reason is not None and "positive free length" in reason
+
+
+def test_free_dynamics_carries_the_tree_joints_reactions() -> None:
+    """Reactions of the tree's joints (the plant's reaction-forces output); the loop-closing joint
+    (a ball constraint) has none in Drake, and a free scene has no driver."""
+    scenario = scenarios.build("four_bar_gravity")
+    adapter = DrakeAdapter()
+    result = adapter.run(scenario, adapter.default_setting(scenario))
+    assert result.trajectory is not None
+    columns = sorted(result.trajectory.extras)
+    assert len(columns) == 6 and all(c.endswith((".fx", ".fy")) for c in columns), columns

@@ -1,0 +1,66 @@
+"""Driving forces and joint reactions read from Drake's plant, in the canonical force columns
+(reports.harness.forces): `<joint>.fx`, `<joint>.fy` the force the joint applies to its first moving
+body (p_i's body, else p_j's), world axes; `<driver>.force` the driver's force or torque along its
+coordinate.
+
+The reactions are the plant's reaction-forces output (the spatial force on each tree joint's child
+at the joint's child frame, in that frame), the driving force its net actuation (the PD drive's
+effort on its joint). A discrete plant's outputs hold the last step's values: the mean over that
+step. Like the velocities (adapters.drake.simulation), a force at an output time is the mean of
+the steps on either side of it. A loop closed by a ball constraint reports no force of its own in
+Drake, so only the tree's joints carry reactions.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from adapters.drake.model import Diagram
+from adapters.drake.tree import Plan
+from scenarios.bodies import GROUND
+from scenarios.joints import Ground, Prismatic, Revolute
+from scenarios.scenario import Scenario
+
+
+def _first_moving(joint: Ground | Prismatic | Revolute) -> str:
+    if isinstance(joint, Ground):
+        return joint.body
+    return joint.p_i.body if joint.p_i.body != GROUND else joint.p_j.body
+
+
+class ForceReader:
+    """The force columns of a built plant and their values in a plant context."""
+
+    def __init__(self, built: Diagram, plan: Plan, scenario: Scenario) -> None:
+        named = {j.name: j for j in scenario.joints}
+        self._plant = built.plant
+        self._joints = []  # (Drake joint, sign: +1 where the child is the first moving body)
+        columns = []
+        for edge in plan.edges:
+            joint = named[edge.name]
+            assert isinstance(joint, Ground | Prismatic | Revolute)
+            sign = 1.0 if _first_moving(joint) == edge.child else -1.0
+            self._joints.append((built.plant.GetJointByName(edge.name), sign))
+            columns += [f"{edge.name}.fx", f"{edge.name}.fy"]
+        self._drive: tuple[Any, float] | None = None
+        if plan.driver is not None and built.drive_joint is not None:
+            self._drive = (built.drive_joint, built.drive_map[0])
+            columns.append(f"{plan.driver.name}.force")
+        self.columns = tuple(columns)
+
+    def read(self, context: Any) -> np.ndarray:
+        """Every column's value from the plant's outputs in `context` (the last step's means)."""
+        plant = self._plant
+        reactions = plant.get_reaction_forces_output_port().Eval(context)
+        values: list[float] = []
+        for joint, sign in self._joints:
+            on_child = reactions[int(joint.index())].translational()
+            rotation = joint.frame_on_child().CalcRotationMatrixInWorld(context).matrix()
+            values += list(sign * (rotation @ on_child)[:2])
+        if self._drive is not None:
+            _, a = self._drive
+            effort = plant.get_net_actuation_output_port().Eval(context)
+            values.append(float(effort[0]) / a)  # the plant's one actuator
+        return np.array(values)
