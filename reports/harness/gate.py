@@ -181,7 +181,10 @@ def judge(
     engines = {c["engine"] for c in baseline}
     unjudged = Counter(k[1] for k in index if k[1] not in engines)
     index = {k: c for k, c in index.items() if k[1] in engines}
-    absent = Counter(c["engine"] for c in baseline if c["engine"] in set(not_installed))
+    run = set(current["scenario"])
+    absent = Counter(
+        c["engine"] for c in baseline if c["engine"] in set(not_installed) and c["scenario"] in run
+    )
     unknown = sorted(k for k in index if k not in known)
     if unknown:
         example = " x ".join(unknown[0])

@@ -132,12 +132,21 @@ def test_an_optional_engine_new_to_the_baseline_is_listed_not_gated() -> None:
 
 def test_a_baseline_engine_not_installed_is_said_once_not_per_cell() -> None:
     base = gate.baseline_cells(
-        cells(("a", "e1", True, "ok", 1e-6), ("a", "e9", True, "ok", 1e-6), ("b", "e9", True, "ok", 1e-6))
+        cells(
+            ("a", "e1", True, "ok", 1e-6),
+            ("b", "e1", True, "ok", 1e-6),
+            ("a", "e9", True, "ok", 1e-6),
+            ("b", "e9", True, "ok", 1e-6),
+        )
     )
-    verdict = gate.judge(base, cells(("a", "e1", True, "ok", 1e-6)), not_installed=["e9"])
+    verdict = gate.judge(
+        base, cells(("a", "e1", True, "ok", 1e-6), ("b", "e1", True, "ok", 1e-6)), not_installed=["e9"]
+    )
     assert verdict.passed and verdict.not_installed == (("e9", 2),)
     text = gate.describe(verdict, "b.json", 10.0)
     assert text.splitlines()[1:] == ["e9 not installed: its 2 baseline cells not compared"]
+    subset = gate.judge(base, cells(("a", "e1", True, "ok", 1e-6)), not_installed=["e9"])
+    assert subset.not_installed == (("e9", 1),)  # only the cells of the scenarios run
 
 
 def test_update_keeps_the_cells_of_an_engine_not_installed(tmp_path: Path) -> None:
