@@ -1,14 +1,17 @@
-"""Driving forces and joint reactions read from Drake's plant, in the canonical force columns
-(reports.harness.forces): `<joint>.fx`, `<joint>.fy` the force the joint applies to its first moving
-body (p_i's body, else p_j's), world axes; `<driver>.force` the driver's force or torque along its
-coordinate.
+"""Joint reactions read from Drake's plant, in the canonical force columns (reports.harness.forces):
+`<joint>.fx`, `<joint>.fy` the force the joint applies to its first moving body (p_i's body, else
+p_j's), world axes.
 
 The reactions are the plant's reaction-forces output (the spatial force on each tree joint's child
-at the joint's child frame, in that frame), the driving force its net actuation (the PD drive's
-effort on its joint). A discrete plant's outputs hold the last step's values: the mean over that
-step. Like the velocities (adapters.drake.simulation), a force at an output time is the mean of
-the steps on either side of it. A loop closed by a ball constraint reports no force of its own in
-Drake, so only the tree's joints carry reactions.
+at the joint's child frame, in that frame). A discrete plant's outputs hold the last step's values:
+the mean over that step. Like the velocities (adapters.drake.simulation), a force at an output time
+is the mean of the steps on either side of it. A loop closed by a ball constraint reports no force
+of its own in Drake, so only the tree's joints carry reactions.
+
+The driving force (`<driver>.force`, the PD drive's net actuation, read the same way when
+`with_driver`) is not given by default: it is first order in the step like the reactions, and the
+work it adds up over a run misses the energy balance by 1 to 3 % at the default step, past the
+self-check's limit (reports.harness.self_check), which would mark accurate runs as drifted.
 """
 
 from __future__ import annotations
@@ -33,7 +36,7 @@ def _first_moving(joint: Ground | Prismatic | Revolute) -> str:
 class ForceReader:
     """The force columns of a built plant and their values in a plant context."""
 
-    def __init__(self, built: Diagram, plan: Plan, scenario: Scenario) -> None:
+    def __init__(self, built: Diagram, plan: Plan, scenario: Scenario, with_driver: bool = False) -> None:
         named = {j.name: j for j in scenario.joints}
         self._plant = built.plant
         self._joints = []  # (Drake joint, sign: +1 where the child is the first moving body)
@@ -45,7 +48,7 @@ class ForceReader:
             self._joints.append((built.plant.GetJointByName(edge.name), sign))
             columns += [f"{edge.name}.fx", f"{edge.name}.fy"]
         self._drive: tuple[Any, float] | None = None
-        if plan.driver is not None and built.drive_joint is not None:
+        if with_driver and plan.driver is not None and built.drive_joint is not None:
             self._drive = (built.drive_joint, built.drive_map[0])
             columns.append(f"{plan.driver.name}.force")
         self.columns = tuple(columns)
