@@ -6,7 +6,8 @@ The reactions are the plant's reaction-forces output (the spatial force on each 
 at the joint's child frame, in that frame). A discrete plant's outputs hold the last step's values:
 the mean over that step. Like the velocities (adapters.drake.simulation), a force at an output time
 is the mean of the steps on either side of it. A loop closed by a ball constraint reports no force
-of its own in Drake, so only the tree's joints carry reactions.
+of its own in Drake, so only the tree's joints carry reactions. A prismatic joint's reaction is
+normal to its axis: Drake's includes a drive's push along it, which is taken out.
 
 The driving force (`<driver>.force`, the PD drive's net actuation, read the same way when
 `with_driver`) is not given by default: it is first order in the step like the reactions, and the
@@ -19,6 +20,7 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+from pydrake.multibody.tree import PrismaticJoint
 
 from adapters.drake.model import Diagram
 from adapters.drake.tree import Plan
@@ -61,7 +63,11 @@ class ForceReader:
         for joint, sign in self._joints:
             on_child = reactions[int(joint.index())].translational()
             rotation = joint.frame_on_child().CalcRotationMatrixInWorld(context).matrix()
-            values += list(sign * (rotation @ on_child)[:2])
+            force = rotation @ on_child
+            if isinstance(joint, PrismaticJoint):  # the drive's push along the axis is no reaction
+                axis = rotation @ np.asarray(joint.translation_axis())
+                force = force - (force @ axis) * axis
+            values += list(sign * force[:2])
         if self._drive is not None:
             _, a = self._drive
             effort = plant.get_net_actuation_output_port().Eval(context)
