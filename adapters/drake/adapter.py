@@ -3,8 +3,11 @@
 The plant's joints are the spanning tree (revolute about z, prismatic in the plane); revolute loop
 closures are ball constraints and gear pairs coupler constraints, both solved by SAP, the only
 discrete solver that takes them (adapters.drake.tree). The driver is a PD actuator on its joint fed
-by a TrajectorySource (adapters.drake.model). One mode, `sap`; its knobs and the rule in
-adapters.drake.settings; the reading of velocities in adapters.drake.simulation.
+by a TrajectorySource (adapters.drake.model); in free dynamics gravity, spring-dampers and applied
+loads move the bodies from the scenario's start (adapters.drake.loads). One mode, `sap`; its knobs
+and the rule in adapters.drake.settings; the reading of velocities in adapters.drake.simulation.
+Drake writes no model file (it reads URDF, SDFormat and MJCF, and writes none of them), so the
+adapter has no `export`.
 """
 
 from __future__ import annotations
@@ -16,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from adapters.base import Adapter, Option, Setting, Unsupported
+from adapters.drake.forces import ForceReader
 from adapters.drake.knobs import KNOBS
 from adapters.drake.model import Diagram, Knobs, assemble, build_diagram
 from adapters.drake.settings import SAP, STEPS_PER_PERIOD, ladder, rule_setting, untuned
@@ -36,22 +40,23 @@ class Built:
     diagram: Diagram
     velocity: str
     start: tuple[float, np.ndarray, np.ndarray]
+    forces: ForceReader | None
 
 
 class DrakeAdapter(Adapter):
     name = "drake"
     colour = "#9467bd"
     packages = ("drake",)
-    rule = (
-        f"kinematic scenarios: SAP at 1/{STEPS_PER_PERIOD} of the shortest period, PD drive targeting t + h"
-    )
+    dynamics = True
+    rule = f"SAP at 1/{STEPS_PER_PERIOD} of the shortest period; a driven scenario's PD drive targets t + h"
     measured = (
         Mode(
             SAP,
             ENGINE,
             "Drake's discrete MultibodyPlant with SAP: loops as ball constraints, gears as couplers, the "
-            "driver a PD actuator, stepped by Drake's Simulator (velocities the central difference of "
-            "Drake's steps; accelerations from the step velocities)",
+            "driver a PD actuator (free dynamics: gravity, LinearSpringDamper and applied spatial "
+            "forces), stepped by Drake's Simulator (velocities the central difference of Drake's "
+            "steps; accelerations from the step velocities)",
         ),
     )
     knobs = KNOBS
@@ -91,7 +96,7 @@ class DrakeAdapter(Adapter):
         knob = {name: float(setting.get(name, default.get(name))) for name in ("dt", "kp", "kd", "lead")}
         knob["dt"] = outputs_on_steps(np.asarray(scenario.times()), knob["dt"])
         t0 = float(scenario.times()[0])
-        t_start = t0 - RUN_IN * knob["dt"]
+        t_start = t0 - (RUN_IN * knob["dt"] if planned.driver is not None else 0.0)
         diagram = build_diagram(scenario, planned, Knobs(**knob), (t_start, scenario.t_end))
         context = diagram.plant.CreateDefaultContext()
         assemble(diagram, scenario, planned, context, t_start)
@@ -101,13 +106,21 @@ class DrakeAdapter(Adapter):
             diagram.plant.GetVelocities(context).copy(),
         )
         velocity = str(setting.get("velocity", CENTRAL))
-        return Built(scenario, planned, diagram, velocity, start)
+        # a driven scene's loads are not in the plant (it moves as driven): its forces would lack them
+        forces = (
+            None
+            if scenario.forces and planned.driver is not None
+            else ForceReader(diagram, planned, scenario)
+        )
+        return Built(scenario, planned, diagram, velocity, start, forces)
 
     def simulate(self, model: Any, times: np.ndarray) -> Trajectory:
         built: Built = model
         scenario = built.scenario
         bodies = scenario.output_bodies
         guesses = np.array([scenario.body(b).guess[2] for b in bodies])
-        trajectory, steps = run(built.diagram, built.start, times, bodies, built.velocity, guesses)
+        trajectory, steps = run(
+            built.diagram, built.start, times, bodies, built.velocity, guesses, built.forces
+        )
         self.count_steps(steps)
         return trajectory

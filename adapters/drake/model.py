@@ -20,6 +20,7 @@ from pydrake.multibody.tree import (
     PdControllerGains,
     PrismaticJoint,
     RevoluteJoint,
+    RevoluteSpring,
     RotationalInertia,
     SpatialInertia,
     WeldJoint,
@@ -29,6 +30,7 @@ from pydrake.systems.primitives import TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
 from adapters.base import Singular
+from adapters.drake.loads import Loads, add_springs
 from adapters.drake.tree import Plan
 from scenarios.bodies import GROUND, Pose
 from scenarios.scenario import Scenario
@@ -74,7 +76,7 @@ def build_diagram(scenario: Scenario, plan: Plan, knobs: Knobs, span: tuple[floa
     builder = DiagramBuilder()
     config = MultibodyPlantConfig(time_step=knobs.dt, discrete_contact_approximation="sap")
     plant, _ = AddMultibodyPlant(config, builder)
-    plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, 0.0])
+    plant.mutable_gravity_field().set_gravity_vector([*scenario.gravity, 0.0])
     bodies: dict[str, Any] = {GROUND: plant.world_body()}
     for body in scenario.bodies:
         moment = max(body.inertia, 1e-12)  # Ixx = Iyy = Izz: a valid rigid inertia in 3-D
@@ -95,7 +97,8 @@ def build_diagram(scenario: Scenario, plan: Plan, knobs: Knobs, span: tuple[floa
             )
         )
         if edge.kind == "revolute":
-            joints[edge.name] = plant.AddJoint(RevoluteJoint(edge.name, parent, child, Z))
+            damping = sum(t.damping for t in plan.torsions if t.edge == edge.name)
+            joints[edge.name] = plant.AddJoint(RevoluteJoint(edge.name, parent, child, Z, damping))
         elif edge.kind == "prismatic":
             axis = [edge.axis[0], edge.axis[1], 0.0]
             joints[edge.name] = plant.AddJoint(PrismaticJoint(edge.name, parent, child, axis))
@@ -112,17 +115,26 @@ def build_diagram(scenario: Scenario, plan: Plan, knobs: Knobs, span: tuple[floa
         plant.AddCouplerConstraint(
             joints[coupler.secondary], joints[coupler.primary], coupler.ratio, coupler.offset
         )
-    drive_edge = next(e for e in plan.edges if e.child == plan.driver.body)
-    drive_joint = joints[drive_edge.name]
-    actuator = plant.AddJointActuator(f"{plan.driver.name}:actuator", drive_joint)
-    actuator.set_controller_gains(PdControllerGains(p=knobs.kp, d=knobs.kd))
+    add_springs(plant, bodies, plan.springs)
+    for torsion in plan.torsions:
+        plant.AddForceElement(RevoluteSpring(joints[torsion.edge], torsion.q0, torsion.stiffness))
+    drive_joint = None
+    if plan.driver is not None:
+        drive_edge = next(e for e in plan.edges if e.child == plan.driver.body)
+        drive_joint = joints[drive_edge.name]
+        actuator = plant.AddJointActuator(f"{plan.driver.name}:actuator", drive_joint)
+        actuator.set_controller_gains(PdControllerGains(p=knobs.kp, d=knobs.kd))
     plant.Finalize()
     built = Diagram(None, plant, bodies, drive_joint, (1.0, 0.0), knobs.dt)
-    built.drive_map = _drive_map(built, plan)
-    source = builder.AddSystem(TrajectorySource(_target(built, plan, knobs, span)))
-    builder.Connect(
-        source.get_output_port(), plant.get_desired_state_input_port(drive_joint.model_instance())
-    )
+    if drive_joint is not None:
+        built.drive_map = _drive_map(built, plan)
+        source = builder.AddSystem(TrajectorySource(_target(built, plan, knobs, span)))
+        builder.Connect(
+            source.get_output_port(), plant.get_desired_state_input_port(drive_joint.model_instance())
+        )
+    if plan.loads:
+        loads = builder.AddSystem(Loads(bodies, plan.loads, span[0]))
+        builder.Connect(loads.get_output_port(), plant.get_applied_spatial_force_input_port())
     built.diagram = builder.Build()
     return built
 
@@ -149,6 +161,7 @@ def _drive_map(built: Diagram, plan: Plan) -> tuple[float, float]:
     body's joint is on the ground, so the map is affine; an angle is unwrapped by the caller)."""
     context = built.plant.CreateDefaultContext()
     joint, driver = built.drive_joint, plan.driver
+    assert driver is not None
     values = []
     for q in (0.0, 1.0 if driver.coordinate != "theta" else 0.5):
         joint.set_default_positions([q])
@@ -168,6 +181,7 @@ def _target(built: Diagram, plan: Plan, knobs: Knobs, span: tuple[float, float])
     """The drive's desired (q, v) at t + lead * dt, tabulated at every step as cubic Hermite pieces
     (exact at the plant's sample times, where the discrete PD reads it)."""
     a, b = built.drive_map
+    assert plan.driver is not None
     motion = plan.driver.motion
     n = int(np.ceil((span[1] - span[0]) / knobs.dt)) + 3
     times = np.arange(n) * knobs.dt  # the simulator's clock, which starts at 0 at span[0]
@@ -191,14 +205,37 @@ def assemble(built: Diagram, scenario: Scenario, plan: Plan, context: Any, t0: f
     for _ in range(50):
         plant.SetPositions(context, q)
         residual, jacobian = _rows(built, plan, context, t0)
-        if np.max(np.abs(residual)) < NEWTON_TOL * length:
+        if np.max(np.abs(residual), initial=0.0) < NEWTON_TOL * length:
             break
         q = q - np.linalg.lstsq(jacobian, residual, rcond=None)[0]
     else:
         raise Singular(f"the start does not assemble (loop residual {np.max(np.abs(residual)):.3g})")
+    if plan.driver is None:
+        plant.SetVelocities(context, free_rates(built, scenario, context, jacobian))
+        return
     rhs = np.zeros(len(residual))
     rhs[-1] = plan.driver.motion.df(t0)
     plant.SetVelocities(context, np.linalg.lstsq(jacobian, rhs, rcond=None)[0])
+
+
+def free_rates(built: Diagram, scenario: Scenario, context: Any, rows: np.ndarray) -> np.ndarray:
+    """The joint rates of a free start: those that best give the bodies' start rates (vx, vy,
+    omega), projected onto the closure rows' velocity constraints in the kinetic-energy norm (as
+    the native solver projects them)."""
+    plant, world = built.plant, built.plant.world_frame()
+    jac: list[np.ndarray] = []
+    rates: list[float] = []
+    for body in scenario.bodies:
+        spatial = plant.CalcJacobianSpatialVelocity(
+            context, JacobianWrtVariable.kV, built.bodies[body.name].body_frame(), np.zeros(3), world, world
+        )
+        jac.append(spatial[[3, 4, 2]])
+        rates.extend(body.rate)
+    v = np.linalg.lstsq(np.vstack(jac), np.asarray(rates, dtype=np.float64), rcond=None)[0]
+    if len(rows):
+        m_inv_g = np.linalg.solve(plant.CalcMassMatrix(context), rows.T)
+        v = v - m_inv_g @ np.linalg.lstsq(rows @ m_inv_g, rows @ v, rcond=None)[0]
+    return np.asarray(v)
 
 
 def _rows(built: Diagram, plan: Plan, context: Any, t: float) -> tuple[np.ndarray, np.ndarray]:
@@ -227,9 +264,10 @@ def _rows(built: Diagram, plan: Plan, context: Any, t: float) -> tuple[np.ndarra
         values.append(float(row @ q) - coupler.offset)
         rows.append(row)
     driver = plan.driver
-    a, b = built.drive_map
-    row = np.zeros(len(q))
-    row[built.drive_joint.position_start()] = a
-    values.append(a * q[built.drive_joint.position_start()] + b - driver.motion.f(t))
-    rows.append(row)
-    return np.array(values), np.array(rows)
+    if driver is not None:
+        a, b = built.drive_map
+        row = np.zeros(len(q))
+        row[built.drive_joint.position_start()] = a
+        values.append(a * q[built.drive_joint.position_start()] + b - driver.motion.f(t))
+        rows.append(row)
+    return np.array(values), np.array(rows).reshape(len(values), len(q))

@@ -51,10 +51,13 @@ def untuned(scenario: Scenario) -> Setting:
 
 
 def ladder(scenario: Scenario) -> list[Setting]:
-    """The step over PER_PERIOD within the budget, then softer drive gains at the default step."""
+    """The step over PER_PERIOD within the budget, then (where a drive acts) softer drive gains at
+    the default step."""
     settings = [
         rule_setting(scenario, n)
         for n in PER_PERIOD
         if n == PER_PERIOD[0] or scenario.t_end / rule_step(scenario, n) <= STEP_BUDGET
     ]
+    if scenario.analysis == "dynamic":
+        return settings  # free dynamics: no drive, so its gains change nothing
     return settings + [rule_setting(scenario, kp=kp, kd=kd) for kp, kd in GAINS]

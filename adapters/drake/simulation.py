@@ -5,9 +5,10 @@ that step, the derivative at its midpoint. The trajectory's velocity at an outpu
 read (by default) as the mean of the two step velocities around it, the central difference
 (q(t + h) - q(t - h)) / 2h of Drake's own positions, and its acceleration as their difference over h,
 also centred on t; with `velocity = "state"` the plant's state velocity is given as it is (the
-midpoint value of the step before t, what a user reading the state gets). The march starts RUN_IN
-steps before the first output. Body rates come from the
-plant's spatial velocities and accelerations at those generalized values (CalcSpatialAccelerationsFromVdot).
+midpoint value of the step before t, what a user reading the state gets). A driven march starts
+RUN_IN steps before the first output; a free one at the first output, from the scenario's state.
+Body rates come from the plant's spatial velocities and accelerations at those generalized values
+(CalcSpatialAccelerationsFromVdot).
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from typing import Any
 import numpy as np
 from pydrake.systems.analysis import Simulator  # not pydrake.all, which imports matplotlib
 
+from adapters.drake.forces import ForceReader
 from adapters.drake.model import Diagram
 from adapters.lattice import check_grid, lattice_point
 from scenarios.trajectory import Trajectory
@@ -57,14 +59,17 @@ def run(
     bodies: tuple[str, ...],
     velocity: str,
     guesses: np.ndarray,
+    forces: ForceReader | None = None,
 ) -> tuple[Trajectory, int]:
-    """The trajectory on `times` from the consistent `start` (t, q, v) RUN_IN steps before times[0],
-    and the steps taken. Every output time must be on the plant's step lattice (adapters.lattice)."""
+    """The trajectory on `times` from the consistent `start` (t, q, v) at or before times[0], and
+    the steps taken; with `forces`, their columns as extras (the mean of the steps either side of
+    each output, as the velocities). Every output time must be on the plant's step lattice
+    (adapters.lattice)."""
     check_grid(times, float(times[0]))
     h = built.dt
     t_start = start[0]
-    if not math.isclose(t_start + RUN_IN * h, float(times[0]), rel_tol=1e-12, abs_tol=1e-12 * h):
-        raise ValueError(f"the Drake run starts at t = {t_start + RUN_IN * h:g}, the scenario's first time")
+    if t_start > float(times[0]) + 1e-12 * h:
+        raise ValueError(f"the Drake run starts at t = {t_start:g}, after the first output")
     if any(lattice_point(t_start, float(t), h)[1] != 0.0 for t in times):
         raise ValueError(f"the output grid is not on Drake's step lattice (step {h:.6g} s)")
     simulator = Simulator(built.diagram)  # its clock reads t - t_start (model.build_diagram)
@@ -75,19 +80,34 @@ def run(
     simulator.Initialize()
     reader = built.plant.CreateDefaultContext()
     levels = np.zeros((len(times), 3, len(bodies), 3))
+    found = np.zeros((len(times), len(forces.columns) if forces else 0))
     steps = 0
     for k, t in enumerate(times):
         m, _ = lattice_point(t_start, float(t), h)
-        simulator.AdvanceTo(m * h)
-        q = built.plant.GetPositions(plant_context).copy()
-        v_before = built.plant.GetVelocities(plant_context).copy()
-        simulator.AdvanceTo((m + 1) * h)
-        v_after = built.plant.GetVelocities(plant_context).copy()
+        if m == 0:  # the start itself: AdvanceTo(0) takes the first step (Drake's update at 0)
+            q, v_before = start[1], start[2]
+            simulator.AdvanceTo(0.0)
+            v_after = built.plant.GetVelocities(plant_context).copy()
+            v = v_before  # the start's own rates, not a step's mean
+            if forces:
+                found[k] = forces.read(plant_context)  # the first step's: none before the start
+        else:
+            simulator.AdvanceTo(m * h)
+            q = built.plant.GetPositions(plant_context).copy()
+            v_before = built.plant.GetVelocities(plant_context).copy()
+            before = forces.read(plant_context) if forces else None
+            simulator.AdvanceTo((m + 1) * h)
+            v_after = built.plant.GetVelocities(plant_context).copy()
+            v = v_before if velocity == STATE else (v_before + v_after) / 2.0
+            if forces and before is not None:
+                found[k] = (before + forces.read(plant_context)) / 2.0
         steps = m + 1
-        v = v_before if velocity == STATE else (v_before + v_after) / 2.0
         levels[k] = _read(built, reader, q, v, (v_after - v_before) / h, bodies)
     theta = np.unwrap(levels[:, 0, :, 2], axis=0)
     theta += 2.0 * math.pi * np.round((guesses - theta[0]) / (2.0 * math.pi))
     levels[:, 0, :, 2] = theta
-    trajectory = Trajectory(np.asarray(times, dtype=float), bodies, levels[:, 0], levels[:, 1], levels[:, 2])
+    extras = {c: found[:, i].copy() for i, c in enumerate(forces.columns)} if forces else {}
+    trajectory = Trajectory(
+        np.asarray(times, dtype=float), bodies, levels[:, 0], levels[:, 1], levels[:, 2], extras
+    )
     return trajectory, steps

@@ -18,7 +18,7 @@ import adapters
 import reports.cli.run_overrides as run_overrides
 from reports import gate, suites
 from reports.cli.usage import UsageError
-from reports.run import RunConfig, scratch, stop, sweep
+from reports.run import NOT_INSTALLED, RunConfig, scratch, stop, sweep
 from reports.store import WriterLock, committed, scenario_identity
 from reports.suites import Suite
 from scenarios import Scenario, limits
@@ -298,10 +298,11 @@ def _check(args: argparse.Namespace, directory: Path, baseline: list[dict[str, A
     from reports.store import read_results
 
     frame, meta = read_results(directory)
+    absent = [engine for engine, version in meta.get("engines", {}).items() if version == NOT_INSTALLED]
     if baseline is None:
-        print(gate.update_baseline(args.baseline, frame, meta))
+        print(gate.update_baseline(args.baseline, frame, meta, absent))
         return 0
-    verdict = gate.judge(baseline, frame, args.factor)
+    verdict = gate.judge(baseline, frame, args.factor, absent)
     if args.junit:
         gate.files.write(args.junit, gate.files.junit_xml(verdict, args.baseline, args.factor))
     if args.json:

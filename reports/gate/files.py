@@ -50,6 +50,12 @@ def junit_xml(result: GateResult, baseline: str, factor: float) -> str:
     properties = ET.SubElement(suite, "properties")
     ET.SubElement(properties, "property", name="baseline", value=baseline)
     ET.SubElement(properties, "property", name="factor", value=f"{factor:g}")
+    for engine, n in result.not_installed:
+        ET.SubElement(
+            properties, "property", name=f"not installed: {engine}", value=f"{n} cells not compared"
+        )
+    for engine, n in result.new:
+        ET.SubElement(properties, "property", name=f"new: {engine}", value=f"{n} cells not gated")
     for cell in result.cells:
         case = ET.SubElement(
             suite, "testcase", classname=cell.scenario, name=f"{cell.engine} [{cell.setting}]"
@@ -91,6 +97,8 @@ def verdict_json(result: GateResult, baseline: str, factor: float) -> str:
         "passed": result.passed,
         "compared": result.compared,
         "regressions": len(result.regressions),
+        "new": dict(result.new),
+        "not_installed": dict(result.not_installed),
         "cells": cells,
     }
     return json.dumps(document, indent=1) + "\n"

@@ -8,12 +8,18 @@ Baseline cells of a scenario-engine pair the current results cover but lack are 
 ladder settings the current results did not run (a quick subset) are not compared. Run times are
 not gated: they depend on the machine.
 
+An optional engine (an extra such as Drake) may be installed on one machine and not on another, so
+the gate says once per engine what it did not judge, never a failure per cell: the cells of an
+engine the baseline has none of are new (listed, not gated, until `--update` adds them), and the
+baseline's cells of an engine the run could not load (not installed) are not compared.
+
 Every level is compared, keyed per level: the `error_position`, `error_velocity` and
 `error_acceleration` columns (a column a results table lacks is a level not produced; a level
 absent from both sides is not compared; a baseline from before the per-level columns has its
 headline `error` as the position level). The gate cannot pass by accident: a baseline that is not
 a well-formed list of cells, an `ok` cell without a finite error, a results table with cells the
-baseline lacks, and a comparison of 0 cells are errors (GateError: bad input, exit 2).
+baseline lacks (of an engine it has cells of), and a comparison of 0 cells are errors (GateError:
+bad input, exit 2).
 """
 
 from __future__ import annotations
@@ -21,6 +27,8 @@ from __future__ import annotations
 import json
 import math
 import os
+from collections import Counter
+from collections.abc import Collection
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -75,6 +83,10 @@ class GateResult:
     regressions: tuple[Regression, ...]
     cells: tuple[Cell, ...] = ()
     """Every cell compared and every missing one, in the baseline's order (for --junit, --json)."""
+    new: tuple[tuple[str, int], ...] = ()
+    """(engine, cells) of the engines the baseline has no cell of: run, not gated."""
+    not_installed: tuple[tuple[str, int], ...] = ()
+    """(engine, baseline cells) of the baseline's engines not installed where the results were made."""
 
     @property
     def passed(self) -> bool:
@@ -96,12 +108,16 @@ def baseline_cells(frame: pd.DataFrame) -> list[dict[str, Any]]:
 
 
 def write_baseline(path: str | os.PathLike[str], frame: pd.DataFrame, meta: dict[str, Any]) -> None:
+    _write_cells(path, baseline_cells(frame), meta)
+
+
+def _write_cells(path: str | os.PathLike[str], cells: list[dict[str, Any]], meta: dict[str, Any]) -> None:
     keep = ("suite", "git_revision", "date", "engines", "machine", "python")
     head = {"schema_version": SCHEMA_VERSION, "made_from": {k: meta.get(k) for k in keep}}
-    cells = ",\n".join(json.dumps(c, sort_keys=True) for c in baseline_cells(frame))
+    lines = ",\n".join(json.dumps(c, sort_keys=True) for c in cells)
     text = json.dumps(head, indent=1, sort_keys=True)[:-2]  # one cell a line, for readable diffs
     with atomic_output(path) as stream:  # a failed write leaves the old baseline as it was
-        stream.write(f'{text},\n "cells": [\n{cells}\n ]\n}}\n')
+        stream.write(f'{text},\n "cells": [\n{lines}\n ]\n}}\n')
 
 
 def read_baseline(path: str | os.PathLike[str]) -> list[dict[str, Any]]:
@@ -149,14 +165,25 @@ def _unsound(cell: Any) -> str:
 
 
 def judge(
-    baseline: list[dict[str, Any]], current: pd.DataFrame, factor: float = DEFAULT_FACTOR
+    baseline: list[dict[str, Any]],
+    current: pd.DataFrame,
+    factor: float = DEFAULT_FACTOR,
+    not_installed: Collection[str] = (),
 ) -> GateResult:
     """Every regression of `current` (a results table) against the `baseline` cells; GateError
-    when the baseline lacks cells of the results or nothing is compared."""
+    when the baseline lacks cells of the results (of an engine it knows) or nothing is compared.
+    `not_installed`: the engines the run could not load because their package is absent."""
     if not (math.isfinite(factor) and factor > 0):
         raise GateError(f"the error factor must be a finite positive number, got {factor}")
     index = {_key(c): c for c in baseline_cells(current)}
     known = {_key(c) for c in baseline}
+    engines = {c["engine"] for c in baseline}
+    unjudged = Counter(k[1] for k in index if k[1] not in engines)
+    index = {k: c for k, c in index.items() if k[1] in engines}
+    run = set(current["scenario"])
+    absent = Counter(
+        c["engine"] for c in baseline if c["engine"] in set(not_installed) and c["scenario"] in run
+    )
     unknown = sorted(k for k in index if k not in known)
     if unknown:
         example = " x ".join(unknown[0])
@@ -182,7 +209,13 @@ def judge(
         cells.append(_cell(old, new, label, what))
     if compared == 0:
         raise GateError("0 cells compared: the results and the baseline have no cell in common")
-    return GateResult(compared, tuple(regressions), tuple(cells))
+    return GateResult(
+        compared,
+        tuple(regressions),
+        tuple(cells),
+        tuple(sorted(unjudged.items())),
+        tuple(sorted(absent.items())),
+    )
 
 
 def _cell(old: dict[str, Any], new: dict[str, Any] | None, label: str, what: str) -> Cell:
@@ -257,10 +290,18 @@ def _keyed(cell: object) -> bool:
     return isinstance(cell, dict) and all(name in cell for name in KEY_FIELDS)
 
 
-def update_baseline(path: str | os.PathLike[str], frame: pd.DataFrame, meta: dict[str, Any]) -> str:
-    """Write the baseline from the results and say what it adds, drops and changes."""
+def update_baseline(
+    path: str | os.PathLike[str],
+    frame: pd.DataFrame,
+    meta: dict[str, Any],
+    not_installed: Collection[str] = (),
+) -> str:
+    """Write the baseline from the results and say what it adds, drops and changes; the cells of
+    the engines `not_installed` here are kept as they were (a machine without an optional engine
+    does not drop its cells)."""
     before = {_key(c): c for c in updatable_cells(path)}
     cells = baseline_cells(frame)
+    kept = [c for c in before.values() if c["engine"] in set(not_installed)]
     for cell in cells:  # never write a baseline that `check` would refuse
         problem = _unsound(cell)
         if problem:
@@ -268,14 +309,19 @@ def update_baseline(path: str | os.PathLike[str], frame: pd.DataFrame, meta: dic
                 f"cannot write baseline {path}: row {' x '.join(_key(cell))}: {problem} "
                 "(check would refuse it); rerun that row, or leave it out with --scenario/--engine"
             )
+    cells = sorted([*cells, *kept], key=lambda c: (c["scenario"], c["engine"], c["setting"]))
     after = {_key(c): c for c in cells}
     added = sorted(k for k in after if k not in before)
     dropped = sorted(k for k in before if k not in after)
     changed = sorted(k for k in after if k in before and _moved(before[k], after[k]))
-    write_baseline(path, frame, meta)
+    _write_cells(path, cells, meta)
     lines = [
         f"wrote baseline {path}: {len(after)} cells (was {len(before)}): "
         f"{len(added)} added, {len(dropped)} dropped, {len(changed)} changed"
+    ]
+    lines += [
+        f"  kept the {n} cells of {engine} as they were: {engine} is not installed here"
+        for engine, n in sorted(Counter(c["engine"] for c in kept).items())
     ]
     for sign, keys in (("+", added), ("-", dropped), ("~", changed)):
         lines += [f"  {sign} {' x '.join(k)}" + _change(before, after, k, sign) for k in keys]
@@ -294,10 +340,19 @@ def _change(before: dict[Any, Any], after: dict[Any, Any], key: Any, sign: str) 
 
 
 def describe(result: GateResult, baseline: str, factor: float) -> str:
-    """The readable result: one line, or a header and one line per regression."""
+    """The readable result: one line, or a header and one line per regression; then one line per
+    engine the gate did not judge (new to the baseline, or not installed here)."""
     head = f"check against {baseline} (error factor {factor:g}): {result.compared} cells compared"
     if result.passed:
-        return f"{head}, no regressions"
-    lines = [f"{head}, {len(result.regressions)} regressions:"]
-    lines += [f"  - {r}" for r in result.regressions]
+        lines = [f"{head}, no regressions"]
+    else:
+        lines = [f"{head}, {len(result.regressions)} regressions:"]
+        lines += [f"  - {r}" for r in result.regressions]
+    lines += [
+        f"{engine} not installed: its {n} baseline cells not compared" for engine, n in result.not_installed
+    ]
+    lines += [
+        f"{engine}: {n} new cells, not in the baseline, not gated (--update adds them)"
+        for engine, n in result.new
+    ]
     return "\n".join(lines)

@@ -16,6 +16,7 @@ if TYPE_CHECKING:  # the face: what the package offers, each loaded on first use
     from reports.run.imported import Score as Score
     from reports.run.imported import add_to_store as add_to_store
     from reports.run.imported import score as score
+    from reports.run.planning import NOT_INSTALLED as NOT_INSTALLED
     from reports.run.runner import Runner as Runner
     from reports.run.trajectory_file import ImportedTrajectory as ImportedTrajectory
     from reports.run.trajectory_file import TrajectoryFileError as TrajectoryFileError

@@ -15,8 +15,9 @@ torn apart. Two figures any user can compute from the run itself say so:
   `dt`; above STEP_LIMIT the run has not converged in its step. It costs a second run, about twice
   the first, so it is made only where there is no truth to judge the run: `mbxval solve`, and the
   runner's rows whose truth could not be made (run.group_runs).
-The limits are wide on purpose: every default run of the suites sits orders of magnitude below them
-(tests/reports/scoring/test_self_check.py), so a mark means a gross drift, not a setting's accuracy.
+The limits are wide on purpose: the default runs of the suites sit orders of magnitude below them,
+a first-order engine's a few times below (tests/reports/scoring/test_self_check.py), so a mark
+means a gross drift, not a setting's accuracy.
 """
 
 from __future__ import annotations

@@ -131,11 +131,3 @@ def test_what_drake_does_not_model_is_unsupported_with_the_reason(name: str) -> 
     reason = adapter.supports(scenario)
     assert reason is not None and UNSUPPORTED[name] in reason
     assert adapter.run(scenario).status == "unsupported"
-
-
-def test_free_dynamics_is_unsupported() -> None:
-    adapter = DrakeAdapter()
-    dynamic = next(
-        n for n in scenarios.catalogue(include_dynamic=True) if scenarios.build(n).analysis == "dynamic"
-    )
-    assert "free dynamics" in (adapter.supports(scenarios.build(dynamic)) or "")

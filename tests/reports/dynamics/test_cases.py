@@ -63,4 +63,4 @@ def test_a_map_cell_runs_every_mode_at_its_step() -> None:
             chosen = settings(load(name), adapter)
             assert chosen is not None and chosen[0].mode == adapter.default_setting(load(name)).mode
             assert all(math.isclose(float(s["dt"]), values["dt"]) for s in chosen), (engine, name)
-            assert len({s.mode for s in chosen}) == len(chosen) >= 2
+            assert len({s.mode for s in chosen}) == len(chosen) >= min(2, len(adapter.modes))

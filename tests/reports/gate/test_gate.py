@@ -112,3 +112,49 @@ def test_status_order_floor_and_coverage() -> None:
         "a x e2 [(default)]: status unsupported -> failed",
         "a x e3 [(default)]: missing: no default-setting row (baseline: ok)",
     ]  # scenario b was not run, so its cells are not compared
+
+
+def test_an_optional_engine_new_to_the_baseline_is_listed_not_gated() -> None:
+    """A baseline made without an optional engine, checked where it is installed: its cells are new,
+    said once for the engine; the other engines are gated as before."""
+    base = gate.baseline_cells(cells(("a", "e1", True, "ok", 1e-6)))
+    verdict = gate.judge(base, cells(("a", "e1", True, "ok", 1e-6), ("a", "e9", True, "failed", math.nan)))
+    assert verdict.passed and verdict.compared == 1 and verdict.new == (("e9", 1),)
+    lines = gate.describe(verdict, "b.json", 10.0).splitlines()
+    assert lines[1:] == ["e9: 1 new cells, not in the baseline, not gated (--update adds them)"]
+    worse = gate.judge(base, cells(("a", "e1", True, "ok", 1e-3), ("a", "e9", True, "ok", 1e-6)))
+    assert [r.engine for r in worse.regressions] == ["e1"]
+    with pytest.raises(
+        gate.GateError, match="the baseline lacks 1 of the 2 cells"
+    ):  # a known engine's new cell
+        gate.judge(base, cells(("a", "e1", True, "ok", 1e-6), ("b", "e1", True, "ok", 1e-6)))
+
+
+def test_a_baseline_engine_not_installed_is_said_once_not_per_cell() -> None:
+    base = gate.baseline_cells(
+        cells(
+            ("a", "e1", True, "ok", 1e-6),
+            ("b", "e1", True, "ok", 1e-6),
+            ("a", "e9", True, "ok", 1e-6),
+            ("b", "e9", True, "ok", 1e-6),
+        )
+    )
+    verdict = gate.judge(
+        base, cells(("a", "e1", True, "ok", 1e-6), ("b", "e1", True, "ok", 1e-6)), not_installed=["e9"]
+    )
+    assert verdict.passed and verdict.not_installed == (("e9", 2),)
+    text = gate.describe(verdict, "b.json", 10.0)
+    assert text.splitlines()[1:] == ["e9 not installed: its 2 baseline cells not compared"]
+    subset = gate.judge(base, cells(("a", "e1", True, "ok", 1e-6)), not_installed=["e9"])
+    assert subset.not_installed == (("e9", 1),)  # only the cells of the scenarios run
+
+
+def test_update_keeps_the_cells_of_an_engine_not_installed(tmp_path: Path) -> None:
+    path = tmp_path / "baseline.json"
+    gate.write_baseline(path, cells(("a", "e1", True, "ok", 1e-6), ("a", "e9", True, "ok", 2e-6)), {})
+    said = gate.update_baseline(path, cells(("a", "e1", True, "ok", 3e-6)), {}, not_installed=["e9"])
+    kept = {(c["engine"], c["error"]) for c in gate.read_baseline(path)}
+    assert kept == {("e1", 3e-6), ("e9", 2e-6)}
+    assert "kept the 1 cells of e9 as they were: e9 is not installed here" in said
+    gate.update_baseline(path, cells(("a", "e1", True, "ok", 3e-6)), {})  # installed, not run: dropped
+    assert {c["engine"] for c in gate.read_baseline(path)} == {"e1"}

@@ -80,6 +80,12 @@ def test_solve_warns_on_a_gross_drift_and_keeps_exit_0(capsys, tmp_path) -> None
     assert err.startswith("mbxval: warning: mujoco drifted: constraint residual") and err.count("\n") == 1
 
 
+ENERGY_MARGIN = {"drake": 3.0}
+"""How far below ENERGY_LIMIT an engine's default run keeps its energy balance on four_bar_gravity,
+where not 1000: Drake's SAP step is first order and dissipates (2.9e-3 of the energy scale at its
+default step, 2.9e-4 at a tenth of it), and SAP is the only Drake solver that closes a loop."""
+
+
 @pytest.mark.parametrize("engine", ENGINES)
 def test_no_alarm_on_a_default_run(engine: str) -> None:
     scenario = scenarios.build("four_bar_gravity")
@@ -89,7 +95,8 @@ def test_no_alarm_on_a_default_run(engine: str) -> None:
     result = adapter.run(scenario, adapter.default_setting(scenario), np.asarray(scenario.times()))
     assert result.status == "ok" and result.trajectory is not None
     assert self_check.of_trajectory(scenario, result.trajectory) == ""
-    assert self_check.energy_change(scenario, result.trajectory) < self_check.ENERGY_LIMIT / 1000
+    margin = ENERGY_MARGIN.get(engine, 1000.0)
+    assert self_check.energy_change(scenario, result.trajectory) < self_check.ENERGY_LIMIT / margin
 
 
 @pytest.mark.parametrize(
