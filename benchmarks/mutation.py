@@ -36,6 +36,8 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from benchmarks.mutation_results import explained
+
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGES = (
     "mbxval",
@@ -433,20 +435,6 @@ KERNEL_MODULES = frozenset(
 )
 """Modules of numba kernels, mutated as Python (NUMBA_DISABLE_JIT=1, their `@njit` lines removed)."""
 NJIT_LINE = re.compile(r"^@njit\(.*\)\n", re.MULTILINE)
-
-EXPLAINED_DIR = Path(__file__).with_name("mutation_explained")
-"""One JSON file per mutated module (`reference_solver.fast.band.json`): each survivor that cannot or
-need not be killed, by mutmut's name, with the reason (data, so that passes over different modules
-never edit the same file)."""
-
-
-def explained() -> dict[str, str]:
-    """Every explained survivor of every module, by mutant name."""
-    reasons: dict[str, str] = {}
-    for path in sorted(EXPLAINED_DIR.glob("*.json")):
-        reasons.update(json.loads(path.read_text()))
-    return reasons
-
 
 EXPLAINED = explained()
 

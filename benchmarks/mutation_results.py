@@ -198,10 +198,22 @@ def page(found: list[Record], explained: Mapping[str, str]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def main() -> None:
-    from benchmarks.mutation import EXPLAINED
+EXPLAINED_DIR = Path(__file__).with_name("mutation_explained")
+"""One JSON file per mutated module (`reference_solver.fast.band.json`): each survivor that cannot or
+need not be killed, by mutmut's name, with the reason (data, so that passes over different modules
+never edit the same file)."""
 
-    print(page(records(), EXPLAINED), end="")
+
+def explained() -> dict[str, str]:
+    """Every explained survivor of every module, by mutant name."""
+    reasons: dict[str, str] = {}
+    for path in sorted(EXPLAINED_DIR.glob("*.json")):
+        reasons.update(json.loads(path.read_text()))
+    return reasons
+
+
+def main() -> None:
+    print(page(records(), explained()), end="")
 
 
 if __name__ == "__main__":

@@ -11,7 +11,7 @@ import pytest
 import adapters
 import scenarios
 from adapters.base import Setting
-from reports.cli import main
+from reports.cli.main import main
 from reports.dynamics import cases
 from scenarios.families.n_four_bar_reference import HIGH_PRECISION, criterion
 

@@ -12,7 +12,6 @@ import pytest
 
 from benchmarks.mutation import (
     EXPLAINED,
-    EXPLAINED_DIR,
     KERNEL_MODULES,
     MODULES,
     ROOT,
@@ -20,6 +19,7 @@ from benchmarks.mutation import (
     _scratch_copy,
     run,
 )
+from benchmarks.mutation_results import EXPLAINED_DIR
 
 MUTANT = re.compile(r"(?P<module>.*?)\.x(?:_(?P<function>.*)|ǁ(?P<cls>.*)ǁ(?P<method>.*))__mutmut_\d+$")
 

@@ -14,7 +14,7 @@ import pytest
 
 import adapters
 import scenarios
-from reports.cli import main
+from reports.cli.main import main
 from scenarios import Scenario
 from scenarios.files import read_scenario
 from scenarios.files.writer import read_back

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 import scenarios
-from reports.cli import main
+from reports.cli.main import main
 from reports.scoring.level_error import characteristic_rate
 from reports.store.scenario_identity import digest
 from scenarios.files import read_scenario

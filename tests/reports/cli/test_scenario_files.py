@@ -10,7 +10,7 @@ import pandas as pd
 import pytest
 
 import scenarios
-from reports.cli import main
+from reports.cli.main import main
 from scenarios.files import read_scenario
 from scenarios.files.writer import read_back
 from tests.support.engines import ENGINES
