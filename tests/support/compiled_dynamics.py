@@ -17,17 +17,7 @@ from scenarios import Scenario, load
 def both(name: str) -> tuple[CompiledPartitioned, Partitioned, State]:
     """The compiled and the plain ODE of one scenario, on the same partition, and its start."""
     scenario = load(name)
-    fast, plain = constraint_system(scenario), constraint_system(scenario, fast=False)
-    mass = mass_diagonal(scenario, plain.layout)
-    start = initial_state(plain, mass, Loads(scenario, plain.layout, mass), float(scenario.times()[0]))
-    independent = choose_independent(plain, start.jac)
-    compiled = partitioned_ode(fast, mass, Loads(scenario, fast.layout, mass), start.q, independent)
-    assert isinstance(compiled, CompiledPartitioned)
-    return (
-        compiled,
-        Partitioned(plain, mass, Loads(scenario, plain.layout, mass), start.q, independent),
-        start,
-    )
+    return compiled_and_plain(scenario, float(scenario.times()[0]))
 
 
 def random_states(ode: Partitioned, start: State, count: int, seed: int) -> list[tuple[float, np.ndarray]]:
@@ -47,11 +37,11 @@ def random_states(ode: Partitioned, start: State, count: int, seed: int) -> list
     return states
 
 
-def compiled_and_plain(scenario: Scenario) -> tuple[CompiledPartitioned, Partitioned, State]:
-    """As test_compiled_rates.both, for a scenario built here."""
+def compiled_and_plain(scenario: Scenario, t0: float = 0.0) -> tuple[CompiledPartitioned, Partitioned, State]:
+    """The compiled and the plain ODE of `scenario` on the same partition, and its start at `t0`."""
     fast, plain = constraint_system(scenario), constraint_system(scenario, fast=False)
     mass = mass_diagonal(scenario, plain.layout)
-    start = initial_state(plain, mass, Loads(scenario, plain.layout, mass), 0.0)
+    start = initial_state(plain, mass, Loads(scenario, plain.layout, mass), t0)
     independent = choose_independent(plain, start.jac)
     compiled = partitioned_ode(fast, mass, Loads(scenario, fast.layout, mass), start.q, independent)
     assert isinstance(compiled, CompiledPartitioned)
