@@ -64,7 +64,7 @@ def _is_synopsis(command: str) -> bool:
     """A usage line, not a command: a description column, a placeholder, an optional part, a choice."""
     if re.search(r"\S\s{3,}\S", command):
         return True
-    words = shlex.split(command)
+    words = command.split()
     return any(
         re.fullmatch(r"[A-Z][A-Z_]{2,}(\.[a-z]+)?(\.\.\.)?", word) or word.startswith("[") or "|" in word
         for word in words
@@ -98,6 +98,13 @@ def test_the_reader_finds_commands_and_leaves_synopses_out() -> None:
         "mbxval solve slider_crank --out a.csv",
         "mbxval run --scenario 'slider_crank[offset=0.05]' --engine mujoco",
     ]
+
+
+def test_the_reader_parses_every_command_of_the_readme() -> None:
+    """Fast: a command the shell could not split (an unclosed quote) fails here, not in the slow run."""
+    commands = readme_commands((ROOT / "README.md").read_text())
+    assert len(commands) >= 10, commands
+    assert all(shlex.split(command)[0] == "mbxval" for command in commands)
 
 
 def _run(argv: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
