@@ -15,6 +15,9 @@ from adapters.lattice import hermite, lattice_point, lattice_steps
 from adapters.step_rule import FALLBACK_PERIOD, rule_step, shortest_period
 from tests.support.engines import COMPARED
 
+STEPS_ON_OUTPUTS = ("exudyn", "drake")
+"""The engines whose step is shortened to put an even grid's outputs on it (outputs_on_steps)."""
+
 
 def test_a_driven_mechanism_s_period_is_one_turn_of_its_crank() -> None:
     scenario = scenarios.build("slider_crank", overrides={"omega": 20.0})
@@ -94,15 +97,15 @@ def test_interpolation_does_not_amplify_a_velocity_error() -> None:
 def test_steps_do_not_depend_on_the_output_grid(engine: str) -> None:
     """The issue's case: four_bar_gravity with t_end 0.2 and 4 steps against t_end 0.4 and 16 steps
     (before: 1.5e-2 apart in Exudyn, 1.6e-5 in Pinocchio). The same march: the same states at the
-    common times, to round-off. Exudyn reads its outputs on its own steps (the rule's step shortened
-    to divide the output spacing, adapters.lattice.outputs_on_steps): its march is the same for the
-    same spacing, so its longer grid keeps the spacing (8 steps)."""
+    common times, to round-off. Exudyn and Drake read their outputs on their own steps (the rule's
+    step shortened to divide the output spacing, adapters.lattice.outputs_on_steps): their march is
+    the same for the same spacing, so their longer grid keeps the spacing (8 steps)."""
     adapter = adapters.load(engine)
     if not adapter.dynamics:
         pytest.skip(f"{engine} does not run forward dynamics")
     scenario = scenarios.load("four_bar_gravity")
     short = dataclasses.replace(scenario, t_end=0.2, steps=4)
-    every = 1 if engine == "exudyn" else 2
+    every = 1 if engine in STEPS_ON_OUTPUTS else 2
     long = dataclasses.replace(scenario, t_end=0.4, steps=8 * every)
     assert adapter.default_setting(short) == adapter.default_setting(long)
     runs = [adapter.run(s) for s in (short, long)]
