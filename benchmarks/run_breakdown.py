@@ -100,7 +100,10 @@ def timed_steps(clock: Clock, log: Path) -> Iterator[None]:
             "scenario": held["group"][0].name,
             "total": time.perf_counter() - start,
             "cpu": time.process_time() - cpu,
-            "work": sum(_seconds(x) for x in (result.build_time, result.warmup_time, result.repeats_time)),
+            "work": sum(
+                _seconds(x)
+                for x in (result.build_time_wall, result.warmup_time_wall, result.repeats_time_wall)
+            ),
             "wall": dict(child.wall),
         }
         with open(log, "a") as out:

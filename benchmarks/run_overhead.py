@@ -8,7 +8,8 @@ Each case runs the command line in a fresh interpreter into an empty directory, 
 (start-up, truths, forked runs, saving, the report page), and reads the rows it stored:
 - compute: the sum of the rows' build and run times (run time being the minimum of the repeats);
 - work: what the rows measured their timing spent, build + warm-up + timed repeats per row (the
-  `build_time`, `warmup_time` and `repeats_time` columns, each measured where it ran);
+  wall-clock `build_time_wall`, `warmup_time_wall` and `repeats_time_wall` columns, each measured
+  where it ran);
 - overhead per run: (wall - work) / rows.
 A run that fails in its engine (a singular position, a divergence) stores what it spent up to the
 failure (adapters.spent), so its work counts as work; a timeout stores the limit it hit, a crash
@@ -60,8 +61,10 @@ def wall(arguments: list[str]) -> float:
     return time.perf_counter() - start
 
 
-WORK = ("build_time", "warmup_time", "repeats_time")
-"""The measured parts of a row's work: its build, its untimed warm-up and its timed repeats."""
+WORK = ("build_time_wall", "warmup_time_wall", "repeats_time_wall")
+"""The measured parts of a row's work: its build, its untimed warm-up and its timed repeats, on the
+wall clock like the run phase they are taken from (a row's CPU seconds count every thread of its
+process, and can exceed the wall time they passed in)."""
 
 
 def work(rows: pd.DataFrame) -> float:
