@@ -7,6 +7,7 @@ import pytest
 import adapters
 from adapters.base import Adapter
 from adapters.modes import ADAPTER, ENGINE, Mode, measures_of
+from tests.support.engines import ENGINES
 
 
 def test_measures_names_who_computes_and_the_derived_levels() -> None:
@@ -20,7 +21,7 @@ def test_measures_names_who_computes_and_the_derived_levels() -> None:
     assert measures_of((mode,), "other") == ""
 
 
-@pytest.mark.parametrize("name", adapters.names())
+@pytest.mark.parametrize("name", ENGINES)
 def test_every_default_and_ladder_mode_is_declared(name: str) -> None:
     from scenarios.registry import build
 
@@ -33,7 +34,7 @@ def test_every_default_and_ladder_mode_is_declared(name: str) -> None:
             assert modes <= declared
 
 
-@pytest.mark.parametrize("name", adapters.names())
+@pytest.mark.parametrize("name", ENGINES)
 def test_modes_are_the_names_of_measured_in_its_order(name: str) -> None:
     """One declaration: `modes` (what settings are checked against, and the unknown-mode message)
     lists the declared modes in the order `mbxval list` shows them."""

@@ -9,10 +9,10 @@ import pytest
 import adapters
 import scenarios
 from adapters.base import Setting, SettingError
-from tests.support.engines import COMPARED
+from tests.support.engines import COMPARED, ENGINES
 
 
-@pytest.mark.parametrize("engine", adapters.names())
+@pytest.mark.parametrize("engine", ENGINES)
 def test_defaults_and_ladders_pass_their_own_declarations(engine: str) -> None:
     adapter = adapters.load(engine)
     for name in ("slider_crank", "spur_gears", "cam_roller"):
@@ -21,7 +21,7 @@ def test_defaults_and_ladders_pass_their_own_declarations(engine: str) -> None:
             assert adapter.check_setting(setting).mode == setting.mode
 
 
-@pytest.mark.parametrize("engine", adapters.names())
+@pytest.mark.parametrize("engine", ENGINES)
 def test_unknown_mode_and_option_name_the_known_ones(engine: str) -> None:
     adapter = adapters.load(engine)
     default = adapter.default_setting(scenarios.build("slider_crank"))
@@ -31,7 +31,7 @@ def test_unknown_mode_and_option_name_the_known_ones(engine: str) -> None:
         adapter.check_setting(default.replace(nosuch=1))
 
 
-@pytest.mark.parametrize("engine", adapters.names())
+@pytest.mark.parametrize("engine", ENGINES)
 def test_every_option_refuses_values_outside_its_range(engine: str) -> None:
     adapter = adapters.load(engine)
     default = adapter.default_setting(scenarios.build("slider_crank"))
