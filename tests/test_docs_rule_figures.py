@@ -1,6 +1,7 @@
-"""docs/settings-rule.md and docs/a02.md state their measured figures as the tables the engines' tests
-hold give them (tests.support.rule_figures, tests.support.measured): each phrase below is made from
-those tables and must be on its page, so a page cannot keep a figure the engines no longer give."""
+"""docs/settings-rule.md, docs/a02.md and the MuJoCo page's time-constant sweep state their measured
+figures as the tables the engines' tests hold give them (tests.support.rule_figures,
+tests.support.measured): each phrase below is made from those tables and must be on its page, so a
+page cannot keep a figure the engines no longer give."""
 
 from __future__ import annotations
 
@@ -196,7 +197,22 @@ def a02() -> list[tuple[str, str]]:
     return out
 
 
-STATED = [(RULE, *p) for p in mujoco() + exudyn()] + [(A02, *p) for p in a02()]
+def mujoco_page() -> list[tuple[str, str]]:
+    free = f.MUJOCO_FREE_TC
+    return [
+        (
+            "free dynamics at 128 steps",
+            f"128 steps {figure(free[('four_bar_gravity', 128.0)][2])} and "
+            f"{figure(free[('andrews_squeezer', 128.0)][2])} in accelerations",
+        )
+    ]
+
+
+STATED = (
+    [(RULE, *p) for p in mujoco() + exudyn()]
+    + [(A02, *p) for p in a02()]
+    + [("engines/mujoco.md", *p) for p in mujoco_page()]
+)
 
 
 @pytest.mark.parametrize(("page", "what", "words"), STATED, ids=[f"{p}:{w}" for p, w, _ in STATED])
