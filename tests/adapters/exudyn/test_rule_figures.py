@@ -18,6 +18,7 @@ from adapters.exudyn.run_in import run_in_steps
 from reports.scoring.comparison import measure
 from reports.scoring.truth import independent_truth
 from scenarios.scenario import Scenario
+from scenarios.trajectory import Trajectory
 from tests.support import rule_figures as figures
 from tests.support.bounds import held
 
@@ -32,7 +33,7 @@ def scene(name: str) -> Scenario:
 
 
 @functools.cache
-def truth(name: str):
+def truth(name: str) -> Trajectory:
     return independent_truth(scene(name), np.asarray(scene(name).times())).trajectory
 
 

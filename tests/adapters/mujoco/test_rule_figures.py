@@ -16,6 +16,7 @@ from adapters.mujoco.settings import DIRECT_FORM, own_regulariser
 from reports.scoring.level_error import level_errors
 from reports.scoring.truth import independent_truth
 from scenarios.scenario import Scenario
+from scenarios.trajectory import Trajectory
 from tests.support import rule_figures as figures
 from tests.support.bounds import held
 
@@ -30,7 +31,7 @@ def scene(name: str, first_second: bool = False) -> Scenario:
 
 
 @functools.cache
-def truth(name: str, first_second: bool = False):
+def truth(name: str, first_second: bool = False) -> Trajectory:
     scenario = scene(name, first_second)
     return independent_truth(scenario, np.asarray(scenario.times())).trajectory
 
