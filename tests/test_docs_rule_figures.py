@@ -10,8 +10,8 @@ import math
 import pytest
 
 from tests.support import rule_figures as f
+from tests.support.doc_pages import figure, page_text, triple
 from tests.support.measured import DYNAMIC_DEFAULTS, FLOORS, KINEMATIC_DEFAULTS, MUJOCO_FORCES
-from tests.test_docs_figures import figure, page_text, triple
 
 RULE, A02 = "settings-rule.md", "a02.md"
 
