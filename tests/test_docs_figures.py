@@ -4,11 +4,9 @@ gives it, so neither the code nor the docs can drift from the other without a fa
 
 from __future__ import annotations
 
-import re
-from pathlib import Path
-
 import pytest
 
+from tests.support.doc_pages import figure, page_text, triple
 from tests.support.measured import (
     A02_SPEC,
     DYNAMIC_DEFAULTS,
@@ -18,22 +16,7 @@ from tests.support.measured import (
     MUJOCO_FORCES,
 )
 
-DOCS = Path(__file__).resolve().parent.parent / "docs"
 ENGINE_PAGES = {engine: f"engines/{engine}.md" for engine in ("mujoco", "exudyn", "pinocchio")}
-
-
-def figure(value: float) -> str:
-    """A figure as the docs write it: two digits, no padded exponent (7.9e-8)."""
-    mantissa, exponent = f"{value:.1e}".split("e")
-    return f"{mantissa}e{int(exponent)}"
-
-
-def triple(values: tuple[float, ...]) -> str:
-    return " / ".join(figure(v) for v in values)
-
-
-def page_text(page: str) -> str:
-    return re.sub(r"\s+", " ", (DOCS / page).read_text(encoding="utf-8"))
 
 
 def stated() -> list[tuple[str, str, str]]:

@@ -37,6 +37,9 @@ from scenarios.trajectory import Trajectory
 RESIDUAL_LIMIT = 1e-3
 ENERGY_LIMIT = 1e-2
 STEP_LIMIT = 1e-2
+HALVABLE_TIMES = 5
+"""The fewest grid times on which the work's quadrature error is estimated by integrating over every
+other time (three or more): on fewer a run that has work done on it is not judged by its energy."""
 
 
 def conservative(scenario: Scenario) -> bool:
@@ -55,8 +58,9 @@ def energy_change(scenario: Scenario, trajectory: Trajectory) -> float:
     """The largest |E(t) - E(t0) - W(t)| over the run's own energy scale, W the work done on the
     mechanism since t0 (scoring.work), less what the grid's quadrature of W cannot tell apart (the
     largest change of W when it is integrated over every other grid time instead): a coarse grid
-    does not make an exact run look drifted. NaN where the run gives no velocities, or drives the
-    mechanism without reporting its driving forces."""
+    does not make an exact run look drifted. NaN where the run gives no velocities, drives the
+    mechanism without reporting its driving forces, or has work done on it over a grid too short
+    to halve (under HALVABLE_TIMES times: not judged)."""
     if trajectory.velocity is None or not any(body.mass or body.inertia for body in scenario.bodies):
         return math.nan
     done = work(scenario, trajectory)
@@ -69,15 +73,16 @@ def energy_change(scenario: Scenario, trajectory: Trajectory) -> float:
         energy_scale(scenario, trajectory),
     )
     imbalance = float(np.max(np.abs(energy - energy[0] - done)))
+    if not np.any(done):
+        return imbalance / scale  # no work done, no quadrature to doubt
+    if len(trajectory.times) < HALVABLE_TIMES:
+        return math.nan  # the quadrature's error cannot be estimated: not judged, never a drift
     return max(imbalance - _quadrature_uncertainty(scenario, trajectory, done), 0.0) / scale
 
 
 def _quadrature_uncertainty(scenario: Scenario, trajectory: Trajectory, done: np.ndarray) -> float:
     """The largest difference of the work at the common times when it is integrated over every other
-    grid time: an upper estimate of the quadrature's own error on the full grid (0 on a grid too
-    short to halve)."""
-    if len(trajectory.times) < 5:
-        return 0.0
+    grid time: an upper estimate of the quadrature's own error on the full grid."""
     coarse = work(scenario, _every_other(trajectory))
     return 0.0 if coarse is None else float(np.max(np.abs(coarse - done[::2])))
 

@@ -226,3 +226,33 @@ def test_a_coarse_grid_does_not_make_an_exact_driven_run_look_drifted() -> None:
         self_check.energy_change(scenario, dataclasses.replace(truth, extras=extras))
         > self_check.ENERGY_LIMIT
     )
+
+
+@pytest.mark.parametrize("steps", [1, 2, 3])
+def test_a_grid_too_short_to_halve_cannot_judge_the_work_done(steps: int) -> None:
+    """The four-bar's closed form (an exact run) on 2 to 4 grid times: the trapezoidal work over a
+    whole turn in one to three intervals is off by up to the whole energy scale, and a grid under 5
+    times cannot be halved to estimate that error, so the balance is not judged (NaN), never
+    called a drift."""
+    from reports.scoring.truth import independent_truth
+
+    scenario = dataclasses.replace(scenarios.build("four_bar"), steps=steps)
+    truth = independent_truth(scenario, np.asarray(scenario.times())).trajectory
+    assert math.isnan(self_check.energy_change(scenario, truth))
+    assert self_check.verdict(0.0, self_check.energy_change(scenario, truth)) == ""
+
+
+def test_a_short_grid_of_a_conservative_run_is_still_judged() -> None:
+    """Where no work is done (free dynamics under gravity alone) there is no quadrature to doubt: a
+    doctored kinetic energy on 3 grid times still shows."""
+    scenario = dataclasses.replace(scenarios.build("compound_pendulum"), t_end=0.5, steps=2)
+    truth = simulate(scenario, np.asarray(scenario.times()), 1e-12).trajectory()
+    assert self_check.energy_change(scenario, truth) < 1e-8
+    assert truth.velocity is not None
+    doctored = dataclasses.replace(truth, velocity=truth.velocity * np.array([1.0, 1.0, 1.2])[:, None, None])
+    assert self_check.energy_change(scenario, doctored) > self_check.ENERGY_LIMIT
+
+
+def test_solve_on_one_output_step_warns_of_no_drift(capsys, tmp_path) -> None:
+    assert main(["solve", "four_bar", "--steps", "1", "--out", str(tmp_path / "x.csv")]) == 0
+    assert "drifted" not in capsys.readouterr().err
