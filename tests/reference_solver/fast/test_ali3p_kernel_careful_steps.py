@@ -26,7 +26,7 @@ from scenarios import Point
 from scenarios.drivers import AbsoluteDriver
 from scenarios.joints import RevoluteRevolute
 from scenarios.motions import Harmonic
-from tests.support.ali3p_rod import THETA0, swinging_rod
+from tests.support.ali3p_rod import THETA0, compiled_stepper_at_rest, swinging_rod
 from tests.support.one_loop import (
     H,
     kernel_problem,
@@ -165,12 +165,7 @@ def test_a_driver_whose_acceleration_overflows_is_refused_not_stepped() -> None:
     with NaN accelerations."""
     turn = AbsoluteDriver("turn", "rod", "theta", Harmonic(THETA0, 1e-300, 1e300))
     scenario = replace(swinging_rod(), drivers=(turn,))
-    system = constraint_system(scenario)
-    mass = mass_diagonal(scenario, system.layout)
-    stepper = ali3p_stepper(system, mass, Loads(scenario, system.layout, mass), H)
-    assert isinstance(stepper, CompiledAli3p)
-    q = np.array([0.5 * np.cos(THETA0), 0.5 * np.sin(THETA0), THETA0])
-    start = StepState(0.0, q, np.zeros(3), np.zeros(3), np.zeros(system.size), system.jacobian(q, 0.0))
+    stepper, start = compiled_stepper_at_rest(scenario, H)
     with (
         pytest.raises(
             ConvergenceError,
