@@ -88,11 +88,11 @@ def test_the_walk_visits_each_integrator_step_before_each_output_once() -> None:
         np.testing.assert_array_equal(y, sol.sol(t) if flag else sol.y[:, list(sol.t).index(t)])
 
 
-@pytest.mark.parametrize("apart", [0.1, 1e-10])
-def test_a_miss_below_one_length_is_still_refused(apart: float) -> None:
-    """The rod's end pinned at the origin and at (d, 0) at once (test_forward.py's case with d = 3):
-    least squares puts it half way, each x row missing by d / 2 over L = 0.5, so d = 0.1 and 1e-10
-    miss by 0.1 and 1e-10 of the length, above assemble_free's 1e-12 and below one length."""
+@pytest.mark.parametrize("apart", [3.0, 0.1, 1e-10])
+def test_a_mechanism_that_cannot_assemble_is_refused_with_its_miss(apart: float) -> None:
+    """The rod's end pinned at the origin and at (d, 0) at once: least squares puts it half way, each
+    x row missing by d / 2 over L = 0.5, so d = 3 misses by 3 lengths, and d = 0.1 and 1e-10 miss by
+    0.1 and 1e-10 of the length, above assemble_free's 1e-12 and below one length: all refused."""
     second = Revolute("second", Point(GROUND, (apart, 0.0)), Point("link_1", (-0.25, 0.0)))
     scenario = rod(joints=(*rod().joints, second))
     with pytest.raises(AssemblyError) as caught:
