@@ -10,14 +10,10 @@ from adapters.base import Setting
 from adapters.mujoco.adapter import MujocoAdapter
 from scenarios.closed_form import exact
 from scenarios.registry import build
+from tests.support.mujoco.scenes import LINKAGES
 
 FAMILIES = (
-    "slider_crank",
-    "slider_crank/offset",
-    "slider_crank/slider_drive",
-    "four_bar",
-    "four_bar/crossed",
-    "four_bar_chain",
+    *LINKAGES,
     "spur_gears",
     "spur_gears/internal",
     "planetary_gears",
