@@ -31,11 +31,11 @@ from tests.support.bounds import held
 from tests.support.measured import measured_table
 from tests.support.mechanisms import differential_train
 from tests.support.mujoco.kinematic_errors import ADAPTER, errors
+from tests.support.mujoco.scenes import DISC_SCENARIOS
 
 MEASURED: dict[str, tuple[float, ...]] = measured_table("mujoco_defaults")
 """scenario: (position length [m], position angle [rad], velocity / max|v|, acceleration / max|a|)
 at the default setting, measured with MuJoCo 4.0.1, held two-sided (tests.support.bounds)."""
-DISC_SCENARIOS = [n for n in scenarios.catalogue() if not n.endswith("/spline")]
 
 
 @pytest.mark.parametrize("name", DISC_SCENARIOS)
