@@ -103,16 +103,7 @@ def build_disc_cam(
     driver = AbsoluteDriver("cam_drive", "cam", "theta", ConstantSpeed(theta0, omega))
     follower = family.removeprefix("cam_").replace("_", "-")
     description = f"{kind} cam with a translating {follower} follower"
-    return revolving(
-        family,
-        variant,
-        p,
-        bodies,
-        joints,
-        (driver,),
-        big_r,
-        description,
-    )
+    return revolving(family, variant, p, bodies, joints, (driver,), big_r, description)
 
 
 def disc_cam_family(
