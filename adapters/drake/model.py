@@ -198,7 +198,7 @@ def assemble(built: Diagram, scenario: Scenario, plan: Plan, context: Any, t0: f
     plant = built.plant
     q = np.zeros(plant.num_positions())
     for edge in plan.edges:
-        if edge.kind != "weld":
+        if edge.kind != "fixed":
             joint = plant.GetJointByName(edge.name)
             q[joint.position_start()] = edge.q0
     length = scenario.characteristic_length

@@ -10,15 +10,14 @@ coordinates. Anything else has no faithful Drake form here and is refused with t
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 
-from scenarios.bodies import GROUND, Pose, Vec2
+from adapters.tree_edges import Coupling, Edge, coupling, tree_edges
+from scenarios.bodies import GROUND
 from scenarios.drivers import AbsoluteDriver
 from scenarios.forces import AppliedForce, AppliedTorque, RotationalSpringDamper, SpringDamper
 from scenarios.gears import GearPair, RackPinion
-from scenarios.geometry import compose, rotate
-from scenarios.joints import Ground, Prismatic, Revolute
+from scenarios.joints import Prismatic, Revolute
 from scenarios.scenario import Scenario
 from scenarios.topology import TopologyError, spanning_tree
 
@@ -28,39 +27,10 @@ class PlanError(ValueError):
 
 
 @dataclass(frozen=True)
-class Edge:
-    """Tree joint `name` hangs body `child` from `parent` (a body or the ground).
-
-    kind is "revolute", "prismatic" or "weld"; `parent_frame` is the joint frame in the parent's body
-    frame, `child_frame` in the child's; `axis` the prismatic direction in the joint frame; `q0` a
-    first guess of the coordinate from the bodies' guessed poses."""
-
-    name: str
-    kind: str
-    parent: str
-    child: str
-    parent_frame: Pose
-    child_frame: Pose
-    axis: Vec2 = (1.0, 0.0)
-    q0: float = 0.0
-
-
-@dataclass(frozen=True)
-class Coupler:
-    """Gear pair `name` as theta_sec = ratio * theta_pri + offset on the two revolute edges' coordinates."""
-
-    name: str
-    primary: str
-    secondary: str
-    ratio: float
-    offset: float
-
-
-@dataclass(frozen=True)
 class Plan:
     edges: tuple[Edge, ...]
     balls: tuple[Revolute, ...]
-    couplers: tuple[Coupler, ...]
+    couplers: tuple[Coupling, ...]
     driver: AbsoluteDriver | None
     """The PD-driven coordinate; None in free dynamics, where only the loads move the bodies."""
     springs: tuple[SpringDamper, ...] = ()
@@ -76,34 +46,6 @@ class Torsion:
     stiffness: float
     damping: float
     q0: float
-
-
-def _guess(scenario: Scenario, body: str) -> Pose:
-    return (0.0, 0.0, 0.0) if body == GROUND else scenario.body(body).guess
-
-
-def _edge(scenario: Scenario, joint: Ground | Prismatic | Revolute, parent: str) -> Edge:
-    if isinstance(joint, Ground):
-        return Edge(joint.name, "weld", GROUND, joint.body, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
-    p_parent, p_child = (joint.p_i, joint.p_j) if joint.p_i.body == parent else (joint.p_j, joint.p_i)
-    parent_guess, child_guess = _guess(scenario, parent), _guess(scenario, p_child.body)
-    child_frame = (*p_child.local, 0.0)
-    if isinstance(joint, Revolute):
-        q0 = child_guess[2] - parent_guess[2]
-        return Edge(joint.name, "revolute", parent, p_child.body, (*p_parent.local, 0.0), child_frame, q0=q0)
-    # theta_i - theta_j = angle, the axis given in body i's frame
-    child_is_i = p_child is joint.p_i
-    turn = joint.angle if child_is_i else -joint.angle
-    axis = joint.axis if child_is_i else rotate(joint.angle, joint.axis)
-    norm = math.hypot(*axis)
-    if norm == 0.0:
-        raise PlanError(f"prismatic joint '{joint.name}' has a zero axis")
-    axis = (axis[0] / norm, axis[1] / norm)
-    frame = compose(parent_guess, (*p_parent.local, turn))
-    start = compose(child_guess, child_frame)
-    world_axis = rotate(frame[2], axis)
-    q0 = (start[0] - frame[0]) * world_axis[0] + (start[1] - frame[1]) * world_axis[1]
-    return Edge(joint.name, "prismatic", parent, p_child.body, (*p_parent.local, turn), child_frame, axis, q0)
 
 
 def _relative_angle(gear: GearPair, body: str, edges: tuple[Edge, ...]) -> tuple[str, float]:
@@ -124,17 +66,10 @@ def _relative_angle(gear: GearPair, body: str, edges: tuple[Edge, ...]) -> tuple
     return edge.name, sign
 
 
-def _coupler(gear: GearPair, edges: tuple[Edge, ...]) -> Coupler:
-    """The gear law r_i rho_i + s r_j rho_j = c (rho = theta - theta_carrier, s = -1 inside) as
-    q_j = ratio q_i + offset on the two joint coordinates that give the rho."""
-    edge_i, sign_i = _relative_angle(gear, gear.gear_i, edges)
-    edge_j, sign_j = _relative_angle(gear, gear.gear_j, edges)
-    s = -1.0 if gear.internal else 1.0
-    c = gear.radius_i * (gear.theta0_i - gear.theta0_carrier) + s * gear.radius_j * (
-        gear.theta0_j - gear.theta0_carrier
-    )
-    k = s * gear.radius_j * sign_j
-    return Coupler(gear.name, edge_i, edge_j, -gear.radius_i * sign_i / k, c / k)
+def _coupler(gear: GearPair, edges: tuple[Edge, ...]) -> Coupling:
+    """The gear law as q_j = ratio q_i + offset on the two joint coordinates that give the rho."""
+    primary, secondary = (_relative_angle(gear, body, edges) for body in (gear.gear_i, gear.gear_j))
+    return coupling(gear, primary, secondary)
 
 
 def _torsion(force: RotationalSpringDamper, edges: tuple[Edge, ...]) -> Torsion:
@@ -206,10 +141,10 @@ def plan(scenario: Scenario) -> Plan:
         spanning = spanning_tree(_driven_joint_first(scenario))
     except TopologyError as error:
         raise PlanError(f"{error}, so they have no place in Drake's joint tree") from None
-    edges = tuple(_edge(scenario, e.joint, e.parent) for e in spanning.edges)
+    edges = tree_edges(scenario, spanning, PlanError)
     named = {j.name: j for j in scenario.joints}
     balls: list[Revolute] = []
-    couplers: list[Coupler] = []
+    couplers: list[Coupling] = []
     for name in spanning.closures:
         joint = named[name]
         if isinstance(joint, Revolute):
@@ -229,7 +164,7 @@ def plan(scenario: Scenario) -> Plan:
     driver = scenario.drivers[0]
     assert isinstance(driver, AbsoluteDriver)
     edge = next(e for e in edges if e.child == driver.body)
-    if edge.parent != GROUND or edge.kind == "weld":
+    if edge.parent != GROUND or edge.kind == "fixed":
         raise PlanError(f"driver '{driver.name}': the PD drive needs the driven body's joint on the ground")
     if (edge.kind == "revolute") != (driver.coordinate == "theta"):
         raise PlanError(f"driver '{driver.name}' drives {driver.coordinate}, not its joint's coordinate")

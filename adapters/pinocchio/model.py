@@ -131,7 +131,7 @@ def build_model(scenario: Scenario, tree: Tree) -> PinModel:
         if edge.kind == "fixed":
             continue
         carrier, parent_pose = point_pose(tree, Point(edge.parent))
-        placement = se3(compose(parent_pose, edge.placement))
+        placement = se3(compose(parent_pose, edge.parent_frame))
         joint_id[edge.name] = model.addJoint(joint_id[carrier], _joint_model(edge), placement, edge.name)
     for body in scenario.bodies:
         carrier, pose = point_pose(tree, Point(body.name))
@@ -145,7 +145,7 @@ def build_model(scenario: Scenario, tree: Tree) -> PinModel:
         frame_id[point] = model.addFrame(frame)
     for m in tree.mimics:
         model = pin.transformJointIntoMimic(
-            model, joint_id[m.primary], joint_id[m.secondary], m.scaling, m.offset
+            model, joint_id[m.primary], joint_id[m.secondary], m.ratio, m.offset
         )
     built = PinModel(model, tree, {k: v for k, v in joint_id.items() if k != GROUND}, frame_id)
     _angles(built, scenario)

@@ -6,26 +6,11 @@ import math
 
 from scenarios.bodies import Point
 from scenarios.cams import FlatFaceCam
-from scenarios.families.disc_cam import PARAMETERS, SPLINE_VARIANTS, build_disc_cam, disc_cam_closed_form
-from scenarios.family import Family
-from scenarios.scenario import ParameterValue, Scenario
+from scenarios.families.disc_cam import disc_cam_family
 
-
-def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
-    return build_disc_cam(
-        "cam_flat_face",
-        p,
-        variant,
-        lambda r, e, th: r + e * math.sin(th),
-        lambda profile, phi: FlatFaceCam("contact", "cam", profile, Point("follower"), (0.0, -1.0), phi),
-    )
-
-
-FAMILY = Family(
-    name="cam_flat_face",
-    summary="driven disc cam, translating flat-faced follower",
-    parameters=PARAMETERS,
-    build=_build,
-    closed_form=disc_cam_closed_form,
-    variants=SPLINE_VARIANTS,
+FAMILY = disc_cam_family(
+    "cam_flat_face",
+    "driven disc cam, translating flat-faced follower",
+    lambda p, r, e, th: r + e * math.sin(th),
+    lambda p, profile, phi: FlatFaceCam("contact", "cam", profile, Point("follower"), (0.0, -1.0), phi),
 )

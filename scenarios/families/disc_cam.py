@@ -11,8 +11,9 @@ cos^2 th); flat face y = R + e sin th.
 
 from __future__ import annotations
 
+import functools
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 
 import numpy as np
 
@@ -22,6 +23,7 @@ from scenarios.cams import CamContact
 from scenarios.drivers import AbsoluteDriver
 from scenarios.family import (
     MAX_LENGTH,
+    Family,
     NoClosedForm,
     Parameter,
     angle,
@@ -53,18 +55,21 @@ PARAMETERS: dict[str, Parameter] = {
 
 SPLINE_VARIANTS: dict[str, dict[str, ParameterValue]] = {"spline": {"profile": "spline"}}
 
-ContactFactory = Callable[[Profile, float], CamContact]
+FollowerHeight = Callable[[dict[str, ParameterValue], float, float, float], float]
+"""(parameters, R, e, th): a guess of the follower's y for a disc of radius R and eccentricity e at
+cam angle th."""
+ContactFactory = Callable[[dict[str, ParameterValue], Profile, float], CamContact]
+"""(parameters, profile, phi): the cam contact, phi a guess of its contact parameter."""
 
 
 def build_disc_cam(
     family: str,
     p: dict[str, ParameterValue],
     variant: str,
-    follower_height: Callable[[float, float, float], float],
+    follower_height: FollowerHeight,
     contact: ContactFactory,
 ) -> Scenario:
-    """Build a disc-cam scenario; `follower_height(R, e, th)` gives a guess of the follower's y and
-    `contact(profile, phi_guess)` the cam contact."""
+    """Build a disc-cam scenario of the follower `follower_height` guesses and `contact` joins."""
     big_r, e = float(p["radius"]), float(p["eccentricity"])
     omega, theta0 = float(p["omega"]), float(p["theta0"])
     if not 0.0 <= e < big_r:
@@ -81,9 +86,9 @@ def build_disc_cam(
     # The follower's guess: the disc's closed form, or for a lobed cam that of a centred disc of the
     # profile's radius where the follower's axis meets it.
     height = (
-        follower_height(profile.radii(math.pi / 2 - theta0)[0], 0.0, theta0)
+        follower_height(p, profile.radii(math.pi / 2 - theta0)[0], 0.0, theta0)
         if isinstance(profile, LobedProfile)
-        else follower_height(big_r, e, theta0)
+        else follower_height(p, big_r, e, theta0)
     )
     mass = math.pi * big_r**2
     bodies = (
@@ -93,20 +98,31 @@ def build_disc_cam(
     joints = (
         Revolute("pivot", Point(GROUND, (0.0, 0.0)), Point("cam")),
         Prismatic("guide", Point("follower"), Point(GROUND, (0.0, 0.0)), axis=(0.0, 1.0)),
-        contact(profile, math.pi / 2 - theta0),
+        contact(p, profile, math.pi / 2 - theta0),
     )
     driver = AbsoluteDriver("cam_drive", "cam", "theta", ConstantSpeed(theta0, omega))
     follower = family.removeprefix("cam_").replace("_", "-")
     description = f"{kind} cam with a translating {follower} follower"
-    return revolving(
-        family,
-        variant,
-        p,
-        bodies,
-        joints,
-        (driver,),
-        big_r,
-        description,
+    return revolving(family, variant, p, bodies, joints, (driver,), big_r, description)
+
+
+def disc_cam_family(
+    name: str,
+    summary: str,
+    follower_height: FollowerHeight,
+    contact: ContactFactory,
+    parameters: Mapping[str, Parameter] = PARAMETERS,
+    variants: Mapping[str, Mapping[str, ParameterValue]] | None = None,
+) -> Family:
+    """The disc-cam family `name` of the follower `follower_height` guesses and `contact` joins: the
+    builder above, the closed form below, and the spline variant beside `variants`."""
+    return Family(
+        name=name,
+        summary=summary,
+        parameters=parameters,
+        build=functools.partial(build_disc_cam, name, follower_height=follower_height, contact=contact),
+        closed_form=disc_cam_closed_form,
+        variants={**SPLINE_VARIANTS, **(variants or {})},
     )
 
 

@@ -40,16 +40,7 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     )
     driver = AbsoluteDriver("arm_drive", "arm", "theta", ConstantSpeed(theta0, omega))
     description = "planetary train: fixed sun, driven arm, one planet"
-    return revolving(
-        "planetary_gears",
-        variant,
-        p,
-        bodies,
-        joints,
-        (driver,),
-        arm_length,
-        description,
-    )
+    return revolving("planetary_gears", variant, p, bodies, joints, (driver,), arm_length, description)
 
 
 def closed_form(s: Scenario, t: np.ndarray) -> Trajectory:

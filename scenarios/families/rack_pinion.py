@@ -32,16 +32,7 @@ def _build(p: dict[str, ParameterValue], variant: str) -> Scenario:
     )
     driver = AbsoluteDriver("drive", "pinion", "theta", ConstantSpeed(theta0, omega))
     description = "pinion on fixed centre driving a sliding rack"
-    return revolving(
-        "rack_pinion",
-        variant,
-        p,
-        bodies,
-        joints,
-        (driver,),
-        r,
-        description,
-    )
+    return revolving("rack_pinion", variant, p, bodies, joints, (driver,), r, description)
 
 
 def closed_form(s: Scenario, t: np.ndarray) -> Trajectory:

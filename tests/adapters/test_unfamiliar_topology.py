@@ -11,69 +11,20 @@ Closed form, rod angle phi = phi0 + w t, the rod's frame at slider A, slider B a
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import adapters
 from reports.scoring.level_error import LEVEL_COLUMNS, level_errors
-from scenarios import Scenario, Trajectory
-from scenarios.files import parse_scenario
+from scenarios import ConstantSpeed, Scenario, Trajectory
+from scenarios.files import read_scenario
 from tests.support.bounds import held
 
 LENGTH, OMEGA, PHI0 = 0.3, 5.0, 0.3
-TRAMMEL = f"""
-format = 1
-name = "trammel"
-t_end = {2 * math.pi / OMEGA!r}
-steps = 100
-characteristic_length = {LENGTH!r}
-
-[[bodies]]
-name = "slider_a"
-guess = [-0.28, 0.0, 0.0]
-
-[[bodies]]
-name = "slider_b"
-guess = [0.0, 0.09, 0.0]
-
-[[bodies]]
-name = "rod"
-guess = [-0.28, 0.0, 0.3]
-length = {LENGTH!r}
-
-[[joints]]
-kind = "prismatic"
-name = "slot_x"
-p_i = {{ body = "ground" }}
-p_j = {{ body = "slider_a" }}
-
-[[joints]]
-kind = "prismatic"
-name = "slot_y"
-p_i = {{ body = "ground" }}
-p_j = {{ body = "slider_b" }}
-axis = [0.0, 1.0]
-
-[[joints]]
-kind = "revolute"
-name = "pin_a"
-p_i = {{ body = "slider_a" }}
-p_j = {{ body = "rod" }}
-
-[[joints]]
-kind = "revolute"
-name = "pin_b"
-p_i = {{ body = "rod", local = [{LENGTH!r}, 0.0] }}
-p_j = {{ body = "slider_b" }}
-
-[[drivers]]
-kind = "absolute"
-name = "rod_angle"
-body = "rod"
-coordinate = "theta"
-motion = {{ kind = "constant_speed", start = {PHI0!r}, rate = {OMEGA!r} }}
-"""
+TRAMMEL = Path(__file__).with_name("trammel.toml")
+"""The scenario file; it states LENGTH, OMEGA and PHI0 (checked below)."""
 MEASURED: dict[str, tuple[float, float, float]] = {
     "reference": (0.0, 1.5e-16, 2.4e-16),
     "pinocchio": (1.9e-16, 3.0e-16, 3.6e-16),
@@ -102,7 +53,9 @@ def closed_form(scenario: Scenario) -> Trajectory:
 @pytest.mark.parametrize("engine", list(MEASURED))
 def test_engine_builds_the_trammel(engine: str) -> None:
     adapter = adapters.load(engine)  # the engines are hard dependencies: a missing one fails here
-    scenario = parse_scenario(TRAMMEL, "trammel.toml")
+    scenario = read_scenario(TRAMMEL)
+    assert scenario.characteristic_length == LENGTH and scenario.t_end == 2 * math.pi / OMEGA
+    assert scenario.drivers[0].motion == ConstantSpeed(PHI0, OMEGA)  # type: ignore[union-attr]
     reason = adapter.supports(scenario)
     if reason is not None:
         pytest.fail(f"{engine} does not build the trammel: {reason}")

@@ -30,53 +30,9 @@ from tests.support.engines import ENGINES
 from tests.support.examples.closed_forms import CLOSED_FORMS
 from tests.support.examples.engine_errors import default_run, errors
 from tests.support.examples.files import example
+from tests.support.measured import measured_table
 
-MEASURED: dict[tuple[str, str], tuple[float, float, float]] = {
-    ("whitworth_quick_return", "reference"): (8.9e-16, 1.1e-15, 4.9e-15),
-    ("whitworth_quick_return", "mujoco"): (2.4e-11, 1.5e-10, 7.9e-10),
-    ("whitworth_quick_return", "exudyn"): (2.7e-15, 5.0e-06, 3.4e-05),
-    ("whitworth_quick_return", "pinocchio"): (8.9e-16, 7.1e-16, 4.7e-15),
-    ("whitworth_quick_return", "drake"): (5.4e-05, 2.0e-04, 7.3e-04),
-    ("watt_six_bar", "reference"): (1.1e-15, 6.8e-16, 1.3e-15),
-    ("watt_six_bar", "mujoco"): (2.9e-11, 1.0e-10, 3.8e-10),
-    ("watt_six_bar", "exudyn"): (1.9e-15, 2.4e-06, 1.2e-05),
-    ("watt_six_bar", "pinocchio"): (3.2e-15, 1.8e-15, 2.1e-15),
-    ("watt_six_bar", "drake"): (1.1e-04, 1.2e-04, 1.3e-03),
-    ("watt_straight_line", "reference"): (8.9e-16, 2.8e-16, 3.6e-16),
-    ("watt_straight_line", "mujoco"): (8.1e-11, 1.2e-10, 2.1e-10),
-    ("watt_straight_line", "exudyn"): (8.9e-16, 6.0e-07, 3.2e-06),
-    ("watt_straight_line", "pinocchio"): (1.3e-15, 2.8e-16, 6.3e-16),
-    ("watt_straight_line", "drake"): (1.4e-05, 9.5e-06, 3.2e-05),
-    ("peaucellier_lipkin", "reference"): (5.6e-15, 1.6e-15, 1.5e-15),
-    ("peaucellier_lipkin", "mujoco"): (9.3e-12, 1.3e-11, 1.1e-11),
-    ("peaucellier_lipkin", "exudyn"): (5.6e-15, 1.9e-07, 4.2e-07),
-    ("peaucellier_lipkin", "pinocchio"): (6.7e-15, 2.0e-15, 1.8e-15),
-    ("peaucellier_lipkin", "drake"): (3.6e-05, 1.3e-05, 3.9e-05),
-    ("crank_rocker_from_rocker", "reference"): (1.2e-15, 7.8e-16, 2.4e-15),
-    ("crank_rocker_from_rocker", "mujoco"): (2.8e-11, 5.9e-11, 1.1e-10),
-    ("crank_rocker_from_rocker", "exudyn"): (1.6e-15, 2.0e-06, 2.1e-05),
-    ("crank_rocker_from_rocker", "pinocchio"): (2.0e-15, 1.5e-15, 3.6e-15),
-    ("crank_rocker_from_rocker", "drake"): (1.8e-05, 3.8e-05, 3.0e-04),
-    ("slider_crank", "reference"): (5.6e-16, 9.5e-16, 7.6e-16),
-    ("slider_crank", "mujoco"): (1.3e-11, 5.3e-11, 2.1e-10),
-    ("slider_crank", "exudyn"): (1.1e-15, 1.6e-06, 4.8e-06),
-    ("slider_crank", "pinocchio"): (1.9e-15, 1.3e-15, 8.3e-16),
-    ("slider_crank", "drake"): (5.9e-05, 6.4e-05, 7.8e-04),
-    ("damped_oscillators", "reference"): (1.5e-12, 2.2e-12, 1.4e-11),
-    ("damped_oscillators", "mujoco"): (3.1e-13, 9.8e-13, 3.2e-12),
-    ("damped_oscillators", "exudyn"): (6.3e-07, 2.0e-06, 6.3e-06),
-    ("damped_oscillators", "pinocchio"): (5.0e-12, 1.6e-11, 5.0e-11),
-    ("damped_oscillators", "drake"): (6.5e-04, 2.6e-03, 7.3e-03),
-    ("slider_crank_polynomial", "reference"): (5.6e-16, 7.1e-16, 1.4e-15),
-    ("slider_crank_polynomial", "mujoco"): (3.9e-11, 1.5e-10, 5.8e-10),
-    ("slider_crank_polynomial", "exudyn"): (2.8e-15, 7.1e-06, 3.8e-05),
-    ("slider_crank_polynomial", "pinocchio"): (1.1e-15, 1.3e-15, 3.6e-15),
-    ("slider_crank_polynomial", "drake"): (1.4e-04, 2.9e-04, 8.5e-04),
-    ("cam_roller_spline", "reference"): (5.6e-16, 7.2e-16, 1.5e-15),
-    ("cam_roller_spline", "mujoco"): (7.7e-05, 4.8e-03, 2.9),
-    ("cam_roller_spline", "exudyn"): (1.8e-15, 3.6e-07, 1.8e-03),
-    ("cam_roller_spline", "pinocchio"): (5.6e-16, 2.8e-15, 1.5e-15),
-}
+MEASURED: dict[tuple[str, str], tuple[float, ...]] = measured_table("every_engine_on_the_examples")
 """(example, engine): its (position, velocity, acceleration) error at the engine's default, measured
 on this kind of machine (mujoco 4.0.0, exudyn 1.13.6,
 pin 4.1.0) and held two-sided (tests.support.bounds). Exudyn's positions on peaucellier_lipkin were

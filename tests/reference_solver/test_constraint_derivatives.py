@@ -7,6 +7,7 @@ which q_ddot = 0: d^2 C/ds^2 = (C_q q_dot)_q q_dot + 2 C_qt q_dot + C_tt = -Q_d.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from hypothesis import given, settings
@@ -52,26 +53,20 @@ SPLINE = SplineProfile(
 )
 profile = st.one_of(st.builds(EccentricDisc, st.floats(0.3, 1.0), st.floats(0.0, 0.25)), st.just(SPLINE))
 
+
+def _between(kind: Any, name: str, *rest: st.SearchStrategy[Any]) -> st.SearchStrategy[Any]:
+    """Constraints of `kind` named `name` between a point of body a and a point of b or the ground,
+    the rest of their fields drawn from `rest`."""
+    return st.builds(
+        kind, st.just(name), st.builds(Point, st.just("a"), vec), st.builds(Point, other_body, vec), *rest
+    )
+
+
 CONSTRAINTS = {
     "ground": st.builds(Ground, st.just("g"), st.just("a"), st.tuples(real, real, angle)),
-    "revolute": st.builds(
-        Revolute, st.just("r"), st.builds(Point, st.just("a"), vec), st.builds(Point, other_body, vec)
-    ),
-    "prismatic": st.builds(
-        Prismatic,
-        st.just("p"),
-        st.builds(Point, st.just("a"), vec),
-        st.builds(Point, other_body, vec),
-        vec.filter(lambda v: math.hypot(*v) > 0.1),
-        angle,
-    ),
-    "revolute_revolute": st.builds(
-        RevoluteRevolute,
-        st.just("rr"),
-        st.builds(Point, st.just("a"), vec),
-        st.builds(Point, other_body, vec),
-        positive,
-    ),
+    "revolute": _between(Revolute, "r"),
+    "prismatic": _between(Prismatic, "p", vec.filter(lambda v: math.hypot(*v) > 0.1), angle),
+    "revolute_revolute": _between(RevoluteRevolute, "rr", positive),
     "absolute_driver": st.builds(
         AbsoluteDriver, st.just("d"), st.just("a"), st.sampled_from(["x", "y", "theta"]), motion
     ),
@@ -79,14 +74,7 @@ CONSTRAINTS = {
     "point_path": st.builds(
         PointPathDriver, st.just("d"), st.builds(Point, st.just("a"), vec), motion, motion
     ),
-    "relative_displacement": st.builds(
-        RelativeDisplacementDriver,
-        st.just("d"),
-        st.builds(Point, st.just("a"), vec),
-        st.builds(Point, other_body, vec),
-        motion,
-        motion,
-    ),
+    "relative_displacement": _between(RelativeDisplacementDriver, "d", motion, motion),
     "gear_pair": st.builds(
         GearPair,
         st.just("m"),

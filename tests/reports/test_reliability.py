@@ -27,15 +27,13 @@ from reports.store.files import StoreDamaged
 from reports.store.lock import StoreBusy, WriterLock
 from reports.store.results_store import RESULTS, TRAJECTORIES, ResultsStore, read_results, read_trajectories
 from tests.support.fake_engine import FakeAdapter
-from tests.support.store_runs import CONFIG, ROOT, SCENARIO, copy, fake_run, one_line_error, rows
+from tests.support.store_runs import CONFIG, ROOT, SCENARIO, copy, fake_run, one_line_error, rows, stored_run
 from tests.support.stores import table_files, write_schema_1
 
 
 @pytest.fixture(scope="module")
 def stored(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    directory = tmp_path_factory.mktemp("stored") / "out"
-    fake_run(directory)
-    return directory
+    return stored_run(tmp_path_factory, "stored")
 
 
 # --- one writer per store ------------------------------------------------------------------------

@@ -7,7 +7,7 @@ import numpy as np
 import scenarios
 from reference_solver.compiled_system import constraint_system
 from reference_solver.dynamics.ali3p import Ali3p, StepState
-from reference_solver.dynamics.compiled_ali3p import ali3p_stepper
+from reference_solver.dynamics.compiled_ali3p import CompiledAli3p, ali3p_stepper
 from reference_solver.dynamics.forward import initial_state
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
@@ -39,3 +39,16 @@ def rod_stepper(scenario: scenarios.Scenario, fast: bool, h: float) -> tuple[Ali
     start = initial_state(system, mass, loads, 0.0)
     stepper = ali3p_stepper(system, mass, loads, h)
     return stepper, loads, StepState(start.t, start.q, start.qd, start.qdd, start.lam.copy(), start.jac)
+
+
+def compiled_stepper_at_rest(scenario: scenarios.Scenario, h: float) -> tuple[CompiledAli3p, StepState]:
+    """The compiled ALI3-P stepper on `scenario` (a rod as swinging_rod's, other drivers allowed) and
+    the rod at rest at THETA0, its end on the pin, as the step's start (no consistent start solved)."""
+    system = constraint_system(scenario)
+    mass = mass_diagonal(scenario, system.layout)
+    stepper = ali3p_stepper(system, mass, Loads(scenario, system.layout, mass), h)
+    assert isinstance(stepper, CompiledAli3p)
+    q = np.array([0.5 * np.cos(THETA0), 0.5 * np.sin(THETA0), THETA0])
+    return stepper, StepState(
+        0.0, q, np.zeros(3), np.zeros(3), np.zeros(system.size), system.jacobian(q, 0.0)
+    )

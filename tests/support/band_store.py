@@ -1,4 +1,5 @@
-"""A band matrix written into the compiled path's band store, for the band kernels' tests."""
+"""A band matrix written into the compiled path's band store and read back out of it, for the band
+kernels' and the constraint program's tests."""
 
 from __future__ import annotations
 
@@ -13,3 +14,15 @@ def band_store(a: np.ndarray, kl: int, ku: int) -> np.ndarray:
         for j in range(max(0, i - kl), min(n, i + kl + ku + 1)):
             store[i * w + j - i + kl] = a[i, j]
     return store
+
+
+def permuted_band(store: np.ndarray, perm: np.ndarray, n: int, kl: int, w: int) -> np.ndarray:
+    """The n x n matrix a program's band `store` holds (kl subdiagonals, w slots a row), each entry
+    put back at its unpermuted row perm[0, i] and column perm[1, j]; zero off the band."""
+    read = np.zeros((n, n))
+    for i in range(n):
+        for slot in range(w):
+            j = i - kl + slot
+            if 0 <= j < n:
+                read[perm[0, i], perm[1, j]] = store[i * w + slot]
+    return read

@@ -42,6 +42,13 @@ def fake_run(directory: Path, config: RunConfig = CONFIG, loader=None, version: 
     return runner
 
 
+def stored_run(factory: pytest.TempPathFactory, name: str) -> Path:
+    """A new results folder `out` in a fresh temporary folder `name`, holding one fake run."""
+    directory = factory.mktemp(name) / "out"
+    fake_run(directory)
+    return directory
+
+
 def copy(source: Path, target: Path) -> Path:
     import shutil
 

@@ -131,3 +131,26 @@ def test_what_drake_does_not_model_is_unsupported_with_the_reason(name: str) -> 
     reason = adapter.supports(scenario)
     assert reason is not None and UNSUPPORTED[name] in reason
     assert adapter.run(scenario).status == "unsupported"
+
+
+def test_a_body_on_a_ground_joint_stays_at_the_joint_s_pose() -> None:
+    """A ground joint fixes its body at the joint's pose, away from the origin and turned here; a
+    pendulum pinned on it swings under gravity. Drake's weld must hold the body at that pose (a weld
+    at the world's origin would report (0, 0, 0))."""
+    pose = (0.2, -0.1, 0.5)
+    base = scenarios.Body("base", pose, mass=1.0, inertia=0.1)
+    pin = (0.2 + 0.1 * np.cos(0.5), -0.1 + 0.1 * np.sin(0.5))
+    bob = scenarios.Body("bob", (pin[0] + 0.2, pin[1], 0.0), mass=1.0, inertia=0.01, length=0.4)
+    joints = (
+        scenarios.Ground("fix", "base", pose),
+        scenarios.Revolute("pivot", scenarios.Point("base", (0.1, 0.0)), scenarios.Point("bob", (-0.2, 0.0))),
+    )
+    scenario = scenarios.Scenario(
+        "welded", "default", (base, bob), joints, (), 0.2, 4, 0.4, gravity=(0.0, -9.81), analysis="dynamic"
+    )
+    adapter = DrakeAdapter()
+    result = adapter.run(scenario, adapter.default_setting(scenario))
+    assert result.status == "ok" and result.trajectory is not None, result.message
+    held = result.trajectory.select(("base",)).level("position")
+    assert held is not None
+    np.testing.assert_allclose(held[:, 0, :], np.tile(pose, (len(held), 1)), rtol=0, atol=1e-12)

@@ -34,47 +34,13 @@ from scenarios import Point, RevoluteRevolute, Scenario, Trajectory
 from scenarios.closed_form import exact
 from scenarios.scenario import Level
 from tests.support.bounds import held
+from tests.support.measured import measured_table
 
 ADAPTER = ExudynAdapter()
 CATALOGUE = scenarios.catalogue()
 LEVELS: tuple[Level, ...] = ("position", "velocity", "acceleration")
 MODES = ("GA3", "STATIC")
-MEASURED: dict[tuple[str, str], tuple[float, float, float]] = {
-    ("slider_crank", "GA3"): (8.9e-16, 3.8e-07, 3.3e-06),
-    ("slider_crank/offset", "GA3"): (8.9e-16, 4.7e-07, 4.2e-06),
-    ("slider_crank/slider_drive", "GA3"): (1.8e-15, 5.2e-06, 2.6e-05),
-    ("slider_crank/slider_drive_offset", "GA3"): (1.8e-15, 4.9e-06, 2.5e-05),
-    ("four_bar", "GA3"): (8.9e-16, 5.6e-06, 2.6e-05),
-    ("four_bar/crossed", "GA3"): (1.3e-15, 5.6e-06, 2.6e-05),
-    ("spur_gears", "GA3"): (1.8e-15, 4.9e-12, 6.0e-06),
-    ("spur_gears/internal", "GA3"): (1.8e-15, 4.9e-12, 6.0e-06),
-    ("planetary_gears", "GA3"): (5.3e-15, 2.5e-08, 3.8e-06),
-    ("rack_pinion", "GA3"): (1.8e-15, 4.9e-12, 6.0e-06),
-    ("cam_knife_edge", "GA3"): (1.8e-15, 1.0e-08, 5.0e-06),
-    ("cam_knife_edge/spline", "GA3"): (1.8e-15, 1.0e-08, 1.3e-03),
-    ("cam_roller", "GA3"): (1.8e-15, 9.4e-09, 5.3e-06),
-    ("cam_roller/spline", "GA3"): (1.8e-15, 9.4e-09, 7.6e-04),
-    ("cam_flat_face", "GA3"): (1.8e-15, 8.3e-09, 6.0e-06),
-    ("cam_flat_face/spline", "GA3"): (1.8e-15, 8.5e-09, 1.1e-03),
-    ("four_bar_chain", "GA3"): (3.0e-15, 8.3e-07, 1.8e-06),
-    ("slider_crank", "STATIC"): (2.7e-15, 1.0e-15, 5.1e-13),
-    ("slider_crank/offset", "STATIC"): (2.7e-15, 1.1e-15, 6.1e-13),
-    ("slider_crank/slider_drive", "STATIC"): (2.7e-15, 2.6e-15, 5.5e-13),
-    ("slider_crank/slider_drive_offset", "STATIC"): (2.7e-15, 2.3e-15, 5.2e-13),
-    ("four_bar", "STATIC"): (3.3e-15, 4.1e-15, 7.3e-13),
-    ("four_bar/crossed", "STATIC"): (3.1e-15, 4.1e-15, 1.0e-12),
-    ("spur_gears", "STATIC"): (3.1e-14, 0.0e00, 0.0e00),
-    ("spur_gears/internal", "STATIC"): (3.1e-14, 0.0e00, 0.0e00),
-    ("planetary_gears", "STATIC"): (9.2e-14, 9.3e-16, 1.7e-12),
-    ("rack_pinion", "STATIC"): (3.1e-14, 0.0e00, 0.0e00),
-    ("cam_knife_edge", "STATIC"): (3.1e-14, 1.8e-16, 3.9e-13),
-    ("cam_knife_edge/spline", "STATIC"): (3.1e-14, 1.8e-16, 2.2e-05),
-    ("cam_roller", "STATIC"): (3.1e-14, 1.8e-16, 3.9e-13),
-    ("cam_roller/spline", "STATIC"): (3.1e-14, 4.3e-16, 2.0e-05),
-    ("cam_flat_face", "STATIC"): (3.1e-14, 2.0e-16, 4.6e-13),
-    ("cam_flat_face/spline", "STATIC"): (3.1e-14, 3.5e-16, 1.5e-05),
-    ("four_bar_chain", "STATIC"): (3.1e-14, 3.1e-15, 6.5e-13),
-}
+MEASURED: dict[tuple[str, str], tuple[float, ...]] = measured_table("exudyn_modes")
 """(scenario, mode): (position [m, rad], velocity / max|v|, acceleration / max|a|), measured
 (GA3 after its run-in) and held two-sided (tests.support.bounds;
 round-off up to 3e-12 held below 3e-11)."""

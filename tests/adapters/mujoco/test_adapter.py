@@ -28,28 +28,14 @@ from scenarios import (
 )
 from scenarios.closed_form import exact
 from tests.support.bounds import held
+from tests.support.measured import measured_table
 from tests.support.mechanisms import differential_train
 from tests.support.mujoco.kinematic_errors import ADAPTER, errors
+from tests.support.mujoco.scenes import DISC_SCENARIOS
 
-MEASURED: dict[str, tuple[float, float, float, float]] = {
-    "slider_crank": (2.7e-12, 4.7e-12, 1.9e-11, 7.0e-11),
-    "slider_crank/offset": (2.7e-12, 5.4e-12, 2.0e-11, 7.8e-11),
-    "slider_crank/slider_drive": (1.4e-11, 6.6e-11, 2.1e-10, 1.8e-10),
-    "slider_crank/slider_drive_offset": (1.5e-11, 7.3e-11, 2.0e-10, 1.7e-10),
-    "four_bar": (1.2e-12, 2.2e-11, 1.1e-10, 3.0e-10),
-    "four_bar/crossed": (3.1e-12, 5.0e-11, 1.6e-10, 2.6e-10),
-    "spur_gears": (0.0e00, 2.5e-13, 6.5e-15, 2.3e-14),
-    "spur_gears/internal": (0.0e00, 2.5e-13, 6.5e-15, 2.3e-14),
-    "planetary_gears": (2.3e-14, 7.5e-13, 7.5e-15, 7.5e-15),
-    "rack_pinion": (1.5e-14, 2.5e-13, 2.6e-15, 5.7e-15),
-    "cam_knife_edge": (1.1e-13, 2.4e-12, 9.2e-13, 1.6e-12),
-    "cam_roller": (1.1e-13, 2.5e-12, 9.3e-13, 1.5e-12),
-    "cam_flat_face": (1.0e-13, 2.9e-12, 9.7e-13, 1.3e-12),
-    "four_bar_chain": (3.2e-10, 3.2e-09, 2.4e-09, 3.2e-09),
-}
+MEASURED: dict[str, tuple[float, ...]] = measured_table("mujoco_defaults")
 """scenario: (position length [m], position angle [rad], velocity / max|v|, acceleration / max|a|)
 at the default setting, measured with MuJoCo 4.0.1, held two-sided (tests.support.bounds)."""
-DISC_SCENARIOS = [n for n in scenarios.catalogue() if not n.endswith("/spline")]
 
 
 @pytest.mark.parametrize("name", DISC_SCENARIOS)

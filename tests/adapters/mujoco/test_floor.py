@@ -28,18 +28,10 @@ from adapters.mujoco.settings import (
 )
 from tests.support.bounds import held
 from tests.support.default_errors import errors
+from tests.support.mujoco.scenes import LINKAGES
 
 ADAPTER = MujocoAdapter()
-CLOSED_LOOPS = (
-    "slider_crank",
-    "slider_crank/offset",
-    "slider_crank/slider_drive",
-    "four_bar",
-    "four_bar/crossed",
-    "four_bar_chain",
-    "cam_roller",
-    "cam_flat_face",
-)
+CLOSED_LOOPS = (*LINKAGES, "cam_roller", "cam_flat_face")
 """The kinematic scenes whose loops MuJoCo closes by equalities (a disc cam by its linkage)."""
 DEFAULT_ACCELERATIONS = 1e-8
 """The bound on a closed loop's relative accelerations at the rule's default."""

@@ -41,6 +41,7 @@ from scenarios.drivers import RelativeRotationDriver
 from scenarios.motions import Motion
 from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
+from tests.support.measured import measured_table
 
 ADAPTER = MujocoAdapter()
 LEVELS = ("position", "velocity", "acceleration")
@@ -131,20 +132,7 @@ def test_kinematic_mode_is_exact_for_every_law(family: str, name: str) -> None:
         assert found[level] < 1e-13 * size, (level, found[level] / size)  # measured <= 1.6e-14
 
 
-BOUNDS: dict[tuple[str, str, str], tuple[float, float, float]] = {
-    ("slider_crank", "quad", "polycoef"): (1.5e-4, 1e-2, 3.0),
-    ("slider_crank", "quartic", "polycoef"): (2e-4, 1e-2, 3.0),
-    ("slider_crank", "quad", "steered"): (6e-7, 5e-4, 3.0),
-    ("slider_crank", "quartic", "steered"): (7e-7, 6e-4, 3.5),
-    ("slider_crank", "quintic", "steered"): (1e-6, 7e-4, 4.0),
-    ("slider_crank", "tab", "steered"): (7e-9, 2.5e-5, 0.6),
-    ("four_bar", "quad", "polycoef"): (1.8e-4, 3e-2, 10.0),
-    ("four_bar", "quartic", "polycoef"): (2e-4, 4e-2, 14.0),
-    ("four_bar", "quad", "steered"): (1e-6, 1.4e-3, 8.0),
-    ("four_bar", "quartic", "steered"): (1.3e-6, 1.7e-3, 10.0),
-    ("four_bar", "quintic", "steered"): (1.5e-6, 2e-3, 12.0),
-    ("four_bar", "tab", "steered"): (2.5e-9, 2.5e-5, 0.6),
-}
+BOUNDS: dict[tuple[str, str, str], tuple[float, ...]] = measured_table("mujoco_law_bounds")
 """Three times the measured errors (module docstring), absolute."""
 
 

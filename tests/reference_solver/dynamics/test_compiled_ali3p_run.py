@@ -11,7 +11,7 @@ import pytest
 import scenarios
 from reference_solver.compiled_system import CompiledSystem, constraint_system
 from reference_solver.dynamics.ali3p import Ali3p, StepState
-from reference_solver.dynamics.compiled_ali3p import CompiledAli3p, ali3p_stepper
+from reference_solver.dynamics.compiled_ali3p import CompiledAli3p
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.partition import State, driver_power
@@ -20,7 +20,15 @@ from reference_solver.fast.constraint_rows import NotCompiled
 from scenarios.drivers import AbsoluteDriver
 from scenarios.forces import RotationalSpringDamper
 from scenarios.motions import ConstantSpeed
-from tests.support.ali3p_rod import MASS, SPEED, THETA0, G, rod_stepper, swinging_rod
+from tests.support.ali3p_rod import (
+    MASS,
+    SPEED,
+    THETA0,
+    G,
+    compiled_stepper_at_rest,
+    rod_stepper,
+    swinging_rod,
+)
 
 
 def _power(stepper: Ali3p, loads: Loads, s: StepState) -> float:
@@ -170,12 +178,7 @@ def test_a_step_newton_cannot_finish_is_refused_with_where() -> None:
         gravity=(0.0, -G),
         analysis="dynamic",
     )
-    system = constraint_system(scenario)
-    mass = mass_diagonal(scenario, system.layout)
-    stepper = ali3p_stepper(system, mass, Loads(scenario, system.layout, mass), h)
-    assert isinstance(stepper, CompiledAli3p)
-    q = np.array([0.5 * np.cos(THETA0), 0.5 * np.sin(THETA0), THETA0])
-    s = StepState(0.0, q, np.zeros(3), np.zeros(3), np.zeros(system.size), system.jacobian(q, 0.0))
+    stepper, s = compiled_stepper_at_rest(scenario, h)
     with pytest.raises(ConvergenceError) as caught:
         stepper.step(s)
     assert str(caught.value) == "rod: ALI3-P's Newton iteration did not converge at t=0.001"

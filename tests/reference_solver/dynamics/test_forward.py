@@ -5,21 +5,18 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any
 
 import numpy as np
 import pytest
 
 import scenarios
-from reference_solver.dynamics.forward import initial_state, simulate
-from reference_solver.dynamics.loads import Loads
-from reference_solver.dynamics.mass import mass_diagonal
+from reference_solver.dynamics.forward import simulate
 from reference_solver.dynamics.partition import Partitioned
-from reference_solver.errors import AssemblyError, SolverError
-from reference_solver.system import ConstraintSystem
-from scenarios import GROUND, AbsoluteDriver, Body, Constant, ConstantSpeed, Point, Revolute, Scenario
+from reference_solver.errors import SolverError
+from scenarios import AbsoluteDriver, Body, Constant, ConstantSpeed, Scenario
 from scenarios.forces import AppliedTorque
 from scenarios.outputs import AngleOutput
+from tests.support.forward_scenes import nearest_turn, rod, thrown_rod
 
 G = 9.81
 
@@ -38,13 +35,6 @@ def test_a_free_body_falls_as_the_closed_form(method: str, fast: bool) -> None:
     # ALI3-P derives q'' from rate differences over its step: round-off 3.2e-12 relative, measured
     np.testing.assert_allclose(result.qdd[:, 1], -G, rtol=1e-11)
     assert np.all(result.motion.residual == 0.0) and result.lam.shape == (11, 0)
-
-
-def rod(**changes: Any) -> Scenario:
-    """compound_pendulum's one link (l = 0.5, m = 1, J = m l^2 / 12) pinned at its end, from 0.3 rad."""
-    return dataclasses.replace(
-        scenarios.build("compound_pendulum", overrides={"links": 1, "theta0": 0.3}), **changes
-    )
 
 
 @pytest.mark.parametrize(
@@ -70,34 +60,11 @@ def test_a_driven_rod_has_no_degree_of_freedom_left_to_forward_dynamics() -> Non
     assert str(caught.value) == "compound_pendulum: no degree of freedom is left to forward dynamics"
 
 
-def test_a_mechanism_that_cannot_assemble_is_refused_with_its_miss() -> None:
-    """The rod's end pinned at the origin and at (3, 0) at once: the least-squares configuration puts
-    it half way, each x row missing by 1.5 m, 3 over L = 0.5."""
-    second = Revolute("second", Point(GROUND, (3.0, 0.0)), Point("link_1", (-0.25, 0.0)))
-    scenario = rod(joints=(*rod().joints, second))
-    with pytest.raises(AssemblyError) as caught:
-        simulate(scenario)
-    message = str(caught.value)
-    prefix = "compound_pendulum: the mechanism cannot assemble at t=0: the constraints miss by "
-    assert message.startswith(prefix) and message.endswith(" (relative to the characteristic length)")
-    assert float(message[len(prefix) :].split()[0]) == pytest.approx(3.0, rel=1e-3)
-    assert caught.value.time == 0.0
-
-
 def test_the_initial_rates_are_the_given_ones_nearest_in_kinetic_energy() -> None:
     """The rod's rates are omega (a, 1) with a = l/2 (-sin, cos): the nearest to a given (v, w) in
     the metric diag(m, m, J) has omega = (m a . v + J w) / (m |a|^2 + J)."""
-    base = rod()
-    (body,) = base.bodies
-    given = (0.7, -0.4, 3.0)
-    scenario = dataclasses.replace(base, bodies=(dataclasses.replace(body, rate=given),))
-    system = ConstraintSystem(scenario)
-    mass = mass_diagonal(scenario, system.layout)
-    start = initial_state(system, mass, Loads(scenario, system.layout, mass), 0.0)
-    theta = 0.3 - math.pi / 2
-    a = 0.25 * np.array([-math.sin(theta), math.cos(theta)])
-    m, inertia = body.mass, body.inertia
-    omega = (m * a @ given[:2] + inertia * given[2]) / (m * a @ a + inertia)
+    body, start, theta = thrown_rod()
+    a, omega = nearest_turn(body, theta)
     np.testing.assert_allclose(start.qd, [*(omega * a), omega], rtol=1e-14, atol=1e-15)
     # about the pin: theta'' = -(3 g / (2 l)) cos theta
     assert start.qdd[2] == pytest.approx(-1.5 * G / 0.5 * math.cos(theta), rel=1e-13)

@@ -6,7 +6,6 @@ bound of its length, so such a defect fails at once instead of running for ever.
 
 from __future__ import annotations
 
-import dataclasses
 import itertools
 import math
 
@@ -15,13 +14,11 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from reference_solver.dynamics import forward
-from reference_solver.dynamics.forward import initial_state, simulate
-from reference_solver.dynamics.loads import Loads
-from reference_solver.dynamics.mass import mass_diagonal
+from reference_solver.dynamics.forward import simulate
 from reference_solver.errors import AssemblyError
 from reference_solver.system import ConstraintSystem
 from scenarios import GROUND, Point, Revolute
-from tests.support.forward_scenes import FRACTION, RTOL, rod, swinging_four_bar
+from tests.support.forward_scenes import FRACTION, RTOL, nearest_turn, rod, swinging_four_bar, thrown_rod
 
 
 class TooManyPartitions(RuntimeError):
@@ -91,11 +88,11 @@ def test_the_walk_visits_each_integrator_step_before_each_output_once() -> None:
         np.testing.assert_array_equal(y, sol.sol(t) if flag else sol.y[:, list(sol.t).index(t)])
 
 
-@pytest.mark.parametrize("apart", [0.1, 1e-10])
-def test_a_miss_below_one_length_is_still_refused(apart: float) -> None:
-    """The rod's end pinned at the origin and at (d, 0) at once (test_forward.py's case with d = 3):
-    least squares puts it half way, each x row missing by d / 2 over L = 0.5, so d = 0.1 and 1e-10
-    miss by 0.1 and 1e-10 of the length, above assemble_free's 1e-12 and below one length."""
+@pytest.mark.parametrize("apart", [3.0, 0.1, 1e-10])
+def test_a_mechanism_that_cannot_assemble_is_refused_with_its_miss(apart: float) -> None:
+    """The rod's end pinned at the origin and at (d, 0) at once: least squares puts it half way, each
+    x row missing by d / 2 over L = 0.5, so d = 3 misses by 3 lengths, and d = 0.1 and 1e-10 miss by
+    0.1 and 1e-10 of the length, above assemble_free's 1e-12 and below one length: all refused."""
     second = Revolute("second", Point(GROUND, (apart, 0.0)), Point("link_1", (-0.25, 0.0)))
     scenario = rod(joints=(*rod().joints, second))
     with pytest.raises(AssemblyError) as caught:
@@ -116,17 +113,9 @@ def test_a_thrown_rod_starts_with_the_centripetal_acceleration_of_its_rates() ->
     of theta, turns at the omega test_forward.py derives, so its acceleration is theta'' a - omega^2
     (l / 2)(cos, sin) with a = (l / 2)(-sin, cos): the velocity terms of C_q q'' = Q_d at the start
     (theta'' about the pin does not see omega)."""
-    base = rod()
-    (body,) = base.bodies
-    given = (0.7, -0.4, 3.0)
-    scenario = dataclasses.replace(base, bodies=(dataclasses.replace(body, rate=given),))
-    system = ConstraintSystem(scenario)
-    mass = mass_diagonal(scenario, system.layout)
-    start = initial_state(system, mass, Loads(scenario, system.layout, mass), 0.0)
-    theta = 0.3 - math.pi / 2
+    body, start, theta = thrown_rod()
     radial = 0.25 * np.array([math.cos(theta), math.sin(theta)])
-    a = 0.25 * np.array([-math.sin(theta), math.cos(theta)])
-    omega = (body.mass * a @ given[:2] + body.inertia * given[2]) / (body.mass * a @ a + body.inertia)
+    a, omega = nearest_turn(body, theta)
     assert abs(omega) > 1.0
     expected = start.qdd[2] * a - omega**2 * radial
     np.testing.assert_allclose(start.qdd[:2], expected, rtol=0, atol=1e-12 * np.max(np.abs(expected)))

@@ -26,17 +26,8 @@ from scenarios import Point
 from scenarios.drivers import AbsoluteDriver
 from scenarios.joints import RevoluteRevolute
 from scenarios.motions import Harmonic
-from tests.support.ali3p_rod import THETA0, swinging_rod
-from tests.support.one_loop import (
-    H,
-    kernel_problem,
-    one_loop_steppers,
-    parallelogram_branch,
-    projected_exactly,
-    rates_are_the_projections,
-    state_before_passage,
-    trapezoidal_on_the_branch,
-)
+from tests.support import one_loop
+from tests.support.ali3p_rod import THETA0, compiled_stepper_at_rest, swinging_rod
 from tests.support.row_stores import dense_jacobian, random_row_store, store_bandwidth
 
 
@@ -51,16 +42,16 @@ def test_a_careful_step_next_to_the_singular_position_factors_s_once(off: float)
     (measured 8.1e-13 and 5.8e-12 rad), q' at the exact M-orthogonal projection of the trapezoidal
     rates (1.8e-16 and 3.5e-16 of them), q'' at that of the trapezoidal accelerations onto
     C_q q'' = Q_d (5.4e-12 and 2.8e-12 of them)."""
-    compiled, _, plain, mass, loads = one_loop_steppers()
-    start, qhat = state_before_passage(off)
+    compiled, _, plain, mass, loads = one_loop.one_loop_steppers()
+    start, qhat = one_loop.state_before_passage(off)
     uncareful = compiled.run(start, 1, np.zeros(3), np.zeros(3))[0].iterations
     compiled.careful = True
     end, _, _ = compiled.run(start, 1, np.zeros(3), np.zeros(3))
     assert compiled.slow_steps == 2  # one for each step: the uncareful one's at its stall
     assert end.iterations < uncareful
-    exact, _, _ = parallelogram_branch(trapezoidal_on_the_branch(qhat, mass, loads.gravity))
+    exact, _, _ = one_loop.parallelogram_branch(one_loop.trapezoidal_on_the_branch(qhat, mass, loads.gravity))
     assert np.max(np.abs(end.q - exact)) < 1.5e-11
-    rates_are_the_projections(plain, mass, start, qhat, end)
+    one_loop.rates_are_the_projections(plain, mass, start, qhat, end)
 
 
 def _schur_problem(zero_row: int | None) -> tuple[dict[str, Any], np.ndarray]:
@@ -109,7 +100,7 @@ def _tied() -> tuple[CompiledAli3p, StepState]:
     )
     system = constraint_system(scenario)
     mass = mass_diagonal(scenario, system.layout)
-    stepper = ali3p_stepper(system, mass, Loads(scenario, system.layout, mass), H)
+    stepper = ali3p_stepper(system, mass, Loads(scenario, system.layout, mass), one_loop.H)
     assert isinstance(stepper, CompiledAli3p)
     q = np.array([0.3, 0.0, 0.0])
     assert not np.any(system.jacobian(q, 0.0))
@@ -127,7 +118,7 @@ def test_a_careful_step_whose_schur_complement_is_singular_is_refused_as_such() 
         match=r"^tied: ALI3-P's Schur complement C_q W\^-1 C_q\^T is singular \(C_q lost rank\) at t=0\.001$",
     ) as caught:
         stepper.step(start)
-    assert caught.value.time == pytest.approx(H, abs=1e-18)
+    assert caught.value.time == pytest.approx(one_loop.H, abs=1e-18)
     stepper.careful = False
     with pytest.raises(
         ConvergenceError, match=r"^tied: ALI3-P's Newton iteration did not converge at t=0\.001$"
@@ -142,7 +133,7 @@ def test_a_projection_whose_moves_are_not_finite_says_so(slow: bool, bad: float)
     largest move (a max(), skipping NaN) cannot tell from a settled projection; _project returns
     False. With every entry finite it returns True and the exact projection (through the Schur
     complement, checked densely)."""
-    p = kernel_problem(0, 12, 7, 1.0)
+    p = one_loop.kernel_problem(0, 12, 7, 1.0)
     kernel._schur(
         p["ints"], p["store"], p["vec"], p["sizes"], p["band"], p["weight"], p["schur"], p["pivots"]
     )
@@ -151,7 +142,9 @@ def test_a_projection_whose_moves_are_not_finite_says_so(slow: bool, bad: float)
     common = (p["ints"], p["store"], p["vec"], p["sizes"], p["band"], p["weight"], p["schur"], p["pivots"])
     x = rates.copy()
     assert kernel._project(*common, x, target.copy(), True) is True
-    np.testing.assert_allclose(x, projected_exactly(p, rates, target), rtol=0, atol=1.5e-11 * np.abs(x).max())
+    np.testing.assert_allclose(
+        x, one_loop.projected_exactly(p, rates, target), rtol=0, atol=1.5e-11 * np.abs(x).max()
+    )
     broken = target.copy()
     broken[3] = bad
     x = rates.copy()
@@ -165,12 +158,7 @@ def test_a_driver_whose_acceleration_overflows_is_refused_not_stepped() -> None:
     with NaN accelerations."""
     turn = AbsoluteDriver("turn", "rod", "theta", Harmonic(THETA0, 1e-300, 1e300))
     scenario = replace(swinging_rod(), drivers=(turn,))
-    system = constraint_system(scenario)
-    mass = mass_diagonal(scenario, system.layout)
-    stepper = ali3p_stepper(system, mass, Loads(scenario, system.layout, mass), H)
-    assert isinstance(stepper, CompiledAli3p)
-    q = np.array([0.5 * np.cos(THETA0), 0.5 * np.sin(THETA0), THETA0])
-    start = StepState(0.0, q, np.zeros(3), np.zeros(3), np.zeros(system.size), system.jacobian(q, 0.0))
+    stepper, start = compiled_stepper_at_rest(scenario, one_loop.H)
     with (
         pytest.raises(
             ConvergenceError,

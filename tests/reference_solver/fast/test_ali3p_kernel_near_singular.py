@@ -35,7 +35,7 @@ from scenarios.drivers import AbsoluteDriver
 from scenarios.joints import RevoluteRevolute
 from scenarios.motions import ConstantSpeed
 from tests.support.a02_chain import steps_alike_in_metres_and_kilometres
-from tests.support.ali3p_rod import THETA0, rod_stepper, swinging_rod
+from tests.support.ali3p_rod import THETA0, compiled_stepper_at_rest, rod_stepper, swinging_rod
 from tests.support.one_loop import (
     G,
     H,
@@ -257,12 +257,7 @@ def test_a_step_newton_cannot_finish_takes_every_allowed_iteration() -> None:
     slide = AbsoluteDriver("slide", "rod", "x", ConstantSpeed(0.5 * np.cos(THETA0), 5.0))
     turn = AbsoluteDriver("turn", "rod", "theta", ConstantSpeed(THETA0, 0.0))
     scenario = replace(rod, drivers=(turn, slide))
-    system = constraint_system(scenario)
-    mass = mass_diagonal(scenario, system.layout)
-    stepper = ali3p_stepper(system, mass, Loads(scenario, system.layout, mass), H)
-    assert isinstance(stepper, CompiledAli3p)
-    q = np.array([0.5 * np.cos(THETA0), 0.5 * np.sin(THETA0), THETA0])
-    s = StepState(0.0, q, np.zeros(3), np.zeros(3), np.zeros(system.size), system.jacobian(q, 0.0))
+    stepper, s = compiled_stepper_at_rest(scenario, H)
     with pytest.raises(ConvergenceError):
         stepper.step(s)
     assert stepper.sizes[kernel.S_ITERATIONS] == kernel.NEWTON_STEPS == 60

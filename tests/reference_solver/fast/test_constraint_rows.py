@@ -18,6 +18,7 @@ from scenarios.drivers import (
     AbsoluteDriver,
 )
 from scenarios.scenario import Scenario
+from tests.support.band_store import permuted_band
 from tests.support.vocabulary import NAMES, VOCABULARY
 
 
@@ -79,12 +80,7 @@ def test_the_band_store_holds_the_scaled_jacobian() -> None:
     profile_points(p.profiles, p.splines, q, int(p.sizes[S_BODIES]), us)
     work, jac = np.empty((5, max(int(p.sizes[S_BODIES]), WIDTH))), np.empty((2, 2, WIDTH))
     evaluate(p.ints, p.reals, q, np.zeros(n), 0.3, np.empty(n), np.empty(n), store, work, jac, us)
-    read = np.zeros((n, n))
-    for i in range(n):
-        for slot in range(w):
-            j = i - kl + slot
-            if 0 <= j < n:
-                read[p.perm[0, i], p.perm[1, j]] = store[i * w + slot]
+    read = permuted_band(store, p.perm, n, kl, w)
     expected = system.scaled_jacobian(system.jacobian(q, 0.3))
     assert np.max(np.abs(expected)) > 2.0  # the scales matter: L = 0.05 m here
     np.testing.assert_allclose(read, expected, rtol=0, atol=1e-12 * np.max(np.abs(expected)))

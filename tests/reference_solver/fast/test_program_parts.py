@@ -29,6 +29,7 @@ from reference_solver.fast.program import (
 from reference_solver.system import ConstraintSystem
 from scenarios import AbsoluteDriver, Constant
 from scenarios.cam_profiles import EccentricDisc, LobedProfile, SplineProfile
+from tests.support.band_store import permuted_band
 from tests.support.hand_crank import crank_scenario
 from tests.support.vocabulary import NAMES, VOCABULARY
 
@@ -125,11 +126,6 @@ def test_a_band_without_subdiagonal_holds_the_scaled_jacobian() -> None:
     evaluate(
         p.ints, p.reals, q, np.zeros(n), 0.0, np.empty(n), np.empty(n), store, work, jac, np.empty((0, 4, 2))
     )
-    read = np.zeros((n, n))
-    for i in range(n):
-        for slot in range(w):
-            j = i - kl + slot
-            if 0 <= j < n:
-                read[p.perm[0, i], p.perm[1, j]] = store[i * w + slot]
+    read = permuted_band(store, p.perm, n, kl, w)
     expected = system.scaled_jacobian(system.jacobian(q, 0.0))
     np.testing.assert_allclose(read, expected, rtol=0, atol=1e-15)

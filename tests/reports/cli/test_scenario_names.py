@@ -8,6 +8,7 @@ from __future__ import annotations
 import shutil
 from pathlib import Path
 
+import pandas as pd
 import pytest
 
 import scenarios
@@ -115,38 +116,47 @@ def _digests(file: Path) -> tuple[str, str]:
     return mine, family
 
 
-@pytest.mark.parametrize("order", ["file first", "family first"])
-def test_run_refuses_a_family_and_a_file_of_its_name_in_either_order(
-    order: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
-) -> None:
+def _in_order(order: str, tmp_path: Path) -> tuple[Path, Path, str, str]:
+    """The results folder, a slider-crank file of other lengths, and the two names (the file's and
+    the family's) in `order`."""
     out, file = tmp_path / "out", _lengthened(tmp_path / "longer.toml")
     first, second = (str(file), "slider_crank") if order == "file first" else ("slider_crank", str(file))
-    code, err = _run(capsys, out, first)
-    assert code == 0, err
-    before = read_results(out)[0]
-    code, err = _run(capsys, out, second)
-    assert code == 2 and err.count("\n") == 1, err
+    return out, file, first, second
+
+
+def _refused_as_another_mechanism(err: str, out: Path, file: Path, before: pd.DataFrame) -> None:
+    """One error line naming the stored mechanism and both digests; the stored results unchanged."""
+    assert err.count("\n") == 1, err
     assert f"{out} holds results of another mechanism named 'slider_crank'" in err
     assert all(d in err for d in _digests(file)), err
     assert read_results(out)[0].equals(before)
 
 
 @pytest.mark.parametrize("order", ["file first", "family first"])
+def test_run_refuses_a_family_and_a_file_of_its_name_in_either_order(
+    order: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out, file, first, second = _in_order(order, tmp_path)
+    code, err = _run(capsys, out, first)
+    assert code == 0, err
+    before = read_results(out)[0]
+    code, err = _run(capsys, out, second)
+    assert code == 2, err
+    _refused_as_another_mechanism(err, out, file, before)
+
+
+@pytest.mark.parametrize("order", ["file first", "family first"])
 def test_compare_out_refuses_a_family_and_a_file_of_its_name_in_either_order(
     order: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    out, file = tmp_path / "out", _lengthened(tmp_path / "longer.toml")
-    stored, compared = (str(file), "slider_crank") if order == "file first" else ("slider_crank", str(file))
+    out, file, stored, compared = _in_order(order, tmp_path)
     assert _run(capsys, out, stored)[0] == 0
     before = read_results(out)[0]
     csv = tmp_path / "t.csv"
     assert main(["solve", compared, "--out", str(csv)]) == 0
     capsys.readouterr()
     assert main(["compare", compared, str(csv), "--out", str(out), "--label", "mine"]) == 2
-    err = capsys.readouterr().err
-    assert f"{out} holds results of another mechanism named 'slider_crank'" in err and err.count("\n") == 1
-    assert all(d in err for d in _digests(file)), err
-    assert read_results(out)[0].equals(before)
+    _refused_as_another_mechanism(capsys.readouterr().err, out, file, before)
 
 
 def test_report_refuses_a_store_holding_two_mechanisms_under_one_name(

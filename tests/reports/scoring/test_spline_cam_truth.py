@@ -28,6 +28,7 @@ from reports.scoring.truth import NATIVE_REFINED, independent_truth
 from reports.stress.truth import stress_truth
 from scenarios.cam_profiles import EccentricDisc, SplineProfile
 from scenarios.scenario import Scenario
+from tests.support.measured import measured_table
 
 
 def e(angle: float, turn: int = 0) -> np.ndarray:
@@ -126,15 +127,9 @@ def harness_truth(name: str) -> tuple[Scenario, np.ndarray, np.ndarray]:
     return scenario, times, np.column_stack(levels)
 
 
-ERRORS = {
-    # the largest error of the harness's truth against the second construction, dimensionless (y over
-    # R, vy over R omega, ay over R omega^2), measured 2026-11-25: round-off at every level
-    "cam_knife_edge/spline": (2.8e-16, 2.4e-16, 7.5e-16),
-    "cam_roller/spline": (5.6e-16, 8.0e-16, 1.2e-15),
-    "cam_flat_face/spline": (2.8e-16, 6.9e-16, 1.0e-15),
-    "cam_knife_edge/stress_few_knots": (2.8e-16, 3.1e-16, 7.6e-16),
-    "cam_roller/stress_few_knots": (5.6e-16, 5.8e-16, 1.1e-15),
-}
+ERRORS = measured_table("spline_cam_truth")
+"""name: the largest error of the harness's truth against the second construction, dimensionless
+(y over R, vy over R omega, ay over R omega^2), measured: round-off at every level."""
 
 
 @pytest.mark.parametrize("name", ERRORS)

@@ -13,6 +13,7 @@ from reports.scoring.startup import SETTLED, startup
 from scenarios import build
 from scenarios.closed_form import exact
 from scenarios.scenario import characteristic_rate
+from scenarios.trajectory import Trajectory
 
 
 def _with_error(level: str, relative: np.ndarray):
@@ -47,21 +48,14 @@ def test_a_steady_error_has_no_transient() -> None:
     assert math.isclose(found["startup_excess"], 1.0, rel_tol=1e-6) and found["startup_time"] == 0.0
 
 
+def _first_three(run: Trajectory) -> Trajectory:
+    """`run` cut to its first three output times."""
+    levels = ("times", "position", "velocity", "acceleration")
+    return dataclasses.replace(run, **{level: getattr(run, level)[:3] for level in levels})
+
+
 def test_too_short_a_grid_gives_no_figure() -> None:
     scenario, result, truth = _with_error("velocity", np.full(101, 1e-6))
-    short = dataclasses.replace(
-        result,
-        times=result.times[:3],
-        velocity=result.velocity[:3],
-        position=result.position[:3],
-        acceleration=result.acceleration[:3],
-    )
-    truth3 = dataclasses.replace(
-        truth,
-        times=truth.times[:3],
-        velocity=truth.velocity[:3],
-        position=truth.position[:3],
-        acceleration=truth.acceleration[:3],
-    )
+    short, truth3 = (_first_three(r) for r in (result, truth))
     found = startup(scenario, short, truth3, ("velocity",))
     assert math.isnan(found["startup_excess"]) and math.isnan(found["startup_time"])

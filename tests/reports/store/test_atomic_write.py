@@ -23,7 +23,7 @@ from reports.gate import gate
 from reports.render.report import render_reports
 from reports.store.atomic_write import write_text
 from reports.store.results_store import read_results
-from tests.support.store_runs import ROOT, SCENARIO, one_line_error
+from tests.support.store_runs import ROOT, SCENARIO, one_line_error, stored_run
 
 COMMANDS = {
     "solve": ["solve", SCENARIO, "--steps", "10", "--out"],
@@ -59,11 +59,7 @@ def old_text(command: str, stored: Path, folder: Path) -> str:
 
 @pytest.fixture(scope="module")
 def stored(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    from tests.support.store_runs import fake_run
-
-    directory = tmp_path_factory.mktemp("stored") / "out"
-    fake_run(directory)
-    return directory
+    return stored_run(tmp_path_factory, "stored")
 
 
 @pytest.mark.parametrize("command", COMMANDS)

@@ -22,7 +22,7 @@ import pytest
 from reports.store.files import GENERATIONS, StoreDamaged
 from reports.store.repair import Repair
 from reports.store.results_store import ResultsStore
-from tests.support.store_runs import fake_run, rows
+from tests.support.store_runs import rows, stored_run
 
 POINTS: list[tuple[object, str]] = [
     (os, "fsync"),
@@ -67,9 +67,7 @@ class Injected:
 
 @pytest.fixture(scope="module")
 def base(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    directory = tmp_path_factory.mktemp("faults") / "out"
-    fake_run(directory)
-    return directory
+    return stored_run(tmp_path_factory, "faults")
 
 
 def leftovers(directory: Path) -> list[str]:

@@ -16,7 +16,7 @@ from reports.cli.main import main
 from reports.store import files as store_files
 from reports.store.files import GENERATIONS, KEEP, StoreDamaged
 from reports.store.results_store import RESULTS, ResultsStore
-from tests.support.store_runs import copy, fake_run, one_line_error, rows
+from tests.support.store_runs import copy, fake_run, one_line_error, rows, stored_run
 from tests.support.stores import copy_entry, table_files
 
 
@@ -24,8 +24,7 @@ from tests.support.stores import copy_entry, table_files
 def saved_often(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A store saved more often than KEEP (the fake run saves once per scenario-engine group, and
     each save here adds one generation)."""
-    directory = tmp_path_factory.mktemp("often") / "out"
-    fake_run(directory)
+    directory = stored_run(tmp_path_factory, "often")
     store = ResultsStore(directory)
     for _ in range(KEEP + 1):
         store.save(dict(store.meta))

@@ -21,6 +21,7 @@ from reports.stress.truth import partial_truth, stress_truth, stress_truth_name
 from scenarios.closed_form import exact
 from scenarios.scenario import LEVELS
 from scenarios.trajectory import Trajectory
+from tests.support.measured import measured_table
 
 
 def positions(trajectory: Trajectory) -> np.ndarray:
@@ -54,42 +55,7 @@ def test_a_singular_case_has_a_truth_up_to_its_singular_time_and_none_after() ->
     assert np.max(np.abs(positions(truth)[known] - positions(expected))) < 1e-10
 
 
-NATIVE_AGAINST_CLOSED_FORM = {
-    # The native solver (the reference engine at its default setting) against the stress truth,
-    # dimensionless position, velocity, acceleration error (level_errors), measured 2026-11-25.
-    # Near a singular time (dead centre, equal links, change point, toggle) the acceleration error
-    # grows as 1 / det C_q amplifies round-off; a 1e-3 link ratio costs positions 1e-3 of their digits.
-    # The singular cases' figures are round-off amplified there, so they follow the order in which
-    # the compiled rows sum (positions apart from rotated vectors).
-    "slider_crank": (5.6e-16, 9.5e-16, 7.6e-16),
-    "four_bar": (5.7e-16, 2.0e-15, 4.1e-15),
-    "slider_crank/stress_dead_centre": (6.4e-15, 2.0e-13, 1.3e-11),
-    "slider_crank/stress_equal_links": (3.3e-15, 2.4e-13, 3.3e-11),
-    "four_bar/stress_change_point": (6.2e-15, 4.4e-13, 6.2e-11),
-    "four_bar/stress_toggle": (7.4e-16, 2.7e-14, 4.1e-12),
-    "slider_crank/stress_speed_1e-3": (5.6e-16, 9.8e-16, 6.0e-16),
-    "slider_crank/stress_speed_1e-1": (5.6e-16, 9.9e-16, 6.9e-16),
-    "slider_crank/stress_speed_1e1": (5.6e-16, 1.1e-15, 7.1e-16),
-    "slider_crank/stress_speed_1e3": (5.6e-16, 1.0e-15, 6.5e-16),
-    "slider_crank/stress_speed_1e4": (5.6e-16, 8.8e-16, 7.5e-16),
-    "slider_crank/stress_fixed_step_1e-3": (5.6e-16, 6.0e-16, 8.0e-16),
-    "slider_crank/stress_fixed_step_1e2": (5.6e-16, 9.7e-16, 7.6e-16),
-    "slider_crank/stress_fixed_step_1e3": (5.6e-16, 2.2e-15, 5.9e-16),
-    "slider_crank/stress_fixed_step_1e4": (5.6e-16, 1.9e-15, 3.8e-16),
-    "slider_crank/stress_scale_1e-4": (5.6e-16, 9.5e-16, 6.0e-16),
-    "slider_crank/stress_scale_1e-2": (7.2e-16, 9.5e-16, 6.5e-16),
-    "slider_crank/stress_scale_1e1": (7.1e-16, 9.3e-16, 6.8e-16),
-    "slider_crank/stress_scale_1e3": (4.5e-16, 9.9e-16, 5.9e-16),
-    "slider_crank/stress_link_ratio_1e-3": (1.4e-13, 9.3e-16, 4.7e-16),
-    "four_bar/stress_link_ratio_1e-3": (3.1e-13, 8.6e-16, 6.0e-16),
-    "spur_gears/stress_ratio_1000": (0.0, 0.0, 0.0),  # angles times the ratio: exact in both
-    "four_bar/stress_mass_1e3": (5.7e-16, 2.0e-15, 4.1e-15),
-    "four_bar/stress_mass_1e6": (5.7e-16, 2.0e-15, 4.1e-15),
-    "slider_crank/stress_long": (1.1e-15, 1.7e-13, 7.4e-16),
-    "slider_crank/stress_stiffness": (5.6e-16, 5.4e-16, 4.6e-16),
-    "cam_knife_edge/stress_steep": (5.6e-16, 1.1e-15, 2.7e-15),
-    "cam_roller/stress_steep": (5.6e-16, 1.0e-15, 1.8e-15),
-}
+NATIVE_AGAINST_CLOSED_FORM = measured_table("stress_native_against_closed_form")
 """Every case of a family's mechanism but the near change point, where the native solver on the
 scenario's grid jumps branch (test_a_refined_native_solve_agrees_with_the_closed_form...)."""
 CLOSED = [*NATIVE_AGAINST_CLOSED_FORM, "four_bar/stress_near_change_point"]
