@@ -29,8 +29,7 @@ from adapters.knobs import FIXED, NOT_APPLICABLE, SWEPT, Knob
 from adapters.modes import ENGINE, Mode
 from adapters.step_rule import rule_step
 from reference_solver import SingularConfigurationError, SolverError, analyse
-from reference_solver.dynamics import inverse_dynamics, simulate
-from reference_solver.dynamics.forward import ALI3P, ALI3P_STEP, METHODS
+from reference_solver.dynamics.methods import ALI3P, ALI3P_STEP, METHODS
 from scenarios import limits
 from scenarios.limits import check_dense_rows, dense_admitted
 from scenarios.registry import singular_passages
@@ -175,16 +174,20 @@ class ReferenceAdapter(Adapter):
     def simulate(self, model: ReferenceModel, times: np.ndarray) -> Trajectory:
         try:
             if model.scenario.analysis == "dynamic":
+                from reference_solver.dynamics import simulate  # on first use: scipy.integrate
+
                 fast = model.compiled or model.mode == ALI3P  # ALI3-P: compiled constraints either way
                 dynamic = simulate(model.scenario, times, model.tolerance, model.mode, fast, model.step)
                 self.count_steps(dynamic.evaluations)
                 return dynamic.trajectory()
             if model.inverse:
                 _check_inverse_work(model.scenario, len(times))
-            analysis = analyse(model.scenario, times, model.tolerance)
+            analysis = analyse(model.scenario, times, model.tolerance, fast=None)
             trajectory = analysis.trajectory()
             if model.inverse:
-                trajectory.extras.update(inverse_dynamics(model.scenario, analysis))
+                from reference_solver.dynamics.inverse import inverse_dynamics
+
+                trajectory.extras.update(inverse_dynamics(model.scenario, analysis, compiled=None))
         except SingularConfigurationError as error:
             raise Singular(str(error), error.time) from error
         except SolverError as error:

@@ -105,15 +105,20 @@ def analyse(
     times: Sequence[float] | np.ndarray | None = None,
     tolerance: float = 1e-12,
     max_iterations: int = 25,
-    fast: bool = True,
+    fast: bool | None = True,
 ) -> Analysis:
     """The full kinematic analysis of `scenario` on `times` (default: the scenario's grid).
 
     `fast` runs the compiled path (reference_solver.fast) when it can; whatever it cannot do, or
-    any abnormal event it meets, is handed to this loop, which then runs from the start.
+    any abnormal event it meets, is handed to this loop, which then runs from the start. `fast`
+    None takes the compiled path where it pays (fast.pays: its kernels loaded already, or enough
+    work) or where the problem is too large for this loop's dense solves.
     """
     grid = np.asarray(scenario.times() if times is None else times, dtype=float)
-    if fast:
+    coordinates = 3 * len(scenario.bodies)
+    if fast_path.pays("path", coordinates, grid.size, fast) or (
+        fast is None and coordinates > MAX_DENSE_ROWS
+    ):
         done = fast_path.analyse(scenario, grid, tolerance, max_iterations)
         if done is not None:
             return done

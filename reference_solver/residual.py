@@ -8,7 +8,7 @@ from types import ModuleType
 
 import numpy as np
 
-from reference_solver.fast import residual_kernels
+from reference_solver.fast import pays, residual_kernels
 from reference_solver.fast.constraint_rows import NotCompiled
 from reference_solver.fast.program import Program, compile_dense
 from reference_solver.layout import Layout
@@ -18,7 +18,9 @@ from scenarios.scenario import Scenario
 from scenarios.trajectory import Trajectory
 
 
-def constraint_residual(scenario: Scenario, trajectory: Trajectory) -> np.ndarray:
+def constraint_residual(
+    scenario: Scenario, trajectory: Trajectory, compiled: bool | None = True
+) -> np.ndarray:
     """Per time point, the largest |C| over the scenario's constraints (drivers included) at the
     trajectory's positions, lengths in units of the characteristic length.
 
@@ -27,19 +29,21 @@ def constraint_residual(scenario: Scenario, trajectory: Trajectory) -> np.ndarra
     (cams too), the compiled rows evaluate C over the whole trajectory in one call, far
     cheaper than the plain rows; `plain_constraint_residual` is the same
     measure on the plain rows, which checks it. A time where a counted constraint reads NaN (a NaN
-    coordinate) has a NaN residual on both.
+    coordinate) has a NaN residual on both. `compiled` False takes the plain rows; None takes the
+    compiled ones where they pay (reference_solver.fast.pays).
     """
     _check(scenario, trajectory)
-    compiled = _compiled(scenario)
-    if compiled is None:
+    points = len(trajectory.times)
+    found = _compiled(scenario) if pays("residuals", 3 * len(scenario.bodies), points, compiled) else None
+    if found is None:
         return _plain_residual(scenario, trajectory)
-    layout = compiled.layout
+    layout = found.layout
     known = _known_contacts(layout, trajectory)
     qs = _coordinates(layout, trajectory, known)
-    counted = np.flatnonzero([contact is None or contact in known for contact in compiled.row_contacts])
+    counted = np.flatnonzero([contact is None or contact in known for contact in found.row_contacts])
     times = np.asarray(trajectory.times, dtype=float)
-    measure = compiled.kernels.trajectory_residuals
-    return measure(compiled.program, qs, times, compiled.row_scales, counted)  # type: ignore[no-any-return]
+    measure = found.kernels.trajectory_residuals
+    return measure(found.program, qs, times, found.row_scales, counted)  # type: ignore[no-any-return]
 
 
 @dataclass(frozen=True)

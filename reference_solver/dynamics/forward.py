@@ -20,6 +20,7 @@ from reference_solver.dynamics.augmented import accelerations, constraint_output
 from reference_solver.dynamics.compiled_rates import partitioned_ode
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
+from reference_solver.dynamics.methods import ALI3P, ALI3P_STEP, METHODS
 from reference_solver.dynamics.partition import Partitioned, State, choose_independent
 from reference_solver.dynamics.partition_passage import is_passage, singular_passage
 from reference_solver.errors import AssemblyError, ConvergenceError, SolverError
@@ -32,12 +33,6 @@ from scenarios.trajectory import Trajectory
 REPARTITION = 0.1
 """Repartition when the dependent block's reciprocal condition number falls below this fraction of
 its value when the partition was chosen."""
-METHODS = ("DOP853", "Radau")
-ALI3P = "ali3p"
-"""The second native method: index-3 augmented Lagrangian with projections (ali3p.py), at a fixed
-step; it passes singular configurations, where the partitioned method cannot."""
-ALI3P_STEP = 1e-4
-"""ALI3-P's default largest step (s)."""
 
 
 @dataclass(frozen=True)

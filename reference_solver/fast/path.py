@@ -10,13 +10,11 @@ every error and diagnostic is the plain path's own.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
-from pathlib import Path
 
 import numpy as np
 
 from reference_solver.diagnostics import RANK_TOLERANCE
-from reference_solver.fast.cache_guard import refresh
+from reference_solver.fast import drop_stale_cache
 from reference_solver.fast.chunks import banded_point_seconds, chunks
 from reference_solver.fast.constraint_rows import NotCompiled
 from reference_solver.fast.loop import EVENTS, OK
@@ -78,7 +76,7 @@ def run(scenario: Scenario, grid: np.ndarray, tolerance: float = 1e-12, max_iter
     iterations, residual, rcond = np.zeros(count, np.int64), np.zeros(count), np.zeros(count)
     if count == 0:
         return FastRun("empty grid", 0, None)
-    _drop_stale_cache()
+    drop_stale_cache()  # before the kernel's first call, when numba reads its on-disk cache
     state = np.zeros(1)
     for start, stop in chunks(count, banded_point_seconds(n)):  # a signal's handler runs between two
         event, index = run_kernel(
@@ -89,12 +87,6 @@ def run(scenario: Scenario, grid: np.ndarray, tolerance: float = 1e-12, max_iter
         if event != OK:
             return FastRun(EVENTS[event], int(index), None)
     return FastRun(EVENTS[OK], count, Analysis(c.layout, grid, q, qd, qdd, iterations, residual, rcond))
-
-
-@lru_cache(maxsize=1)
-def _drop_stale_cache() -> None:
-    """Before the kernel's first call in a process, when numba reads its on-disk cache."""
-    refresh(Path(__file__).parent)
 
 
 def analyse(scenario: Scenario, grid: np.ndarray, tolerance: float, max_iterations: int) -> Analysis | None:

@@ -11,8 +11,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.csgraph import maximum_bipartite_matching, reverse_cuthill_mckee
 
 
 class StructurallySingular(ValueError):
@@ -61,6 +59,9 @@ def _sign(perm: np.ndarray) -> float:
 
 def band_of(entries: list[tuple[int, int]], n: int) -> Band:
     """The band layout of the n x n pattern given by its (row, col) entries."""
+    import scipy.sparse as sp  # on first use: only the compiled paths lay out a band
+    from scipy.sparse.csgraph import maximum_bipartite_matching, reverse_cuthill_mckee
+
     rows, cols = zip(*entries, strict=True) if entries else ((), ())
     pattern = sp.csr_array((np.ones(len(rows)), (rows, cols)), shape=(n, n))
     match = maximum_bipartite_matching(pattern, perm_type="row")

@@ -141,6 +141,6 @@ def of_trajectory(scenario: Scenario, trajectory: Trajectory, halving: float = m
     from reference_solver import constraint_residual  # on first use: the native solver is slow to import
 
     residual = float(
-        np.max(np.abs(np.asarray(constraint_residual(scenario, trajectory), dtype=float)), initial=0.0)
+        np.max(np.abs(np.asarray(constraint_residual(scenario, trajectory, None), dtype=float)), initial=0.0)
     )
     return verdict(residual, energy_change(scenario, trajectory), halving)

@@ -1,6 +1,8 @@
 """Each command imports what it uses (issue #40): `mbxval --help` and `--version` import no pandas,
-matplotlib, numba or scipy.interpolate, and a kinematic solve none but the compiled path's numba.
-Checked by the modules a fresh interpreter holds after the command, never by time."""
+matplotlib, numba or scipy.interpolate; a kinematic solve of a few points none of them, nor
+scipy.integrate or scipy.sparse (the plain path pays below reference_solver.fast.PAYS_FROM), and a
+long one only the compiled path's numba. Checked by the modules a fresh interpreter holds after the
+command, never by time."""
 
 from __future__ import annotations
 
@@ -15,6 +17,8 @@ import pandas as pd
 from scenarios import Trajectory
 
 HEAVY = ("pandas", "matplotlib", "numba", "scipy.interpolate", "tqdm", "pyarrow", "dask", "distributed")
+SOLVER_ONLY = ("numba", "scipy.integrate", "scipy.sparse", "scipy.optimize")
+"""What the native solver imports for one path or the other: forward dynamics, the compiled band."""
 
 PROBE = """
 import contextlib, io, json, sys
@@ -25,10 +29,10 @@ print(json.dumps(sorted(name for name in json.loads(sys.argv[2]) if name in sys.
 """
 
 
-def imported(argv: list[str]) -> set[str]:
-    """Which of HEAVY a fresh interpreter has imported after running `mbxval` with `argv`."""
+def imported(argv: list[str], watched: tuple[str, ...] = HEAVY) -> set[str]:
+    """Which of `watched` a fresh interpreter has imported after running `mbxval` with `argv`."""
     done = subprocess.run(
-        [sys.executable, "-c", PROBE, json.dumps(argv), json.dumps(HEAVY)],
+        [sys.executable, "-c", PROBE, json.dumps(argv), json.dumps(watched)],
         capture_output=True,
         text=True,
         timeout=300,
@@ -97,8 +101,15 @@ def test_version_imports_none_of_them_beyond_what_the_engines_themselves_import(
     assert engines_own() <= {"matplotlib"}  # an engine library that pulls in more is worth knowing
 
 
-def test_a_kinematic_solve_imports_only_the_compiled_paths_numba() -> None:
-    assert imported(["solve", "four_bar", "--steps", "1"]) <= {"numba"}
+def test_a_kinematic_solve_of_two_points_imports_none_of_them() -> None:
+    assert imported(["solve", "four_bar", "--steps", "1"], HEAVY + SOLVER_ONLY) == set()
+
+
+def test_a_long_kinematic_solve_imports_the_compiled_paths_numba_and_no_integrator() -> None:
+    # 4,001 points of 9 coordinates: above PAYS_FROM, so the compiled path runs (and the probe
+    # sees numba: the check can fail)
+    found = imported(["solve", "four_bar", "--steps", "4000"], HEAVY + SOLVER_ONLY)
+    assert found == {"numba", "scipy.sparse"}
 
 
 def test_the_probe_sees_an_import() -> None:
