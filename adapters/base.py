@@ -179,11 +179,13 @@ class Adapter:
         warmup: int = 0,
         once_above: float = math.inf,
         agree: float = 0.0,
+        budget: float = math.inf,
     ) -> RunResult:
         """Build once and simulate, timing the build apart and the simulation as the minimum over
         `repeats` after `warmup` untimed runs over the grid's first interval (_warm_up), or once
         where the first timed run takes longer than `once_above` seconds, or fewer where a repeat
-        agrees with the best before it to a relative `agree` (adapters.timing.timed); the warm-up's
+        agrees with the best before it to a relative `agree`, or where one more would take the
+        repeats past `budget` CPU seconds (adapters.timing.timed); the warm-up's
         and the repeats' seconds are measured too (what the run's timing cost), for a run that fails
         up to its failure (adapters.spent). Times are the process's CPU seconds, the wall clock's
         beside them (adapters.timing). Never raises for an engine's failure."""
@@ -216,7 +218,9 @@ class Adapter:
                     return self.simulate(model, grid)
 
                 warm = self._warm_up(model, grid, watch)
-                timing = timed(simulate, repeats, warmup, once_above=once_above, warm=warm, agree=agree)
+                timing = timed(
+                    simulate, repeats, warmup, once_above=once_above, warm=warm, agree=agree, budget=budget
+                )
         except Exception as error:  # an engine's failure, or its own exception: recorded, never raised
             build, warmed, repeated = watch.spent(warmup)
             build_wall, warmed_wall, repeated_wall = watch.spent_wall(warmup)

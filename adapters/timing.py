@@ -76,14 +76,18 @@ def timed(
     once_above: float = math.inf,
     warm: Callable[[], object] | None = None,
     agree: float = 0.0,
+    budget: float = math.inf,
 ) -> Timing[T]:
     """`warmup` untimed calls of `warm` (by default the action itself), then the minimum over
     `repeats` (at least one) of the CPU time of `number` calls, divided by `number`; a first timed
     call longer than `once_above` CPU seconds is the only one (its noise is small against its
     length), and the repeats stop early where one agrees with the best before it to a relative
     `agree` (two undisturbed repeats: the minimum is known to that fraction, and more would only
-    cost time; where they disagree the repeats go on). The warm-up's and the repeats' seconds are
-    summed as they run, on both clocks."""
+    cost time; where they disagree the repeats go on), or where one more repeat as long as the
+    best would take the repeats' CPU seconds past `budget` (as timeit's autorange bounds its
+    loops: short actions are repeated, long ones are not; the repeats cost at most the larger of
+    `budget` and one repeat). The warm-up's and the repeats' seconds are summed as they run, on
+    both clocks."""
     start = now()
     for _ in range(warmup):
         (action if warm is None else warm)()
@@ -96,9 +100,11 @@ def timed(
             result = action()
         spent = now() - start
         per_call = spent.cpu / max(1, number)
-        done = enough(per_call, best, once_above, agree)
-        best, best_wall = min(best, per_call), min(best_wall, spent.wall / max(1, number))
         total, made = total + spent, made + 1
+        done = enough(per_call, best, once_above, agree) or over_budget(
+            total.cpu, min(best, per_call), number, budget
+        )
+        best, best_wall = min(best, per_call), min(best_wall, spent.wall / max(1, number))
         if done:
             break
     return Timing(best, result, made, total.cpu, warmed.cpu, best_wall, total.wall, warmed.wall)
@@ -110,6 +116,12 @@ def enough(latest: float, best_before: float, once_above: float, agree: float) -
     with the best before it to a relative `agree` (never where `agree` is 0)."""
     agreed = agree > 0 and abs(latest - best_before) <= agree * min(latest, best_before)
     return min(latest, best_before) > once_above or agreed
+
+
+def over_budget(spent: float, best: float, number: int, budget: float) -> bool:
+    """Whether one more repeat of `number` calls, each as long as the best so far, would take the
+    repeats' `spent` CPU seconds past `budget`."""
+    return spent + best * max(1, number) > budget
 
 
 def fastest(

@@ -9,8 +9,8 @@ longer ones are timed once), the simulation is built, warmed as the harness warm
 --repeats times on the process's CPU clock (the harness's), each repeat apart. Printed: the load;
 how far apart the first two repeats are (median, 90th percentile, the share within AGREE); the
 minimum the rule finds (repeats stop where one agrees with the best before it to AGREE, at most
-three, one above LONG_RUN) against the minimum of three and of all; and the timed seconds of the
-rule against three repeats each.
+three, one above LONG_RUN, none past REPEATS_BUDGET) against the minimum of three and of all; and
+the timed seconds of the rule against three repeats each.
 """
 
 from __future__ import annotations
@@ -23,9 +23,9 @@ import time
 import numpy as np
 
 import adapters
-from adapters.timing import enough
+from adapters.timing import enough, over_budget
 from reports import suites
-from reports.run.group_runs import AGREE, LONG_RUN
+from reports.run.group_runs import AGREE, LONG_RUN, REPEATS_BUDGET
 from reports.run.planning import plan_engine
 from reports.scoring.assembly import consistent_start
 from scenarios import load as build_scenario
@@ -55,12 +55,15 @@ def repeat_times(engines: list[str], low: float, high: float, repeats: int) -> l
 
 
 def by_the_rule(each: list[float]) -> tuple[float, float]:
-    """(the minimum, the timed seconds) of the harness's rule (at most three repeats) on these
-    repeat times."""
+    """(the minimum, the timed seconds) of the harness's rule (at most three repeats, within
+    REPEATS_BUDGET) on these repeat times."""
     best, spent = math.inf, 0.0
     for latest in each[:3]:
-        done = enough(latest, best, LONG_RUN, AGREE)
-        best, spent = min(best, latest), spent + latest
+        spent += latest
+        done = enough(latest, best, LONG_RUN, AGREE) or over_budget(
+            spent, min(best, latest), 1, REPEATS_BUDGET
+        )
+        best = min(best, latest)
         if done:
             break
     return best, spent

@@ -26,6 +26,11 @@ from scenarios import Scenario
 from scenarios.trajectory import Trajectory
 
 LONG_RUN = 0.25  # seconds: a simulation this long is timed once after the warm-up (adapters.base)
+REPEATS_BUDGET = 0.25
+"""CPU seconds a run's timed repeats may spend (adapters.timing.timed's `budget`): a repeat is made
+only where it fits, as long as the best before it, so a run's repeats cost at most the larger of
+this and one repeat. Runs under a third of it are timed up to three times, under half of it twice,
+longer ones once."""
 AGREE = 0.02
 """Repeats stop once one agrees with the best before it to this fraction (adapters.timing.timed):
 on a quiet machine two repeats of the same run agree far closer than that (`mbxval bench repeats`
@@ -201,8 +206,8 @@ def timed_run(
 ) -> tuple[RunResult, int]:
     """The adapter's run (one build), timed as the minimum of `config.repeats` after
     `config.warmup` untimed warm-up runs over the grid's first interval (Adapter.run), except that a
-    run longer than LONG_RUN is timed once (its timing noise is small against its length) and the
-    repeats stop once two agree to AGREE. Returns
+    run longer than LONG_RUN is timed once (its timing noise is small against its length), the
+    repeats stop once two agree to AGREE, and none is made past REPEATS_BUDGET. Returns
     the result and the number of timed repeats it made (1 for a run that failed)."""
     result = adapter.run(
         scenario,
@@ -212,5 +217,6 @@ def timed_run(
         warmup=config.warmup,
         once_above=LONG_RUN,
         agree=AGREE,
+        budget=REPEATS_BUDGET,
     )
     return result, max(1, result.repeats)

@@ -78,6 +78,30 @@ def test_agreement_is_relative_to_the_smaller_of_the_two(clock: Clock) -> None:
     assert timed(spending(clock, [0.1019, 0.100, 0.1], [], "a"), repeats=3, agree=0.0188).repeats == 3
 
 
+def test_repeats_are_made_while_one_more_fits_the_budget(clock: Clock) -> None:
+    # after three of 0.1 s a fourth would spend 0.4 s, past the budget of 0.35 s
+    found = timed(spending(clock, [0.1] * 10, [], "action"), repeats=10, budget=0.35)
+    assert (found.repeats, found.repeats_time) == (3, pytest.approx(0.3))
+
+
+def test_a_repeat_longer_than_half_the_budget_is_the_only_one(clock: Clock) -> None:
+    found = timed(spending(clock, [0.2, 0.1, 0.1], [], "action"), repeats=3, budget=0.35)
+    assert (found.repeats, found.best) == (1, pytest.approx(0.2))
+
+
+def test_the_budget_counts_the_best_not_the_first(clock: Clock) -> None:
+    # 0.1 then 0.05: a third as long as the best fits 0.24 s (0.2), one as long as the first would not
+    found = timed(spending(clock, [0.1, 0.05, 0.04, 0.5], [], "action"), repeats=3, budget=0.24)
+    assert (found.repeats, found.best) == (3, pytest.approx(0.04))
+
+
+@pytest.mark.parametrize("each", [0.011, 0.051, 0.09, 0.13, 0.2, 0.26, 0.6])
+def test_the_repeats_cost_at_most_the_budget_or_one_repeat(clock: Clock, each: float) -> None:
+    found = timed(spending(clock, [each] * 40, [], "action"), repeats=40, budget=0.25)
+    assert found.repeats_time <= max(0.25, each) + 1e-12
+    assert found.repeats == max(1, int(0.25 / each + 1e-9))  # as many as fit
+
+
 def test_without_agree_equal_repeats_all_run(clock: Clock) -> None:
     assert timed(spending(clock, [0.1, 0.1, 0.1], [], "action"), repeats=3).repeats == 3
 

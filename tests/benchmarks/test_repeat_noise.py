@@ -8,15 +8,17 @@ import pytest
 from adapters import timing
 from adapters.timing import enough, timed
 from benchmarks.repeat_noise import by_the_rule
-from reports.run.group_runs import AGREE, LONG_RUN
+from reports.run.group_runs import AGREE, LONG_RUN, REPEATS_BUDGET
 from tests.support.fake_clock import Clock
 
 CASES = [
-    [0.100, 0.1015, 0.5, 0.1],  # agree at the second: 2 repeats
-    [0.100, 0.130, 0.090, 0.1],  # never agree: 3
-    [0.100, 0.130, 0.1305, 0.1],  # the third agrees with the second, not the best: 3 anyway
+    [0.050, 0.0508, 0.5, 0.1],  # agree at the second: 2 repeats
+    [0.050, 0.065, 0.045, 0.1],  # never agree: 3
+    [0.050, 0.065, 0.06525, 0.1],  # the third agrees with the second, not the best: 3 anyway
     [0.300, 0.100, 0.100],  # over LONG_RUN: 1
-    [0.200, 0.300, 0.196, 0.1],  # the third agrees with the best: 3
+    [0.070, 0.080, 0.0690, 0.1],  # the third agrees with the best: 3
+    [0.100, 0.130, 0.090, 0.1],  # a third as long as the best would pass REPEATS_BUDGET: 2
+    [0.200, 0.100, 0.100],  # a second would pass it: 1
 ]
 
 
@@ -29,7 +31,7 @@ def test_the_replayed_rule_is_timed_s(each: list[float], monkeypatch: pytest.Mon
     def action() -> None:
         clock.spend(next(left))
 
-    found = timed(action, repeats=3, once_above=LONG_RUN, agree=AGREE)
+    found = timed(action, repeats=3, once_above=LONG_RUN, agree=AGREE, budget=REPEATS_BUDGET)
     best, spent = by_the_rule(each)
     assert best == pytest.approx(found.best, rel=1e-12)
     assert spent == pytest.approx(found.repeats_time, rel=1e-12)
