@@ -10,12 +10,16 @@ Cases: numpy's import; `mbxval --help`; the start-up; a 16-point native sweep (`
 --scenario four_bar --engine reference --sweep omega=lin:10:40:16`, its report included);
 Andrews' squeezer to 0.03 s; IFToMM A02 with two loops over 10 s by ALI3-P. The figures are the
 best of --repeats by CPU; the load average is printed before and after. The commands run this
-interpreter's `mbxval` (`python -m reports.entry` would not: it is the module the script runs)."""
+interpreter's `mbxval` (`python -m reports.entry` would not: it is the module the script runs).
+With --write PAGE, the figures also replace the Markdown table between the page's BEGIN and END
+markers (docs/performance.md's), with the load and the core count, so that the page's figures are
+the benchmark's, never copied by hand."""
 
 from __future__ import annotations
 
 import argparse
 import os
+import platform
 import subprocess
 import sys
 import tempfile
@@ -70,6 +74,49 @@ def cost(argv: list[str], extra_env: dict[str, str]) -> Cost:
     return Cost(usage.ru_utime + usage.ru_stime, wall, usage.ru_maxrss / 1024)
 
 
+BEGIN = "<!-- benchmarks.startup: begin -->"
+END = "<!-- benchmarks.startup: end -->"
+DESCRIBED = {
+    NUMPY: '`python -c "import numpy"`',
+    "--help": "`mbxval --help`",
+    START_UP: "start-up: `mbxval solve four_bar --steps 1`",
+    "16-point native sweep": "16-point native sweep (`mbxval run --scenario four_bar --engine reference "
+    "--sweep omega=lin:10:40:16`, report included)",
+    "Andrews to 0.03 s": "Andrews' squeezer to 0.03 s",
+    "A02 N=2, 10 s, ALI3-P": "A02 N = 2 over 10 s, `--mode ali3p`",
+}
+
+
+def markdown(best: dict[tuple[str, str], Cost], repeats: int, loads: tuple[str, str]) -> str:
+    """The figures as the performance page's table, with what they were measured under."""
+    lines = [
+        f"{os.cpu_count()} cores ({platform.machine()}), load average {loads[0]} before and {loads[1]} "
+        f"after; best of {repeats} by CPU.",
+        "",
+        "| case | CPU s | wall s | peak RSS MB | / start-up | / numpy "
+        "| CPU default / OPENBLAS_NUM_THREADS=1 |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    unit, numpy = best[(START_UP, "default")].cpu, best[(NUMPY, "default")].cpu
+    for case in dict.fromkeys(case for case, _ in best):
+        spent, single = best[(case, "default")], best[(case, "OPENBLAS_NUM_THREADS=1")]
+        lines.append(
+            f"| {DESCRIBED[case]} | {spent.cpu:.2f} | {spent.wall:.3g} | {spent.rss_mb:.0f} | "
+            f"{spent.cpu / unit:.2f} | {spent.cpu / numpy:.1f} | {spent.cpu / single.cpu:.2f} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def write_between_markers(page: Path, text: str) -> None:
+    """Replace what lies between the BEGIN and END lines of `page` with `text`; SystemExit where
+    the page lacks them (nothing is written then)."""
+    whole = page.read_text()
+    start, end = whole.find(BEGIN), whole.find(END)
+    if start < 0 or end < start:
+        raise SystemExit(f"{page}: no '{BEGIN}' ... '{END}' markers to write between")
+    page.write_text(whole[: start + len(BEGIN)] + "\n" + text + whole[end:])
+
+
 def load() -> str:
     with open("/proc/loadavg") as loadavg:
         return " ".join(loadavg.read().split()[:3])
@@ -79,9 +126,11 @@ def main(argv: list[str] | None = None) -> dict[tuple[str, str], Cost]:
     parser = argparse.ArgumentParser(prog="startup", description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3, help="turns of every command (default 3)")
     parser.add_argument("--case", action="append", choices=list(CASES), help="only these (repeatable)")
+    parser.add_argument("--write", type=Path, metavar="PAGE", help="write the table between PAGE's markers")
     args = parser.parse_args(argv)
     chosen = [c for c in CASES if c in (args.case or CASES) or c in (NUMPY, START_UP)]
-    print(f"load before: {load()}; {os.cpu_count()} cores; best of {args.repeats} by CPU")
+    before = load()
+    print(f"load before: {before}; {os.cpu_count()} cores; best of {args.repeats} by CPU")
     found: dict[tuple[str, str], list[Cost]] = {}
     with tempfile.TemporaryDirectory(prefix="mbxval-startup-") as temporary:
         for turn in range(max(1, args.repeats)):
@@ -100,7 +149,10 @@ def main(argv: list[str] | None = None) -> dict[tuple[str, str], Cost]:
     for case in chosen:
         alone, single = best[(case, "default")].cpu, best[(case, "OPENBLAS_NUM_THREADS=1")].cpu
         print(f"{case:<24}default / OPENBLAS_NUM_THREADS=1 in CPU: {alone / single:.2f}")
-    print(f"load after: {load()}")
+    after = load()
+    print(f"load after: {after}")
+    if args.write is not None:
+        write_between_markers(args.write, markdown(best, max(1, args.repeats), (before, after)))
     return best
 
 

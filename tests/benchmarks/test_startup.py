@@ -5,6 +5,7 @@ beside one start-up measured in the same run; the BLAS benchmark's runs are real
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -45,3 +46,31 @@ def test_the_blas_benchmark_times_a_real_native_run() -> None:
     _, chain, setting = blas_threads.cases(2)[-1]
     spent = blas_threads.spent(chain, setting)
     assert spent.cpu > 0 and spent.wall > 0
+
+
+FIGURES = {
+    (case, variant): startup.Cost(cpu, 10 * cpu, 50.0)
+    for case, cpu in ((startup.NUMPY, 0.1), (startup.START_UP, 0.5), ("--help", 0.3))
+    for variant in startup.VARIANTS
+}
+
+
+def test_the_table_puts_each_case_beside_the_start_up_and_numpy() -> None:
+    table = startup.markdown(FIGURES, 3, ("1.00", "2.00"))
+    assert "load average 1.00 before and 2.00 after; best of 3 by CPU" in table
+    assert "| `mbxval --help` | 0.30 | 3 | 50 | 0.60 | 3.0 | 1.00 |" in table  # 0.3 / 0.5, 0.3 / 0.1
+
+
+def test_the_page_is_written_between_its_markers_only(tmp_path: Path) -> None:
+    page = tmp_path / "page.md"
+    page.write_text(f"intro\n{startup.BEGIN}\nold table\n{startup.END}\noutro\n")
+    startup.write_between_markers(page, "new table\n")
+    assert page.read_text() == f"intro\n{startup.BEGIN}\nnew table\n{startup.END}\noutro\n"
+
+
+def test_a_page_without_markers_is_refused_and_left_alone(tmp_path: Path) -> None:
+    page = tmp_path / "page.md"
+    page.write_text("no markers\n")
+    with pytest.raises(SystemExit, match="markers"):
+        startup.write_between_markers(page, "new table\n")
+    assert page.read_text() == "no markers\n"
