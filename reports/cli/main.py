@@ -25,7 +25,6 @@ import reports.cli.suite_commands as suite_commands
 from adapters.base import Adapter, OptionValue, Setting, SettingError
 from adapters.step_rule import RULE
 from adapters.threads import one_blas_thread
-from reference_solver.fast import compile_where_it_pays
 from reports.cli.engine_listing import FORMATS, engine_listing
 from reports.cli.usage import Parser, UsageError, Versions, pairs, scenario_argument
 from reports.gate import GateError
@@ -187,6 +186,8 @@ def solve_trajectory(
     times = time_grid(scenario, *grid, dense=engine != adapters.NATIVE or limits.dense(scenario))
     setting = engine_setting(adapter, scenario, mode, list(options))
     one_blas_thread()
+    from reference_solver.fast import compile_where_it_pays  # on use: --help imports no solver
+
     compile_where_it_pays()  # one command: the plain path where loading the kernels costs more
     result = adapter.run(scenario, setting, times)
     if result.status != "ok" or result.trajectory is None:
