@@ -12,7 +12,7 @@ import pytest
 import adapters
 from adapters.base import WARMUP_POINTS, Diverged, Setting
 from adapters.timing import fastest
-from reports.run.group_runs import LONG_RUN, RunConfig, timed_run
+from reports.run.group_runs import LONG_RUN, REPEATS_BUDGET, RunConfig, timed_run
 from scenarios import Scenario, Trajectory
 from scenarios import load as load_scenario
 from tests.support.busy import work
@@ -139,6 +139,20 @@ def test_the_harness_times_the_whole_grid_after_a_prefix_warm_up(scenario) -> No
     assert (result.status, repeats) == ("ok", 1)
     assert lengths(long) == [2, len(grid)]
     assert result.run_time > LONG_RUN
+
+
+def test_the_harness_makes_no_repeat_past_its_budget(scenario) -> None:
+    """Runs under LONG_RUN whose repeats never agree (6 % apart): one of 0.6 of REPEATS_BUDGET is
+    timed once (a second would pass the budget), one of 0.4 of it twice, one of 0.2 of it three
+    times (the count); each run's repeats within the budget or one repeat."""
+    config = RunConfig(repeats=3, warmup=1)
+    grid = np.asarray(scenario.times())
+    for share, expected in ((0.6, 1), (0.4, 2), (0.2, 3)):
+        first = share * REPEATS_BUDGET
+        adapter = RecordingAdapter(sleep=(first, first * 1.06))
+        result, repeats = timed_run(adapter, scenario, adapter.default_setting(scenario), grid, config)
+        assert (result.status, repeats) == ("ok", expected), share
+        assert result.repeats_time <= max(REPEATS_BUDGET, result.run_time) * 1.05, share
 
 
 def same(a: Trajectory, b: Trajectory) -> bool:
