@@ -16,7 +16,7 @@ import numpy as np
 
 import scenarios
 from benchmarks.timing import native_per_point
-from reference_solver.fast import path
+from reference_solver.compiled import path
 
 LOOPS = (1, 2, 5, 10, 20, 50, 100, 200, 500, 1000)
 POINTS = 201

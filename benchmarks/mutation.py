@@ -18,7 +18,7 @@ uncompiled). Other modules run with the kernels compiled, their numba cache in t
 
 Each mutant's tests run in a process forked from mutmut's fork server, which has only collected the
 tests (`process_isolation = "forkserver"`): mutmut's default forks from the process that ran the whole
-selection for its statistics, whose caches (the fast path's compiled programs, lru_cache) then hand
+selection for its statistics, whose caches (the compiled path's compiled programs, lru_cache) then hand
 every mutant the unmutated result, so a mutant of a function behind a cache never ran and "survived".
 """
 
@@ -77,7 +77,7 @@ imports or runs them without the compiled kernel (not yet run under mutation).""
 DYNAMICS = "tests/reference_solver/dynamics/"
 FORCE_ELEMENT_TESTS = (
     f"{DYNAMICS}test_force_elements.py",
-    "tests/reference_solver/fast/test_load_kernel.py",
+    "tests/reference_solver/compiled/test_load_kernel.py",
 )
 DRIVEN_DYNAMICS_TESTS = (
     f"{DYNAMICS}test_inverse_dynamics.py",
@@ -93,13 +93,13 @@ ALI3P_FAST_TESTS = (
 )
 """ALI3-P's cheaper tests (a few seconds each): two without force elements (P = M), one with a
 spring and damper (P dense, with K and D)."""
-KERNEL_TESTS = "tests/reference_solver/fast/test_kernels.py"
-WHOLE_PATH_TESTS = "tests/reference_solver/fast/test_path.py"
+KERNEL_TESTS = "tests/reference_solver/compiled/test_kernels.py"
+WHOLE_PATH_TESTS = "tests/reference_solver/compiled/test_path.py"
 COMPILED_SYSTEM_TESTS = "tests/reference_solver/test_compiled_system.py"
-ROWS_TESTS = "tests/reference_solver/fast/test_constraint_rows.py"
-STRUCTURE_TESTS = "tests/reference_solver/fast/test_structure.py"
+ROWS_TESTS = "tests/reference_solver/compiled/test_constraint_rows.py"
+STRUCTURE_TESTS = "tests/reference_solver/compiled/test_structure.py"
 FAST_PATH_TESTS = (KERNEL_TESTS, WHOLE_PATH_TESTS, COMPILED_SYSTEM_TESTS, ROWS_TESTS)
-"""The fast path's tests: its kernels against dense algebra and LAPACK, the whole path against the
+"""The compiled path's tests: its kernels against dense algebra and LAPACK, the whole path against the
 plain path to 1e-12 on every scenario, the compiled rows against the plain rows on random states.
 Uncompiled, the whole-path tests take minutes per surviving mutant on the shared machine: the kernel
 modules other than the loop are mutated against the others only, which check the same values."""
@@ -110,7 +110,7 @@ RESIDUAL_TESTS = tuple(
 """The constraint residual's tests: compiled against plain rows on random states and solutions, cam
 contacts with and without their parameter, NaN coordinates, two contacts and an 81-body chain."""
 
-LOOP_MUTANT_TESTS = "tests/reference_solver/fast/test_loop_events.py"
+LOOP_MUTANT_TESTS = "tests/reference_solver/compiled/test_loop_events.py"
 LOOP_TESTS = (
     LOOP_MUTANT_TESTS,
     KERNEL_TESTS,
@@ -125,9 +125,9 @@ LOOP_TESTS = (
     "tests/reference_solver/test_branch_guard.py::test_the_kernel_hands_a_jump_to_the_plain_path",
 )
 """The kernel loop uncompiled (a kernel module): the hand-worked crank through the kernel and each of
-its events (fast/test_loop_events.py, quick uncompiled), two catalogue scenarios against the plain
+its events (compiled/test_loop_events.py, quick uncompiled), two catalogue scenarios against the plain
 path (a spline cam's profile points, a planetary train), a looser tolerance, and a branch jump. Left
-out: the rest of the catalogue, the singular cases of fast/test_path.py (they run the plain path's
+out: the rest of the catalogue, the singular cases of compiled/test_path.py (they run the plain path's
 diagnosis, seconds each uncompiled) and its iteration-limit test (minutes uncompiled)."""
 
 ALI3P_STEP_TESTS = (
@@ -180,7 +180,7 @@ COMPILED_RATES_TESTS = (
     f"{DYNAMICS}test_anchor.py",
     f"{DYNAMICS}test_compiled_rates_fallbacks.py",
 )
-"""The compiled partitioned right-hand side (dynamics.compiled_rates over fast.rates): against the
+"""The compiled partitioned right-hand side (dynamics.compiled_rates over compiled.rates): against the
 plain one and finite differences on random states, the anchor, and its own value tests."""
 RATES_KERNEL_TESTS = (
     f"{DYNAMICS}test_compiled_rates.py::test_compiled_right_hand_side_is_the_plain_one_on_random_states",
@@ -188,13 +188,13 @@ RATES_KERNEL_TESTS = (
     f"{DYNAMICS}test_compiled_rates.py::test_compiled_conditioning_is_the_plain_one",
     f"{DYNAMICS}test_anchor.py::test_a_far_trial_stage_leaves_the_next_right_hand_side_unchanged",
     f"{DYNAMICS}test_compiled_rates_fallbacks.py",
-    "tests/reference_solver/fast/test_rates.py",
+    "tests/reference_solver/compiled/test_rates.py",
 )
-"""fast.rates' kernels uncompiled: the compiled right-hand side, state and conditioning against the
+"""compiled.rates' kernels uncompiled: the compiled right-hand side, state and conditioning against the
 plain path's on random states, its rates against finite differences of its positions, the anchor,
 and the value tests; about 15 s as Python. No integration: Radau's comparison alone takes 21 s
 uncompiled, the energy balance at rtol 1e-6 longer."""
-LOAD_KERNEL_TESTS = (*FORCE_ELEMENT_TESTS, "tests/reference_solver/fast/test_load_program.py")
+LOAD_KERNEL_TESTS = (*FORCE_ELEMENT_TESTS, "tests/reference_solver/compiled/test_load_program.py")
 """The compiled force elements against the plain ones (themselves against finite differences)."""
 
 MUJOCO_TESTS = (
@@ -256,7 +256,7 @@ MODULES: dict[str, tuple[str, ...]] = {
         "tests/reference_solver/test_assemble_singular_refusal.py",
         "tests/reference_solver/test_assemble_round_off_refusal.py",
         "tests/reference_solver/test_branch_guard.py",
-        "tests/reference_solver/fast/test_path.py",
+        "tests/reference_solver/compiled/test_path.py",
         "tests/reference_solver/test_failures.py",
         "tests/reference_solver/test_closed_forms.py",
     ),
@@ -273,7 +273,7 @@ MODULES: dict[str, tuple[str, ...]] = {
         f"{DYNAMICS}test_compiled_inverse.py",
     ),
     "reference_solver/dynamics/compiled_inverse.py": (f"{DYNAMICS}test_compiled_inverse.py",),
-    "reference_solver/fast/inverse_kernel.py": (f"{DYNAMICS}test_compiled_inverse.py",),
+    "reference_solver/compiled/inverse_kernel.py": (f"{DYNAMICS}test_compiled_inverse.py",),
     "reference_solver/dynamics/partition_passage.py": (f"{DYNAMICS}test_partition_passage.py",),
     "reference_solver/dynamics/augmented.py": (
         f"{DYNAMICS}test_augmented.py",
@@ -283,42 +283,42 @@ MODULES: dict[str, tuple[str, ...]] = {
     "reference_solver/dynamics/projection.py": (f"{DYNAMICS}test_projection.py", *ALI3P_FAST_TESTS),
     "reference_solver/dynamics/tangent.py": (f"{DYNAMICS}test_tangent.py", *ALI3P_FAST_TESTS),
     # --- end of native dynamics ---
-    # ---- the compiled kinematic fast path ----
-    "reference_solver/fast/constraint_rows.py": FAST_PATH_TESTS,
-    "reference_solver/fast/program.py": (
-        "tests/reference_solver/fast/test_program_parts.py",
-        "tests/reference_solver/fast/test_program_instructions.py",
+    # ---- the compiled kinematic compiled path ----
+    "reference_solver/compiled/constraint_rows.py": FAST_PATH_TESTS,
+    "reference_solver/compiled/program.py": (
+        "tests/reference_solver/compiled/test_program_parts.py",
+        "tests/reference_solver/compiled/test_program_instructions.py",
         *FAST_PATH_TESTS,
     ),
-    "reference_solver/fast/structure.py": (
+    "reference_solver/compiled/structure.py": (
         STRUCTURE_TESTS,
-        "tests/reference_solver/fast/test_structure_edges.py",
+        "tests/reference_solver/compiled/test_structure_edges.py",
         KERNEL_TESTS,
         ROWS_TESTS,
     ),
-    "reference_solver/fast/evaluate.py": (
+    "reference_solver/compiled/evaluate.py": (
         KERNEL_TESTS,
         COMPILED_SYSTEM_TESTS,
         ROWS_TESTS,
         f"{DYNAMICS}test_ali3p_offset.py::test_the_compiled_rows_lose_nothing_to_the_coordinates_size",
     ),
-    "reference_solver/fast/band.py": (
+    "reference_solver/compiled/band.py": (
         KERNEL_TESTS,
         STRUCTURE_TESTS,
-        "tests/reference_solver/fast/test_band_rcond.py",
+        "tests/reference_solver/compiled/test_band_rcond.py",
     ),
-    "reference_solver/fast/dense_lu.py": (KERNEL_TESTS,),
-    "reference_solver/fast/loop.py": (
+    "reference_solver/compiled/dense_lu.py": (KERNEL_TESTS,),
+    "reference_solver/compiled/loop.py": (
         *LOOP_TESTS,
-        "tests/reference_solver/fast/test_loop_margins.py",
-        "tests/reference_solver/fast/test_loop_singular_after_convergence.py",
+        "tests/reference_solver/compiled/test_loop_margins.py",
+        "tests/reference_solver/compiled/test_loop_singular_after_convergence.py",
     ),
-    "reference_solver/fast/path.py": (LOOP_MUTANT_TESTS, KERNEL_TESTS, WHOLE_PATH_TESTS),
-    "reference_solver/fast/dense.py": (
-        "tests/reference_solver/fast/test_dense.py",
+    "reference_solver/compiled/path.py": (LOOP_MUTANT_TESTS, KERNEL_TESTS, WHOLE_PATH_TESTS),
+    "reference_solver/compiled/dense.py": (
+        "tests/reference_solver/compiled/test_dense.py",
         COMPILED_SYSTEM_TESTS,
     ),
-    "reference_solver/fast/residuals.py": RESIDUAL_TESTS,
+    "reference_solver/compiled/residuals.py": RESIDUAL_TESTS,
     "reference_solver/compiled_system.py": (COMPILED_SYSTEM_TESTS,),
     "reference_solver/equation.py": (
         *PLAIN_PATH_TESTS,
@@ -350,19 +350,19 @@ MODULES: dict[str, tuple[str, ...]] = {
     # --- end of the partitioned method ---
     # --- the compiled partitioned right-hand side and its support ---
     "reference_solver/dynamics/compiled_rates.py": COMPILED_RATES_TESTS,
-    "reference_solver/fast/rates.py": (
+    "reference_solver/compiled/rates.py": (
         *RATES_KERNEL_TESTS,
-        "tests/reference_solver/fast/test_rates_stall.py",
+        "tests/reference_solver/compiled/test_rates_stall.py",
     ),
-    "reference_solver/fast/load_kernel.py": LOAD_KERNEL_TESTS,
-    "reference_solver/fast/load_program.py": LOAD_KERNEL_TESTS,
+    "reference_solver/compiled/load_kernel.py": LOAD_KERNEL_TESTS,
+    "reference_solver/compiled/load_program.py": LOAD_KERNEL_TESTS,
     "scenarios/kept.py": (
         f"{WHOLE_PATH_TESTS}::test_an_empty_grid_and_an_unhashable_scenario",
         "tests/scenarios/test_kept.py",
     ),
-    "reference_solver/fast/cache_guard.py": (
+    "reference_solver/compiled/cache_guard.py": (
         f"{KERNEL_TESTS}::test_cache_guard_drops_machine_code_of_changed_sources",
-        "tests/reference_solver/fast/test_cache_guard.py",
+        "tests/reference_solver/compiled/test_cache_guard.py",
     ),
     "reference_solver/errors.py": (
         "tests/reference_solver/test_failures.py",
@@ -370,8 +370,8 @@ MODULES: dict[str, tuple[str, ...]] = {
     ),
     # --- end of the compiled partitioned right-hand side ---
     # --- ALI3-P's compiled step ---
-    "reference_solver/fast/ali3p_matrix.py": (
-        "tests/reference_solver/fast/test_ali3p_matrix.py",
+    "reference_solver/compiled/ali3p_matrix.py": (
+        "tests/reference_solver/compiled/test_ali3p_matrix.py",
         f"{DYNAMICS}test_compiled_ali3p.py",
     ),
     "reference_solver/dynamics/compiled_ali3p.py": (
@@ -379,11 +379,11 @@ MODULES: dict[str, tuple[str, ...]] = {
         f"{DYNAMICS}test_compiled_ali3p.py",
         f"{DYNAMICS}test_ali3p_offset.py",
     ),
-    "reference_solver/fast/ali3p_kernel.py": (
+    "reference_solver/compiled/ali3p_kernel.py": (
         f"{DYNAMICS}test_compiled_ali3p_run.py",
         f"{DYNAMICS}test_compiled_ali3p.py",
-        "tests/reference_solver/fast/test_ali3p_kernel_near_singular.py",
-        "tests/reference_solver/fast/test_ali3p_kernel_careful_steps.py",
+        "tests/reference_solver/compiled/test_ali3p_kernel_near_singular.py",
+        "tests/reference_solver/compiled/test_ali3p_kernel_careful_steps.py",
     ),
     # --- end of ALI3-P's compiled step ---
     # --- ALI3-P's singular passages ---
@@ -419,7 +419,7 @@ MODULES: dict[str, tuple[str, ...]] = {
 }
 
 KERNEL_MODULES = frozenset(
-    f"reference_solver/fast/{name}.py"
+    f"reference_solver/compiled/{name}.py"
     for name in (
         "evaluate",
         "band",

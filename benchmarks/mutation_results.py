@@ -199,7 +199,7 @@ def page(found: list[Record], explained: Mapping[str, str]) -> str:
 
 
 EXPLAINED_DIR = Path(__file__).with_name("mutation_explained")
-"""One JSON file per mutated module (`reference_solver.fast.band.json`): each survivor that cannot or
+"""One JSON file per mutated module (`reference_solver.compiled.band.json`): each survivor that cannot or
 need not be killed, by mutmut's name, with the reason (data, so that passes over different modules
 never edit the same file)."""
 

@@ -17,7 +17,7 @@ import time
 
 import scenarios
 from benchmarks.timing import Cost, exudyn_per_step, mujoco_per_step, native_per_point
-from reference_solver.fast import path
+from reference_solver.compiled import path
 
 FAST_POINTS = 2001
 PLAIN_POINTS = 51
@@ -33,7 +33,7 @@ def _ratio(a: Cost, b: Cost) -> str:
 
 
 def first_call_seconds() -> float:
-    """CPU seconds of the first fast-path analysis in this process: numba's compilation, or loading
+    """CPU seconds of the first compiled-path analysis in this process: numba's compilation, or loading
     its cache."""
     scenario = scenarios.build("slider_crank", overrides={"steps": 2})
     start = time.process_time()

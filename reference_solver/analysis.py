@@ -13,7 +13,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-import reference_solver.fast as fast_path
+import reference_solver.compiled as fast_path
 from reference_solver.diagnostics import rank_report
 from reference_solver.errors import AssemblyError, ConvergenceError, SingularConfigurationError, SolverError
 from reference_solver.factorization import Factorization
@@ -109,9 +109,9 @@ def analyse(
 ) -> Analysis:
     """The full kinematic analysis of `scenario` on `times` (default: the scenario's grid).
 
-    `fast` runs the compiled path (reference_solver.fast) when it can; whatever it cannot do, or
+    `fast` runs the compiled path (reference_solver.compiled) when it can; whatever it cannot do, or
     any abnormal event it meets, is handed to this loop, which then runs from the start. `fast`
-    None takes the compiled path where it pays (fast.pays: its kernels loaded already, or enough
+    None takes the compiled path where it pays (compiled.pays: its kernels loaded already, or enough
     work) or where the problem is too large for this loop's dense solves.
     """
     grid = np.asarray(scenario.times() if times is None else times, dtype=float)

@@ -3,7 +3,7 @@
 Every right-hand side of the partitioned integrator evaluates C (Newton on the dependent
 coordinates), C_q, C_t and Q_d; in plain Python that costs milliseconds. `constraint_system` gives
 the same ConstraintSystem whose `evaluate` and `c_t` run the compiled row instructions
-(reference_solver.fast.program.compile_dense, fast.dense) instead, when the scenario compiles;
+(reference_solver.compiled.program.compile_dense, compiled.dense) instead, when the scenario compiles;
 the plain system otherwise, or when asked (`fast=False`), so that each path checks the other.
 """
 
@@ -14,16 +14,16 @@ from types import ModuleType
 
 import numpy as np
 
-from reference_solver.fast import dense_kernels
-from reference_solver.fast.constraint_rows import NotCompiled
-from reference_solver.fast.program import compile_dense
+from reference_solver.compiled import dense_kernels
+from reference_solver.compiled.constraint_rows import NotCompiled
+from reference_solver.compiled.program import compile_dense
 from reference_solver.system import ConstraintSystem
 from scenarios.scenario import Scenario
 
 
 class CompiledSystem(ConstraintSystem):
     """A ConstraintSystem whose C, C_q, Q_d and C_t come from compiled kernels (`dense`, the
-    fast.dense module); NotCompiled where its rows have no kernel."""
+    compiled.dense module); NotCompiled where its rows have no kernel."""
 
     def __init__(self, scenario: Scenario, dense: ModuleType) -> None:
         super().__init__(scenario)

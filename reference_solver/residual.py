@@ -8,9 +8,9 @@ from types import ModuleType
 
 import numpy as np
 
-from reference_solver.fast import pays, residual_kernels
-from reference_solver.fast.constraint_rows import NotCompiled
-from reference_solver.fast.program import Program, compile_dense
+from reference_solver.compiled import pays, residual_kernels
+from reference_solver.compiled.constraint_rows import NotCompiled
+from reference_solver.compiled.program import Program, compile_dense
 from reference_solver.layout import Layout
 from reference_solver.system import ConstraintSystem, equation_for
 from scenarios.kept import kept
@@ -30,7 +30,7 @@ def constraint_residual(
     cheaper than the plain rows; `plain_constraint_residual` is the same
     measure on the plain rows, which checks it. A time where a counted constraint reads NaN (a NaN
     coordinate) has a NaN residual on both. `compiled` False takes the plain rows; None takes the
-    compiled ones where they pay (reference_solver.fast.pays).
+    compiled ones where they pay (reference_solver.compiled.pays).
     """
     _check(scenario, trajectory)
     points = len(trajectory.times)
@@ -50,7 +50,7 @@ def constraint_residual(
 class _Compiled:
     """A scenario's row instructions with what the residual reads beside them: the row scales and,
     per row, the cam contact it belongs to (None for every other constraint); `kernels` is
-    reference_solver.fast.residuals."""
+    reference_solver.compiled.residuals."""
 
     kernels: ModuleType
     program: Program

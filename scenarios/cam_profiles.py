@@ -125,7 +125,7 @@ def profile_point(profile: Profile, phi: float) -> np.ndarray:
 
 def disc_radii(r: float, e: float, phi: float) -> tuple[float, float, float, float]:
     """An eccentric disc's d(phi) and its first three derivatives (radius r, eccentricity e). Plain
-    float arithmetic, so that the compiled path (reference_solver.fast.evaluate) compiles this very
+    float arithmetic, so that the compiled path (reference_solver.compiled.evaluate) compiles this very
     function instead of restating it."""
     s2, c2 = math.sin(2.0 * phi), math.cos(2.0 * phi)
     sn = math.sin(phi)

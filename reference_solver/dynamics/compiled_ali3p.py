@@ -1,4 +1,4 @@
-"""ALI3-P with its time steps in one compiled call (fast.ali3p_kernel): the same method as Ali3p over
+"""ALI3-P with its time steps in one compiled call (compiled.ali3p_kernel): the same method as Ali3p over
 the compiled constraint rows, for scenarios without force elements, so W = M + h^2/4 C_q^T alpha C_q
 is symmetric positive definite and banded Cholesky factors it. `ali3p_stepper` gives it where the
 constraints compile, Ali3p otherwise; Ali3p stays the plain reference each is checked against.
@@ -11,18 +11,18 @@ from types import ModuleType
 
 import numpy as np
 
+from reference_solver.compiled import ali3p_kernels
+from reference_solver.compiled.constraint_rows import NotCompiled
+from reference_solver.compiled.program import K_SLOT_COL, WIDTH, compile_dense
 from reference_solver.compiled_system import CompiledSystem
 from reference_solver.dynamics.ali3p import PENALTY, Ali3p, StepState
 from reference_solver.dynamics.loads import Loads
 from reference_solver.errors import ConvergenceError
-from reference_solver.fast import ali3p_kernels
-from reference_solver.fast.constraint_rows import NotCompiled
-from reference_solver.fast.program import K_SLOT_COL, WIDTH, compile_dense
 from reference_solver.system import ConstraintSystem
 
 
 class CompiledAli3p(Ali3p):
-    """Ali3p whose steps run in fast.ali3p_kernel.advance (`kernels`); its state lives in `vec`."""
+    """Ali3p whose steps run in compiled.ali3p_kernel.advance (`kernels`); its state lives in `vec`."""
 
     def __init__(
         self, system: CompiledSystem, mass: np.ndarray, loads: Loads, h: float, kernels: ModuleType

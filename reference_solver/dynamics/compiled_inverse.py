@@ -1,6 +1,6 @@
-"""Inverse dynamics of a whole analysis in compiled calls (fast.inverse_kernel, one chunk of the grid
-each: fast.chunks), where the constraints compile (reference_solver.compiled_system) and every force
-element has a kernel (fast.load_program): the same multipliers, driver forces, reactions and
+"""Inverse dynamics of a whole analysis in compiled calls (compiled.inverse_kernel, one chunk of the grid
+each: compiled.chunks), where the constraints compile (reference_solver.compiled_system) and every force
+element has a kernel (compiled.load_program): the same multipliers, driver forces, reactions and
 energies as the plain loop in dynamics.inverse, to 1e-12
 (tests/reference_solver/dynamics/test_compiled_inverse.py)."""
 
@@ -8,13 +8,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from reference_solver.compiled import inverse_kernels
+from reference_solver.compiled.chunks import chunks, dense_point_seconds
+from reference_solver.compiled.constraint_rows import NotCompiled
+from reference_solver.compiled.load_program import compile_loads
 from reference_solver.compiled_system import CompiledSystem
 from reference_solver.dynamics.augmented import output_rows
 from reference_solver.dynamics.loads import Loads
-from reference_solver.fast import inverse_kernels
-from reference_solver.fast.chunks import chunks, dense_point_seconds
-from reference_solver.fast.constraint_rows import NotCompiled
-from reference_solver.fast.load_program import compile_loads
 from reference_solver.solution import Analysis
 from reference_solver.system import ConstraintSystem
 

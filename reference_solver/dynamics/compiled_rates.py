@@ -1,4 +1,4 @@
-"""The coordinate-partitioned ODE with its right-hand side in one compiled call (fast.rates): the
+"""The coordinate-partitioned ODE with its right-hand side in one compiled call (compiled.rates): the
 same positions, rates and state as Partitioned, over the compiled constraint rows and force
 elements, with no Python between them. `partitioned_ode` gives it where the constraints are compiled
 (reference_solver.compiled_system) and every force element has a kernel, Partitioned otherwise."""
@@ -10,14 +10,14 @@ from types import ModuleType
 
 import numpy as np
 
+from reference_solver.compiled import rates_kernels
+from reference_solver.compiled.constraint_rows import NotCompiled
+from reference_solver.compiled.load_program import compile_loads
+from reference_solver.compiled.program import WIDTH
 from reference_solver.compiled_system import CompiledSystem
 from reference_solver.dynamics.loads import Loads, LoadState
 from reference_solver.dynamics.partition import NEWTON_STEPS, RESIDUAL, STALLED, Partitioned, State
 from reference_solver.errors import ConvergenceError
-from reference_solver.fast import rates_kernels
-from reference_solver.fast.constraint_rows import NotCompiled
-from reference_solver.fast.load_program import compile_loads
-from reference_solver.fast.program import WIDTH
 from reference_solver.system import ConstraintSystem
 
 RETRY_STALLED = 1e-10
@@ -26,7 +26,7 @@ the compiled rows, which can sit a few times above STALLED)."""
 
 
 class CompiledPartitioned(Partitioned):
-    """Partitioned, its positions, state and rates evaluated by fast.rates.partitioned (`kernels`)."""
+    """Partitioned, its positions, state and rates evaluated by compiled.rates.partitioned (`kernels`)."""
 
     def __init__(
         self,

@@ -7,12 +7,12 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import lstsq
 
+from reference_solver.compiled import pays
 from reference_solver.compiled_system import constraint_system
 from reference_solver.dynamics.augmented import constraint_outputs
 from reference_solver.dynamics.compiled_inverse import compiled_outputs
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
-from reference_solver.fast import pays
 from reference_solver.solution import Analysis
 from scenarios.scenario import Scenario
 
@@ -25,7 +25,7 @@ def inverse_dynamics(
     (dynamics.compiled_inverse, equal to this loop to 1e-12); otherwise this loop, on the compiled
     Jacobian where the rows compile and `compiled` (equal to the plain rows to 1e-13,
     tests/reference_solver/test_compiled_system.py), on the plain rows without `compiled`.
-    `compiled` None is True where the compiled call pays (reference_solver.fast.pays), else False."""
+    `compiled` None is True where the compiled call pays (reference_solver.compiled.pays), else False."""
     compiled = pays("inverse_kernel", analysis.q.shape[1], len(analysis.times), compiled)
     system = constraint_system(scenario, fast=compiled)
     mass = mass_diagonal(scenario, system.layout, massless_contacts=True)

@@ -186,7 +186,7 @@ def solve_trajectory(
     times = time_grid(scenario, *grid, dense=engine != adapters.NATIVE or limits.dense(scenario))
     setting = engine_setting(adapter, scenario, mode, list(options))
     one_blas_thread()
-    from reference_solver.fast import compile_where_it_pays  # on use: --help imports no solver
+    from reference_solver.compiled import compile_where_it_pays  # on use: --help imports no solver
 
     compile_where_it_pays()  # one command: the plain path where loading the kernels costs more
     result = adapter.run(scenario, setting, times)

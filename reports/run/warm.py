@@ -8,10 +8,10 @@ run. Warmed here once per process and once per scenario, every forked worker sta
 worker kept for later groups builds a later scenario's program in its own untimed warm-up run).
 
 The warm-up is our own solver on the scenario's first two grid times and the constraint residual
-on them (every run's comparison measures it, with reference_solver.fast.residuals), run like the truth (in the
-runner's process with a time limit when that is the main thread; a Dask worker's task thread, where
-no alarm can be set, calls it directly: two grid times, a bounded Newton loop). Its failure is
-ignored: a run that cannot be made then fails on its own, with its own message.
+on them (every run's comparison measures it, with reference_solver.compiled.residuals), run like
+the truth (in the runner's process with a time limit when that is the main thread; a Dask worker's
+task thread, where no alarm can be set, calls it directly: two grid times, a bounded Newton loop).
+Its failure is ignored: a run that cannot be made then fails on its own, with its own message.
 """
 
 from __future__ import annotations

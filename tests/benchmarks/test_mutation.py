@@ -41,17 +41,17 @@ def test_an_unknown_module_is_refused_by_name() -> None:
 def test_a_kernel_module_is_mutated_as_the_python_numba_compiles(tmp_path: Path) -> None:
     """Its copy loses only the `@njit(...)` lines, one per kernel, and the run has numba off (under
     which njit returns the function itself); any other module keeps numba on, its cache in the copy."""
-    module = "reference_solver/fast/band.py"
+    module = "reference_solver/compiled/band.py"
     _scratch_copy(module, tmp_path)
     original = (ROOT / module).read_text().splitlines(keepends=True)
     stripped = (tmp_path / module).read_text().splitlines(keepends=True)
     kernels = [line for line in original if line.startswith("@njit(")]
     assert len(kernels) == 10 and [line for line in original if line not in kernels] == stripped
-    assert (tmp_path / "reference_solver/fast/loop.py").read_text() == (
-        ROOT / "reference_solver/fast/loop.py"
+    assert (tmp_path / "reference_solver/compiled/loop.py").read_text() == (
+        ROOT / "reference_solver/compiled/loop.py"
     ).read_text()
     assert _environment(module, tmp_path)["NUMBA_DISABLE_JIT"] == "1"
-    other = _environment("reference_solver/fast/rows.py", tmp_path)
+    other = _environment("reference_solver/compiled/rows.py", tmp_path)
     assert "NUMBA_DISABLE_JIT" not in other
     assert Path(other["NUMBA_CACHE_DIR"]).parent == tmp_path
     assert set(MODULES) >= KERNEL_MODULES

@@ -8,7 +8,7 @@ import pytest
 
 import reference_solver.analysis as analysis
 import scenarios
-from reference_solver.fast import path
+from reference_solver.compiled import path
 
 UNDERCUT = "cam_roller/stress_undercut"  # the contact point sweeps a concave valley in a few steps
 

@@ -1,4 +1,4 @@
-"""Where the compiled path pays (reference_solver.fast.pays): in a process that weighs the work
+"""Where the compiled path pays (reference_solver.compiled.pays): in a process that weighs the work
 (`mbxval solve`, fast.compile_where_it_pays) a solve of a few points runs the plain path rather than
 load numba and its kernels, a long one or one in a process that holds the kernels runs the compiled
 path; a process that does not weigh it (a harness) always runs the compiled path; and the two give
@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import reference_solver.fast as fast
+import reference_solver.compiled as fast
 from reference_solver import analyse, constraint_residual
 from reference_solver.dynamics.inverse import inverse_dynamics
 from scenarios import load

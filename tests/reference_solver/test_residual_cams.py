@@ -1,4 +1,4 @@
-"""The constraint residual of cam scenarios on the compiled rows (reference_solver.fast.residuals):
+"""The constraint residual of cam scenarios on the compiled rows (reference_solver.compiled.residuals):
 the plain rows' value on every cam scenario of the default suite and on a lobed profile, at random
 states (far off the constraints, with and without the contact parameter) and on the native
 solution, as the harness measures it (and its contact parameter moved by 1e-6 rad); the plain rows

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from reference_solver.fast import path
+from reference_solver.compiled import path
 from reference_solver.system import ConstraintSystem
 from scenarios import Scenario
 

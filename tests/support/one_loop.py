@@ -12,13 +12,13 @@ import numpy as np
 from scipy.optimize import brentq
 
 import scenarios
+from reference_solver.compiled import ali3p_kernel as kernel
+from reference_solver.compiled.ali3p_matrix import factor
 from reference_solver.compiled_system import constraint_system
 from reference_solver.dynamics.ali3p import Ali3p, StepState
 from reference_solver.dynamics.compiled_ali3p import CompiledAli3p, ali3p_stepper
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
-from reference_solver.fast import ali3p_kernel as kernel
-from reference_solver.fast.ali3p_matrix import factor
 from reference_solver.system import ConstraintSystem
 from tests.support.row_stores import dense_jacobian, random_row_store, store_bandwidth
 

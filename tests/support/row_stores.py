@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from reference_solver.fast.program import INT_COLUMNS, K_SLOT_COL, K_WIDTH, WIDTH
+from reference_solver.compiled.program import INT_COLUMNS, K_SLOT_COL, K_WIDTH, WIDTH
 
 
 def random_row_store(rng: np.random.Generator, m: int, n: int, spread: int) -> tuple[np.ndarray, np.ndarray]:

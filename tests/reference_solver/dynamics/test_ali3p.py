@@ -118,7 +118,7 @@ def test_the_rockers_leave_the_crank_by_what_the_step_s_phase_at_the_passage_all
     (a step ends next to the singular configuration, where C_q holds the chain's extra freedoms only
     to second order). The plain step stops there at its stalled augmented Lagrangian: measured
     6.0e-13 and 3.6e-9 (before C's rows summed positions apart, 1.4e-12 and 3.6e-9). The compiled
-    step continues through the Schur complement (fast.ali3p_kernel): measured 5.4e-13 and 7.2e-12
+    step continues through the Schur complement (compiled.ali3p_kernel): measured 5.4e-13 and 7.2e-12
     (2.2e-12 and 1.0e-10 before)."""
     scenario, grid, reduced = a02_chain(2, 0.8)
     step = 0.8 / count * (1 + 1e-9)

@@ -1,6 +1,6 @@
 """A02's chain far from the origin: the compiled constraint rows sum positions apart from rotated
-vectors (fast.evaluate), so C's round-off is that of link-sized quantities whatever the
-coordinates' size, and ALI3-P's round-off floor (fast.ali3p_kernel) follows it. Before, on 40 m
+vectors (compiled.evaluate), so C's round-off is that of link-sized quantities whatever the
+coordinates' size, and ALI3-P's round-off floor (compiled.ali3p_kernel) follows it. Before, on 40 m
 coordinates, C lost their round-off to cancellation and the floor grew with them, so a slow
 augmented Lagrangian next to a singular passage was taken for round-off: the rockers of the
 reduced A02 moved 38 m along x stayed 3.4e-9 rad off the crank (7e-12 at the origin)."""

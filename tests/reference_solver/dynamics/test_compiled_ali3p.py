@@ -1,4 +1,4 @@
-"""ALI3-P's compiled step (dynamics.compiled_ali3p, fast.ali3p_kernel) against the plain step
+"""ALI3-P's compiled step (dynamics.compiled_ali3p, compiled.ali3p_kernel) against the plain step
 (dynamics.ali3p on the plain constraints) on random states, its row-stored C_q against finite
 differences of C, and its banded Cholesky solve against a dense solve of W built independently.
 
@@ -10,13 +10,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from reference_solver.compiled.evaluate import evaluate
+from reference_solver.compiled.program import K_SLOT_COL, K_WIDTH, WIDTH
 from reference_solver.compiled_system import constraint_system
 from reference_solver.dynamics.ali3p import Ali3p, StepState
 from reference_solver.dynamics.compiled_ali3p import CompiledAli3p, ali3p_stepper
 from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
-from reference_solver.fast.evaluate import evaluate
-from reference_solver.fast.program import K_SLOT_COL, K_WIDTH, WIDTH
 from scenarios import load
 from tests.support.compiled_dynamics import both, random_states
 

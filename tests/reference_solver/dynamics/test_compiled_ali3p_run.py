@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import scenarios
+from reference_solver.compiled.constraint_rows import NotCompiled
 from reference_solver.compiled_system import CompiledSystem, constraint_system
 from reference_solver.dynamics.ali3p import Ali3p, StepState
 from reference_solver.dynamics.compiled_ali3p import CompiledAli3p
@@ -16,7 +17,6 @@ from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 from reference_solver.dynamics.partition import State, driver_power
 from reference_solver.errors import ConvergenceError
-from reference_solver.fast.constraint_rows import NotCompiled
 from scenarios.drivers import AbsoluteDriver
 from scenarios.forces import RotationalSpringDamper
 from scenarios.motions import ConstantSpeed

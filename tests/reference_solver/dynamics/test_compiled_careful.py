@@ -1,5 +1,5 @@
 """The compiled ALI3-P step's two additions for singular passages (dynamics.compiled_ali3p,
-fast.ali3p_kernel's P_CAREFUL): a careful step (Newton and the projections through the Schur
+compiled.ali3p_kernel's P_CAREFUL): a careful step (Newton and the projections through the Schur
 complement from the first iteration) reaches the same state as the augmented Lagrangian where that
 converges, and a step of another length is the plain step at that length."""
 

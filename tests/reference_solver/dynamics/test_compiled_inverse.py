@@ -1,4 +1,4 @@
-"""The compiled inverse dynamics (dynamics.compiled_inverse, fast.inverse_kernel) against the plain
+"""The compiled inverse dynamics (dynamics.compiled_inverse, compiled.inverse_kernel) against the plain
 loop (dynamics.inverse with compiled=False: plain rows, plain loads, scipy's lstsq) to 1e-12 on
 random states: every driver force, reaction and energy, at states that need not satisfy anything
 (the multipliers are the least-squares solution of C_q^T lambda = Q_e - M q'' at any state)."""

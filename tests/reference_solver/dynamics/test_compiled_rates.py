@@ -1,4 +1,4 @@
-"""The compiled right-hand side of the partitioned method (dynamics.compiled_rates, fast.rates)
+"""The compiled right-hand side of the partitioned method (dynamics.compiled_rates, compiled.rates)
 against the plain one (dynamics.partition with the plain constraints) to 1e-12 on random states
 near each scenario's start, and its rates against finite differences of its own positions: q' is
 the derivative of the positions along (q'_I, t), q'' the derivative of q' along (q''_I, t)."""

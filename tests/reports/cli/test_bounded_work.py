@@ -107,7 +107,7 @@ def _most_steps(name: str, overrides: dict[str, int], share: float) -> int:
 
 LATE_CPU = 1.0
 """CPU seconds the command may spend after the signal: its compiled loops return between chunks of
-about 0.1 s (reference_solver.fast.chunks), its CSV is written in blocks, and the process ends
+about 0.1 s (reference_solver.compiled.chunks), its CSV is written in blocks, and the process ends
 without the interpreter's teardown (stop.end); a few hundredths of a second are measured."""
 LATE_WALL = 5.0
 """Wall seconds it may take, for a machine shared by a whole test suite (under a second measured

@@ -1,6 +1,6 @@
 """Each command imports what it uses (issue #40): `mbxval --help` and `--version` import no pandas,
 matplotlib, numba or scipy.interpolate; a kinematic solve of a few points none of them, nor
-scipy.integrate or scipy.sparse (the plain path pays below reference_solver.fast.PAYS_FROM), and a
+scipy.integrate or scipy.sparse (the plain path pays below reference_solver.compiled.PAYS_FROM), and a
 long one only the compiled path's numba. Checked by the modules a fresh interpreter holds after the
 command, never by time."""
 

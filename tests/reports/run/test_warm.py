@@ -26,7 +26,7 @@ CONFIG = RunConfig(ladder=True, repeats=1, warmup=0, timeout=3.0)
 
 
 def test_a_forked_run_inherits_the_warmed_kernels_and_program() -> None:
-    from reference_solver.fast import loop, path
+    from reference_solver.compiled import loop, path
 
     scenario = build_scenario("four_bar[omega=33]")
     warm.warm(scenario)
