@@ -13,11 +13,12 @@ import warnings
 from functools import lru_cache
 from importlib import import_module
 from importlib.util import find_spec
-from pathlib import Path
 from types import ModuleType
 from typing import TYPE_CHECKING
 
 import numpy as np
+
+from reference_solver.compiled.cache_guard import drop_stale_cache
 
 if TYPE_CHECKING:
     from reference_solver.solution import Analysis
@@ -63,15 +64,6 @@ def analyse(scenario: Scenario, grid: np.ndarray, tolerance: float, max_iteratio
     _loaded.add("path")
     result: Analysis | None = path.analyse(scenario, grid, tolerance, max_iterations)
     return result
-
-
-@lru_cache(maxsize=1)
-def drop_stale_cache() -> None:
-    """Drop numba's cached kernels where their sources changed (compiled.cache_guard), once a process:
-    before numba first reads its cache here, whichever kernels load first."""
-    from reference_solver.compiled.cache_guard import refresh
-
-    refresh(Path(__file__).parent)
 
 
 @lru_cache(maxsize=1)

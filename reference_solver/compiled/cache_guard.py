@@ -8,7 +8,15 @@ from __future__ import annotations
 
 import ast
 import hashlib
+from functools import lru_cache
 from pathlib import Path
+
+
+@lru_cache(maxsize=1)
+def drop_stale_cache() -> None:
+    """Drop numba's cached kernels where their sources changed, once a process: before numba first
+    reads its cache, whichever kernels load first."""
+    refresh(Path(__file__).parent)
 
 
 def refresh(package: Path) -> None:

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from reference_solver.compiled import drop_stale_cache
+from reference_solver.compiled.cache_guard import drop_stale_cache
 from reference_solver.compiled.chunks import banded_point_seconds, chunks
 from reference_solver.compiled.constraint_rows import NotCompiled
 from reference_solver.compiled.loop import EVENTS, OK
