@@ -176,13 +176,13 @@ class ReferenceAdapter(Adapter):
             if model.scenario.analysis == "dynamic":
                 from reference_solver.dynamics import simulate  # on first use: scipy.integrate
 
-                fast = model.compiled or model.mode == ALI3P  # ALI3-P: compiled constraints either way
-                dynamic = simulate(model.scenario, times, model.tolerance, model.mode, fast, model.step)
+                compiled = model.compiled or model.mode == ALI3P  # ALI3-P: compiled constraints either way
+                dynamic = simulate(model.scenario, times, model.tolerance, model.mode, compiled, model.step)
                 self.count_steps(dynamic.evaluations)
                 return dynamic.trajectory()
             if model.inverse:
                 _check_inverse_work(model.scenario, len(times))
-            analysis = analyse(model.scenario, times, model.tolerance, fast=None)
+            analysis = analyse(model.scenario, times, model.tolerance, compiled=None)
             trajectory = analysis.trajectory()
             if model.inverse:
                 from reference_solver.dynamics.inverse import inverse_dynamics

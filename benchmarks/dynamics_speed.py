@@ -5,7 +5,7 @@ from) on the same grid.
     python -m benchmarks.dynamics_speed [--repeats N]      (or: mbxval bench dynamics)
 
 Right-hand sides per second are printed for the plain path (`simulate`'s default) and the compiled
-one (`fast=True`: reference_solver.compiled_system's constraints, the whole right-hand side in one
+one (`compiled=True`: reference_solver.compiled_system's constraints, the whole right-hand side in one
 numba call, reference_solver.dynamics.compiled_rates), with their ratio; the two take turns in each
 repeat, so that the ratio is measured side by side; the dynamics column is the compiled path.
 Those rates divide the whole integration by its right-hand sides, scipy's own step included; the
@@ -65,32 +65,33 @@ def main(argv: list[str] | None = None) -> None:
     print(f"microseconds per output point ({POINTS} points over each horizon); best of {args.repeats}")
     header = (
         f"{'scenario':<22}{'n':>4}{'dynamics':>12}{'evals/pt':>10}{'rhs/s plain':>13}{'compiled':>10}"
-        f"{'ratio':>7}{'call us plain':>15}{'compiled':>10}{'ratio':>7}{'kinematic':>12}{'fast':>10}"
+        f"{'ratio':>7}{'call us plain':>15}{'compiled':>10}{'ratio':>7}{'kinematic':>12}{'compiled':>10}"
     )
     print(header + "  (kinematic family)")
     for name, kinematic in PAIRS:
         scenario = scenarios.build(name, overrides={"steps": POINTS} if name != "stiff_spring" else {})
         grid = scenario.times(steps=POINTS)
-        evaluations = simulate(scenario, grid, fast=True).evaluations
+        evaluations = simulate(scenario, grid, compiled=True).evaluations
         compiled, plain_runs = interleaved(
-            [partial(simulate, scenario, grid, fast=True), partial(simulate, scenario, grid)], args.repeats
+            [partial(simulate, scenario, grid, compiled=True), partial(simulate, scenario, grid)],
+            args.repeats,
         )
         dynamic, unfast = min(compiled) / (POINTS + 1), min(plain_runs) / (POINTS + 1)
         per_point = evaluations / (POINTS + 1)
         rates = f"{per_point / unfast:13.0f}{per_point / dynamic:10.0f}{unfast / dynamic:7.1f}"
         slow_call, fast_call = rhs_seconds(scenario, grid, args.repeats)
         calls = f"{1e6 * slow_call:15.0f}{1e6 * fast_call:10.1f}{slow_call / fast_call:7.0f}"
-        plain = fast = "-"
+        plain = compiled_cell = "-"
         if kinematic is not None:
             driven = scenarios.build(kinematic)
             kgrid = driven.times(steps=POINTS)
-            slow = best(partial(analyse, driven, kgrid, fast=False), args.repeats)
+            slow = best(partial(analyse, driven, kgrid, compiled=False), args.repeats)
             quick = best(partial(analyse, driven, kgrid), args.repeats)
-            plain, fast = f"{1e6 * slow / (POINTS + 1):12.0f}", f"{1e6 * quick / (POINTS + 1):10.0f}"
+            plain, compiled_cell = f"{1e6 * slow / (POINTS + 1):12.0f}", f"{1e6 * quick / (POINTS + 1):10.0f}"
         size = 3 * len(scenario.bodies)
         print(
             f"{name:<22}{size:>4}{1e6 * dynamic:12.0f}{per_point:10.1f}{rates}{calls}"
-            f"{plain:>12}{fast:>10}  ({kinematic or '-'})"
+            f"{plain:>12}{compiled_cell:>10}  ({kinematic or '-'})"
         )
 
 

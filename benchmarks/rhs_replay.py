@@ -59,13 +59,13 @@ def _recording(calls: list[Call]) -> Iterator[None]:
 
 def _odes(scenario: Scenario) -> tuple[Partitioned, Partitioned]:
     """The plain and the compiled ODE at the scenario's start, on the partition simulate chooses."""
-    plain, fast = constraint_system(scenario, fast=False), constraint_system(scenario)
+    plain, compiled = constraint_system(scenario, compiled=False), constraint_system(scenario)
     mass = mass_diagonal(scenario, plain.layout)
-    start = initial_state(fast, mass, Loads(scenario, fast.layout, mass), float(scenario.times()[0]))
-    independent = choose_independent(fast, start.jac)  # as simulate(fast=True) chose it
+    start = initial_state(compiled, mass, Loads(scenario, compiled.layout, mass), float(scenario.times()[0]))
+    independent = choose_independent(compiled, start.jac)  # as simulate(compiled=True) chose it
     return (
         Partitioned(plain, mass, Loads(scenario, plain.layout, mass), start.q, independent),
-        partitioned_ode(fast, mass, Loads(scenario, fast.layout, mass), start.q, independent),
+        partitioned_ode(compiled, mass, Loads(scenario, compiled.layout, mass), start.q, independent),
     )
 
 
@@ -89,7 +89,7 @@ def rhs_seconds(
     the first `limit` calls of the compiled integration's first partition."""
     calls: list[Call] = []
     with _recording(calls):
-        simulate(scenario, grid, fast=True)
+        simulate(scenario, grid, compiled=True)
     calls = calls[:limit]
     count = sum(kind for kind, _, _ in calls)
     best = [np.inf, np.inf]

@@ -4,10 +4,10 @@ MuJoCo's mj_step (RK4 and implicitfast) and Exudyn's cost per step on the same m
     python -m benchmarks.solver_speed [--repeats N] [--families a,b,...]
 
 Native: a full position, velocity and acceleration analysis per time point at tolerance 1e-12, the
-fast (compiled) path over a long grid, the plain path over a short one. MuJoCo: mj_step from a
+compiled path over a long grid, the plain path over a short one. MuJoCo: mj_step from a
 Python loop (what a user calling it per step pays) and, for reference, mj_step's own loop (nstep).
 Exudyn: its default setting's simulation time per step. Every time is the best of the repeats.
-The last line prints the slider-crank ratio alone (native fast / MuJoCo RK4 step).
+The last line prints the slider-crank ratio alone (native compiled / MuJoCo RK4 step).
 """
 
 from __future__ import annotations
@@ -23,8 +23,8 @@ FAST_POINTS = 2001
 PLAIN_POINTS = 51
 MUJOCO_STEPS = 2000
 HEADER = (
-    f"{'family':<16}{'n':>5}{'fast':>10}{'plain':>10}{'mj RK4':>10}{'mj impl':>10}"
-    f"{'RK4 nstep':>10}{'impl nstep':>11}{'exudyn':>10}{'fast/RK4':>10}{'fast/impl':>10}"
+    f"{'family':<16}{'n':>5}{'compiled':>10}{'plain':>10}{'mj RK4':>10}{'mj impl':>10}"
+    f"{'RK4 nstep':>10}{'impl nstep':>11}{'exudyn':>10}{'RK4 ratio':>10}{'impl ratio':>10}"
 )
 
 
@@ -54,7 +54,7 @@ def main(argv: list[str] | None = None) -> float | None:
     notes: list[str] = []
     for family in args.families.split(","):
         scenario = scenarios.build(family)
-        fast = native_per_point(scenario, True, FAST_POINTS, args.repeats)
+        compiled = native_per_point(scenario, True, FAST_POINTS, args.repeats)
         plain = native_per_point(scenario, False, PLAIN_POINTS, max(1, args.repeats // 2))
         rk4, rk4_n = mujoco_per_step(scenario, "RK4", MUJOCO_STEPS, args.repeats)
         impl, impl_n = mujoco_per_step(scenario, "implicitfast", MUJOCO_STEPS, args.repeats)
@@ -62,11 +62,11 @@ def main(argv: list[str] | None = None) -> float | None:
         n = path.compiled(scenario).program
         size = n.n if n is not None else 0
         print(
-            f"{family:<16}{size:>5}{fast.cell()}{plain.cell()}{rk4.cell()}{impl.cell()}"
-            f"{rk4_n.cell()}{impl_n.cell(11)}{exudyn.cell()}{_ratio(fast, rk4)}{_ratio(fast, impl)}"
+            f"{family:<16}{size:>5}{compiled.cell()}{plain.cell()}{rk4.cell()}{impl.cell()}"
+            f"{rk4_n.cell()}{impl_n.cell(11)}{exudyn.cell()}{_ratio(compiled, rk4)}{_ratio(compiled, impl)}"
         )
         notes += [f"  {family}: {c.note}" for c in (rk4, exudyn) if c.value is None]
-        ratios[family] = Cost(fast.value / rk4.value if fast.value and rk4.value else None)
+        ratios[family] = Cost(compiled.value / rk4.value if compiled.value and rk4.value else None)
     if notes:
         print("not measured:")
         print("\n".join(notes))

@@ -32,10 +32,10 @@ class Cost:
         return f"{self.value:{width}.2f}" if self.value is not None else f"{'-':>{width}}"
 
 
-def native_per_point(scenario: Scenario, fast: bool, points: int, repeats: int) -> Cost:
+def native_per_point(scenario: Scenario, compiled: bool, points: int, repeats: int) -> Cost:
     """The native solver's cost per time point at tolerance 1e-12 over a grid of `points` points."""
     grid = np.asarray(scenario.times(steps=points - 1))
-    seconds = best(lambda: analyse(scenario, grid, 1e-12, fast=fast), repeats)
+    seconds = best(lambda: analyse(scenario, grid, 1e-12, compiled=compiled), repeats)
     return Cost(1e6 * seconds / points)
 
 

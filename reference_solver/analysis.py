@@ -13,7 +13,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-import reference_solver.compiled as fast_path
+import reference_solver.compiled as compiled_path
 from reference_solver.diagnostics import rank_report
 from reference_solver.errors import AssemblyError, ConvergenceError, SingularConfigurationError, SolverError
 from reference_solver.factorization import Factorization
@@ -105,21 +105,21 @@ def analyse(
     times: Sequence[float] | np.ndarray | None = None,
     tolerance: float = 1e-12,
     max_iterations: int = 25,
-    fast: bool | None = True,
+    compiled: bool | None = True,
 ) -> Analysis:
     """The full kinematic analysis of `scenario` on `times` (default: the scenario's grid).
 
-    `fast` runs the compiled path (reference_solver.compiled) when it can; whatever it cannot do, or
-    any abnormal event it meets, is handed to this loop, which then runs from the start. `fast`
+    `compiled` runs the compiled path (reference_solver.compiled) when it can; whatever it cannot do, or
+    any abnormal event it meets, is handed to this loop, which then runs from the start. `compiled`
     None takes the compiled path where it pays (compiled.pays: its kernels loaded already, or enough
     work) or where the problem is too large for this loop's dense solves.
     """
     grid = np.asarray(scenario.times() if times is None else times, dtype=float)
     coordinates = 3 * len(scenario.bodies)
-    if fast_path.pays("path", coordinates, grid.size, fast) or (
-        fast is None and coordinates > MAX_DENSE_ROWS
+    if compiled_path.pays("path", coordinates, grid.size, compiled) or (
+        compiled is None and coordinates > MAX_DENSE_ROWS
     ):
-        done = fast_path.analyse(scenario, grid, tolerance, max_iterations)
+        done = compiled_path.analyse(scenario, grid, tolerance, max_iterations)
         if done is not None:
             return done
     system = ConstraintSystem(scenario)
@@ -254,7 +254,7 @@ def solve(
     scenario: Scenario,
     times: Sequence[float] | np.ndarray | None = None,
     tolerance: float = 1e-12,
-    fast: bool = True,
+    compiled: bool = True,
 ) -> Trajectory:
     """The reference trajectory of every body of `scenario` (all three levels, plus contact phi)."""
-    return analyse(scenario, times, tolerance, fast=fast).trajectory()
+    return analyse(scenario, times, tolerance, compiled=compiled).trajectory()

@@ -4,7 +4,7 @@ Every right-hand side of the partitioned integrator evaluates C (Newton on the d
 coordinates), C_q, C_t and Q_d; in plain Python that costs milliseconds. `constraint_system` gives
 the same ConstraintSystem whose `evaluate` and `c_t` run the compiled row instructions
 (reference_solver.compiled.program.compile_dense, compiled.dense) instead, when the scenario compiles;
-the plain system otherwise, or when asked (`fast=False`), so that each path checks the other.
+the plain system otherwise, or when asked (`compiled=False`), so that each path checks the other.
 """
 
 from __future__ import annotations
@@ -40,9 +40,9 @@ class CompiledSystem(ConstraintSystem):
         return self.kernels.c_t(t)  # type: ignore[attr-defined, no-any-return]
 
 
-def constraint_system(scenario: Scenario, fast: bool = True) -> ConstraintSystem:
-    """The compiled system where the scenario compiles and `fast`, else the plain one."""
-    if not fast or scenario.cams:
+def constraint_system(scenario: Scenario, compiled: bool = True) -> ConstraintSystem:
+    """The compiled system where the scenario compiles and `compiled`, else the plain one."""
+    if not compiled or scenario.cams:
         return ConstraintSystem(scenario)
     module, problem = dense_kernels()
     if module is None:

@@ -115,13 +115,13 @@ def simulate(
     times: Sequence[float] | np.ndarray | None = None,
     rtol: float = 1e-12,
     method: str = "DOP853",
-    fast: bool = False,
+    compiled: bool = False,
     step: float | None = None,
 ) -> DynamicAnalysis:
     """Forward dynamics of `scenario` on `times` (default: the scenario's grid, starting at t0), by
     coordinate partitioning integrated by `method` (one of METHODS) at `rtol`, or by ALI3-P
     (`method="ali3p"`, ali3p.py) at the fixed `step` (default ALI3P_STEP, cut to divide each output
-    interval; `rtol` is not used there). `fast` evaluates the constraints on the compiled path
+    interval; `rtol` is not used there). `compiled` evaluates the constraints on the compiled path
     (compiled_system) and, for the partitioned method, the whole right-hand side in one compiled
     call (compiled_rates), equal to the plain one to 1e-12: the native engine asks for it by
     default, the dynamics suite's truth except through a singular passage, where round-off picks
@@ -133,7 +133,7 @@ def simulate(
     if step is not None and not (np.isfinite(step) and step > 0):
         raise SolverError(f"ALI3-P's step must be a positive number of seconds, not {step}")
     grid = np.asarray(scenario.times() if times is None else times, dtype=float)
-    system = constraint_system(scenario, fast)
+    system = constraint_system(scenario, compiled)
     mass = mass_diagonal(scenario, system.layout)
     loads = Loads(scenario, system.layout, mass)
     state = initial_state(system, mass, loads, float(grid[0]))

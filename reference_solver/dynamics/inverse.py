@@ -27,7 +27,7 @@ def inverse_dynamics(
     tests/reference_solver/test_compiled_system.py), on the plain rows without `compiled`.
     `compiled` None is True where the compiled call pays (reference_solver.compiled.pays), else False."""
     compiled = pays("inverse_kernel", analysis.q.shape[1], len(analysis.times), compiled)
-    system = constraint_system(scenario, fast=compiled)
+    system = constraint_system(scenario, compiled=compiled)
     mass = mass_diagonal(scenario, system.layout, massless_contacts=True)
     loads = Loads(scenario, system.layout, mass)
     if compiled:

@@ -66,9 +66,9 @@ def truth(scenario: Scenario, times: Any) -> NamedTruth:
     from reference_solver.dynamics import simulate  # on first use: the native solver is slow to import
 
     rtol = truth_rtol(scenario)
-    fast = scenario.family not in SINGULAR_PASSAGES
-    path = "" if fast else ", plain constraints"
-    trajectory = simulate(scenario, times, rtol, fast=fast).trajectory()
+    compiled = scenario.family not in SINGULAR_PASSAGES
+    path = "" if compiled else ", plain constraints"
+    trajectory = simulate(scenario, times, rtol, compiled=compiled).trajectory()
     return NamedTruth(trajectory, f"native dynamics, DOP853 rtol {rtol:g}{path}")
 
 

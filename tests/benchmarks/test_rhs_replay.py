@@ -15,7 +15,7 @@ def test_the_replayed_calls_end_where_the_integration_did_on_both_paths() -> Non
     scenario = scenarios.build("compound_pendulum", overrides={"t_end": 0.05, "steps": 5})
     calls: list[Call] = []
     with _recording(calls):
-        simulate(scenario, scenario.times(), fast=True)
+        simulate(scenario, scenario.times(), compiled=True)
     assert sum(kind for kind, _, _ in calls) > 50 and not all(kind for kind, _, _ in calls)
     plain, compiled = _odes(scenario)
     for ode in (plain, compiled):

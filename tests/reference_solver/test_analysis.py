@@ -1,4 +1,4 @@
-"""The plain kinematic loop (reference_solver.analysis, fast=False) on a mechanism worked by hand.
+"""The plain kinematic loop (reference_solver.analysis, compiled=False) on a mechanism worked by hand.
 
 A crank of length 2 a pinned at its end to the ground origin, its angle driven by the harmonic law
 theta = m + A cos(w t): its frame origin (the centre) is at a (cos theta, sin theta), so
@@ -48,7 +48,7 @@ from tests.support.hand_crank import (
 
 def test_positions_rates_and_accelerations_are_the_hand_worked_ones() -> None:
     scenario = crank_scenario()
-    result = analyse(scenario, fast=False)
+    result = analyse(scenario, compiled=False)
     grid = np.asarray(scenario.times())
     np.testing.assert_array_equal(result.times, grid)
     for level, expected in zip(("q", "qd", "qdd"), crank_by_hand(grid), strict=True):
@@ -159,7 +159,7 @@ def test_steps_newton_cannot_take_at_once_are_retaken_in_halves(
     """With two Newton iterations allowed, some whole steps fail and are retaken in halved steps
     (analysis._approach), forwards and backwards in time alike: the answer is still the hand-worked one."""
     calls = _counting_approach(monkeypatch)
-    result = analyse(crank_scenario(), grid, max_iterations=2, fast=False)
+    result = analyse(crank_scenario(), grid, max_iterations=2, compiled=False)
     assert calls, "no step was retaken: the test does not reach analysis._approach"
     for level, expected in zip(("q", "qd", "qdd"), crank_by_hand(grid), strict=True):
         np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-12, err_msg=level)
@@ -172,7 +172,7 @@ def test_the_end_of_a_stroke_is_found_to_the_step_resolution() -> None:
     (measured 1.7e-14 before t*; a resolution 1e-12 / t would leave 1e-10)."""
     scenario = scenarios.build("slider_crank/slider_drive", overrides={"stroke_fraction": 1.2})
     with pytest.raises(SingularConfigurationError) as caught:
-        analyse(scenario, fast=False)
+        analyse(scenario, compiled=False)
     assert caught.value.time == pytest.approx(math.asin(1 / 1.2) / 50, abs=5e-14)
 
 
@@ -181,7 +181,7 @@ def test_a_dead_centre_loses_exactly_one_rank_and_the_message_names_the_rows() -
     direction, so C_q (square) loses exactly one rank. The message lists the dependent rows."""
     scenario = scenarios.build("slider_crank/slider_drive", overrides={"stroke_fraction": 1.0, "steps": 100})
     with pytest.raises(SingularConfigurationError) as caught:
-        analyse(scenario, fast=False)
+        analyse(scenario, compiled=False)
     error = caught.value
     assert error.rank_deficiency == 1
     assert len(error.dependent_rows) >= 2 and "slider_drive.x" in error.dependent_rows
@@ -200,16 +200,16 @@ def test_solve_runs_on_the_times_it_is_given() -> None:
 
 def test_solve_takes_the_fast_path_by_default(monkeypatch: pytest.MonkeyPatch) -> None:
     calls: list[str] = []
-    real = analysis.fast_path.analyse
+    real = analysis.compiled_path.analyse
 
     def counted(scenario, *args, **kwargs):  # type: ignore[no-untyped-def]
         calls.append(scenario.name)
         return real(scenario, *args, **kwargs)
 
-    monkeypatch.setattr(analysis.fast_path, "analyse", counted)
+    monkeypatch.setattr(analysis.compiled_path, "analyse", counted)
     solve(crank_scenario(), [0.0, 0.1])
     assert calls == ["hand_crank"]
-    solve(crank_scenario(), [0.0, 0.1], fast=False)
+    solve(crank_scenario(), [0.0, 0.1], compiled=False)
     assert calls == ["hand_crank"]
 
 
@@ -221,8 +221,8 @@ def test_half_steps_that_leave_the_branch_are_refused_too() -> None:
     scenario = scenarios.build("cam_roller/stress_undercut")
     coarse = np.asarray(scenario.times(steps=scenario.steps // 4))
     fine = np.asarray(scenario.times(steps=4 * scenario.steps))
-    reference = analyse(scenario, fine, fast=False).q[::16]
-    np.testing.assert_allclose(analyse(scenario, coarse, fast=False).q, reference, rtol=0, atol=1e-12)
+    reference = analyse(scenario, fine, compiled=False).q[::16]
+    np.testing.assert_allclose(analyse(scenario, coarse, compiled=False).q, reference, rtol=0, atol=1e-12)
 
 
 def _newton_failing_after(monkeypatch: pytest.MonkeyPatch, limit: float) -> None:
@@ -247,7 +247,7 @@ def test_a_newton_failure_at_a_regular_configuration_is_a_convergence_error(
     last successful Newton's (a few)."""
     _newton_failing_after(monkeypatch, limit)
     with pytest.raises(ConvergenceError) as caught:
-        analyse(crank_scenario(), fast=False)
+        analyse(crank_scenario(), compiled=False)
     error = caught.value
     assert error.time == pytest.approx(limit, abs=1e-12)
     assert error.q is not None
@@ -304,7 +304,7 @@ def test_two_mechanisms_at_their_stroke_ends_lose_two_ranks() -> None:
         outputs=(),
     )
     with pytest.raises(SingularConfigurationError) as caught:
-        analyse(two, fast=False)
+        analyse(two, compiled=False)
     assert caught.value.rank_deficiency == 2
     assert {"slider_drive.x", "slider_drive_2.x"} <= set(caught.value.dependent_rows)
 
@@ -385,33 +385,33 @@ def test_every_step_of_a_smooth_motion_is_taken_at_once(monkeypatch: pytest.Monk
     1e-4) of the answer: no step is retaken and each Newton ends in 3 iterations (measured), a
     predictor that left out a term, or a step believed longer than it is, would be retaken."""
     calls = _counting_approach(monkeypatch)
-    result = analyse(crank_scenario(), fast=False)
+    result = analyse(crank_scenario(), compiled=False)
     assert calls == []
     assert np.all(result.iterations[1:] <= 3)
 
 
 def test_a_grid_of_one_time_is_the_assembled_configuration_and_its_rates() -> None:
-    result = analyse(crank_scenario(), [0.3], fast=False)
+    result = analyse(crank_scenario(), [0.3], compiled=False)
     for level, expected in zip(("q", "qd", "qdd"), crank_by_hand(np.array([0.3])), strict=True):
         np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-12, err_msg=level)
 
 
 def test_integer_times_give_a_float_grid_and_the_iterations_are_counts() -> None:
-    for fast in (True, False):
-        result = analyse(crank_scenario(), [0, 1], fast=fast)
+    for compiled in (True, False):
+        result = analyse(crank_scenario(), [0, 1], compiled=compiled)
         assert result.times.dtype == np.float64
-        assert result.iterations.dtype.kind == "i", fast
+        assert result.iterations.dtype.kind == "i", compiled
 
 
 def test_analyse_takes_the_fast_path_by_default(monkeypatch: pytest.MonkeyPatch) -> None:
     calls: list[float] = []
-    real = analysis.fast_path.analyse
+    real = analysis.compiled_path.analyse
 
     def counted(scenario, grid, tolerance, max_iterations):  # type: ignore[no-untyped-def]
         calls.append(tolerance)
         return real(scenario, grid, tolerance, max_iterations)
 
-    monkeypatch.setattr(analysis.fast_path, "analyse", counted)
+    monkeypatch.setattr(analysis.compiled_path, "analyse", counted)
     analyse(crank_scenario(), [0.0, 0.1])
     assert calls == [1e-12]
 
@@ -428,7 +428,7 @@ def test_a_sign_change_of_det_c_q_is_reported_at_the_nearer_grid_point(before: f
     t0, t1 = t_star - before, t_star + after
     grid = np.concatenate([np.linspace(0.0, t0, 11), [t1]])
     with pytest.raises(SingularConfigurationError) as caught:
-        analyse(scenario, grid, fast=False)
+        analyse(scenario, grid, compiled=False)
     error = caught.value
     assert error.time == pytest.approx(t_star, abs=2e-7)
     assert error.q is not None
@@ -445,7 +445,7 @@ def test_a_grid_point_on_a_singularity_is_refused_for_its_conditioning() -> None
     reason given, with its value."""
     scenario = scenarios.build("slider_crank", overrides={"rod_length": 0.2, "theta0": 0.0, "steps": 8})
     with pytest.raises(SingularConfigurationError) as caught:
-        analyse(scenario, fast=False)
+        analyse(scenario, compiled=False)
     message = re.fullmatch(
         r"slider_crank: singular configuration at t=0\.0314159: "
         r"C_q reciprocal condition number (\S+); C_q rank deficiency 1, dependent rows: .+",

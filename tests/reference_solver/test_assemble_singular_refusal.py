@@ -52,7 +52,7 @@ def test_an_assembly_stopped_by_round_off_is_not_called_singular() -> None:
     "C_q is singular there, rank deficiency 0"."""
     scenario = moved_along_x(scenarios.build("four_bar"), 1000.0)
     with pytest.raises(AssemblyError) as caught:
-        analyse(scenario, fast=False)
+        analyse(scenario, compiled=False)
     match = FLOORED.fullmatch(str(caught.value))
     assert match is not None, str(caught.value)
     assert caught.value.rank_deficiency == 0

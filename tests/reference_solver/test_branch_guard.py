@@ -16,10 +16,10 @@ UNDERCUT = "cam_roller/stress_undercut"  # the contact point sweeps a concave va
 def test_coarse_grid_follows_the_branch_a_fine_grid_follows() -> None:
     scenario = scenarios.build(UNDERCUT)
     grid, fine = np.asarray(scenario.times()), np.asarray(scenario.times(steps=4 * scenario.steps))
-    reference = analysis.analyse(scenario, fine, fast=False).q[::4]
-    for fast in (True, False):
+    reference = analysis.analyse(scenario, fine, compiled=False).q[::4]
+    for compiled in (True, False):
         np.testing.assert_allclose(
-            analysis.analyse(scenario, grid, fast=fast).q, reference, rtol=0, atol=1e-12
+            analysis.analyse(scenario, grid, compiled=compiled).q, reference, rtol=0, atol=1e-12
         )
 
 
@@ -28,7 +28,7 @@ def test_without_the_guard_the_same_grid_jumps(monkeypatch: pytest.MonkeyPatch) 
     scenario = scenarios.build(UNDERCUT)
     monkeypatch.setattr(analysis, "JUMP_FRACTION", 1e9)
     with pytest.raises(analysis.SingularConfigurationError):
-        analysis.analyse(scenario, fast=False)
+        analysis.analyse(scenario, compiled=False)
 
 
 def test_the_kernel_hands_a_jump_to_the_plain_path() -> None:

@@ -1,5 +1,5 @@
 """Where the compiled path pays (reference_solver.compiled.pays): in a process that weighs the work
-(`mbxval solve`, fast.compile_where_it_pays) a solve of a few points runs the plain path rather than
+(`mbxval solve`, compiled.compile_where_it_pays) a solve of a few points runs the plain path rather than
 load numba and its kernels, a long one or one in a process that holds the kernels runs the compiled
 path; a process that does not weigh it (a harness) always runs the compiled path; and the two give
 the same kinematics, forces and residual. The choice itself is checked in a fresh interpreter by
@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import reference_solver.compiled as fast
+import reference_solver.compiled as compiled
 from reference_solver import analyse, constraint_residual
 from reference_solver.dynamics.inverse import inverse_dynamics
 from scenarios import load
@@ -19,31 +19,31 @@ from scenarios import load
 @pytest.fixture
 def weighing(monkeypatch: pytest.MonkeyPatch) -> None:
     """This process weighs the work, and holds no kernels yet (as far as `pays` knows)."""
-    monkeypatch.setattr(fast, "_by_work", True)
-    monkeypatch.setattr(fast, "_loaded", set())
+    monkeypatch.setattr(compiled, "_by_work", True)
+    monkeypatch.setattr(compiled, "_loaded", set())
 
 
 def test_a_process_that_does_not_weigh_the_work_always_compiles(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(fast, "_by_work", False)
-    monkeypatch.setattr(fast, "_loaded", set())
-    assert fast.pays("path", 9, 2, None) and not fast.pays("path", 9, 2, False)
+    monkeypatch.setattr(compiled, "_by_work", False)
+    monkeypatch.setattr(compiled, "_loaded", set())
+    assert compiled.pays("path", 9, 2, None) and not compiled.pays("path", 9, 2, False)
 
 
 def test_an_explicit_choice_decides(weighing: None) -> None:
-    assert fast.pays("path", 1, 1, True) and not fast.pays("path", 10**6, 10**6, False)
+    assert compiled.pays("path", 1, 1, True) and not compiled.pays("path", 10**6, 10**6, False)
 
 
 def test_none_chooses_by_the_work_where_the_kernels_are_not_loaded(weighing: None) -> None:
-    assert not fast.pays("path", 9, 2, None)
-    assert not fast.pays("path", 9, fast.PAYS_FROM // 9, None)  # 4,995 row-steps
-    assert fast.pays("path", 9, fast.PAYS_FROM // 9 + 1, None)  # 5,004
+    assert not compiled.pays("path", 9, 2, None)
+    assert not compiled.pays("path", 9, compiled.PAYS_FROM // 9, None)  # 4,995 row-steps
+    assert compiled.pays("path", 9, compiled.PAYS_FROM // 9 + 1, None)  # 5,004
 
 
 def test_none_takes_kernels_already_loaded_whatever_the_work(
     weighing: None, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.setattr(fast, "_loaded", {"residuals"})
-    assert fast.pays("residuals", 9, 2, None) and not fast.pays("path", 9, 2, None)
+    monkeypatch.setattr(compiled, "_loaded", {"residuals"})
+    assert compiled.pays("residuals", 9, 2, None) and not compiled.pays("path", 9, 2, None)
 
 
 @pytest.mark.parametrize("name", ["four_bar", "slider_crank", "cam_roller", "planetary_gears"])
@@ -53,7 +53,7 @@ def test_both_paths_give_the_same_kinematics_forces_and_residual(name: str) -> N
     their largest (the same Newton iterations in another order of operations)."""
     scenario = load(name)
     grid = np.asarray(scenario.times(steps=4))
-    compiled, chosen = analyse(scenario, grid, fast=True), analyse(scenario, grid, fast=False)
+    compiled, chosen = analyse(scenario, grid, compiled=True), analyse(scenario, grid, compiled=False)
     scale = scenario.characteristic_length
     np.testing.assert_allclose(chosen.q, compiled.q, rtol=0, atol=1e-12 * max(1.0, scale))
     for plain, fast_level in ((chosen.qd, compiled.qd), (chosen.qdd, compiled.qdd)):
@@ -78,10 +78,14 @@ def test_both_paths_give_the_same_kinematics_forces_and_residual(name: str) -> N
 def test_a_small_solve_by_none_is_the_plain_paths_result(
     weighing: None, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """With nothing loaded, `fast=None` on two points is the plain path's result to the bit, and
+    """With nothing loaded, `compiled=None` on two points is the plain path's result to the bit, and
     with the kernels loaded it is the compiled path's."""
     scenario = load("four_bar")
     grid = np.asarray(scenario.times(steps=1))
-    np.testing.assert_array_equal(analyse(scenario, grid, fast=None).q, analyse(scenario, grid, fast=False).q)
-    monkeypatch.setattr(fast, "_loaded", {"path"})
-    np.testing.assert_array_equal(analyse(scenario, grid, fast=None).q, analyse(scenario, grid, fast=True).q)
+    np.testing.assert_array_equal(
+        analyse(scenario, grid, compiled=None).q, analyse(scenario, grid, compiled=False).q
+    )
+    monkeypatch.setattr(compiled, "_loaded", {"path"})
+    np.testing.assert_array_equal(
+        analyse(scenario, grid, compiled=None).q, analyse(scenario, grid, compiled=True).q
+    )

@@ -17,27 +17,28 @@ DYNAMIC = ["four_bar_gravity", "andrews_squeezer", "n_four_bar", "slider_crank_s
 @pytest.mark.parametrize("name", DYNAMIC)
 def test_compiled_rows_are_the_plain_rows_on_random_states(name: str) -> None:
     scenario = load(name)
-    fast, plain = constraint_system(scenario), ConstraintSystem(scenario)
-    assert isinstance(fast, CompiledSystem)
+    compiled, plain = constraint_system(scenario), ConstraintSystem(scenario)
+    assert isinstance(compiled, CompiledSystem)
     rng = np.random.default_rng(7)
     for _ in range(40):
         q, qd, t = rng.normal(size=plain.unknowns), rng.normal(size=plain.unknowns), float(rng.uniform(0, 2))
-        for mine, theirs in zip(fast.evaluate(q, t, qd), plain.evaluate(q, t, qd), strict=True):
+        for mine, theirs in zip(compiled.evaluate(q, t, qd), plain.evaluate(q, t, qd), strict=True):
             np.testing.assert_allclose(mine, theirs, rtol=0, atol=1e-12 * max(1.0, np.max(np.abs(theirs))))
-        np.testing.assert_allclose(fast.c_t(t), plain.c_t(t), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(compiled.c_t(t), plain.c_t(t), rtol=0, atol=1e-12)
 
 
 @pytest.mark.parametrize("name", DYNAMIC)
 def test_compiled_jacobian_is_the_derivative_of_the_compiled_rows(name: str) -> None:
     """Central differences, step 1e-6: agreement to 1e-7 of the largest entry."""
-    fast = constraint_system(load(name))
+    compiled = constraint_system(load(name))
     rng = np.random.default_rng(3)
     h = 1e-6
     for _ in range(10):
-        q, t = rng.normal(size=fast.unknowns), float(rng.uniform(0, 2))
-        jac = fast.jacobian(q, t)
+        q, t = rng.normal(size=compiled.unknowns), float(rng.uniform(0, 2))
+        jac = compiled.jacobian(q, t)
         columns = [
-            (fast.residual(q + h * e, t) - fast.residual(q - h * e, t)) / (2 * h) for e in np.eye(q.size)
+            (compiled.residual(q + h * e, t) - compiled.residual(q - h * e, t)) / (2 * h)
+            for e in np.eye(q.size)
         ]
         np.testing.assert_allclose(
             np.array(columns).T, jac, rtol=0, atol=1e-7 * max(1.0, np.max(np.abs(jac)))
@@ -47,20 +48,20 @@ def test_compiled_jacobian_is_the_derivative_of_the_compiled_rows(name: str) -> 
 def test_both_paths_simulate_the_same_motion() -> None:
     """four_bar_gravity over 0.3 s at rtol 1e-12: measured 1.3e-13 apart over the full second."""
     scenario = load("four_bar_gravity", {"t_end": 0.3, "steps": 30})
-    fast, plain = simulate(scenario, rtol=1e-12, fast=True), simulate(scenario, rtol=1e-12)
-    assert np.max(np.abs(fast.q - plain.q)) < 1e-11
+    compiled, plain = simulate(scenario, rtol=1e-12, compiled=True), simulate(scenario, rtol=1e-12)
+    assert np.max(np.abs(compiled.q - plain.q)) < 1e-11
 
 
 def test_a_cam_or_the_plain_request_gives_the_plain_system() -> None:
-    assert type(constraint_system(load("four_bar_gravity"), fast=False)) is ConstraintSystem
+    assert type(constraint_system(load("four_bar_gravity"), compiled=False)) is ConstraintSystem
     assert type(constraint_system(load("cam_roller"))) is ConstraintSystem
 
 
 def test_without_qd_the_rates_are_zero_as_on_the_plain_path() -> None:
     scenario = load("four_bar_gravity")
-    fast, plain = constraint_system(scenario), ConstraintSystem(scenario)
+    compiled, plain = constraint_system(scenario), ConstraintSystem(scenario)
     q = np.random.default_rng(2).normal(size=plain.unknowns)
-    for mine, theirs in zip(fast.evaluate(q, 0.4), plain.evaluate(q, 0.4), strict=True):
+    for mine, theirs in zip(compiled.evaluate(q, 0.4), plain.evaluate(q, 0.4), strict=True):
         np.testing.assert_allclose(mine, theirs, rtol=0, atol=1e-12 * max(1.0, np.max(np.abs(theirs))))
 
 

@@ -32,9 +32,12 @@ def test_compiled_and_plain_rows_give_one_residual_on_random_states(name: str) -
     length = scenario.characteristic_length
     position = rng.normal(scale=length, size=(len(times), len(bodies), 3))
     trajectory = scenarios.Trajectory(times, bodies, position=position)
-    fast, plain = constraint_residual(scenario, trajectory), plain_constraint_residual(scenario, trajectory)
+    compiled, plain = (
+        constraint_residual(scenario, trajectory),
+        plain_constraint_residual(scenario, trajectory),
+    )
     assert np.all(plain > 1e-3)  # random states are far off the constraints
-    np.testing.assert_allclose(fast, plain, rtol=1e-13, atol=0)
+    np.testing.assert_allclose(compiled, plain, rtol=1e-13, atol=0)
 
 
 def test_the_residual_of_the_closed_form_is_round_off_and_a_displaced_crank_shows() -> None:

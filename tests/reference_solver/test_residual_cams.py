@@ -51,16 +51,16 @@ def test_compiled_and_plain_rows_give_one_residual_at_random_states(name: str, p
     assert scenario.cams
     for seed in range(3):
         trajectory = _random(scenario, seed)
-        fast, plain = (
+        compiled, plain = (
             constraint_residual(scenario, trajectory),
             plain_constraint_residual(scenario, trajectory),
         )
         assert np.all(plain > 1e-3)  # random states are far off the constraints
-        np.testing.assert_allclose(fast, plain, rtol=1e-13, atol=0)
+        np.testing.assert_allclose(compiled, plain, rtol=1e-13, atol=0)
         without = dataclasses.replace(trajectory, extras={})  # the cam's rows left out
-        fast, plain = constraint_residual(scenario, without), plain_constraint_residual(scenario, without)
+        compiled, plain = constraint_residual(scenario, without), plain_constraint_residual(scenario, without)
         assert np.all(plain > 1e-3)
-        np.testing.assert_allclose(fast, plain, rtol=1e-13, atol=0)
+        np.testing.assert_allclose(compiled, plain, rtol=1e-13, atol=0)
 
 
 @pytest.mark.parametrize("name", DEFAULT_SUITE_CAMS)
@@ -77,9 +77,9 @@ def test_on_the_native_solution_the_compiled_residual_is_the_plain_one(name: str
     assert set(solution.extras) >= {key}
     for shift, low, high in ((0.0, 0.0, 1e-15), (1e-6, 1e-6 / 3, 3e-6)):
         moved = dataclasses.replace(solution, extras={key: solution.extras[key] + shift})
-        fast, plain = constraint_residual(scenario, moved), plain_constraint_residual(scenario, moved)
+        compiled, plain = constraint_residual(scenario, moved), plain_constraint_residual(scenario, moved)
         assert np.all(plain >= low) and np.all(plain < high)
-        np.testing.assert_allclose(fast, plain, rtol=0, atol=4e-16)
+        np.testing.assert_allclose(compiled, plain, rtol=0, atol=4e-16)
 
 
 def test_a_cam_scenario_is_measured_on_its_compiled_rows(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -42,8 +42,8 @@ def test_b0_is_the_crank_s_tip_from_its_frame() -> None:
 
 def test_the_criterion_separates_a_fine_run_from_a_coarse_one() -> None:
     scenario = scenarios.build("n_four_bar", overrides={"t_end": 10.0, "steps": 400})
-    fine = criterion(scenario, simulate(scenario, method="ali3p", step=4e-4, fast=True).trajectory())
-    coarse = criterion(scenario, simulate(scenario, method="ali3p", step=1.5e-3, fast=True).trajectory())
+    fine = criterion(scenario, simulate(scenario, method="ali3p", step=4e-4, compiled=True).trajectory())
+    coarse = criterion(scenario, simulate(scenario, method="ali3p", step=1.5e-3, compiled=True).trajectory())
     assert fine["benchmark_error"] < HIGH_PRECISION < coarse["benchmark_error"]
     assert fine["benchmark_limit"] == HIGH_PRECISION
     assert fine["invariant_error"] < 1e-10

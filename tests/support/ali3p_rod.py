@@ -32,8 +32,8 @@ def swinging_rod() -> scenarios.Scenario:
     )
 
 
-def rod_stepper(scenario: scenarios.Scenario, fast: bool, h: float) -> tuple[Ali3p, Loads, StepState]:
-    system = constraint_system(scenario, fast=fast)
+def rod_stepper(scenario: scenarios.Scenario, compiled: bool, h: float) -> tuple[Ali3p, Loads, StepState]:
+    system = constraint_system(scenario, compiled=compiled)
     mass = mass_diagonal(scenario, system.layout)
     loads = Loads(scenario, system.layout, mass)
     start = initial_state(system, mass, loads, 0.0)

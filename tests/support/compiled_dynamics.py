@@ -39,11 +39,13 @@ def random_states(ode: Partitioned, start: State, count: int, seed: int) -> list
 
 def compiled_and_plain(scenario: Scenario, t0: float = 0.0) -> tuple[CompiledPartitioned, Partitioned, State]:
     """The compiled and the plain ODE of `scenario` on the same partition, and its start at `t0`."""
-    fast, plain = constraint_system(scenario), constraint_system(scenario, fast=False)
+    compiled_system, plain = constraint_system(scenario), constraint_system(scenario, compiled=False)
     mass = mass_diagonal(scenario, plain.layout)
     start = initial_state(plain, mass, Loads(scenario, plain.layout, mass), t0)
     independent = choose_independent(plain, start.jac)
-    compiled = partitioned_ode(fast, mass, Loads(scenario, fast.layout, mass), start.q, independent)
+    compiled = partitioned_ode(
+        compiled_system, mass, Loads(scenario, compiled_system.layout, mass), start.q, independent
+    )
     assert isinstance(compiled, CompiledPartitioned)
     return (
         compiled,

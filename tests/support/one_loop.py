@@ -91,9 +91,9 @@ def trapezoidal_on_the_branch(qhat: np.ndarray, mass: np.ndarray, gravity: np.nd
 
 def one_loop_steppers() -> tuple[CompiledAli3p, Ali3p, ConstraintSystem, np.ndarray, Loads]:
     scenario = scenarios.build("n_four_bar", overrides={"loops": 1})
-    fast, plain = constraint_system(scenario), constraint_system(scenario, fast=False)
+    compiled_system, plain = constraint_system(scenario), constraint_system(scenario, compiled=False)
     mass = mass_diagonal(scenario, plain.layout)
-    compiled = ali3p_stepper(fast, mass, Loads(scenario, fast.layout, mass), H)
+    compiled = ali3p_stepper(compiled_system, mass, Loads(scenario, compiled_system.layout, mass), H)
     assert isinstance(compiled, CompiledAli3p)
     loads = Loads(scenario, plain.layout, mass)
     return compiled, Ali3p(plain, mass, loads, H), plain, mass, loads

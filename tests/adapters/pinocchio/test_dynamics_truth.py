@@ -40,7 +40,7 @@ over the whole scenario, measured 2026-11-25, held two-sided (tests.support.boun
 @functools.cache
 def truth(name: str) -> Trajectory:
     scenario = scenarios.load(name)
-    return simulate(scenario, scenario.times(), rtol=1e-13, fast=compiled(scenario)).trajectory()
+    return simulate(scenario, scenario.times(), rtol=1e-13, compiled=compiled(scenario)).trajectory()
 
 
 def largest(found: Trajectory, expected: Trajectory, level: str) -> float:

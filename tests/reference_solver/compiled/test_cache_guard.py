@@ -124,10 +124,10 @@ def test_an_edit_to_an_inlined_function_in_another_package_recompiles_the_kernel
 
 
 def test_the_compiled_path_s_sources_include_the_project_modules_its_kernels_inline() -> None:
-    import reference_solver.compiled as fast
+    import reference_solver.compiled as compiled
     from reference_solver.compiled.cache_guard import compiled_sources
 
-    package = Path(fast.__file__).parent
+    package = Path(compiled.__file__).parent
     names = {source.relative_to(package.parents[1]).as_posix() for source in compiled_sources(package)}
     assert {"scenarios/cam_profiles.py", "reference_solver/limits.py", "scenarios/motions.py"} <= names
     assert {p.relative_to(package.parents[1]).as_posix() for p in package.glob("*.py")} <= names

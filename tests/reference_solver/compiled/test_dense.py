@@ -59,10 +59,10 @@ def test_a_mechanism_of_more_bodies_than_a_row_s_slots_evaluates_as_the_plain_on
     scratch holds a cosine and sine per body, and its C, C_q, Q_d and C_t at random states are the
     plain system's."""
     scenario = scenarios.build("n_four_bar", overrides={"loops": 6})
-    fast, plain = constraint_system(scenario), ConstraintSystem(scenario)
-    assert isinstance(fast, CompiledSystem) and len(scenario.bodies) == 13
+    compiled, plain = constraint_system(scenario), ConstraintSystem(scenario)
+    assert isinstance(compiled, CompiledSystem) and len(scenario.bodies) == 13
     rng = np.random.default_rng(29)
     for _ in range(3):
         q, qd, t = rng.normal(size=plain.unknowns), rng.normal(size=plain.unknowns), float(rng.uniform(0, 2))
-        for mine, theirs in zip(fast.evaluate(q, t, qd), plain.evaluate(q, t, qd), strict=True):
+        for mine, theirs in zip(compiled.evaluate(q, t, qd), plain.evaluate(q, t, qd), strict=True):
             np.testing.assert_allclose(mine, theirs, rtol=0, atol=1e-12 * max(1.0, np.max(np.abs(theirs))))

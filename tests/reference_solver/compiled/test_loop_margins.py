@@ -161,7 +161,7 @@ def test_two_cam_contacts_in_the_kernel_give_the_plain_answer() -> None:
     scenario = _two_followers()
     grid = np.asarray(scenario.times())
     result = completed_run(scenario, grid)
-    plain = analyse(scenario, fast=False)
+    plain = analyse(scenario, compiled=False)
     for level in ("q", "qd", "qdd"):
         np.testing.assert_allclose(
             getattr(result, level), getattr(plain, level), rtol=0, atol=1e-10, err_msg=level
@@ -212,7 +212,7 @@ def test_time_steps_take_newton_s_full_step_even_where_it_raises_the_residual() 
     assert scaled(full, t) > scaled(predicted, t)
 
     result = completed_run(scenario, grid)
-    plain = analyse(scenario, fast=False)
+    plain = analyse(scenario, compiled=False)
     np.testing.assert_array_equal(result.iterations, plain.iterations)
     for level, expected in zip(("q", "qd", "qdd"), (q, qd, qdd), strict=True):
         np.testing.assert_allclose(getattr(result, level), expected, rtol=0, atol=1e-11, err_msg=level)
@@ -302,7 +302,7 @@ def test_halved_steps_of_a_spline_cam_give_the_plain_answer() -> None:
     scenario = scenarios.build("cam_roller/spline")
     grid = np.asarray(scenario.times(steps=2))
     result = completed_run(scenario, grid, max_iterations=2)
-    plain = analyse(scenario, grid, max_iterations=2, fast=False)
+    plain = analyse(scenario, grid, max_iterations=2, compiled=False)
     for level in ("q", "qd", "qdd"):
         np.testing.assert_allclose(
             getattr(result, level), getattr(plain, level), rtol=0, atol=1e-10, err_msg=level

@@ -20,15 +20,15 @@ STEPS = 50  # the plain path costs about 1.4 ms a point
 
 def both(scenario: Scenario, tolerance: float = 1e-12):  # type: ignore[no-untyped-def]
     grid = np.asarray(scenario.times(steps=STEPS))
-    fast = path.run(scenario, grid, tolerance)
-    return fast, analyse(scenario, grid, tolerance, fast=False)
+    compiled = path.run(scenario, grid, tolerance)
+    return compiled, analyse(scenario, grid, tolerance, compiled=False)
 
 
 @pytest.mark.parametrize("name", scenarios.catalogue())
 def test_fast_path_gives_the_plain_answer(name: str) -> None:
-    fast, plain = both(scenarios.build(name))
-    assert fast.event == "ok", fast.event  # the kernel itself ran the whole grid
-    result = fast.analysis
+    compiled, plain = both(scenarios.build(name))
+    assert compiled.event == "ok", compiled.event  # the kernel itself ran the whole grid
+    result = compiled.analysis
     assert result is not None
     for level in ("q", "qd", "qdd"):
         expected = getattr(plain, level)
@@ -47,18 +47,18 @@ def test_fast_path_gives_the_plain_answer(name: str) -> None:
 
 
 def test_looser_tolerance_gives_the_plain_answer_too() -> None:
-    fast, plain = both(scenarios.build("four_bar"), tolerance=1e-6)
-    assert fast.analysis is not None
-    np.testing.assert_array_equal(fast.analysis.iterations, plain.iterations)
-    np.testing.assert_allclose(fast.analysis.q, plain.q, rtol=0, atol=1e-12)
+    compiled, plain = both(scenarios.build("four_bar"), tolerance=1e-6)
+    assert compiled.analysis is not None
+    np.testing.assert_array_equal(compiled.analysis.iterations, plain.iterations)
+    np.testing.assert_allclose(compiled.analysis.q, plain.q, rtol=0, atol=1e-12)
 
 
 def test_analyse_uses_the_fast_path_by_default() -> None:
     scenario = scenarios.build("slider_crank")
     grid = np.asarray(scenario.times())
-    default, fast = analyse(scenario), path.run(scenario, grid).analysis
-    assert fast is not None
-    np.testing.assert_array_equal(default.qdd, fast.qdd)  # the very same numbers
+    default, compiled = analyse(scenario), path.run(scenario, grid).analysis
+    assert compiled is not None
+    np.testing.assert_array_equal(default.qdd, compiled.qdd)  # the very same numbers
 
 
 def test_without_numba_analyse_runs_the_plain_path(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -68,7 +68,7 @@ def test_without_numba_analyse_runs_the_plain_path(monkeypatch: pytest.MonkeyPat
     monkeypatch.setattr(compiled_package, "AVAILABLE", False)
     plain_only = analyse(scenario)
     monkeypatch.undo()
-    np.testing.assert_array_equal(plain_only.qdd, analyse(scenario, fast=False).qdd)
+    np.testing.assert_array_equal(plain_only.qdd, analyse(scenario, compiled=False).qdd)
 
 
 def _failure(scenario: Scenario) -> tuple[type, str, float | None, int, tuple[str, ...]]:
@@ -80,7 +80,7 @@ def _failure(scenario: Scenario) -> tuple[type, str, float | None, int, tuple[st
 
 def _plain_failure(scenario: Scenario) -> tuple[type, str, float | None, int, tuple[str, ...]]:
     with pytest.raises(SolverError) as caught:
-        analyse(scenario, fast=False)
+        analyse(scenario, compiled=False)
     e = caught.value
     return type(e), str(e), e.time, e.rank_deficiency, e.dependent_rows
 
@@ -165,12 +165,12 @@ def test_mobility_errors_are_the_plain_ones(case: str) -> None:
 
 def test_lobed_profile_kernel_gives_the_plain_answer() -> None:
     scenario = scenarios.build("cam_roller", overrides={"profile": "lobed", "roller_radius": 0.01})
-    fast, plain = both(scenario)
-    assert fast.event == "ok" and fast.analysis is not None
+    compiled, plain = both(scenario)
+    assert compiled.event == "ok" and compiled.analysis is not None
     for level in ("q", "qd", "qdd"):
         expected = getattr(plain, level)
         atol = 1e-12 * max(1.0, float(np.max(np.abs(expected))))
-        np.testing.assert_allclose(getattr(fast.analysis, level), expected, rtol=0, atol=atol)
+        np.testing.assert_allclose(getattr(compiled.analysis, level), expected, rtol=0, atol=atol)
 
 
 def test_an_empty_grid_and_an_unhashable_scenario() -> None:

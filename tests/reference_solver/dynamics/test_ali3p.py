@@ -72,9 +72,9 @@ def _distances(
 def test_the_same_motion_as_the_partitioned_method_to_second_order(name: str) -> None:
     t_end, steps, h, measured = SHORT[name]
     scenario = scenarios.build(name, overrides={"t_end": t_end, "steps": steps})
-    ref = simulate(scenario, rtol=1e-12, fast=True)
-    coarse = simulate(scenario, method="ali3p", step=h, fast=True)
-    fine = simulate(scenario, method="ali3p", step=h / 2, fast=True)
+    ref = simulate(scenario, rtol=1e-12, compiled=True)
+    coarse = simulate(scenario, method="ali3p", step=h, compiled=True)
+    fine = simulate(scenario, method="ali3p", step=h / 2, compiled=True)
     levels = ("q", "qd", "qdd", "lam")
     far = _distances(scenario, ref, tuple(getattr(coarse, k) for k in levels))
     near = _distances(scenario, ref, tuple(getattr(fine, k) for k in levels))
@@ -90,7 +90,7 @@ def test_constraints_hold_to_round_off_and_the_energy_balance_closes_to_second_o
     scenario = scenarios.build("slider_crank_spring", overrides={"t_end": 0.05, "steps": 2})
     balances = []
     for h in (2.5e-4, 1.25e-4):
-        analysis = simulate(scenario, method="ali3p", step=h, fast=True)
+        analysis = simulate(scenario, method="ali3p", step=h, compiled=True)
         assert np.max(analysis.motion.residual) < 1e-14
         balances.append(np.max(np.abs(analysis.extras["energy.balance"])))
     assert 3.6 < balances[0] / balances[1] < 4.4, balances
@@ -99,8 +99,8 @@ def test_constraints_hold_to_round_off_and_the_energy_balance_closes_to_second_o
 def test_a_reduced_a02_passes_its_singular_position_at_second_order() -> None:
     scenario, grid, reduced = a02_chain(2, 0.8)
     assert len(reduced.t_events[0]) == 1  # type: ignore[attr-defined]
-    coarse = a02_errors(simulate(scenario, grid, method="ali3p", step=2e-4, fast=True), reduced)
-    fine = a02_errors(simulate(scenario, grid, method="ali3p", step=1e-4, fast=True), reduced)
+    coarse = a02_errors(simulate(scenario, grid, method="ali3p", step=2e-4, compiled=True), reduced)
+    fine = a02_errors(simulate(scenario, grid, method="ali3p", step=1e-4, compiled=True), reduced)
     order = np.log2(np.array(coarse[::2]) / np.array(fine[::2]))  # energy drift and crank angle
     assert np.all((order > 1.8) & (order < 2.3)), order
     measured = np.array(A02_REDUCED)
@@ -122,10 +122,10 @@ def test_the_rockers_leave_the_crank_by_what_the_step_s_phase_at_the_passage_all
     (2.2e-12 and 1.0e-10 before)."""
     scenario, grid, reduced = a02_chain(2, 0.8)
     step = 0.8 / count * (1 + 1e-9)
-    analysis = simulate(scenario, grid, method="ali3p", step=step, fast=True)
+    analysis = simulate(scenario, grid, method="ali3p", step=step, compiled=True)
     assert compiled / FACTOR < a02_errors(analysis, reduced)[1] < FACTOR * compiled
     monkeypatch.setattr(ali3p_grid, "ali3p_stepper", Ali3p)  # the plain step on the same rows
-    analysis = simulate(scenario, grid, method="ali3p", step=step, fast=True)
+    analysis = simulate(scenario, grid, method="ali3p", step=step, compiled=True)
     assert plain / FACTOR < a02_errors(analysis, reduced)[1] < FACTOR * plain
 
 
@@ -139,7 +139,7 @@ def test_unknown_method_and_bad_step_are_refused() -> None:
 
 def _stepper(scenario: scenarios.Scenario, h: float) -> tuple[Ali3p, StepState]:
     """The plain step of `scenario` at h and its initial state."""
-    system = constraint_system(scenario, fast=False)
+    system = constraint_system(scenario, compiled=False)
     mass = mass_diagonal(scenario, system.layout)
     loads = Loads(scenario, system.layout, mass)
     start = initial_state(system, mass, loads, 0.0)
@@ -367,7 +367,7 @@ def test_a02_as_specified_passes_every_singular_position() -> None:
     passages = reduced.t_events[0]  # type: ignore[attr-defined]
     assert len(passages) == 20
     analysis = simulate(
-        scenario, np.union1d(scenario.times(), passages), method="ali3p", step=2e-5, fast=True
+        scenario, np.union1d(scenario.times(), passages), method="ali3p", step=2e-5, compiled=True
     )
     errors = np.array(a02_errors(analysis, reduced))
     measured = np.array(A02_SPEC)

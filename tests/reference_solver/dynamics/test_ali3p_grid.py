@@ -43,7 +43,7 @@ def _free_body() -> Scenario:
 
 
 def _setup(scenario: Scenario, t0: float = 0.0) -> tuple:
-    system = constraint_system(scenario, fast=False)
+    system = constraint_system(scenario, compiled=False)
     mass = mass_diagonal(scenario, system.layout)
     loads = Loads(scenario, system.layout, mass)
     return system, mass, loads, initial_state(system, mass, loads, t0)

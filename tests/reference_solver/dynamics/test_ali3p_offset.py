@@ -33,7 +33,7 @@ rotated vectors were summed together)."""
 def test_a_chain_far_from_the_origin_keeps_its_rockers_on_the_crank() -> None:
     scenario, grid, reduced = a02_chain(2, 0.8)
     analysis = simulate(
-        moved_along_x(scenario, OFFSET), grid, method="ali3p", step=0.8 / 8005 * (1 + 1e-9), fast=True
+        moved_along_x(scenario, OFFSET), grid, method="ali3p", step=0.8 / 8005 * (1 + 1e-9), compiled=True
     )
     assert MOVED_CHAIN / FACTOR < a02_errors(analysis, reduced)[1] < FACTOR * MOVED_CHAIN
 

@@ -26,9 +26,9 @@ H = 1e-3
 
 def _steppers(name: str, h: float) -> tuple[CompiledAli3p, Ali3p]:
     scenario = load(name)
-    fast, plain = constraint_system(scenario), constraint_system(scenario, fast=False)
+    compiled_system, plain = constraint_system(scenario), constraint_system(scenario, compiled=False)
     mass = mass_diagonal(scenario, plain.layout)
-    compiled = ali3p_stepper(fast, mass, Loads(scenario, fast.layout, mass), h)
+    compiled = ali3p_stepper(compiled_system, mass, Loads(scenario, compiled_system.layout, mass), h)
     assert isinstance(compiled, CompiledAli3p)
     return compiled, Ali3p(plain, mass, Loads(scenario, plain.layout, mass), h)
 

@@ -150,7 +150,7 @@ def test_the_half_bandwidth_covers_every_row_of_the_jacobian() -> None:
     scenario = scenarios.build("n_four_bar", overrides={"loops": 3, "t_end": 0.1, "steps": 2})
     stepper, _, s = rod_stepper(scenario, True, 1e-3)
     assert isinstance(stepper, CompiledAli3p)
-    jac = constraint_system(scenario, fast=False).jacobian(s.q, s.t)
+    jac = constraint_system(scenario, compiled=False).jacobian(s.q, s.t)
     widest = max(int(np.ptp(np.flatnonzero(row))) for row in jac if np.any(row))
     width = int(stepper.sizes[stepper.kernels.S_W])
     assert widest <= width < stepper.n

@@ -16,9 +16,9 @@ from reference_solver.dynamics.loads import Loads
 from reference_solver.dynamics.mass import mass_diagonal
 
 
-def _start(fast: bool, h: float) -> tuple[Ali3p, StepState]:
+def _start(compiled: bool, h: float) -> tuple[Ali3p, StepState]:
     scenario = scenarios.build("n_four_bar", overrides={"loops": 3, "t_end": 0.1, "steps": 2})
-    system = constraint_system(scenario, fast=fast)
+    system = constraint_system(scenario, compiled=compiled)
     mass = mass_diagonal(scenario, system.layout)
     loads = Loads(scenario, system.layout, mass)
     start = initial_state(system, mass, loads, 0.0)

@@ -76,7 +76,7 @@ def test_compiled_rates_are_the_derivatives_of_the_compiled_positions(name: str)
 
 def test_the_plain_constraints_keep_the_plain_right_hand_side() -> None:
     scenario = load("four_bar_gravity")
-    system = constraint_system(scenario, fast=False)
+    system = constraint_system(scenario, compiled=False)
     mass = mass_diagonal(scenario, system.layout)
     loads = Loads(scenario, system.layout, mass)
     start = initial_state(system, mass, loads, float(scenario.times()[0]))
@@ -98,7 +98,7 @@ def test_radau_integrates_the_same_motion_on_both_paths() -> None:
     states); measured 6.2e-15 apart in q, 1.8e-11 in q'' (of 1.4e3: 1.3e-14), over 0.1 s at rtol
     1e-10: round-off (Newton's iterates differ within its tolerance), bounded at three times that."""
     scenario = load("slider_crank_spring", {"t_end": 0.1, "steps": 10})
-    fast = simulate(scenario, rtol=1e-10, method="Radau", fast=True)
+    compiled = simulate(scenario, rtol=1e-10, method="Radau", compiled=True)
     plain = simulate(scenario, rtol=1e-10, method="Radau")
-    assert np.max(np.abs(fast.q - plain.q)) < 2e-14
-    assert np.max(np.abs(fast.qdd - plain.qdd)) < 4e-14 * np.max(np.abs(plain.qdd))
+    assert np.max(np.abs(compiled.q - plain.q)) < 2e-14
+    assert np.max(np.abs(compiled.qdd - plain.qdd)) < 4e-14 * np.max(np.abs(plain.qdd))

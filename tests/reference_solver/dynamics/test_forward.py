@@ -21,14 +21,14 @@ from tests.support.forward_scenes import nearest_turn, rod, thrown_rod
 G = 9.81
 
 
-@pytest.mark.parametrize(("method", "fast"), [("DOP853", False), ("DOP853", True), ("ali3p", False)])
-def test_a_free_body_falls_as_the_closed_form(method: str, fast: bool) -> None:
+@pytest.mark.parametrize(("method", "compiled"), [("DOP853", False), ("DOP853", True), ("ali3p", False)])
+def test_a_free_body_falls_as_the_closed_form(method: str, compiled: bool) -> None:
     """Each method used to end in a crash (the largest residual of no rows) after integrating."""
     body = Body("b", (0.3, 0.0, 0.2), mass=2.0, inertia=0.1)
     scenario = Scenario(
         "free", "default", (body,), (), (), 1.0, 10, 1.0, gravity=(0.0, -G), analysis="dynamic"
     )
-    result = simulate(scenario, method=method, fast=fast, step=1e-2 if method == "ali3p" else None)
+    result = simulate(scenario, method=method, compiled=compiled, step=1e-2 if method == "ali3p" else None)
     t = np.linspace(0.0, 1.0, 11)
     np.testing.assert_allclose(result.q[:, 1], -0.5 * G * t**2, rtol=0, atol=1e-12)
     np.testing.assert_allclose(result.q[:, [0, 2]], np.tile([0.3, 0.2], (11, 1)), rtol=0, atol=1e-15)
@@ -110,11 +110,11 @@ def driven_chain(t_end: float) -> Scenario:
     return dataclasses.replace(chain, drivers=(spin,), angle_outputs=(elbow, swing))
 
 
-@pytest.mark.parametrize("fast", [False, True])
-def test_a_driven_chain_s_energy_is_what_its_driver_puts_in(fast: bool) -> None:
+@pytest.mark.parametrize("compiled", [False, True])
+def test_a_driven_chain_s_energy_is_what_its_driver_puts_in(compiled: bool) -> None:
     """T + V - (T0 + V0) = W_driver: the balance closes to round-off of the integration (rtol 1e-12)
     while the driver's work is of order 1 J, and the driven link turns as prescribed."""
-    result = simulate(driven_chain(0.4), fast=fast)
+    result = simulate(driven_chain(0.4), compiled=compiled)
     extras = result.extras
     work = extras["energy.driver_work"]
     assert np.max(np.abs(work)) > 0.1

@@ -138,9 +138,9 @@ def test_newton_s_start_moves_with_the_integrator_s_accepted_steps(monkeypatch: 
         assert "anchor" in events[:last]
 
 
-@pytest.mark.parametrize("fast", [False, True])
-def test_fast_asks_for_the_compiled_constraints(monkeypatch: pytest.MonkeyPatch, fast: bool) -> None:
-    """`fast` evaluates the constraints on the compiled path (their values are the plain path's to
+@pytest.mark.parametrize("compiled", [False, True])
+def test_fast_asks_for_the_compiled_constraints(monkeypatch: pytest.MonkeyPatch, compiled: bool) -> None:
+    """`compiled` evaluates the constraints on the compiled path (their values are the plain path's to
     1e-12, so only the system's kind tells the two apart)."""
     kinds: list[type] = []
     make = forward.partitioned_ode
@@ -150,5 +150,5 @@ def test_fast_asks_for_the_compiled_constraints(monkeypatch: pytest.MonkeyPatch,
         return make(system, mass, loads, q, independent)
 
     monkeypatch.setattr(forward, "partitioned_ode", recorded)
-    simulate(rod(), times=np.linspace(0.0, 0.1, 2), fast=fast)
-    assert kinds == [CompiledSystem if fast else ConstraintSystem]
+    simulate(rod(), times=np.linspace(0.0, 0.1, 2), compiled=compiled)
+    assert kinds == [CompiledSystem if compiled else ConstraintSystem]

@@ -31,7 +31,7 @@ def test_two_loops_over_ten_seconds_stop_at_the_sixth_passage_naming_it() -> Non
     passages = reduced(scenario).passages
     assert len(passages) == 10
     with pytest.raises(SingularConfigurationError) as caught:
-        simulate(scenario, fast=True)
+        simulate(scenario, compiled=True)
     assert abs(caught.value.time - passages[5]) < 0.01, caught.value.time
     assert "singular passage at t=" in str(caught.value) and "use --mode ali3p" in str(caught.value)
     assert caught.value.rank_deficiency == 2  # both loops line up at once
@@ -41,7 +41,7 @@ def test_the_default_horizon_still_crosses_its_four_passages_on_the_parallelogra
     """Four seconds (the dynamics suite's scene): the partitioned method steps over each passage."""
     scenario = _a02(4.0)
     assert len(reduced(scenario).passages) == 4
-    analysis = simulate(scenario, fast=True)
+    analysis = simulate(scenario, compiled=True)
     theta = analysis.q[:, 2::3]
     rockers = [k for k, b in enumerate(analysis.layout.bodies) if b.startswith("rocker")]
     assert np.max(np.abs(theta[:, rockers] - theta[:, [0]])) < 1e-10
@@ -72,7 +72,7 @@ def test_a_passage_that_cannot_be_crossed_is_named_with_its_time_and_the_method_
 
     monkeypatch.setattr(forward, "partitioned_ode", failing)
     with pytest.raises(SingularConfigurationError) as caught:
-        simulate(_a02(1.0), fast=False)
+        simulate(_a02(1.0), compiled=False)
     first = reduced(_a02(1.0)).passages[0]
     assert abs(caught.value.time - first) < 0.01, caught.value.time
     assert "singular passage at t=" in str(caught.value) and "use --mode ali3p" in str(caught.value)

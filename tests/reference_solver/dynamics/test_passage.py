@@ -101,12 +101,12 @@ def test_a_chain_s_rockers_stay_on_the_crank_through_a_placed_passage(
         place(self)
 
     monkeypatch.setattr(ali3p_schedule.Schedule, "_place", spied)
-    errors = a02_errors(simulate(scenario, grid, method="ali3p", step=h * (1 + 1e-9), fast=True), reduced)
+    errors = a02_errors(simulate(scenario, grid, method="ali3p", step=h * (1 + 1e-9), compiled=True), reduced)
     assert placed == [pytest.approx(reduced.t_events[0][0], abs=0.01 * h)]  # type: ignore[attr-defined]
     assert watched / FACTOR < errors[1] < FACTOR * watched
     assert errors[0] < 5e-9 and errors[2] < 1.5e-9
     monkeypatch.setattr(ali3p_grid, "Watch", lambda mass, rank: None)
-    plain = a02_errors(simulate(scenario, grid, method="ali3p", step=h * (1 + 1e-9), fast=True), reduced)
+    plain = a02_errors(simulate(scenario, grid, method="ali3p", step=h * (1 + 1e-9), compiled=True), reduced)
     assert equal / FACTOR < plain[1] < FACTOR * equal
     assert plain[0] == pytest.approx(errors[0], rel=0.15) and plain[2] == pytest.approx(errors[2], rel=0.02)
 

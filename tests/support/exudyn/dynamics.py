@@ -27,7 +27,7 @@ def scenario(name: str, **overrides: float) -> Scenario:
 @cache
 def truth(s: Scenario, rtol: float = 1e-12) -> Trajectory:
     """The native truth on the scenario's grid (cached: the tests only read it)."""
-    return simulate(s, s.times(), rtol=rtol, fast=compiled(s)).trajectory()
+    return simulate(s, s.times(), rtol=rtol, compiled=compiled(s)).trajectory()
 
 
 def run(s: Scenario, setting: Setting | None = None) -> Trajectory:

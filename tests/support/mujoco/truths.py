@@ -23,7 +23,7 @@ def truth(name: str, **overrides: float) -> tuple[Scenario, Trajectory]:
     one (the default suite's; still below every MuJoCo error it is held against)."""
     scenario = scenarios.build(name, overrides=overrides) if overrides else scenarios.load(name)
     rtol = 1e-11 if overrides else 1e-13
-    return scenario, simulate(scenario, scenario.times(), rtol=rtol, fast=compiled(scenario)).trajectory()
+    return scenario, simulate(scenario, scenario.times(), rtol=rtol, compiled=compiled(scenario)).trajectory()
 
 
 def errors(name: str, setting: Setting | None = None, **overrides: float) -> dict[str, float]:
