@@ -8,6 +8,8 @@ truth; a time constant is in steps of the setting's dt."""
 
 from __future__ import annotations
 
+from tests.support.measured import measured_table
+
 TOLERANCE = 1.3
 """A recomputed figure stays within this factor of the one stated, either way: the pages give two
 digits, and an engine release may move its round-off."""
@@ -31,18 +33,8 @@ MUJOCO_SCALED_TC: dict[tuple[str, float], tuple[float, float, float]] = {
 """(scenario, time constant) with the regulariser scaled by 1e-8 (the rule's)."""
 
 # MuJoCo, free dynamics at the rule's step, the regulariser scaled by 1e-8
-MUJOCO_FREE_TC: dict[tuple[str, float], tuple[float, float, float]] = {
-    ("four_bar_gravity", 128.0): (2.8e-10, 1.5e-9, 1.8e-8),
-    ("four_bar_gravity", 256.0): (1.1e-10, 5.6e-10, 6.6e-9),
-    ("four_bar_gravity", 512.0): (3.7e-11, 1.9e-10, 2.3e-9),
-    ("four_bar_gravity", 1024.0): (6.1e-12, 3.2e-11, 4.3e-10),
-    ("four_bar_gravity", 2048.0): (8.1e-12, 4.3e-11, 5.2e-10),
-    ("andrews_squeezer", 128.0): (1.3e-9, 3.4e-9, 3.0e-8),
-    ("andrews_squeezer", 256.0): (9.8e-10, 2.4e-9, 2.2e-8),
-    ("andrews_squeezer", 512.0): (7.4e-10, 1.9e-9, 1.7e-8),
-    ("andrews_squeezer", 1024.0): (1.8e-10, 5.3e-10, 4.4e-9),
-    ("andrews_squeezer", 2048.0): (3.9e-10, 7.8e-10, 7.9e-9),
-    ("andrews_squeezer", 1.0e4): (1.1e-9, 2.3e-9, 2.3e-8),
+MUJOCO_FREE_TC: dict[tuple[str, float], tuple[float, ...]] = {
+    (scenario, float(tc)): figures for (scenario, tc), figures in measured_table("mujoco_free_tc").items()
 }
 """(scenario, time constant), the time-constant form; at 128 and 1024 steps the direct form
 (solref=direct) gives the same figures (tests/adapters/mujoco/test_rule_figures.py)."""
