@@ -521,14 +521,19 @@ NO_MUTANT = "no-such-mutant"
 then stops (nothing matches), which lists the mutants to draw a sample from."""
 
 
+def _listing(module: str, where: Path, command: list[str], env: dict[str, str]) -> list[str]:
+    """Every mutant name of the module, none of them run."""
+    subprocess.run(
+        [*command, NO_MUTANT], cwd=where, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+    )
+    return sorted(_codes(module, where))
+
+
 def _sample(
     module: str, where: Path, command: list[str], env: dict[str, str], size: int, seed: int
 ) -> list[str]:
     """`size` of the module's mutant names, drawn at random with `seed` (all of them if fewer)."""
-    subprocess.run(
-        [*command, NO_MUTANT], cwd=where, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
-    )
-    names = sorted(_codes(module, where))
+    names = _listing(module, where, command, env)
     return sorted(random.Random(seed).sample(names, min(size, len(names))))
 
 
@@ -539,12 +544,14 @@ def run(
     names: list[str] | None = None,
     sample: int | None = None,
     seed: int = 0,
+    planted_before: frozenset[str] | None = None,
 ) -> Outcome:
     """Mutate `module` (a key of MODULES) in a scratch copy, one worker, at the lowest priority by
     default (the bench shares the machine). mutmut stops a mutant's tests after a wall time that
     is a multiple of their unmutated time, so a test that runs a pass beside other work of its own
     priority (a CI job) passes `niceness=0`: at 19 it would starve and count every mutant a timeout.
-    `names` plants only those mutants; `sample` plants that many drawn at random with `seed`."""
+    `names` plants only those mutants; `sample` plants that many drawn at random with `seed`;
+    `planted_before` plants every mutant but those (the rest of a stopped pass)."""
     if module not in MODULES:
         raise ValueError(f"no mutation setup for {module}: one of {', '.join(MODULES)}")
     mutmut = Path(sys.executable).with_name("mutmut")
@@ -556,6 +563,8 @@ def run(
         command = ["nice", "-n", str(niceness), str(mutmut), "run", "--max-children", "1"]
         if sample is not None:
             names = _sample(module, where, command, env, sample, seed)
+        elif planted_before is not None:
+            names = [name for name in _listing(module, where, command, env) if name not in planted_before]
         subprocess.run([*command, *(names or ())], cwd=where, env=env, check=True, stdout=subprocess.DEVNULL)
         return _outcome(module, where, names)
 
@@ -579,6 +588,11 @@ def main(argv: list[str] | None = None) -> None:
         action="store_true",
         help="write the verdicts to benchmarks/mutation_results/ (a pass; with --names, an update)",
     )
+    parser.add_argument(
+        "--rest",
+        action="store_true",
+        help="plant the mutants the module's recorded stopped pass did not reach (with --record, resume it)",
+    )
     parser.add_argument("--niceness", type=int, default=19, help="nice level of the run (default 19)")
     parser.add_argument(
         "--record-stopped",
@@ -589,7 +603,7 @@ def main(argv: list[str] | None = None) -> None:
     args = parser.parse_args(argv)
     if args.record_stopped:
         for module in args.module or ():
-            _record_stopped(module, args.record_stopped / module.replace("/", "_"))
+            _record_stopped(module, args.record_stopped / module.replace("/", "_"), args.rest)
         return
     print(f"{'module':<40} {'total':>6} {'killed':>7} {'survived':>9} {'timeout':>8} {'no tests':>9}")
     for module in args.module or list(MODULES):
@@ -603,6 +617,7 @@ def main(argv: list[str] | None = None) -> None:
             names=mine or None,
             sample=args.sample,
             seed=args.seed,
+            planted_before=_planted(module) if args.rest else None,
         )
         if args.record:
             _record(module, outcome, args)
@@ -618,20 +633,38 @@ def _dotted(module: str) -> str:
     return module.removesuffix(".py").replace("/", ".")
 
 
-def _record_stopped(module: str, where: Path) -> None:
-    """A pass stopped by hand: the mutants it reached, as a first pass marked stopped."""
+def _planted(module: str) -> frozenset[str]:
+    """The mutants the module's recorded stopped pass planted."""
+    from benchmarks import mutation_results
+
+    record = mutation_results.load(module)
+    if record is None or not record.stopped:
+        raise SystemExit(f"mbxval: error: --rest: no stopped pass of {module} recorded")
+    return frozenset(record.verdicts)
+
+
+def _record_stopped(module: str, where: Path, rest: bool = False) -> None:
+    """A pass stopped by hand: the mutants it reached, as a first pass marked stopped (with `rest`,
+    added to the recorded stopped pass it resumed)."""
     from benchmarks import mutation_results
 
     reached = [name for name, code in _codes(module, where).items() if code is not None]
     outcome = _outcome(module, where, reached)
-    record = mutation_results.record_pass(module, outcome.mutants, outcome.verdicts, None, None, stopped=True)
+    if rest:
+        record = mutation_results.record_rest(module, outcome.verdicts)
+    else:
+        record = mutation_results.record_pass(
+            module, outcome.mutants, outcome.verdicts, None, None, stopped=True
+        )
     mutation_results.save(record)
 
 
 def _record(module: str, outcome: Outcome, args: argparse.Namespace) -> None:
     from benchmarks import mutation_results
 
-    if args.names:
+    if args.rest:
+        record = mutation_results.record_rest(module, outcome.verdicts)
+    elif args.names:
         record = mutation_results.record_again(module, outcome.verdicts)
     else:
         record = mutation_results.record_pass(

@@ -4,7 +4,8 @@
 mutants) writes benchmarks/mutation_results/<module>.json: every planted mutant's verdict, the
 module's mutant count, the sample's size and seed, and what the first pass did not catch. A later
 run of named mutants (`--names`, after a test was added to kill them) updates their verdicts and
-keeps the first pass's list, so the page can say which mutants new tests killed. Nothing here runs
+keeps the first pass's list, so the page can say which mutants new tests killed; `--rest` resumes a
+stopped pass with the mutants it had not reached. Nothing here runs
 mutmut: the page is a function of the records and of benchmarks/mutation_explained/.
 
     python -m benchmarks.mutation_results > docs/mutation-results.md
@@ -123,6 +124,21 @@ def record_again(module: str, verdicts: Mapping[str, str]) -> Record:
     return Record(
         module, record.mutants, merged, record.first_uncaught, record.sample, record.seed, record.stopped
     )
+
+
+def record_rest(module: str, verdicts: Mapping[str, str]) -> Record:
+    """A stopped pass resumed: the verdicts of mutants it had not reached join its own, as first-pass
+    verdicts (their uncaught join its uncaught); it is no longer stopped once every mutant is planted."""
+    record = load(module)
+    if record is None or not record.stopped:
+        raise ValueError(f"no stopped pass of {module} recorded: only a stopped pass can be resumed")
+    again = sorted(set(verdicts) & set(record.verdicts))
+    if again:
+        raise ValueError(f"{module}: mutants already planted in its recorded pass: {', '.join(again)}")
+    merged = {**record.verdicts, **verdicts}
+    uncaught = record_pass(module, record.mutants, verdicts, None, None).first_uncaught
+    first = tuple(sorted((*record.first_uncaught, *uncaught)))
+    return Record(module, record.mutants, merged, first, stopped=len(merged) < record.mutants)
 
 
 def records() -> list[Record]:

@@ -79,3 +79,24 @@ def test_a_stopped_pass_says_how_many_mutants_it_reached() -> None:
     stopped = Record("reports/scoring/energy_drift.py", 9, {"c.x__mutmut_1": "killed"}, (), stopped=True)
     row = "| `reports/scoring/energy_drift.py` | 9 | first 1 reached (stopped) | 1 / 1 | 0 | 1 / 1 | 0 | 0"
     assert row in page([stopped], {})
+
+
+def test_a_stopped_pass_resumed_adds_the_rest_as_first_pass_verdicts(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(mutation_results, "RESULTS_DIR", tmp_path)
+    module = "reports/scoring/energy_drift.py"
+    names = [f"reports.scoring.energy_drift.x_f__mutmut_{k}" for k in range(1, 6)]
+    first = dict(zip(names[:2], ["killed", "survived"], strict=True))
+    mutation_results.save(record_pass(module, 5, first, None, None, stopped=True))
+    part = mutation_results.record_rest(module, {names[2]: "survived"})
+    assert part.stopped and part.planted == 3 and part.first_uncaught == (names[1], names[2])
+    mutation_results.save(part)
+    whole = mutation_results.record_rest(module, {names[3]: "killed", names[4]: "timeout"})
+    assert not whole.stopped and (whole.planted, whole.caught(), whole.first_caught()) == (5, 3, 3)
+    assert "| `reports/scoring/energy_drift.py` | 5 | all | 3 / 5 | 0 | 3 / 5 |" in page([whole], {})
+    with pytest.raises(ValueError, match=r"already planted in its recorded pass: .*mutmut_1"):
+        mutation_results.record_rest(module, {names[0]: "killed"})
+    mutation_results.save(whole)
+    with pytest.raises(ValueError, match=r"no stopped pass of reports/scoring/energy_drift\.py"):
+        mutation_results.record_rest(module, {})

@@ -89,3 +89,22 @@ def test_the_guard_stays_quiet_on_the_regular_scenarios(monkeypatch: pytest.Monk
         assert result.status == "ok", (name, result.message)
     assert len(ratios) > 1000
     assert max(ratios) < 0.1
+
+
+def test_a_crossing_between_grid_points_is_bracketed_by_the_interval_halved_halvings_times() -> None:
+    """Crank and rod of equal length (0.2 m), crank from 0.5 rad at 50 rad/s: the determinant of
+    the Jacobian changes sign at th2 = pi / 2, t* = (pi / 2 - 0.5) / 50, between two grid points.
+    Each halving keeps the half that holds t*, so after HALVINGS of them the reported time is the
+    end of the sub-interval of width h / 2**HALVINGS that contains t*: t_k + ceil(f 2**HALVINGS) h /
+    2**HALVINGS, with f the fraction of the output interval [t_k, t_k + h] before t*."""
+    scenario = scenarios.build("slider_crank", overrides={"rod_length": 0.2, "theta0": 0.5})
+    times = np.asarray(scenario.times())
+    h = float(times[1] - times[0])
+    crossing = (np.pi / 2 - 0.5) / 50
+    k = int(np.searchsorted(times, crossing)) - 1
+    cells = (crossing - times[k]) / h * 2**kinematics.HALVINGS
+    assert 0.01 < cells % 1.0 < 0.99  # t* well inside a cell: its end does not depend on round-off
+    result = PinocchioAdapter().run(scenario)
+    assert result.status == "singular" and "determinant changes sign" in result.message, result.message
+    expected = times[k] + np.ceil(cells) * h / 2**kinematics.HALVINGS
+    assert result.failure_time == pytest.approx(expected, abs=1e-15)

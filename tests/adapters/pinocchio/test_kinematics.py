@@ -10,10 +10,12 @@ import pytest
 
 import scenarios
 from adapters.base import EngineFailure, Singular
+from adapters.pinocchio import PinocchioAdapter
 from adapters.pinocchio.constraint_rows import ConstraintRows
-from adapters.pinocchio.kinematics import KinematicSolver
+from adapters.pinocchio.kinematics import KinematicSolver, body_motion
 from adapters.pinocchio.model import build_model
 from adapters.pinocchio.tree import plan
+from scenarios.closed_form import exact
 
 
 def test_a_slide_s_coordinate_is_sized_by_the_characteristic_length_and_an_angle_by_one() -> None:
@@ -53,3 +55,32 @@ def test_a_non_finite_guess_is_refused_with_its_time_and_assembly_says_so() -> N
         solver.assemble(np.full(nq, np.nan), 0.25)
     assert str(assembly.value) == "cannot assemble at t = 0.25: non-finite constraint residual at t = 0.25"
     assert assembly.value.time == 0.25
+
+
+def test_a_row_null_at_the_first_configuration_is_sized_one_and_later_solves_converge() -> None:
+    """The four-bar folded flat (every joint coordinate 0) has a loop-closure row whose Jacobian
+    entries are all zero: its size is 1, not 0 (a zero size would divide its residual by zero in
+    every later solve). The sizes are kept, so the same solver must still run the four-bar from
+    its assembled start and match the closed form."""
+    scenario = scenarios.build("four_bar", overrides={"steps": 10})
+    solver, nq = _solver("four_bar")
+    flat = np.zeros(nq)
+    rows, _ = solver._system(flat, 0.0)
+    null = np.flatnonzero(np.all(rows.jac == 0.0, axis=1))
+    assert null.size == 1
+    with pytest.raises(Singular):
+        solver.position(flat, 0.0)
+    assert solver.row_sizes(rows.jac)[null[0]] == 1.0
+    adapter = PinocchioAdapter()
+    start = adapter.build(scenario, adapter.default_setting(scenario)).start
+    assert start is not None
+    times = np.asarray(scenario.times())
+    z, z_rate, z_acc = solver.run(start[1], times)
+    data = solver.pm.model.createData()
+    bodies = scenario.output_bodies
+    found = np.stack(
+        [body_motion(solver.pm, data, (z[k], z_rate[k], z_acc[k]), bodies) for k in range(times.size)]
+    )
+    truth = exact(scenario, times).select(bodies)
+    assert np.abs(found[:, 0] - truth.position).max() < 1e-12
+    assert np.abs(found[:, 1] - truth.velocity).max() < 1e-10

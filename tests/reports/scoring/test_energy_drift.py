@@ -91,3 +91,24 @@ def test_a_truth_defined_nowhere_gives_no_drift() -> None:
     scenario, truth = _native("four_bar_gravity")
     undefined = dataclasses.replace(truth, velocity=np.full_like(truth.velocity, np.nan))
     assert np.isnan(energy_drift(scenario, truth, undefined))
+
+
+def _at_rest(times: np.ndarray) -> tuple[Scenario, Trajectory]:
+    """The four-bar with gravity held still at its first pose on the grid `times`: no kinetic
+    energy, so the scale is the floor alone."""
+    scenario, truth = _native("four_bar_gravity")
+    pose = np.repeat(truth.position[:1], times.size, axis=0)
+    rest = np.zeros_like(pose)
+    return scenario, Trajectory(times, truth.bodies, pose, rest, rest)
+
+
+def test_a_scene_at_rest_is_scaled_by_the_mass_times_the_length_squared_over_the_span_squared() -> None:
+    """sum m L^2 / (t_end - t_0)^2 on a grid from t = 1 to 4 (span 3, L = 0.05 m: neither 1 nor
+    2, so a wrong power of either shows), and over a span of 1 for a single grid time."""
+    scenario, still = _at_rest(np.linspace(1.0, 4.0, 7))
+    mass = sum(body.mass for body in scenario.bodies)
+    length = scenario.characteristic_length
+    assert length not in (1.0, 2.0) and mass > 0.0
+    assert energy_scale(scenario, still) == pytest.approx(mass * length**2 / 9.0, rel=1e-15)
+    _, instant = _at_rest(np.array([2.5]))
+    assert energy_scale(scenario, instant) == pytest.approx(mass * length**2, rel=1e-15)

@@ -256,3 +256,148 @@ def test_a_short_grid_of_a_conservative_run_is_still_judged() -> None:
 def test_solve_on_one_output_step_warns_of_no_drift(capsys, tmp_path) -> None:
     assert main(["solve", "four_bar", "--steps", "1", "--out", str(tmp_path / "x.csv")]) == 0
     assert "drifted" not in capsys.readouterr().err
+
+
+def test_step_halving_is_half_a_first_order_run_s_error_at_the_run_s_own_times_and_step() -> None:
+    """MuJoCo's Euler on the compound pendulum (a hinge chain, no soft constraint) is first order:
+    its position error is C(t) dt to leading order, so the run at dt and the run at dt / 2 differ by
+    C(t) dt / 2, half the run's own error against the native solver at 1e-12. Positions are measured
+    whatever levels the scenario compares (velocity only here), on the grid asked for (not the
+    scenario's own), at the setting's step (not the default's)."""
+    from adapters.setting import Setting
+    from reports.scoring.level_error import level_errors
+
+    scenario = dataclasses.replace(
+        scenarios.build("compound_pendulum"), t_end=0.5, steps=10, levels=("velocity",)
+    )
+    times = np.linspace(0.0, 0.4, 5)
+    truth = simulate(scenario, times, 1e-12).trajectory()
+    adapter = load_engine("mujoco")
+    setting = Setting.of("Euler", **{**dict(adapter.default_setting(scenario).options), "dt": 1e-3})
+    run = adapter.run(scenario, setting, times)
+    assert run.status == "ok" and run.trajectory is not None, run.message
+    error = level_errors(scenario, run.trajectory, truth, ("position",))["error_position"]
+    assert error > 1e-3  # far above round-off and the truth's own error
+    halving = self_check.step_halving(adapter, scenario, setting, times, run.trajectory)
+    assert halving == pytest.approx(error / 2, rel=0.02)
+
+
+def test_only_free_dynamics_can_keep_t_plus_v() -> None:
+    """Drivers do work on a mechanism in the dynamic analysis too, and a kinematic analysis has no
+    dynamics to conserve, drivers or not."""
+    driven = dataclasses.replace(scenarios.build("four_bar"), analysis="dynamic")
+    assert not driven.forces and not self_check.conservative(driven)
+    still = dataclasses.replace(scenarios.build("compound_pendulum"), analysis="kinematic")
+    assert not still.drivers and not self_check.conservative(still)
+
+
+def test_a_figure_at_its_limit_is_no_drift_and_the_verdict_lists_every_drift_in_full() -> None:
+    """A limit is the largest figure allowed ("above the limit" drifts); the verdict says each
+    drift with its figure and limit, in order, separated by "; "."""
+    at_limits = (self_check.RESIDUAL_LIMIT, self_check.ENERGY_LIMIT, self_check.STEP_LIMIT)
+    assert self_check.verdict(*at_limits) == ""
+    assert self_check.verdict(math.inf, math.nan) == "drifted: constraint residual not finite"
+    assert self_check.verdict(2e-3, 0.5, 0.25) == (
+        "drifted: constraint residual 0.002 (limit 0.001); energy T + V changed by 0.5 of its energy "
+        "scale beyond the work done on it (limit 0.01); positions moved by 0.25 at half the step "
+        "(limit 0.01)"
+    )
+
+
+def _four_bar_truth(steps: int) -> tuple[scenarios.Scenario, Trajectory]:
+    """The four-bar's closed form with its Newton-Euler driving torque on `steps` intervals."""
+    from reports.scoring.truth import independent_truth
+
+    scenario = dataclasses.replace(scenarios.build("four_bar"), steps=steps)
+    return scenario, independent_truth(scenario, np.asarray(scenario.times())).trajectory
+
+
+def test_every_other_grid_time_keeps_every_level_and_extra() -> None:
+    _, truth = _four_bar_truth(6)
+    assert truth.velocity is not None and truth.acceleration is not None and truth.extras
+    half = self_check._every_other(truth)
+    assert half.bodies == truth.bodies and (half.times == truth.times[::2]).all()
+    for level in ("position", "velocity", "acceleration"):
+        assert (half.level(level) == truth.level(level)[::2]).all(), level
+    assert half.extras.keys() == truth.extras.keys()
+    assert all((half.extras[name] == values[::2]).all() for name, values in truth.extras.items())
+    bare = self_check._every_other(dataclasses.replace(truth, acceleration=None))
+    assert bare.acceleration is None and (bare.velocity == truth.velocity[::2]).all()
+
+
+def test_the_quadrature_is_judged_from_five_grid_times_on() -> None:
+    """Five times are the fewest whose every other one (three) still gives the work a quadrature
+    with a middle point: there the uncertainty is the largest gap between the work over every other
+    time and the work on the grid; on four times or fewer it is 0."""
+    from reports.scoring.work import work
+
+    for steps in (2, 3):
+        scenario, truth = _four_bar_truth(steps)
+        done = work(scenario, truth)
+        assert done is not None
+        assert self_check._quadrature_uncertainty(scenario, truth, done) == 0.0
+    scenario, truth = _four_bar_truth(4)
+    done = work(scenario, truth)
+    coarse = work(
+        scenario,
+        dataclasses.replace(
+            truth,
+            times=truth.times[::2],
+            position=truth.position[::2],
+            velocity=truth.velocity[::2],
+            acceleration=truth.acceleration[::2],
+            extras={name: values[::2] for name, values in truth.extras.items()},
+        ),
+    )
+    assert done is not None and coarse is not None
+    expected = float(np.max(np.abs(coarse - done[::2])))
+    assert expected > 0.0
+    assert self_check._quadrature_uncertainty(scenario, truth, done) == expected
+
+
+def test_a_scene_at_rest_whose_height_changes_is_judged_against_the_energy_floor() -> None:
+    """The compound pendulum held at its start pose, lifted by dy from the second grid time on: no
+    kinetic energy, no work, T + V up by M g dy. The scale is the floor M L^2 / t_end^2
+    (energy_drift.energy_scale), so the figure is M g dy t_end^2 / (M L^2)."""
+    scenario = dataclasses.replace(scenarios.build("compound_pendulum"), t_end=0.5, steps=10)
+    times = np.asarray(scenario.times())
+    bodies = tuple(body.name for body in scenario.bodies)
+    start = simulate(scenario, times[:2], 1e-12).trajectory().select(bodies).position
+    assert start is not None
+    pose = np.repeat(start[:1], times.size, axis=0)
+    dy = 1e-4
+    pose[1:, :, 1] += dy
+    rest = np.zeros_like(pose)
+    lifted = Trajectory(times, bodies, pose, rest, rest)
+    mass = sum(body.mass for body in scenario.bodies)
+    g = float(np.hypot(*scenario.gravity))
+    expected = mass * g * dy * 0.5**2 / (mass * scenario.characteristic_length**2)
+    assert self_check.energy_change(scenario, lifted) == pytest.approx(expected, rel=1e-9)
+
+
+def test_a_bias_whose_work_dwarfs_the_motion_is_judged_against_that_work() -> None:
+    """A driving-torque bias doing 100 times the four-bar's largest kinetic energy: the balance is
+    off by about all the work done (a figure near 1), not by a hundred energy scales."""
+    scenario, truth = _four_bar_truth(40)
+    scale = float(np.max(kinetic_energy(scenario, truth)))
+    angle = float(
+        truth.position[-1, truth.bodies.index("crank"), 2] - truth.position[0, truth.bodies.index("crank"), 2]
+    )
+    bias = 100.0 * scale / abs(angle)
+    extras = {**truth.extras, "crank_drive.force": truth.extras["crank_drive.force"] + bias}
+    change = self_check.energy_change(scenario, dataclasses.replace(truth, extras=extras))
+    assert 0.9 < change < 1.0
+
+
+def test_a_run_without_velocities_or_of_point_masses_is_judged_as_far_as_it_can_be() -> None:
+    """No velocities: no kinetic energy, no balance (NaN). Bodies with mass and no rotational
+    inertia (point masses) still have one."""
+    scenario, truth = _four_bar_truth(8)
+    assert math.isnan(
+        self_check.energy_change(scenario, dataclasses.replace(truth, velocity=None, acceleration=None))
+    )
+    points = dataclasses.replace(
+        scenario, bodies=tuple(dataclasses.replace(body, inertia=0.0) for body in scenario.bodies)
+    )
+    assert all(body.mass > 0.0 for body in points.bodies)
+    assert math.isfinite(self_check.energy_change(points, truth))
