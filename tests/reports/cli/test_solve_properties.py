@@ -18,12 +18,13 @@ import adapters
 from reports.cli.main import main
 from scenarios import all_families
 from scenarios.family import MAX_REVOLUTIONS
+from tests.support.engines import ENGINES as INSTALLED
 
 # The kinematic families: a random stiffness or horizon of a dynamic family can make one forward
 # integration take minutes (seen in CI); every dynamic parameter's range is still refused as declared
 # in tests/scenarios/test_catalogue.py.
 FAMILIES = {name: family for name, family in all_families().items() if not family.dynamic}
-ENGINES = {name: adapters.load(name) for name in adapters.names()}
+ENGINES = {name: adapters.load(name) for name in INSTALLED}
 OPTIONS = {name: {o.name: o for o in engine.options} for name, engine in ENGINES.items()}
 MODES = sorted({mode for engine in ENGINES.values() for mode in engine.modes} | {"nosuch"})
 STEPS = "12"  # a short grid: the property is about inputs, not about long solves
