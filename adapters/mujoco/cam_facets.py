@@ -26,16 +26,14 @@ from scenarios.cams import CamContact, FlatFaceCam, RollerCam
 from scenarios.scenario import Scenario
 
 DEFAULT_PIECES = 512
-"""Facets per turn by default. Measured on cam_roller/spline against the native solver (tests/adapters/
-mujoco/test_cam_facets.py): below 512 the vertices pass near the soft contact's own frequency and
-throw the follower off (position 5e-5..4e-4 m, accelerations 500 m/s^2); at 512 the sagitta is
-1.4e-6 m, below the contact's own penetration error (9e-6 m on the disc cam), and the follower's
-errors are 3.9e-6 m, 2.4e-3 m/s, 15 m/s^2, falling at order 0.6-0.8 to 2048 (1.3e-6 m, 1.0e-3 m/s,
-5.3 m/s^2) at 3.6 times the run time (0.75 s against 2.7 s)."""
+"""Facets per turn by default, chosen on cam_roller/spline against the native solver: with fewer,
+the vertices pass near the soft contact's own frequency and throw the follower off; at 512 the
+sagitta is below the contact's own penetration error, and more facets gain less than first order
+at several times the run time (the figures: tests/adapters/mujoco/test_cam_facets.py)."""
 PIECES_HELP = (
     "facets of a spline cam profile (chords between equally spaced profile points); default 512: the "
-    "fewest whose vertices pass above the soft contact's frequency, sagitta 1.4e-6 m below the "
-    "contact's own error; errors fall at order 0.6-0.8 beyond"
+    "fewest whose vertices pass above the soft contact's frequency, with a sagitta below the "
+    "contact's own error; more facets cost more and gain less than first order"
 )
 MIN_PIECES = 8
 MAX_PIECES = 8192

@@ -69,13 +69,16 @@ MODES = {
     "baumgarte": BAUMGARTE,
     "euler": EULER,
 }
-_SHARE = "timing adapter-dominated: Pinocchio's kernels are 12-30 % of a step in free dynamics"
+_SHARE = (
+    "timing adapter-dominated: Pinocchio's kernels are a minority of a step in free dynamics "
+    "(their share measured by python -m benchmarks.pinocchio_dynamics)"
+)
 MEASURED = (
     Mode(
         "kinematic",
         ADAPTER,
         "Newton on loop and driver rows from Pinocchio's frame placements and Jacobians (timing "
-        "adapter-dominated: Pinocchio's own calls are 10 % of the run on the slider-crank, 3 % on a cam)",
+        "adapter-dominated: most of the run is the adapter's Newton loop, not Pinocchio's calls)",
         (
             ("velocity", "adapter solve on Pinocchio's Jacobians"),
             ("acceleration", "adapter solve with Pinocchio's classical accelerations"),
