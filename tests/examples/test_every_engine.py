@@ -42,7 +42,7 @@ drives slider_crank_polynomial's quartic by its steered clock (through a joint e
 the crank would lag by about P''(t) tc^2 at the default's 128-step time constant). Its
 model of cam_roller_spline's profile is a polygon of 512 facets: the roller's contact kinks at
 each vertex (tests/examples/test_spline_cam.py: the errors fall with the piece count). Drake
-(1.51.1, 2026-12-07): SAP at the rule's step, positions a_max h^2 (adapters.drake)."""
+(1.51.1): SAP at the rule's step, positions a_max h^2 (adapters.drake)."""
 UNSUPPORTED: dict[tuple[str, str], str] = {
     ("drake", "cam_roller_spline"): "no cam joint",
 }

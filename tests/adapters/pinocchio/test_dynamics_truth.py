@@ -34,7 +34,7 @@ MEASURED: dict[str, tuple[float, float, float]] = {
     "stiff_spring": (4.3e-13, 1.6e-10, 8.1e-09),
 }
 """scenario: the largest position (m or rad), velocity and acceleration errors of the default setting
-over the whole scenario, measured 2026-11-25, held two-sided (tests.support.bounds)."""
+over the whole scenario, measured, held two-sided (tests.support.bounds)."""
 
 
 @functools.cache

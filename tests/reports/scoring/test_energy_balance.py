@@ -99,7 +99,7 @@ def work(scenario: Scenario, trajectory: Trajectory) -> np.ndarray:
 
 SCENES = {
     # name: (grid overrides: fine enough for Simpson's rule, the truth's balance residual over the
-    # energy scale measured 2026-11-25, the loose tolerance of the run that drifts)
+    # energy scale as measured, the loose tolerance of the run that drifts)
     "compound_pendulum": ({"steps": 1000}, 3.7e-13, 1e-6),
     # the slower ones (the tight truth takes 3 to 9 s each): CI runs them
     "four_bar_gravity": ({"steps": 1000}, 2.3e-12, 1e-8),  # at rtol 1e-6 the native run stops at 0.41 s
